@@ -1,0 +1,469 @@
+//! The level file format: one exercise per RON file, SI units.
+//!
+//! Every struct rejects unknown fields. The reference with every field, its
+//! unit and its default is `docs/levels.md`; keep the two in step.
+
+use serde::{Deserialize, Serialize};
+
+pub use crate::snapshot::BodyKind;
+
+/// A 2D vector in a level file: `(x, y)`.
+pub type V2 = (f64, f64);
+
+/// One exercise: a scene plus the textbook question(s) about it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Level {
+    pub title: String,
+    #[serde(default)]
+    pub source: Source,
+    /// The problem as the textbook states it (givens with units).
+    #[serde(default)]
+    pub statement: String,
+    /// The physical effects the scene calls for; nothing else is simulated.
+    #[serde(default)]
+    pub effects: Vec<Effect>,
+    #[serde(default)]
+    pub world: World,
+    pub bodies: Vec<BodyDef>,
+    #[serde(default)]
+    pub joints: Vec<JointDef>,
+    #[serde(default)]
+    pub springs: Vec<SpringDef>,
+    #[serde(default)]
+    pub loads: Vec<LoadDef>,
+    #[serde(default)]
+    pub events: Vec<EventDef>,
+    /// Theory-against-engine checks evaluated every step.
+    #[serde(default)]
+    pub checks: Vec<CheckDef>,
+    /// The exercise's questions with their expected answers.
+    #[serde(default)]
+    pub questions: Vec<QuestionDef>,
+}
+
+/// Where the exercise comes from.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Source {
+    #[serde(default)]
+    pub book: String,
+    #[serde(default)]
+    pub problem: String,
+}
+
+/// The effects a level may declare (promise 3: simulate only what the scene calls for).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Effect {
+    Gravity,
+    Contacts,
+    Friction,
+    Restitution,
+    Joints,
+    Springs,
+    Motors,
+    Damping,
+    Ccd,
+    Sleeping,
+}
+
+impl Effect {
+    pub const ALL: [Effect; 10] = [
+        Effect::Gravity,
+        Effect::Contacts,
+        Effect::Friction,
+        Effect::Restitution,
+        Effect::Joints,
+        Effect::Springs,
+        Effect::Motors,
+        Effect::Damping,
+        Effect::Ccd,
+        Effect::Sleeping,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Effect::Gravity => "gravity",
+            Effect::Contacts => "contacts",
+            Effect::Friction => "friction",
+            Effect::Restitution => "restitution",
+            Effect::Joints => "joints",
+            Effect::Springs => "springs",
+            Effect::Motors => "motors",
+            Effect::Damping => "damping",
+            Effect::Ccd => "ccd",
+            Effect::Sleeping => "sleeping",
+        }
+    }
+}
+
+/// World and solver settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct World {
+    /// Gravity acceleration, m/s^2 (default (0, -9.81)). Needs `gravity`.
+    pub gravity: Option<V2>,
+    /// Physics step, s.
+    pub dt: f64,
+    /// rapier's `num_solver_iterations`: the number of substeps per step.
+    pub substeps: usize,
+    /// rapier's `num_internal_pgs_iterations`: solver sweeps per substep.
+    pub solver_iterations: usize,
+    /// Simulated time, s.
+    pub duration: f64,
+}
+
+impl Default for World {
+    fn default() -> Self {
+        World {
+            gravity: None,
+            dt: 1.0 / 60.0,
+            substeps: 4,
+            solver_iterations: 1,
+            duration: 2.0,
+        }
+    }
+}
+
+/// A rigid body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyDef {
+    pub name: String,
+    #[serde(default = "default_kind")]
+    pub kind: BodyKind,
+    /// None: a point (fixed anchors) or a body with given mass and inertia.
+    #[serde(default)]
+    pub shape: Option<Shape>,
+    /// Position of the body frame origin, m.
+    #[serde(default)]
+    pub position: V2,
+    /// Rotation, rad, counter-clockwise.
+    #[serde(default)]
+    pub angle: f64,
+    /// Initial velocity of the mass center, m/s.
+    #[serde(default)]
+    pub velocity: V2,
+    /// Initial angular velocity, rad/s, counter-clockwise.
+    #[serde(default)]
+    pub omega: f64,
+    /// Mass, kg. Exclusive with `density`.
+    #[serde(default)]
+    pub mass: Option<f64>,
+    /// Area density, kg/m^2 (default 1000 when neither mass nor density is given).
+    #[serde(default)]
+    pub density: Option<f64>,
+    /// Centroidal moment of inertia I_G, kg m^2 (overrides the shape's).
+    #[serde(default)]
+    pub inertia: Option<f64>,
+    /// Centroidal radius of gyration k_G, m: I_G = m k_G^2 (overrides the shape's).
+    #[serde(default)]
+    pub radius_of_gyration: Option<f64>,
+    /// Lock rotation (particle models).
+    #[serde(default)]
+    pub lock_rotation: bool,
+    /// Coulomb friction coefficient (needs `friction`); a pair uses the larger of its two values.
+    #[serde(default)]
+    pub friction: Option<f64>,
+    /// Coefficient of restitution (needs `restitution`); a pair uses the larger of its two values.
+    #[serde(default)]
+    pub restitution: Option<f64>,
+    /// Linear damping coefficient, 1/s (needs `damping`).
+    #[serde(default)]
+    pub linear_damping: Option<f64>,
+    /// Angular damping coefficient, 1/s (needs `damping`).
+    #[serde(default)]
+    pub angular_damping: Option<f64>,
+}
+
+fn default_kind() -> BodyKind {
+    BodyKind::Dynamic
+}
+
+/// A collision/mass shape in the body frame. Sizes are full sizes, m.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Shape {
+    Circle {
+        radius: f64,
+    },
+    Box {
+        width: f64,
+        height: f64,
+    },
+    /// A stadium along the body x axis: `length` between the two cap centers.
+    Capsule {
+        length: f64,
+        radius: f64,
+    },
+    /// A convex polygon (its convex hull is used), vertices in the body frame.
+    Polygon {
+        points: Vec<V2>,
+    },
+    /// A line segment (ground lines, walls): no area, so no mass.
+    Segment {
+        a: V2,
+        b: V2,
+    },
+    Compound {
+        parts: Vec<Part>,
+    },
+}
+
+/// One part of a compound shape.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Part {
+    pub shape: Shape,
+    #[serde(default)]
+    pub offset: V2,
+    #[serde(default)]
+    pub angle: f64,
+}
+
+/// A joint between two bodies. Anchors are in each body's frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointDef {
+    pub name: String,
+    pub kind: JointKind,
+    pub body1: String,
+    pub body2: String,
+    #[serde(default)]
+    pub anchor1: V2,
+    #[serde(default)]
+    pub anchor2: V2,
+    /// Slide axis in body1's frame (prismatic, pin_slot).
+    #[serde(default = "default_axis")]
+    pub axis: V2,
+    /// Limits on the joint coordinate: rad (revolute) or m (prismatic).
+    #[serde(default)]
+    pub limits: Option<(f64, f64)>,
+    /// A motor on the joint coordinate (needs `motors`).
+    #[serde(default)]
+    pub motor: Option<Motor>,
+}
+
+fn default_axis() -> V2 {
+    (1.0, 0.0)
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointKind {
+    /// A pin: relative rotation free.
+    Revolute,
+    /// A slider along `axis`, no relative rotation.
+    Prismatic,
+    /// A weld.
+    Fixed,
+    /// A pin in a slot (point on a line): slides along `axis` and rotates.
+    PinSlot,
+}
+
+/// A joint motor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Motor {
+    /// Drive the joint rate to `target` (rad/s or m/s).
+    Velocity {
+        target: f64,
+        /// Largest torque (N m) or force (N) the motor may deliver.
+        #[serde(default)]
+        max_force: Option<f64>,
+    },
+    /// Drive the joint coordinate to `target` with a spring-damper servo.
+    Position {
+        target: f64,
+        stiffness: f64,
+        damping: f64,
+        #[serde(default)]
+        max_force: Option<f64>,
+    },
+}
+
+/// A linear spring-damper applied as forces by rigidlab (exact Hooke law).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringDef {
+    pub name: String,
+    pub body1: String,
+    /// Attachment point in body1's frame, m.
+    #[serde(default)]
+    pub point1: V2,
+    /// None: the spring's other end is fixed to the ground at `point2` (world frame).
+    #[serde(default)]
+    pub body2: Option<String>,
+    #[serde(default)]
+    pub point2: V2,
+    /// Stiffness k, N/m.
+    pub stiffness: f64,
+    /// Rest (unstretched) length, m.
+    pub rest_length: f64,
+    /// Viscous damping c, N s/m (needs `damping`).
+    #[serde(default)]
+    pub damping: f64,
+}
+
+/// An applied force and/or torque on a body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadDef {
+    pub name: String,
+    pub body: String,
+    /// Point of application in the body frame, m (default: the body origin).
+    #[serde(default)]
+    pub point: V2,
+    /// Force in world axes, N.
+    #[serde(default)]
+    pub force: Option<Profile<V2>>,
+    /// Couple, N m, counter-clockwise.
+    #[serde(default)]
+    pub torque: Option<Profile<f64>>,
+    /// The force turns with the body (follower load) instead of keeping its world direction.
+    #[serde(default)]
+    pub follow_body: bool,
+}
+
+/// A value over time: constant, or a table interpolated linearly (held at its ends).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Profile<T> {
+    Constant(T),
+    /// `[(t, value), ...]` with t in s, strictly increasing.
+    Table(Vec<(f64, T)>),
+}
+
+/// Something that happens at a given time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum EventDef {
+    /// An impulse at a body point (strike a bar, kick a ball).
+    Impulse {
+        name: String,
+        /// Time, s: applied at the start of the step that contains it.
+        at: f64,
+        body: String,
+        /// Point of application in the body frame, m.
+        #[serde(default)]
+        point: V2,
+        /// Linear impulse, N s, world axes.
+        impulse: V2,
+        /// Angular impulse (a couple's impulse), N m s.
+        #[serde(default)]
+        angular: f64,
+    },
+}
+
+impl EventDef {
+    pub fn name(&self) -> &str {
+        match self {
+            EventDef::Impulse { name, .. } => name,
+        }
+    }
+}
+
+/// A theory-against-engine check run every step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckDef {
+    pub kind: CheckKind,
+    /// The body (or joint, or contact partner) the check is about; None = the whole scene.
+    #[serde(default)]
+    pub body: Option<String>,
+    /// A second body where the check needs one (a contact partner, a fixed pivot body).
+    #[serde(default)]
+    pub other: Option<String>,
+    /// A point, world frame, where the check needs one (fixed point O), m.
+    #[serde(default)]
+    pub point: Option<V2>,
+    /// Relative tolerance on the maximum error (of the scale the check reports).
+    pub tolerance: f64,
+    /// Why this tolerance: the engine limitation or the discretization error it covers.
+    #[serde(default)]
+    pub why: String,
+}
+
+/// The kinds of check (the report uses these names).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CheckKind {
+    /// Mass, centroid and I_G from the shape's formula against rapier's mass properties.
+    MassProperties,
+    /// Closed-form trajectory of a body under constant force (free fall, projectile).
+    ConstantAcceleration,
+    KineticEnergyG,
+    KineticEnergyIc,
+    AngularMomentumFixedPoint,
+    CenterOfPercussion,
+    NewtonEuler,
+    WorkEnergy,
+    ImpulseMomentum,
+    Restitution,
+}
+
+/// A question of the exercise, with its expected answer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct QuestionDef {
+    pub id: String,
+    /// The question in words.
+    pub ask: String,
+    pub unit: String,
+    /// The textbook answer (recomputed where the printed one is wrong).
+    pub expected: f64,
+    /// Relative tolerance.
+    pub tolerance: f64,
+    /// What is measured.
+    pub quantity: Quantity,
+    /// When it is measured.
+    #[serde(default)]
+    pub at: When,
+    /// Why the tolerance is what it is.
+    #[serde(default)]
+    pub why: String,
+}
+
+/// A measurable quantity of one body or joint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Quantity {
+    /// x of the mass center, m.
+    X(String),
+    /// y of the mass center, m.
+    Y(String),
+    /// Body angle, rad.
+    Angle(String),
+    /// x velocity of the mass center, m/s.
+    Vx(String),
+    /// y velocity of the mass center, m/s.
+    Vy(String),
+    /// Speed of the mass center, m/s.
+    Speed(String),
+    /// Angular velocity, rad/s.
+    Omega(String),
+    /// Kinetic energy 1/2 m v^2 + 1/2 I w^2, J.
+    KineticEnergy(String),
+    /// Magnitude of the joint reaction force (mean over the step), N.
+    JointForce(String),
+    /// Magnitude of the total contact force on a body from all contacts (mean over the step), N.
+    ContactForce(String),
+    /// Distance travelled by the mass center, m.
+    Distance(String),
+}
+
+/// When a question's quantity is read.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum When {
+    /// At the end of the run.
+    #[default]
+    End,
+    /// At this time, s (the step nearest to it).
+    Time(f64),
+    /// The largest value over the run (optionally from a time on).
+    Max(#[serde(default)] f64),
+    /// The smallest value over the run (optionally from a time on).
+    Min(#[serde(default)] f64),
+}

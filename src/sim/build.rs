@@ -1,0 +1,210 @@
+//! Building the rapier world from a validated scene, with only the declared effects.
+
+use super::{Effects, Options};
+use crate::level::{
+    BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part, Shape as LevelShape, V2,
+};
+use rapier2d::prelude::*;
+
+pub(crate) fn v(p: V2) -> Vector {
+    Vector::new(p.0 as Real, p.1 as Real)
+}
+
+/// The parry shape for a level shape. Nested compounds are flattened (parry forbids them).
+pub fn shared_shape(s: &LevelShape) -> SharedShape {
+    match s {
+        LevelShape::Circle { radius } => SharedShape::ball(*radius as Real),
+        LevelShape::Box { width, height } => {
+            SharedShape::cuboid((*width / 2.0) as Real, (*height / 2.0) as Real)
+        }
+        LevelShape::Capsule { length, radius } => {
+            SharedShape::capsule_x((*length / 2.0) as Real, *radius as Real)
+        }
+        LevelShape::Polygon { points } => {
+            let pts: Vec<Vector> = points.iter().map(|p| v(*p)).collect();
+            // Validation guarantees >= 3 points enclosing an area, so the hull exists.
+            SharedShape::convex_hull(&pts).unwrap_or_else(|| SharedShape::ball(1e-3))
+        }
+        LevelShape::Segment { a, b } => SharedShape::segment(v(*a), v(*b)),
+        LevelShape::Compound { parts } => {
+            let mut flat = Vec::new();
+            flatten(parts, Pose::IDENTITY, &mut flat);
+            SharedShape::compound(flat)
+        }
+    }
+}
+
+fn flatten(parts: &[Part], base: Pose, out: &mut Vec<(Pose, SharedShape)>) {
+    for p in parts {
+        let pose = base * Pose::new(v(p.offset), p.angle as Real);
+        match &p.shape {
+            LevelShape::Compound { parts } => flatten(parts, pose, out),
+            s => out.push((pose, shared_shape(s))),
+        }
+    }
+}
+
+/// Default area density when a level gives neither mass nor density, kg/m^2.
+pub const DEFAULT_DENSITY: f64 = 1000.0;
+
+/// Mass properties of a body: from the shape at its density or given mass, then the inertia override.
+pub fn mass_properties(b: &BodyDef) -> MassProperties {
+    let shape = b.shape.as_ref().map(shared_shape);
+    let unit = shape.as_ref().map(|s| s.mass_properties(1.0));
+    let unit_mass = unit.map_or(0.0, |u| u.mass() as f64);
+    let (mass, com, inertia) = match (b.mass, unit) {
+        (Some(m), Some(u)) if unit_mass > 0.0 => {
+            (m, u.local_com, u.principal_inertia() as f64 * m / unit_mass)
+        }
+        (Some(m), _) => (m, Vector::ZERO, 0.0),
+        (None, Some(u)) => {
+            let d = b.density.unwrap_or(DEFAULT_DENSITY);
+            (unit_mass * d, u.local_com, u.principal_inertia() as f64 * d)
+        }
+        (None, None) => (0.0, Vector::ZERO, 0.0),
+    };
+    let inertia = match (b.inertia, b.radius_of_gyration) {
+        (Some(i), _) => i,
+        (None, Some(k)) => mass * k * k,
+        _ => inertia,
+    };
+    MassProperties::new(com, mass as Real, inertia as Real)
+}
+
+pub(crate) fn body_builder(b: &BodyDef, fx: &Effects) -> RigidBodyBuilder {
+    let builder = match b.kind {
+        BodyKind::Fixed => RigidBodyBuilder::fixed(),
+        BodyKind::Dynamic => RigidBodyBuilder::dynamic(),
+        BodyKind::Kinematic => RigidBodyBuilder::kinematic_velocity_based(),
+    };
+    let damping = fx.has(Effect::Damping);
+    let mut builder = builder
+        .translation(v(b.position))
+        .rotation(b.angle as Real)
+        .linvel(v(b.velocity))
+        .angvel(b.omega as Real)
+        .can_sleep(fx.has(Effect::Sleeping))
+        .ccd_enabled(fx.has(Effect::Ccd) && b.kind == BodyKind::Dynamic)
+        .linear_damping(if damping {
+            b.linear_damping.unwrap_or(0.0) as Real
+        } else {
+            0.0
+        })
+        .angular_damping(if damping {
+            b.angular_damping.unwrap_or(0.0) as Real
+        } else {
+            0.0
+        });
+    if b.kind == BodyKind::Dynamic {
+        // Colliders get zero density: mass properties are the same with or without contacts.
+        builder = builder.additional_mass_properties(mass_properties(b));
+    }
+    if b.lock_rotation {
+        builder = builder.lock_rotations();
+    }
+    builder
+}
+
+/// Colliders for a body's shape, only when contacts are simulated.
+pub(crate) fn colliders(b: &BodyDef, fx: &Effects) -> Vec<ColliderBuilder> {
+    let Some(shape) = &b.shape else {
+        return Vec::new();
+    };
+    let friction = if fx.has(Effect::Friction) {
+        b.friction.unwrap_or(0.0)
+    } else {
+        0.0
+    };
+    let restitution = if fx.has(Effect::Restitution) {
+        b.restitution.unwrap_or(0.0)
+    } else {
+        0.0
+    };
+    vec![ColliderBuilder::new(shared_shape(shape))
+        .density(0.0)
+        .friction(friction as Real)
+        .restitution(restitution as Real)
+        // The pair uses the larger coefficient: a level sets e or mu on one body and it applies as given.
+        .friction_combine_rule(CoefficientCombineRule::Max)
+        .restitution_combine_rule(CoefficientCombineRule::Max)]
+}
+
+pub(crate) fn joint(j: &JointDef, b1: &BodyDef, b2: &BodyDef) -> GenericJoint {
+    let axis = {
+        let n = j.axis.0.hypot(j.axis.1);
+        (j.axis.0 / n, j.axis.1 / n)
+    };
+    let axis_angle = axis.1.atan2(axis.0);
+    // Frame 1 carries the joint axis as its x axis. Frame 2 is turned so that both frames
+    // coincide in the initial configuration (the weld/slider keeps the bodies' relative angle).
+    let frame1 = Pose::new(v(j.anchor1), axis_angle as Real);
+    let frame2 = Pose::new(v(j.anchor2), (axis_angle + b1.angle - b2.angle) as Real);
+    let (mask, coord_axis) = match j.kind {
+        JointKind::Revolute => (JointAxesMask::LOCKED_REVOLUTE_AXES, JointAxis::AngX),
+        JointKind::Prismatic => (JointAxesMask::LOCKED_PRISMATIC_AXES, JointAxis::LinX),
+        JointKind::Fixed => (JointAxesMask::LOCKED_FIXED_AXES, JointAxis::AngX),
+        JointKind::PinSlot => (JointAxesMask::LOCKED_PIN_SLOT_AXES, JointAxis::LinX),
+    };
+    let mut g = GenericJointBuilder::new(mask)
+        .local_frame1(frame1)
+        .local_frame2(frame2)
+        .contacts_enabled(false);
+    if let Some((lo, hi)) = j.limits {
+        g = g.limits(coord_axis, [lo as Real, hi as Real]);
+    }
+    match &j.motor {
+        Some(Motor::Velocity { target, max_force }) => {
+            // A very stiff velocity servo: holds the rate like a constraint, up to max_force.
+            g = g
+                .motor_model(coord_axis, MotorModel::ForceBased)
+                .motor_velocity(coord_axis, *target as Real, 1e9);
+            if let Some(f) = max_force {
+                g = g.motor_max_force(coord_axis, *f as Real);
+            }
+        }
+        Some(Motor::Position {
+            target,
+            stiffness,
+            damping,
+            max_force,
+        }) => {
+            g = g
+                .motor_model(coord_axis, MotorModel::ForceBased)
+                .motor_position(
+                    coord_axis,
+                    *target as Real,
+                    *stiffness as Real,
+                    *damping as Real,
+                );
+            if let Some(f) = max_force {
+                g = g.motor_max_force(coord_axis, *f as Real);
+            }
+        }
+        None => {}
+    }
+    g.build()
+}
+
+pub(crate) fn integration_parameters(
+    level: &Level,
+    opts: &Options,
+    fx: &Effects,
+) -> IntegrationParameters {
+    let mut p = IntegrationParameters::default();
+    p.dt = opts.dt.unwrap_or(level.world.dt) as Real;
+    p.num_solver_iterations = opts.substeps.unwrap_or(level.world.substeps);
+    p.num_internal_pgs_iterations = opts
+        .solver_iterations
+        .unwrap_or(level.world.solver_iterations);
+    p.max_ccd_substeps = if fx.has(Effect::Ccd) { 1 } else { 0 };
+    p
+}
+
+/// Gravity is the level's only when declared (`--all-effects` cannot invent a gravity the level lacks).
+pub(crate) fn gravity(level: &Level) -> Vector {
+    if level.effects.contains(&Effect::Gravity) {
+        v(level.world.gravity.unwrap_or((0.0, -9.81)))
+    } else {
+        Vector::ZERO
+    }
+}

@@ -1,0 +1,193 @@
+//! The per-step snapshot: plain f64 data, no rapier or Bevy types.
+//!
+//! This is the contract between the simulation (which fills it from the engine
+//! after every physics step) and the analysis layer (pure functions over it).
+//!
+//! Conventions (textbook, see `textbook/concepts.md` "Notation"):
+//! - the plane is x-y, k = +z out of the screen; angles, omega, alpha, torques
+//!   and angular impulses are scalars, positive counter-clockwise;
+//! - every impulse is the impulse over the **whole step** `[time - dt, time]`
+//!   (rapier's contact impulses already are; joint impulses are converted, see
+//!   `sim::joints`); the matching mean force is `impulse / dt`;
+//! - "on body k" means the impulse/force acting on that body.
+
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+
+/// The state of the scene right after a physics step (or at t = 0).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Snapshot {
+    /// Number of steps taken so far (0 = initial state).
+    pub step: u64,
+    /// Simulated time at the end of this step, s.
+    pub time: f64,
+    /// Length of the step that led here, s (0 for the initial state).
+    pub dt: f64,
+    /// World gravity acceleration in effect, m/s^2 (zero if not declared).
+    pub gravity: DVec2,
+    pub bodies: Vec<BodyState>,
+    pub contacts: Vec<ContactState>,
+    pub joints: Vec<JointState>,
+    pub springs: Vec<SpringState>,
+    /// Applied loads (forces, torques) held during the step that led here.
+    pub loads: Vec<LoadState>,
+    /// Impulses applied by events at the start of the step that led here.
+    pub impulses: Vec<ImpulseState>,
+}
+
+/// Body kind, as in the level file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyKind {
+    Fixed,
+    Dynamic,
+    Kinematic,
+}
+
+/// One rigid body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BodyState {
+    pub name: String,
+    pub kind: BodyKind,
+    /// Position of the body frame's origin, m.
+    pub position: DVec2,
+    /// Rotation of the body frame, rad, CCW.
+    pub angle: f64,
+    /// Mass center G in world coordinates, m.
+    pub com: DVec2,
+    /// Velocity of the mass center v_G, m/s.
+    pub velocity: DVec2,
+    /// Angular velocity omega, rad/s, CCW.
+    pub omega: f64,
+    /// Mass m, kg (infinite mass bodies report 0).
+    pub mass: f64,
+    /// Centroidal moment of inertia I_G about the z axis, kg m^2 (0 if rotation is locked or fixed).
+    pub inertia: f64,
+    /// Mass center in the body frame, m.
+    pub local_com: DVec2,
+}
+
+impl BodyState {
+    /// World position of a point given in the body frame.
+    pub fn world_point(&self, local: DVec2) -> DVec2 {
+        self.position + DVec2::from_angle(self.angle).rotate(local)
+    }
+}
+
+/// A contact pair between two bodies, with every point the solver used.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContactState {
+    /// Index into `Snapshot::bodies` of the first body.
+    pub body1: usize,
+    pub body2: usize,
+    /// Unit normal, pointing from body1 to body2.
+    pub normal: DVec2,
+    pub points: Vec<ContactPoint>,
+}
+
+/// One contact point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContactPoint {
+    /// World position of the contact point (on body1's surface), m.
+    pub point: DVec2,
+    /// Separation distance (negative = penetration), m.
+    pub distance: f64,
+    /// Normal impulse over the step, N s (>= 0). Acts on body2 along +normal and on body1 along -normal.
+    pub normal_impulse: f64,
+    /// Friction impulse over the step along the tangent `(-n.y, n.x)`, N s, acting on body2 (body1 gets the opposite).
+    pub tangent_impulse: f64,
+}
+
+impl ContactState {
+    /// The tangent direction the friction impulse is measured along.
+    pub fn tangent(&self) -> DVec2 {
+        self.normal.perp()
+    }
+
+    /// Total impulse on body2 (normal + friction) over the step, N s.
+    pub fn impulse_on_body2(&self) -> DVec2 {
+        let t = self.tangent();
+        self.points
+            .iter()
+            .map(|p| self.normal * p.normal_impulse + t * p.tangent_impulse)
+            .sum()
+    }
+}
+
+/// A joint's reaction over the step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JointState {
+    pub name: String,
+    pub body1: usize,
+    pub body2: usize,
+    /// World position of the joint anchor on body2, m.
+    pub anchor: DVec2,
+    /// World position of the joint anchor on body1, m (differs from `anchor` by the joint error).
+    pub anchor1: DVec2,
+    /// Reaction impulse on body2 over the step (world axes), N s. Body1 gets the opposite.
+    pub impulse_on_body2: DVec2,
+    /// Reaction angular impulse on body2 about its mass center over the step, N m s
+    /// (includes the moment of the linear impulse about G2 and any constraint couple).
+    pub angular_impulse_on_body2: f64,
+    /// Reaction angular impulse on body1 about its mass center over the step, N m s.
+    pub angular_impulse_on_body1: f64,
+    /// The constraint couple on body2 (fixed joints, sliders), N m s over the step.
+    pub couple_on_body2: f64,
+    /// Impulse delivered by the joint motor to body2 over the step (N s for a slider, N m s for a pin).
+    pub motor_impulse: f64,
+    /// Impulse delivered by the joint limit to body2 over the step.
+    pub limit_impulse: f64,
+    /// Joint coordinate: relative angle (pin) or slide distance (slider).
+    pub coordinate: f64,
+}
+
+/// A linear spring applied by rigidlab (exact Hooke force).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SpringState {
+    pub name: String,
+    pub body1: usize,
+    /// None when the spring is anchored to the ground.
+    pub body2: Option<usize>,
+    pub point1: DVec2,
+    pub point2: DVec2,
+    /// Current length, m.
+    pub length: f64,
+    /// Extension x = length - rest length, m.
+    pub extension: f64,
+    /// Tension (positive pulls the ends together), N, held during the step that led here.
+    pub tension: f64,
+    /// Elastic potential energy V_e = 1/2 k x^2 at the current length, J.
+    pub energy: f64,
+    /// Force on body1 held during the step that led here, N (body2 gets the opposite).
+    pub force_on_body1: DVec2,
+    /// Where the force acted on body1 / body2 during the step (start-of-step positions), m.
+    pub applied_at1: DVec2,
+    pub applied_at2: DVec2,
+}
+
+/// An applied load held constant over the step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LoadState {
+    pub name: String,
+    pub body: usize,
+    /// World point of application at the start of the step, m.
+    pub point: DVec2,
+    pub force: DVec2,
+    pub torque: f64,
+}
+
+/// An impulse applied at the start of the step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ImpulseState {
+    pub name: String,
+    pub body: usize,
+    pub point: DVec2,
+    pub impulse: DVec2,
+    pub angular_impulse: f64,
+}
+
+impl Snapshot {
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.name == name)
+    }
+}
