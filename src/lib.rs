@@ -4,8 +4,28 @@
 //! `level` (file -> validated scene) -> `sim` (rapier world with only the declared
 //! effects -> per-step [`snapshot::Snapshot`]) -> `analysis` (textbook quantities,
 //! pure functions) -> `checks` (theory against engine) -> `report` (table, JSON, CSV).
-//! The Bevy sandbox (`app`, behind the `app` feature) is a thin shell over the same core.
+//! `runner` drives one level through all stages headless; the Bevy sandbox (`app`,
+//! behind the `app` feature) is a thin shell over the same core.
 
+pub mod analysis;
+pub mod checks;
+pub mod cli;
 pub mod level;
+pub mod report;
+pub mod runner;
 pub mod sim;
 pub mod snapshot;
+pub mod study;
+
+/// The simulation stage compiled against rapier2d-f64 (same source as `sim`).
+#[path = "sim"]
+pub mod sim64 {
+    pub(crate) use rapier2d_f64 as rapier;
+    mod build;
+    pub mod joints;
+    mod world;
+    pub use world::Simulation;
+}
+
+#[cfg(feature = "app")]
+pub mod app;

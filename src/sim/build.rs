@@ -1,10 +1,10 @@
 //! Building the rapier world from a validated scene, with only the declared effects.
 
-use super::{Effects, Options};
+use super::rapier::prelude::*;
 use crate::level::{
     BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part, Shape as LevelShape, V2,
 };
-use rapier2d::prelude::*;
+use crate::sim::options::{Effects, Options};
 
 pub(crate) fn v(p: V2) -> Vector {
     Vector::new(p.0 as Real, p.1 as Real)

@@ -21,8 +21,8 @@
 //! them at the start of the last substep: the difference is one substep of
 //! motion, O(h) in the direction of the rows.
 
+use super::rapier::prelude::*;
 use glam::DVec2;
-use rapier2d::prelude::*;
 
 /// One constraint row: impulse `lambda` gives body1 `+lin * lambda` and
 /// angular `+a1 * lambda`, body2 `-lin * lambda` and `-a2 * lambda` (rapier's sign convention).

@@ -1,0 +1,1 @@
+//! Stage 3: the textbook quantities, as pure functions over plain data.

@@ -1,0 +1,127 @@
+//! The probes behind each check kind.
+
+use super::{kind_name, CheckResult, ErrorTrack, Probe};
+use crate::level::{CheckDef, CheckKind, Level};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    match def.kind {
+        CheckKind::ConstantAcceleration => Box::new(ConstantAcceleration::new(level, def)),
+        // Kinds not implemented yet report as failing with a note, never as passing.
+        _ => Box::new(NotImplemented { def: def.clone() }),
+    }
+}
+
+struct NotImplemented {
+    def: CheckDef,
+}
+
+impl Probe for NotImplemented {
+    fn observe(&mut self, _: &Snapshot) {}
+    fn finish(self: Box<Self>) -> CheckResult {
+        let mut r = ErrorTrack::default().result(
+            &self.def,
+            kind_name(self.def.kind),
+            self.def.body.clone().unwrap_or_default(),
+            1.0,
+            "this check kind is not implemented yet".into(),
+        );
+        r.passed = false;
+        r
+    }
+}
+
+/// Closed-form motion under a constant force (free fall, projectile: MK 2/x, HA 11.x):
+/// r(t) = r0 + v0 t + 1/2 a t^2 with a = g + F/m. Theory is the closed form from the initial
+/// state; engine is the mass center's position. Scale: the largest displacement |r - r0| of the run.
+///
+/// Error budget: symplectic Euler over substeps of h = dt/substeps gives x_n = x0 + v0 t + 1/2 a t (t + h),
+/// so the position error grows as 1/2 |a| h t: relative to 1/2 |a| t^2 it is h / t.
+struct ConstantAcceleration {
+    def: CheckDef,
+    body: String,
+    index: Option<usize>,
+    r0: DVec2,
+    v0: DVec2,
+    track: ErrorTrack,
+    max_disp: f64,
+    accel: DVec2,
+}
+
+impl ConstantAcceleration {
+    fn new(level: &Level, def: &CheckDef) -> Self {
+        // Constant loads on the body add F/m to g.
+        let body = def.body.clone().unwrap_or_default();
+        let _ = level;
+        ConstantAcceleration {
+            def: def.clone(),
+            body,
+            index: None,
+            r0: DVec2::ZERO,
+            v0: DVec2::ZERO,
+            track: ErrorTrack::default(),
+            max_disp: 0.0,
+            accel: DVec2::ZERO,
+        }
+    }
+}
+
+impl Probe for ConstantAcceleration {
+    fn observe(&mut self, s: &Snapshot) {
+        let Some(i) = self.index.or_else(|| s.body_index(&self.body)) else {
+            return;
+        };
+        let b = &s.bodies[i];
+        if self.index.is_none() {
+            self.index = Some(i);
+            self.r0 = b.com;
+            self.v0 = b.velocity;
+            let load: DVec2 = s
+                .loads
+                .iter()
+                .filter(|l| l.body == i)
+                .map(|l| l.force)
+                .sum();
+            self.accel = s.gravity
+                + if b.mass > 0.0 {
+                    load / b.mass
+                } else {
+                    DVec2::ZERO
+                };
+            return;
+        }
+        if s.step == 1 && b.mass > 0.0 {
+            // Loads are known only once the first step applied them.
+            let load: DVec2 = s
+                .loads
+                .iter()
+                .filter(|l| l.body == i)
+                .map(|l| l.force)
+                .sum();
+            self.accel = s.gravity + load / b.mass;
+        }
+        let t = s.time;
+        let theory = self.r0 + self.v0 * t + 0.5 * self.accel * t * t;
+        let err = (b.com - theory).length();
+        self.max_disp = self.max_disp.max((theory - self.r0).length());
+        // Track the vector error through the scalar tracker: theory distance vs engine distance along the error.
+        self.track.add(0.0, err);
+        self.track.last_theory = (theory - self.r0).length();
+        self.track.last_engine = (b.com - self.r0).length();
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        let note = format!(
+            "position error |r_engine - r_theory|; displacement scale {:.4} m",
+            self.max_disp
+        );
+        self.track.result(
+            &self.def,
+            kind_name(self.def.kind),
+            format!("body \"{}\" mass center", self.body),
+            self.max_disp,
+            note,
+        )
+    }
+}

@@ -1,0 +1,123 @@
+//! Stage 4: checks (theory against engine, every step) and questions (the exercise's answers).
+//!
+//! A check is a [`Probe`]: it sees every snapshot in order, computes the
+//! textbook value ("theory") and the engine's value ("engine") independently,
+//! and keeps the worst and final errors. `probe_for` maps a level's
+//! [`CheckDef`] to a probe.
+
+mod kinds;
+pub mod questions;
+
+use crate::level::{CheckDef, CheckKind, Level};
+use crate::snapshot::Snapshot;
+use serde::{Deserialize, Serialize};
+
+/// One check's result (the JSON report's `checks[]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckResult {
+    pub kind: String,
+    /// What the check is about (body, joint, point), human readable.
+    pub subject: String,
+    /// Theory value at the end of the run (or at the event the check is about).
+    pub theory: f64,
+    /// Engine value at the same moment.
+    pub engine: f64,
+    pub max_abs_error: f64,
+    pub max_rel_error: f64,
+    pub final_abs_error: f64,
+    pub final_rel_error: f64,
+    /// Relative tolerance on `max_rel_error`.
+    pub tolerance: f64,
+    pub passed: bool,
+    /// Number of steps the check compared.
+    pub samples: u64,
+    /// The scale errors are divided by (documented per kind).
+    pub scale: f64,
+    /// Why the tolerance is what it is (from the level).
+    pub why: String,
+    /// What the check measured beyond pass/fail (a known gap, a drift rate).
+    pub note: String,
+}
+
+/// Observes every snapshot of a run.
+pub trait Probe {
+    /// Called with the initial snapshot (step 0) and then after every step.
+    fn observe(&mut self, snap: &Snapshot);
+    fn finish(self: Box<Self>) -> CheckResult;
+}
+
+/// Error bookkeeping shared by probes: absolute error against a scale.
+#[derive(Debug, Clone, Default)]
+pub struct ErrorTrack {
+    pub max_abs: f64,
+    pub last_abs: f64,
+    pub last_theory: f64,
+    pub last_engine: f64,
+    pub samples: u64,
+    /// Largest |theory| seen, used as the default scale.
+    pub max_theory: f64,
+}
+
+impl ErrorTrack {
+    pub fn add(&mut self, theory: f64, engine: f64) {
+        let e = (theory - engine).abs();
+        let e = if e.is_nan() { f64::INFINITY } else { e };
+        self.max_abs = self.max_abs.max(e);
+        self.last_abs = e;
+        self.last_theory = theory;
+        self.last_engine = engine;
+        self.max_theory = self.max_theory.max(theory.abs());
+        self.samples += 1;
+    }
+
+    /// The result, with relative errors taken against `scale` (a characteristic size of the quantity,
+    /// so that errors near a zero crossing are not inflated).
+    pub fn result(
+        &self,
+        def: &CheckDef,
+        kind: &str,
+        subject: String,
+        scale: f64,
+        note: String,
+    ) -> CheckResult {
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        let max_rel = self.max_abs / scale;
+        CheckResult {
+            kind: kind.to_string(),
+            subject,
+            theory: self.last_theory,
+            engine: self.last_engine,
+            max_abs_error: self.max_abs,
+            max_rel_error: max_rel,
+            final_abs_error: self.last_abs,
+            final_rel_error: self.last_abs / scale,
+            tolerance: def.tolerance,
+            passed: self.samples > 0 && max_rel <= def.tolerance,
+            samples: self.samples,
+            scale,
+            why: def.why.clone(),
+            note,
+        }
+    }
+}
+
+/// The name a check kind has in reports.
+pub fn kind_name(k: CheckKind) -> &'static str {
+    match k {
+        CheckKind::MassProperties => "mass_properties",
+        CheckKind::ConstantAcceleration => "constant_acceleration",
+        CheckKind::KineticEnergyG => "kinetic_energy_g",
+        CheckKind::KineticEnergyIc => "kinetic_energy_ic",
+        CheckKind::AngularMomentumFixedPoint => "angular_momentum_fixed_point",
+        CheckKind::CenterOfPercussion => "center_of_percussion",
+        CheckKind::NewtonEuler => "newton_euler",
+        CheckKind::WorkEnergy => "work_energy",
+        CheckKind::ImpulseMomentum => "impulse_momentum",
+        CheckKind::Restitution => "restitution",
+    }
+}
+
+/// Builds the probe for a check of a level.
+pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    kinds::probe_for(level, def)
+}

@@ -1,0 +1,340 @@
+//! The command line: `rigidlab [check|run|play|render|study]`.
+
+use crate::level::{self, LevelError};
+use crate::report::{self, CsvWriter, LevelReport, Report};
+use crate::runner::{self, RunError};
+use crate::sim::Options;
+use clap::{Args, Parser, Subcommand};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "rigidlab",
+    version,
+    about = "A 2D rigid-body sandbox that checks rapier2d against the engineering-dynamics textbook."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Run levels headless and check them (exit 0: all pass, 1: a check failed, 2: bad input).
+    Check {
+        /// Level files or folders (searched recursively for *.ron).
+        #[arg(required = true)]
+        paths: Vec<PathBuf>,
+        /// Print the JSON report instead of the table.
+        #[arg(long)]
+        json: bool,
+        /// Grade a student's answer to a question: --answer ID=VALUE (repeatable).
+        #[arg(long = "answer", value_parser = parse_answer)]
+        answers: Vec<(String, f64)>,
+        #[command(flatten)]
+        solver: SolverArgs,
+    },
+    /// Run one level and write its per-step snapshots.
+    Run {
+        level: PathBuf,
+        /// Write bodies to FILE and joints/contacts/springs beside it (FILE_joints.csv, ...).
+        #[arg(long)]
+        csv: Option<PathBuf>,
+        #[command(flatten)]
+        solver: SolverArgs,
+    },
+    /// Open one level in the sandbox window.
+    Play { level: PathBuf },
+    /// Studies: what accuracy costs (`accuracy`), whether hard cases stay stable (`stability`).
+    Study {
+        #[command(subcommand)]
+        study: crate::study::StudyCommand,
+    },
+    /// Draw a level at a time into a PNG through the real renderer.
+    Render {
+        level: PathBuf,
+        /// Simulated time to draw, s.
+        #[arg(long, default_value_t = 0.0)]
+        time: f64,
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// Overrides of the level's solver settings.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SolverArgs {
+    /// Physics step, s.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Substeps per step (rapier's num_solver_iterations).
+    #[arg(long)]
+    pub substeps: Option<usize>,
+    /// Solver iterations per substep (rapier's num_internal_pgs_iterations).
+    #[arg(long)]
+    pub iterations: Option<usize>,
+    /// Turn every effect stage on (colliders, CCD, sleeping, ...) to compare the cost.
+    #[arg(long)]
+    pub all_effects: bool,
+}
+
+impl SolverArgs {
+    pub fn options(&self) -> Result<Options, String> {
+        if let Some(dt) = self.dt {
+            if !(dt.is_finite() && dt > 0.0 && dt <= 0.1) {
+                return Err(format!("--dt {dt}: give a step between 0 and 0.1 s"));
+            }
+        }
+        for (flag, n) in [
+            ("--substeps", self.substeps),
+            ("--iterations", self.iterations),
+        ] {
+            if n.is_some_and(|n| n == 0 || n > 1000) {
+                return Err(format!("{flag}: give a number from 1 to 1000"));
+            }
+        }
+        Ok(Options {
+            dt: self.dt,
+            substeps: self.substeps,
+            solver_iterations: self.iterations,
+            all_effects: self.all_effects,
+        })
+    }
+}
+
+fn parse_answer(s: &str) -> Result<(String, f64), String> {
+    let (id, v) = s.split_once('=').ok_or("write --answer ID=VALUE")?;
+    let v: f64 = v
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{v}` is not a number"))?;
+    if !v.is_finite() {
+        return Err("the answer must be a finite number".into());
+    }
+    Ok((id.trim().to_string(), v))
+}
+
+const BAD_INPUT: u8 = 2;
+
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        None => sandbox(),
+        Some(Command::Check {
+            paths,
+            json,
+            answers,
+            solver,
+        }) => check(&paths, json, answers.into_iter().collect(), &solver),
+        Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
+        Some(Command::Play { level }) => play(level),
+        Some(Command::Study { study }) => crate::study::main(study),
+        Some(Command::Render { level, time, out }) => render(level, time, out),
+    }
+}
+
+fn bad(e: impl std::fmt::Display) -> ExitCode {
+    eprintln!("{e}");
+    ExitCode::from(BAD_INPUT)
+}
+
+fn check(
+    paths: &[PathBuf],
+    json: bool,
+    answers: HashMap<String, f64>,
+    solver: &SolverArgs,
+) -> ExitCode {
+    let opts = match solver.options() {
+        Ok(o) => o,
+        Err(e) => return bad(e),
+    };
+    let files = match level::collect_files(paths) {
+        Ok(f) => f,
+        Err(e) => return bad(e),
+    };
+    if files.is_empty() {
+        return bad("no level files (*.ron) found in the given paths");
+    }
+    let mut bad_input = false;
+    let mut levels = Vec::new();
+    for f in &files {
+        match runner::run_file(f, &opts, &answers) {
+            Ok(r) => levels.push(r),
+            Err(RunError::Level(e)) => {
+                eprintln!("{e}");
+                bad_input = true;
+                levels.push(failed(f, &e.to_string()));
+            }
+            Err(e @ RunError::Sim { .. }) => {
+                eprintln!("{e}");
+                levels.push(failed(f, &e.to_string()));
+            }
+        }
+    }
+    let report = Report {
+        passed: levels.iter().all(|l| l.passed),
+        levels,
+    };
+    if json {
+        report::print_json(&report);
+    } else {
+        print!("{}", report::table(&report));
+    }
+    if bad_input {
+        ExitCode::from(BAD_INPUT)
+    } else if report.passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
+}
+
+fn failed(file: &std::path::Path, error: &str) -> LevelReport {
+    LevelReport {
+        file: file.display().to_string(),
+        title: String::new(),
+        passed: false,
+        steps: 0,
+        sim_time: 0.0,
+        wall_ms: 0.0,
+        effects: Vec::new(),
+        checks: Vec::new(),
+        questions: Vec::new(),
+        error: Some(error.to_string()),
+    }
+}
+
+fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> ExitCode {
+    let opts = match solver.options() {
+        Ok(o) => o,
+        Err(e) => return bad(e),
+    };
+    let scene = match level::load(path) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    let mut writer = match csv.as_deref().map(CsvWriter::create).transpose() {
+        Ok(w) => w,
+        Err(e) => return bad(format!("cannot write the CSV file: {e}")),
+    };
+    let mut io_error = None;
+    let result = runner::run_scene(&scene, &opts, &HashMap::new(), |s| {
+        if let Some(w) = writer.as_mut() {
+            if let Err(e) = w.write(s) {
+                io_error.get_or_insert(e);
+            }
+        }
+    });
+    if let Some(w) = writer {
+        if let Err(e) = w.finish() {
+            io_error.get_or_insert(e);
+        }
+    }
+    if let Some(e) = io_error {
+        return bad(format!("cannot write the CSV file: {e}"));
+    }
+    match result {
+        Ok(r) => {
+            print!(
+                "{}",
+                report::table(&Report {
+                    passed: r.passed,
+                    levels: vec![r.clone()]
+                })
+            );
+            if r.passed {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            }
+        }
+        Err(RunError::Level(e)) => bad(e),
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Where a window cannot open, say so and point to the headless commands.
+pub fn no_display_message() -> String {
+    "rigidlab: no display found (DISPLAY/WAYLAND_DISPLAY are not set), so the sandbox window cannot open.\n\
+     Run the exercises headless instead:\n    cargo run --release -- check levels\n\
+     or open a virtual display first:  Xvfb :99 & DISPLAY=:99 cargo run --release"
+        .to_string()
+}
+
+fn has_display() -> bool {
+    std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty())
+        || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| !d.is_empty())
+}
+
+#[cfg(feature = "app")]
+fn sandbox() -> ExitCode {
+    if !has_display() {
+        eprintln!("{}", no_display_message());
+        return ExitCode::from(BAD_INPUT);
+    }
+    match crate::app::sandbox(PathBuf::from("levels"), None) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => bad(e),
+    }
+}
+
+#[cfg(feature = "app")]
+fn play(level: PathBuf) -> ExitCode {
+    if let Err(e) = level::load(&level) {
+        return bad(e);
+    }
+    if !has_display() {
+        eprintln!("{}", no_display_message());
+        return ExitCode::from(BAD_INPUT);
+    }
+    match crate::app::sandbox(PathBuf::from("levels"), Some(level)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => bad(e),
+    }
+}
+
+#[cfg(feature = "app")]
+fn render(level: PathBuf, time: f64, out: PathBuf) -> ExitCode {
+    let scene = match level::load(&level) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    if !(time.is_finite() && time >= 0.0) {
+        return bad("--time must be a finite time >= 0 s");
+    }
+    match crate::app::render(&scene, time, &out) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => bad(e),
+    }
+}
+
+#[cfg(not(feature = "app"))]
+fn no_app() -> ExitCode {
+    let _ = has_display;
+    bad("this rigidlab was built without the sandbox (the `app` feature). Headless: rigidlab check levels")
+}
+
+#[cfg(not(feature = "app"))]
+fn sandbox() -> ExitCode {
+    no_app()
+}
+
+#[cfg(not(feature = "app"))]
+fn play(_: PathBuf) -> ExitCode {
+    no_app()
+}
+
+#[cfg(not(feature = "app"))]
+fn render(_: PathBuf, _: f64, _: PathBuf) -> ExitCode {
+    no_app()
+}
+
+/// Used by tests: a LevelError rendered as the CLI prints it.
+pub fn render_error(e: &LevelError) -> String {
+    e.to_string()
+}

@@ -1,0 +1,299 @@
+//! Stage 5: reports. The JSON contract, the terminal table and the per-step CSV.
+
+use crate::checks::questions::QuestionResult;
+use crate::checks::CheckResult;
+use crate::snapshot::Snapshot;
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// `rigidlab check --json`: `{"passed", "levels": [...]}`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    pub passed: bool,
+    pub levels: Vec<LevelReport>,
+}
+
+/// One level's result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LevelReport {
+    pub file: String,
+    pub title: String,
+    pub passed: bool,
+    pub steps: u64,
+    pub sim_time: f64,
+    pub wall_ms: f64,
+    pub effects: Vec<String>,
+    pub checks: Vec<CheckResult>,
+    pub questions: Vec<QuestionResult>,
+    /// Set when the run stopped early (explosion, non-finite state).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// The terminal table: one line per level, then one per failing or noted check/question.
+pub fn table(report: &Report) -> String {
+    let mut out = String::new();
+    let w = report
+        .levels
+        .iter()
+        .map(|l| l.file.len())
+        .max()
+        .unwrap_or(10)
+        .clamp(10, 60);
+    out += &format!(
+        "{:<w$}  {:>6}  {:>7}  {:>8}  {:>6}  {:>9}  result\n",
+        "level", "steps", "sim s", "wall ms", "checks", "questions"
+    );
+    for l in &report.levels {
+        let cp = l.checks.iter().filter(|c| c.passed).count();
+        let qp = l.questions.iter().filter(|q| q.passed).count();
+        out += &format!(
+            "{:<w$}  {:>6}  {:>7.3}  {:>8.1}  {:>6}  {:>9}  {}\n",
+            l.file,
+            l.steps,
+            l.sim_time,
+            l.wall_ms,
+            format!("{cp}/{}", l.checks.len()),
+            format!("{qp}/{}", l.questions.len()),
+            if l.passed { "pass" } else { "FAIL" }
+        );
+        if let Some(e) = &l.error {
+            out += &format!("    error: {e}\n");
+        }
+        for c in &l.checks {
+            out += &format!(
+                "    {} check {:<28} {:<32} max rel err {:.2e} (tol {:.1e}){}\n",
+                if c.passed { " " } else { "!" },
+                c.kind,
+                c.subject,
+                c.max_rel_error,
+                c.tolerance,
+                if c.note.is_empty() {
+                    String::new()
+                } else {
+                    format!("  [{}]", c.note)
+                }
+            );
+        }
+        for q in &l.questions {
+            out += &format!(
+                "    {} question {:<14} expected {:>11.5} {:<6} engine {:>11.5}{} rel err {:.2e} (tol {:.1e})\n",
+                if q.passed { " " } else { "!" },
+                q.id,
+                q.expected,
+                q.unit,
+                q.engine,
+                q.analysis.map_or(String::new(), |a| format!("  analysis {a:>11.5}")),
+                q.rel_error,
+                q.tolerance
+            );
+            if let Some(s) = &q.student {
+                out += &format!(
+                    "      student answer {} -> {} (rel err {:.2e})\n",
+                    s.answer,
+                    if s.passed { "correct" } else { "wrong" },
+                    s.rel_error
+                );
+            }
+        }
+    }
+    let n = report.levels.len();
+    let p = report.levels.iter().filter(|l| l.passed).count();
+    out += &format!("{p}/{n} levels passed\n");
+    out
+}
+
+/// Writes the per-step snapshots as CSV: bodies to `path`, and joints, contacts and springs
+/// beside it (`<stem>_joints.csv`, `<stem>_contacts.csv`, `<stem>_springs.csv`) when the scene has them.
+pub struct CsvWriter {
+    bodies: csv::Writer<std::fs::File>,
+    joints: Option<csv::Writer<std::fs::File>>,
+    contacts: Option<csv::Writer<std::fs::File>>,
+    springs: Option<csv::Writer<std::fs::File>>,
+    path: PathBuf,
+}
+
+fn sibling(path: &Path, suffix: &str) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or("run".into(), |s| s.to_string_lossy().to_string());
+    path.with_file_name(format!("{stem}_{suffix}.csv"))
+}
+
+impl CsvWriter {
+    pub fn create(path: &Path) -> std::io::Result<Self> {
+        let mut bodies = csv::Writer::from_path(path)?;
+        bodies.write_record([
+            "step", "time", "body", "x", "y", "angle", "com_x", "com_y", "vx", "vy", "omega",
+            "mass", "inertia",
+        ])?;
+        Ok(CsvWriter {
+            bodies,
+            joints: None,
+            contacts: None,
+            springs: None,
+            path: path.to_path_buf(),
+        })
+    }
+
+    fn side(
+        slot: &mut Option<csv::Writer<std::fs::File>>,
+        path: PathBuf,
+        header: &[&str],
+    ) -> std::io::Result<()> {
+        if slot.is_none() {
+            let mut w = csv::Writer::from_path(path)?;
+            w.write_record(header)?;
+            *slot = Some(w);
+        }
+        Ok(())
+    }
+
+    pub fn write(&mut self, s: &Snapshot) -> std::io::Result<()> {
+        let f = |x: f64| format!("{x:.9e}");
+        for b in &s.bodies {
+            self.bodies.write_record([
+                s.step.to_string(),
+                f(s.time),
+                b.name.clone(),
+                f(b.position.x),
+                f(b.position.y),
+                f(b.angle),
+                f(b.com.x),
+                f(b.com.y),
+                f(b.velocity.x),
+                f(b.velocity.y),
+                f(b.omega),
+                f(b.mass),
+                f(b.inertia),
+            ])?;
+        }
+        if !s.joints.is_empty() {
+            Self::side(
+                &mut self.joints,
+                sibling(&self.path, "joints"),
+                &[
+                    "step",
+                    "time",
+                    "joint",
+                    "anchor_x",
+                    "anchor_y",
+                    "impulse_x",
+                    "impulse_y",
+                    "angular_impulse",
+                    "motor_impulse",
+                    "limit_impulse",
+                    "force_x",
+                    "force_y",
+                    "coordinate",
+                ],
+            )?;
+            let w = self.joints.as_mut().expect("created above");
+            for j in &s.joints {
+                let force = if s.dt > 0.0 {
+                    j.impulse_on_body2 / s.dt
+                } else {
+                    glam::DVec2::ZERO
+                };
+                w.write_record([
+                    s.step.to_string(),
+                    f(s.time),
+                    j.name.clone(),
+                    f(j.anchor.x),
+                    f(j.anchor.y),
+                    f(j.impulse_on_body2.x),
+                    f(j.impulse_on_body2.y),
+                    f(j.angular_impulse_on_body2),
+                    f(j.motor_impulse),
+                    f(j.limit_impulse),
+                    f(force.x),
+                    f(force.y),
+                    f(j.coordinate),
+                ])?;
+            }
+        }
+        if !s.contacts.is_empty() {
+            Self::side(
+                &mut self.contacts,
+                sibling(&self.path, "contacts"),
+                &[
+                    "step",
+                    "time",
+                    "body1",
+                    "body2",
+                    "point_x",
+                    "point_y",
+                    "normal_x",
+                    "normal_y",
+                    "distance",
+                    "normal_impulse",
+                    "tangent_impulse",
+                ],
+            )?;
+            let w = self.contacts.as_mut().expect("created above");
+            for c in &s.contacts {
+                for p in &c.points {
+                    w.write_record([
+                        s.step.to_string(),
+                        f(s.time),
+                        s.bodies[c.body1].name.clone(),
+                        s.bodies[c.body2].name.clone(),
+                        f(p.point.x),
+                        f(p.point.y),
+                        f(c.normal.x),
+                        f(c.normal.y),
+                        f(p.distance),
+                        f(p.normal_impulse),
+                        f(p.tangent_impulse),
+                    ])?;
+                }
+            }
+        }
+        if !s.springs.is_empty() {
+            Self::side(
+                &mut self.springs,
+                sibling(&self.path, "springs"),
+                &[
+                    "step",
+                    "time",
+                    "spring",
+                    "length",
+                    "extension",
+                    "tension",
+                    "energy",
+                ],
+            )?;
+            let w = self.springs.as_mut().expect("created above");
+            for sp in &s.springs {
+                w.write_record([
+                    s.step.to_string(),
+                    f(s.time),
+                    sp.name.clone(),
+                    f(sp.length),
+                    f(sp.extension),
+                    f(sp.tension),
+                    f(sp.energy),
+                ])?;
+            }
+        }
+        Ok(())
+    }
+
+    pub fn finish(mut self) -> std::io::Result<()> {
+        self.bodies.flush()?;
+        for w in [&mut self.joints, &mut self.contacts, &mut self.springs]
+            .into_iter()
+            .flatten()
+        {
+            w.flush()?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes JSON to stdout (a broken pipe is not an error worth a panic).
+pub fn print_json<T: Serialize>(value: &T) {
+    let text = serde_json::to_string_pretty(value).expect("reports serialize");
+    let _ = writeln!(std::io::stdout(), "{text}");
+}

@@ -1,0 +1,54 @@
+//! Engine-independent parts of the simulation stage: options, effect sets, errors.
+
+use crate::level::{Effect, Level};
+use crate::snapshot::Snapshot;
+
+/// Overrides of the level's solver settings (CLI flags, studies).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Options {
+    pub dt: Option<f64>,
+    pub substeps: Option<usize>,
+    pub solver_iterations: Option<usize>,
+    /// Run every stage (colliders in collision detection, CCD, sleeping, ...) for comparison.
+    pub all_effects: bool,
+}
+
+/// The set of effects a world was built with.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Effects(Vec<Effect>);
+
+impl Effects {
+    pub fn of(level: &Level, all: bool) -> Self {
+        if all {
+            Effects(Effect::ALL.to_vec())
+        } else {
+            let mut e = level.effects.clone();
+            e.sort();
+            Effects(e)
+        }
+    }
+    pub fn has(&self, e: Effect) -> bool {
+        self.0.contains(&e)
+    }
+    pub fn names(&self) -> Vec<String> {
+        self.0.iter().map(|e| e.name().to_string()).collect()
+    }
+}
+
+/// A run that went wrong: a non-finite state or an explosion.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("step {step} (t = {time:.4} s): body \"{body}\" {quantity}")]
+pub struct SimError {
+    pub step: u64,
+    pub time: f64,
+    pub body: String,
+    pub quantity: String,
+}
+
+/// What every precision's `Simulation` offers, so studies can drive f32 and f64 side by side.
+pub trait Engine {
+    fn step(&mut self) -> Result<&Snapshot, SimError>;
+    fn snapshot(&self) -> &Snapshot;
+    fn dt(&self) -> f64;
+    fn total_steps(&self) -> u64;
+}

@@ -1,0 +1,471 @@
+//! The running simulation of one level (compiled once per precision, see `sim/mod.rs`).
+
+use super::rapier::prelude::*;
+use super::{build, joints};
+use crate::level::*;
+use crate::sim::options::{Effects, Options, SimError};
+use crate::snapshot::*;
+use glam::DVec2;
+use std::collections::HashMap;
+
+/// A running simulation of one level.
+pub struct Simulation {
+    pub level: Level,
+    pub effects: Effects,
+    pub world: PhysicsWorld,
+    bodies: Vec<RigidBodyHandle>,
+    collider_body: HashMap<ColliderHandle, usize>,
+    joints: Vec<ImpulseJointHandle>,
+    body_index: HashMap<String, usize>,
+    snapshot: Snapshot,
+    /// Speed limit beyond which the run is declared exploded, m/s.
+    pub max_speed: f64,
+}
+
+impl Simulation {
+    pub fn new(scene: &Scene, opts: &Options) -> Self {
+        let level = scene.level.clone();
+        let effects = Effects::of(&level, opts.all_effects);
+        let mut world = PhysicsWorld::new();
+        world.gravity = build::gravity(&level);
+        world.integration_parameters = build::integration_parameters(&level, opts, &effects);
+        let contacts = effects.has(Effect::Contacts);
+
+        let mut bodies = Vec::new();
+        let mut collider_body = HashMap::new();
+        let mut body_index = HashMap::new();
+        for (i, b) in level.bodies.iter().enumerate() {
+            let h = world.insert_body(build::body_builder(b, &effects));
+            if contacts {
+                for c in build::colliders(b, &effects) {
+                    let ch = world.insert_collider(c, Some(h));
+                    collider_body.insert(ch, i);
+                }
+            }
+            bodies.push(h);
+            body_index.insert(b.name.clone(), i);
+        }
+        let mut joints = Vec::new();
+        if effects.has(Effect::Joints) {
+            for j in &level.joints {
+                let (i1, i2) = (body_index[&j.body1], body_index[&j.body2]);
+                let data = build::joint(j, &level.bodies[i1], &level.bodies[i2]);
+                joints.push(world.insert_impulse_joint(bodies[i1], bodies[i2], data));
+            }
+        }
+        let mut sim = Simulation {
+            snapshot: Snapshot {
+                step: 0,
+                time: 0.0,
+                dt: 0.0,
+                gravity: DVec2::new(world.gravity.x as f64, world.gravity.y as f64),
+                bodies: Vec::new(),
+                contacts: Vec::new(),
+                joints: Vec::new(),
+                springs: Vec::new(),
+                loads: Vec::new(),
+                impulses: Vec::new(),
+            },
+            level,
+            effects,
+            world,
+            bodies,
+            collider_body,
+            joints,
+            body_index,
+            max_speed: 1e4,
+        };
+        sim.read_bodies();
+        sim.snapshot.springs = sim.spring_states(false);
+        sim
+    }
+
+    /// The physics step, s.
+    pub fn dt(&self) -> f64 {
+        self.world.integration_parameters.dt as f64
+    }
+
+    pub fn substeps(&self) -> usize {
+        self.world.integration_parameters.num_solver_iterations
+    }
+
+    /// Number of steps the level's duration takes at the current dt.
+    pub fn total_steps(&self) -> u64 {
+        (self.level.world.duration / self.dt()).round().max(1.0) as u64
+    }
+
+    /// The state after the last step (or the initial state).
+    pub fn snapshot(&self) -> &Snapshot {
+        &self.snapshot
+    }
+
+    pub fn body_handle(&self, name: &str) -> Option<RigidBodyHandle> {
+        self.body_index.get(name).map(|&i| self.bodies[i])
+    }
+
+    pub fn body_handles(&self) -> &[RigidBodyHandle] {
+        &self.bodies
+    }
+
+    /// Advances one physics step and refreshes the snapshot.
+    pub fn step(&mut self) -> Result<&Snapshot, SimError> {
+        let dt = self.dt();
+        let t0 = self.snapshot.time;
+        let step = self.snapshot.step + 1;
+
+        // Impulses whose time falls in [t0, t0 + dt) act at the start of this step.
+        self.snapshot.impulses.clear();
+        for e in &self.level.events {
+            let EventDef::Impulse {
+                name,
+                at,
+                body,
+                point,
+                impulse,
+                angular,
+            } = e;
+            // The event acts at the start of the step that begins nearest to its time.
+            if *at >= t0 - 0.5 * dt && *at < t0 + 0.5 * dt {
+                let i = self.body_index[body];
+                let rb = &mut self.world.bodies[self.bodies[i]];
+                let p = *rb.position() * build::v(*point);
+                rb.apply_impulse_at_point(build::v(*impulse), p, true);
+                rb.apply_torque_impulse(*angular as Real, true);
+                self.snapshot.impulses.push(ImpulseState {
+                    name: name.clone(),
+                    body: i,
+                    point: to_d(p),
+                    impulse: DVec2::new(impulse.0, impulse.1),
+                    angular_impulse: *angular,
+                });
+            }
+        }
+
+        // Loads and springs: forces held over the step, evaluated at its middle (loads) or start (springs).
+        for h in &self.bodies {
+            self.world.bodies[*h].reset_forces(false);
+        }
+        self.snapshot.loads.clear();
+        let t_mid = t0 + 0.5 * dt;
+        for l in &self.level.loads {
+            let i = self.body_index[&l.body];
+            let rb = &mut self.world.bodies[self.bodies[i]];
+            let p = *rb.position() * build::v(l.point);
+            let mut f = l.force.as_ref().map_or((0.0, 0.0), |f| sample2(f, t_mid));
+            if l.follow_body {
+                let r =
+                    DVec2::from_angle(rb.rotation().angle() as f64).rotate(DVec2::new(f.0, f.1));
+                f = (r.x, r.y);
+            }
+            let m = l.torque.as_ref().map_or(0.0, |m| sample1(m, t_mid));
+            rb.add_force_at_point(build::v(f), p, true);
+            rb.add_torque(m as Real, true);
+            self.snapshot.loads.push(LoadState {
+                name: l.name.clone(),
+                body: i,
+                point: to_d(p),
+                force: DVec2::new(f.0, f.1),
+                torque: m,
+            });
+        }
+        let springs = self.spring_states(true);
+        for s in &springs {
+            let rb1 = &mut self.world.bodies[self.bodies[s.body1]];
+            rb1.add_force_at_point(vd(s.force_on_body1), vd(s.applied_at1), true);
+            if let Some(b2) = s.body2 {
+                let rb2 = &mut self.world.bodies[self.bodies[b2]];
+                rb2.add_force_at_point(vd(-s.force_on_body1), vd(s.applied_at2), true);
+            }
+        }
+
+        self.world.step();
+
+        self.snapshot.step = step;
+        self.snapshot.time = step as f64 * dt;
+        self.snapshot.dt = dt;
+        self.read_bodies();
+        self.guard()?;
+        self.read_contacts();
+        self.read_joints();
+        // Spring state: forces held during the step, length and energy at its end.
+        let end = self.spring_states(false);
+        self.snapshot.springs = springs
+            .into_iter()
+            .zip(end)
+            .map(|(held, now)| SpringState {
+                force_on_body1: held.force_on_body1,
+                tension: held.tension,
+                applied_at1: held.applied_at1,
+                applied_at2: held.applied_at2,
+                ..now
+            })
+            .collect();
+        Ok(&self.snapshot)
+    }
+
+    /// Runs the whole duration, calling `each` with every snapshot (the initial one first).
+    pub fn run(&mut self, mut each: impl FnMut(&Snapshot)) -> Result<(), SimError> {
+        each(&self.snapshot);
+        for _ in 0..self.total_steps() {
+            let s = self.step()?;
+            each(s);
+        }
+        Ok(())
+    }
+
+    fn guard(&self) -> Result<(), SimError> {
+        for b in &self.snapshot.bodies {
+            let bad = |q: &str| SimError {
+                step: self.snapshot.step,
+                time: self.snapshot.time,
+                body: b.name.clone(),
+                quantity: q.to_string(),
+            };
+            if !(b.com.is_finite() && b.angle.is_finite()) {
+                return Err(bad(
+                    "position became non-finite (NaN or inf): the scene exploded",
+                ));
+            }
+            if !(b.velocity.is_finite() && b.omega.is_finite()) {
+                return Err(bad(
+                    "velocity became non-finite (NaN or inf): the scene exploded",
+                ));
+            }
+            if b.velocity.length() > self.max_speed {
+                return Err(bad(&format!(
+                    "speed {:.3e} m/s exceeds {:.0e} m/s: the scene exploded",
+                    b.velocity.length(),
+                    self.max_speed
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    fn read_bodies(&mut self) {
+        let fresh = self.snapshot.bodies.is_empty();
+        for (i, h) in self.bodies.iter().enumerate() {
+            let rb = &self.world.bodies[*h];
+            let mp = rb.mass_properties().local_mprops;
+            let dynamic = rb.is_dynamic();
+            let state = BodyState {
+                name: String::new(),
+                kind: self.level.bodies[i].kind,
+                position: to_d(rb.translation()),
+                angle: rb.rotation().angle() as f64,
+                // From the pose, not rb.center_of_mass(): rapier refreshes that only inside a step.
+                com: to_d(*rb.position() * mp.local_com),
+                velocity: to_d(rb.linvel()),
+                omega: rb.angvel() as f64,
+                mass: if dynamic { mp.mass() as f64 } else { 0.0 },
+                inertia: if dynamic {
+                    mp.principal_inertia() as f64
+                } else {
+                    0.0
+                },
+                local_com: to_d(mp.local_com),
+            };
+            if fresh {
+                self.snapshot.bodies.push(BodyState {
+                    name: self.level.bodies[i].name.clone(),
+                    ..state
+                });
+            } else {
+                let b = &mut self.snapshot.bodies[i];
+                let name = std::mem::take(&mut b.name);
+                *b = BodyState { name, ..state };
+            }
+        }
+    }
+
+    fn read_contacts(&mut self) {
+        self.snapshot.contacts.clear();
+        for pair in self.world.narrow_phase.contact_pairs() {
+            if !pair.has_any_active_contact() {
+                continue;
+            }
+            let (Some(&b1), Some(&b2)) = (
+                self.collider_body.get(&pair.collider1),
+                self.collider_body.get(&pair.collider2),
+            ) else {
+                continue;
+            };
+            let pose1 = *self.world.colliders[pair.collider1].position();
+            for m in pair.manifolds() {
+                if m.points.is_empty() {
+                    continue;
+                }
+                let points = m
+                    .points
+                    .iter()
+                    .map(|pt| ContactPoint {
+                        point: to_d(pose1 * pt.local_p1),
+                        distance: pt.dist as f64,
+                        normal_impulse: pt.data.impulse as f64,
+                        tangent_impulse: pt.data.tangent_impulse[0] as f64,
+                    })
+                    .collect();
+                self.snapshot.contacts.push(ContactState {
+                    body1: b1,
+                    body2: b2,
+                    normal: to_d(m.data.normal),
+                    points,
+                });
+            }
+        }
+    }
+
+    fn read_joints(&mut self) {
+        self.snapshot.joints.clear();
+        let n = self.substeps() as f64;
+        for (k, h) in self.joints.iter().enumerate() {
+            let j = &self
+                .world
+                .impulse_joints
+                .get(*h)
+                .expect("joint handles stay valid");
+            let def = &self.level.joints[k];
+            let (i1, i2) = (self.body_index[&def.body1], self.body_index[&def.body2]);
+            let (rb1, rb2) = (
+                &self.world.bodies[self.bodies[i1]],
+                &self.world.bodies[self.bodies[i2]],
+            );
+            let (m1, m2) = (joints::BodyMetric::of(rb1), joints::BodyMetric::of(rb2));
+            let r = joints::last_substep_reaction(j, rb1.position(), rb2.position(), &m1, &m2);
+            let frame1 = *rb1.position() * j.data.local_frame1;
+            let frame2 = *rb2.position() * j.data.local_frame2;
+            let coordinate = match def.kind {
+                JointKind::Revolute | JointKind::Fixed => {
+                    (rb2.rotation().angle() - rb1.rotation().angle()) as f64
+                        - (self.level.bodies[i2].angle - self.level.bodies[i1].angle)
+                }
+                JointKind::Prismatic | JointKind::PinSlot => {
+                    let axis = frame1.rotation * Vector::X;
+                    (frame2.translation - frame1.translation).dot(axis) as f64
+                }
+            };
+            // Joint rows restart each substep: the step's impulse is `substeps` times the last one.
+            self.snapshot.joints.push(JointState {
+                name: def.name.clone(),
+                body1: i1,
+                body2: i2,
+                anchor: to_d(frame2.translation),
+                anchor1: to_d(frame1.translation),
+                impulse_on_body2: r.on_body2 * n,
+                angular_impulse_on_body2: r.angular_on_body2 * n,
+                angular_impulse_on_body1: r.angular_on_body1 * n,
+                couple_on_body2: r.couple_on_body2 * n,
+                motor_impulse: r.motor * n,
+                limit_impulse: r.limit * n,
+                coordinate,
+            });
+        }
+    }
+
+    /// Spring states from the current body poses and velocities.
+    fn spring_states(&self, with_force: bool) -> Vec<SpringState> {
+        let mut out = Vec::with_capacity(self.level.springs.len());
+        if !self.effects.has(Effect::Springs) {
+            return out;
+        }
+        for s in &self.level.springs {
+            let i1 = self.body_index[&s.body1];
+            let rb1 = &self.world.bodies[self.bodies[i1]];
+            let p1 = *rb1.position() * build::v(s.point1);
+            let v1 = rb1.velocity_at_point(p1);
+            let (i2, p2, v2) = match &s.body2 {
+                Some(b2) => {
+                    let i2 = self.body_index[b2];
+                    let rb2 = &self.world.bodies[self.bodies[i2]];
+                    let p2 = *rb2.position() * build::v(s.point2);
+                    (Some(i2), p2, rb2.velocity_at_point(p2))
+                }
+                None => (None, build::v(s.point2), Vector::ZERO),
+            };
+            let (p1, p2, v1, v2) = (to_d(p1), to_d(p2), to_d(v1), to_d(v2));
+            let d = p2 - p1;
+            let length = d.length();
+            let x = length - s.rest_length;
+            let u = if length > 1e-12 {
+                d / length
+            } else {
+                DVec2::ZERO
+            };
+            // Tension T = k x + c dx/dt pulls body1 toward body2 (Hooke's law, eq. 3/23 of MK).
+            let c = if self.effects.has(Effect::Damping) {
+                s.damping
+            } else {
+                0.0
+            };
+            let tension = s.stiffness * x + c * (v2 - v1).dot(u);
+            out.push(SpringState {
+                name: s.name.clone(),
+                body1: i1,
+                body2: i2,
+                point1: p1,
+                point2: p2,
+                length,
+                extension: x,
+                tension: if with_force { tension } else { 0.0 },
+                energy: 0.5 * s.stiffness * x * x,
+                force_on_body1: if with_force { u * tension } else { DVec2::ZERO },
+                applied_at1: p1,
+                applied_at2: p2,
+            });
+        }
+        out
+    }
+}
+
+pub(crate) fn to_d(v: Vector) -> DVec2 {
+    DVec2::new(v.x as f64, v.y as f64)
+}
+
+fn vd(v: DVec2) -> Vector {
+    Vector::new(v.x as Real, v.y as Real)
+}
+
+/// Linear interpolation in a time table, held constant beyond its ends.
+fn interp<T: Copy>(rows: &[(f64, T)], t: f64, lerp: impl Fn(T, T, f64) -> T) -> T {
+    if t <= rows[0].0 {
+        return rows[0].1;
+    }
+    for w in rows.windows(2) {
+        if t <= w[1].0 {
+            let s = (t - w[0].0) / (w[1].0 - w[0].0);
+            return lerp(w[0].1, w[1].1, s);
+        }
+    }
+    rows[rows.len() - 1].1
+}
+
+pub fn sample2(p: &Profile<V2>, t: f64) -> V2 {
+    match p {
+        Profile::Constant(v) => *v,
+        Profile::Table(rows) => interp(rows, t, |a, b, s| {
+            (a.0 + (b.0 - a.0) * s, a.1 + (b.1 - a.1) * s)
+        }),
+    }
+}
+
+pub fn sample1(p: &Profile<f64>, t: f64) -> f64 {
+    match p {
+        Profile::Constant(v) => *v,
+        Profile::Table(rows) => interp(rows, t, |a, b, s| a + (b - a) * s),
+    }
+}
+
+impl crate::sim::options::Engine for Simulation {
+    fn step(&mut self) -> Result<&Snapshot, SimError> {
+        Simulation::step(self)
+    }
+    fn snapshot(&self) -> &Snapshot {
+        Simulation::snapshot(self)
+    }
+    fn dt(&self) -> f64 {
+        Simulation::dt(self)
+    }
+    fn total_steps(&self) -> u64 {
+        Simulation::total_steps(self)
+    }
+}
