@@ -177,7 +177,7 @@ impl QuestionProbe {
                 StudentGrade {
                     answer: a,
                     rel_error: e,
-                    passed: e <= self.def.tolerance,
+                    passed: e <= self.def.student_tolerance,
                 }
             }),
         }

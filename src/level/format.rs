@@ -413,8 +413,11 @@ pub struct QuestionDef {
     pub unit: String,
     /// The textbook answer (recomputed where the printed one is wrong).
     pub expected: f64,
-    /// Relative tolerance.
+    /// Relative tolerance on the engine's and the analysis layer's values.
     pub tolerance: f64,
+    /// Relative tolerance a student's answer is graded with (default 0.01: three significant figures).
+    #[serde(default = "default_student_tolerance")]
+    pub student_tolerance: f64,
     /// What is measured.
     pub quantity: Quantity,
     /// When it is measured.
@@ -423,6 +426,10 @@ pub struct QuestionDef {
     /// Why the tolerance is what it is.
     #[serde(default)]
     pub why: String,
+}
+
+fn default_student_tolerance() -> f64 {
+    0.01
 }
 
 /// A measurable quantity of one body or joint.

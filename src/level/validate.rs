@@ -699,6 +699,12 @@ fn question(v: &V, q: &QuestionDef) -> R {
         "",
         at("tolerance"),
     )?;
+    v.positive(
+        q.student_tolerance,
+        &format!("question \"{}\" student_tolerance", q.id),
+        "",
+        at("student_tolerance"),
+    )?;
     let subject = match &q.quantity {
         Quantity::X(b)
         | Quantity::Y(b)

@@ -1,0 +1,247 @@
+//! Every kind of bad input gets a located error (file:line:col) that says how to fix it.
+
+use rigidlab::level::parse;
+use std::path::Path;
+
+/// A valid level with one placeholder line that each case replaces.
+fn level(body_line: &str, extra: &str, effects: &str, world: &str) -> String {
+    format!(
+        "Level(
+  title: \"bad input\",
+  effects: [{effects}],
+  world: ({world}),
+  bodies: [
+    (name: \"ground\", kind: fixed, shape: Segment(a: (-1.0, 0.0), b: (1.0, 0.0))),
+    {body_line}
+  ],
+{extra}
+)"
+    )
+}
+
+const BALL: &str = "(name: \"ball\", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, 1.0)),";
+
+/// Parses `text` and returns the error's (line, message + help).
+fn error_of(text: &str) -> (usize, usize, String) {
+    let e = parse(Path::new("levels/bad.ron"), text).expect_err("this input must be rejected");
+    let shown = e.to_string();
+    assert!(shown.starts_with(&format!("levels/bad.ron:{}:{}: error: ", e.line, e.col)), "not located: {shown}");
+    assert!(shown.contains("help: "), "no help: {shown}");
+    (e.line, e.col, shown)
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines().position(|l| l.contains(needle)).expect("needle in text") + 1
+}
+
+#[test]
+fn valid_base_level_parses() {
+    parse(Path::new("ok.ron"), &level(BALL, "", "gravity", "dt: 0.01")).unwrap();
+}
+
+#[test]
+fn malformed_ron_names_line_and_column() {
+    let text = level("(name: \"ball\", shape: Circle(radius: 0.1) mass: 1.0),", "", "gravity", "dt: 0.01");
+    let (line, col, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "mass: 1.0"));
+    assert!(col > 1);
+    assert!(msg.contains("Expected"), "{msg}");
+}
+
+#[test]
+fn unknown_field_is_rejected_with_the_valid_names() {
+    let text = level("(name: \"ball\", colour: 3, shape: Circle(radius: 0.1)),", "", "gravity", "dt: 0.01");
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "colour"));
+    assert!(msg.contains("colour") && msg.contains("restitution"), "{msg}");
+}
+
+#[test]
+fn unknown_effect_name_lists_the_known_ones() {
+    let text = level(BALL, "", "gravity, magnetism", "dt: 0.01");
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "magnetism"));
+    assert!(msg.contains("magnetism") && msg.contains("friction"), "{msg}");
+}
+
+#[test]
+fn negative_or_zero_mass_and_size() {
+    for (body, needle, what) in [
+        ("(name: \"ball\", shape: Circle(radius: 0.1), mass: -2.0),", "mass: -2.0", "mass must be positive"),
+        ("(name: \"ball\", shape: Circle(radius: 0.1), mass: 0.0),", "mass: 0.0", "mass must be positive"),
+        ("(name: \"ball\", shape: Circle(radius: 0.0)),", "radius: 0.0", "radius must be positive"),
+        ("(name: \"ball\", shape: Box(width: 1.0, height: -1.0)),", "height: -1.0", "height must be positive"),
+        ("(name: \"ball\", shape: Circle(radius: 0.1), inertia: -1.0),", "inertia: -1.0", "inertia must be positive"),
+    ] {
+        let text = level(body, "", "gravity", "dt: 0.01");
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, needle), "{msg}");
+        assert!(msg.contains(what), "{msg}");
+    }
+}
+
+#[test]
+fn nan_and_infinite_numbers() {
+    for (body, needle) in [
+        ("(name: \"ball\", shape: Circle(radius: 0.1), mass: NaN),", "NaN"),
+        ("(name: \"ball\", shape: Circle(radius: 0.1), position: (inf, 0.0)),", "inf"),
+        ("(name: \"ball\", shape: Circle(radius: 0.1), omega: -inf),", "-inf"),
+    ] {
+        let text = level(body, "", "gravity", "dt: 0.01");
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, needle), "{msg}");
+        assert!(msg.contains("not a finite number"), "{msg}");
+    }
+}
+
+#[test]
+fn joint_naming_a_missing_body() {
+    let extra = "  joints: [\n    (name: \"pin\", kind: revolute, body1: \"ground\", body2: \"bal\"),\n  ],";
+    let text = level(BALL, extra, "gravity, joints", "dt: 0.01");
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "\"pin\""));
+    assert!(msg.contains("\"bal\"") && msg.contains("\"ball\""), "names the typo and the known bodies: {msg}");
+}
+
+#[test]
+fn duplicate_names() {
+    let text = level(&format!("{BALL}\n    {BALL}"), "", "gravity", "dt: 0.01");
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "\"ball\""));
+    assert!(msg.contains("used twice"), "{msg}");
+}
+
+#[test]
+fn dt_must_be_positive() {
+    for dt in ["0.0", "-0.01", "NaN"] {
+        let text = level(BALL, "", "gravity", &format!("dt: {dt}"));
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, "dt:"), "{msg}");
+        assert!(msg.contains("world.dt"), "{msg}");
+    }
+}
+
+#[test]
+fn undeclared_effects_say_which_effect_to_add() {
+    let cases = [
+        // A restitution value without `restitution`.
+        (level("(name: \"ball\", shape: Circle(radius: 0.1), restitution: 0.5),", "", "gravity, contacts", "dt: 0.01"), "restitution: 0.5", "restitution"),
+        // Friction without `friction`.
+        (level("(name: \"ball\", shape: Circle(radius: 0.1), friction: 0.3),", "", "gravity, contacts", "dt: 0.01"), "friction: 0.3", "friction"),
+        // A spring without `springs`.
+        (
+            level(BALL, "  springs: [\n    (name: \"k\", body1: \"ball\", stiffness: 10.0, rest_length: 1.0),\n  ],", "gravity", "dt: 0.01"),
+            "\"k\"",
+            "springs",
+        ),
+        // Gravity set but not declared.
+        (level(BALL, "", "", "dt: 0.01, gravity: (0.0, -3.7)"), "gravity: (0.0", "gravity"),
+        // A joint without `joints`.
+        (level(BALL, "  joints: [\n    (name: \"pin\", kind: revolute, body1: \"ground\", body2: \"ball\"),\n  ],", "gravity", "dt: 0.01"), "\"pin\"", "joints"),
+        // Damping without `damping`.
+        (level("(name: \"ball\", shape: Circle(radius: 0.1), linear_damping: 0.5),", "", "gravity", "dt: 0.01"), "linear_damping", "damping"),
+    ];
+    for (text, needle, effect) in cases {
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, needle), "{msg}");
+        assert!(msg.contains(&format!("add `{effect}` to `effects")), "{msg}");
+    }
+}
+
+#[test]
+fn restitution_above_one_and_effects_that_need_others() {
+    let text = level("(name: \"ball\", shape: Circle(radius: 0.1), restitution: 1.5),", "", "gravity, contacts, restitution", "dt: 0.01");
+    let (_, _, msg) = error_of(&text);
+    assert!(msg.contains("would create energy"), "{msg}");
+    let text = level(BALL, "", "gravity, friction", "dt: 0.01");
+    let (_, _, msg) = error_of(&text);
+    assert!(msg.contains("`friction` needs `contacts`"), "{msg}");
+}
+
+#[test]
+fn dynamic_body_without_mass_or_inertia() {
+    let text = level("(name: \"ball\", shape: Segment(a: (0.0, 0.0), b: (1.0, 0.0))),", "", "gravity", "dt: 0.01");
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "Segment(a: (0.0"));
+    assert!(msg.contains("has no mass"), "{msg}");
+}
+
+mod cli {
+    use std::process::Command;
+
+    fn rigidlab(args: &[&str]) -> (i32, String, String) {
+        let out = Command::new(env!("CARGO_BIN_EXE_rigidlab")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
+        (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+    }
+
+    fn temp(name: &str, text: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("rigidlab-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    #[test]
+    fn bad_level_exits_2_with_located_message() {
+        let p = temp("bad.ron", "Level(title: \"x\", bodies: [(name: \"a\", shape: Circle(radius: -1.0))])");
+        let (code, _, err) = rigidlab(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("bad.ron:1:") && err.contains("radius must be positive") && err.contains("help:"), "{err}");
+    }
+
+    #[test]
+    fn missing_file_exits_2() {
+        let (code, _, err) = rigidlab(&["check", "no/such/level.ron"]);
+        assert_eq!(code, 2);
+        assert!(err.contains("no such file"), "{err}");
+    }
+
+    #[test]
+    fn failing_question_exits_1() {
+        // A wrong expected answer: y at t = 1 s of a dropped ball is 5.095 m, not 7 m.
+        let p = temp(
+            "wrong.ron",
+            "Level(title: \"x\", effects: [gravity], world: (duration: 1.0), bodies: [(name: \"a\", shape: Circle(radius: 0.1), position: (0.0, 10.0))],
+             questions: [(id: \"y\", ask: \"y\", unit: \"m\", expected: 7.0, tolerance: 0.01, quantity: Y(\"a\"), at: Time(1.0))])",
+        );
+        let (code, out, _) = rigidlab(&["check", p.to_str().unwrap()]);
+        assert_eq!(code, 1, "{out}");
+        assert!(out.contains("FAIL"));
+    }
+
+    #[test]
+    fn good_levels_exit_0_and_json_follows_the_contract() {
+        let (code, out, err) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--json"]);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["passed"], true);
+        let l = &v["levels"][0];
+        for key in ["file", "title", "passed", "steps", "sim_time", "wall_ms", "effects", "checks", "questions"] {
+            assert!(l.get(key).is_some(), "missing {key}");
+        }
+        for key in ["kind", "subject", "theory", "engine", "max_abs_error", "max_rel_error", "tolerance", "passed"] {
+            assert!(l["checks"][0].get(key).is_some(), "missing checks.{key}");
+        }
+        for key in ["id", "ask", "unit", "expected", "analysis", "engine", "rel_error", "tolerance", "passed"] {
+            assert!(l["questions"][0].get(key).is_some(), "missing questions.{key}");
+        }
+        assert_eq!(l["steps"], 60);
+        assert_eq!(l["effects"], serde_json::json!(["gravity"]));
+    }
+
+    #[test]
+    fn student_answers_are_graded() {
+        let (_, out, _) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--answer", "speed=9.8", "--answer", "height=4.0"]);
+        assert!(out.contains("student answer 9.8 -> correct"), "{out}");
+        assert!(out.contains("student answer 4 -> wrong"), "{out}");
+    }
+
+    #[test]
+    fn bad_flag_values_exit_2() {
+        let (code, _, err) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--dt", "-1"]);
+        assert_eq!(code, 2, "{err}");
+        let (code, _, _) = rigidlab(&["check", "levels", "--answer", "v=abc"]);
+        assert_eq!(code, 2);
+    }
+}
