@@ -29,6 +29,8 @@ pub struct Snapshot {
     pub contacts: Vec<ContactState>,
     pub joints: Vec<JointState>,
     pub springs: Vec<SpringState>,
+    /// Ratio constraints (pulleys, cables, gears) and the impulse each applied over the step.
+    pub couplings: Vec<CouplingState>,
     /// Applied loads (forces, torques) held during the step that led here.
     pub loads: Vec<LoadState>,
     /// Impulses applied by events at the start of the step that led here.
@@ -51,7 +53,7 @@ pub struct BodyState {
     pub kind: BodyKind,
     /// Position of the body frame's origin, m.
     pub position: DVec2,
-    /// Rotation of the body frame, rad, CCW.
+    /// Rotation of the body frame, rad, CCW; continuous (not wrapped to +-pi) so turns add up.
     pub angle: f64,
     /// Mass center G in world coordinates, m.
     pub com: DVec2,
@@ -139,6 +141,33 @@ pub struct JointState {
     pub limit_impulse: f64,
     /// Joint coordinate: relative angle (pin) or slide distance (slider).
     pub coordinate: f64,
+}
+
+/// A body coordinate a coupling acts on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Coordinate {
+    /// x of the mass center, m.
+    X,
+    /// y of the mass center, m.
+    Y,
+    /// The body's angle, rad.
+    Angle,
+}
+
+/// A ratio constraint `sum(ratio_i * q_i) = const` and its reaction over the step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CouplingState {
+    pub name: String,
+    /// (body index, coordinate, ratio) per term.
+    pub terms: Vec<(usize, Coordinate, f64)>,
+    /// The generalized impulse lambda over the step: term i received `ratio_i * lambda`
+    /// (N s along x/y, or N m s about its mass center for an angle term). For a cable with
+    /// unit ratios, lambda / dt is the cable tension.
+    pub impulse: f64,
+    /// Current value of the sum, and its drift from the initial value (m or rad).
+    pub value: f64,
+    pub drift: f64,
 }
 
 /// A linear spring applied by rigidlab (exact Hooke force).

@@ -25,13 +25,19 @@ const BALL: &str = "(name: \"ball\", shape: Circle(radius: 0.1), mass: 1.0, posi
 fn error_of(text: &str) -> (usize, usize, String) {
     let e = parse(Path::new("levels/bad.ron"), text).expect_err("this input must be rejected");
     let shown = e.to_string();
-    assert!(shown.starts_with(&format!("levels/bad.ron:{}:{}: error: ", e.line, e.col)), "not located: {shown}");
+    assert!(
+        shown.starts_with(&format!("levels/bad.ron:{}:{}: error: ", e.line, e.col)),
+        "not located: {shown}"
+    );
     assert!(shown.contains("help: "), "no help: {shown}");
     (e.line, e.col, shown)
 }
 
 fn line_of(text: &str, needle: &str) -> usize {
-    text.lines().position(|l| l.contains(needle)).expect("needle in text") + 1
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("needle in text")
+        + 1
 }
 
 #[test]
@@ -41,7 +47,12 @@ fn valid_base_level_parses() {
 
 #[test]
 fn malformed_ron_names_line_and_column() {
-    let text = level("(name: \"ball\", shape: Circle(radius: 0.1) mass: 1.0),", "", "gravity", "dt: 0.01");
+    let text = level(
+        "(name: \"ball\", shape: Circle(radius: 0.1) mass: 1.0),",
+        "",
+        "gravity",
+        "dt: 0.01",
+    );
     let (line, col, msg) = error_of(&text);
     assert_eq!(line, line_of(&text, "mass: 1.0"));
     assert!(col > 1);
@@ -50,10 +61,18 @@ fn malformed_ron_names_line_and_column() {
 
 #[test]
 fn unknown_field_is_rejected_with_the_valid_names() {
-    let text = level("(name: \"ball\", colour: 3, shape: Circle(radius: 0.1)),", "", "gravity", "dt: 0.01");
+    let text = level(
+        "(name: \"ball\", colour: 3, shape: Circle(radius: 0.1)),",
+        "",
+        "gravity",
+        "dt: 0.01",
+    );
     let (line, _, msg) = error_of(&text);
     assert_eq!(line, line_of(&text, "colour"));
-    assert!(msg.contains("colour") && msg.contains("restitution"), "{msg}");
+    assert!(
+        msg.contains("colour") && msg.contains("restitution"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -61,17 +80,40 @@ fn unknown_effect_name_lists_the_known_ones() {
     let text = level(BALL, "", "gravity, magnetism", "dt: 0.01");
     let (line, _, msg) = error_of(&text);
     assert_eq!(line, line_of(&text, "magnetism"));
-    assert!(msg.contains("magnetism") && msg.contains("friction"), "{msg}");
+    assert!(
+        msg.contains("magnetism") && msg.contains("friction"),
+        "{msg}"
+    );
 }
 
 #[test]
 fn negative_or_zero_mass_and_size() {
     for (body, needle, what) in [
-        ("(name: \"ball\", shape: Circle(radius: 0.1), mass: -2.0),", "mass: -2.0", "mass must be positive"),
-        ("(name: \"ball\", shape: Circle(radius: 0.1), mass: 0.0),", "mass: 0.0", "mass must be positive"),
-        ("(name: \"ball\", shape: Circle(radius: 0.0)),", "radius: 0.0", "radius must be positive"),
-        ("(name: \"ball\", shape: Box(width: 1.0, height: -1.0)),", "height: -1.0", "height must be positive"),
-        ("(name: \"ball\", shape: Circle(radius: 0.1), inertia: -1.0),", "inertia: -1.0", "inertia must be positive"),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.1), mass: -2.0),",
+            "mass: -2.0",
+            "mass must be positive",
+        ),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.1), mass: 0.0),",
+            "mass: 0.0",
+            "mass must be positive",
+        ),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.0)),",
+            "radius: 0.0",
+            "radius must be positive",
+        ),
+        (
+            "(name: \"ball\", shape: Box(width: 1.0, height: -1.0)),",
+            "height: -1.0",
+            "height must be positive",
+        ),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.1), inertia: -1.0),",
+            "inertia: -1.0",
+            "inertia must be positive",
+        ),
     ] {
         let text = level(body, "", "gravity", "dt: 0.01");
         let (line, _, msg) = error_of(&text);
@@ -83,9 +125,18 @@ fn negative_or_zero_mass_and_size() {
 #[test]
 fn nan_and_infinite_numbers() {
     for (body, needle) in [
-        ("(name: \"ball\", shape: Circle(radius: 0.1), mass: NaN),", "NaN"),
-        ("(name: \"ball\", shape: Circle(radius: 0.1), position: (inf, 0.0)),", "inf"),
-        ("(name: \"ball\", shape: Circle(radius: 0.1), omega: -inf),", "-inf"),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.1), mass: NaN),",
+            "NaN",
+        ),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.1), position: (inf, 0.0)),",
+            "inf",
+        ),
+        (
+            "(name: \"ball\", shape: Circle(radius: 0.1), omega: -inf),",
+            "-inf",
+        ),
     ] {
         let text = level(body, "", "gravity", "dt: 0.01");
         let (line, _, msg) = error_of(&text);
@@ -100,14 +151,18 @@ fn joint_naming_a_missing_body() {
     let text = level(BALL, extra, "gravity, joints", "dt: 0.01");
     let (line, _, msg) = error_of(&text);
     assert_eq!(line, line_of(&text, "\"pin\""));
-    assert!(msg.contains("\"bal\"") && msg.contains("\"ball\""), "names the typo and the known bodies: {msg}");
+    assert!(
+        msg.contains("\"bal\"") && msg.contains("\"ball\""),
+        "names the typo and the known bodies: {msg}"
+    );
 }
 
 #[test]
 fn duplicate_names() {
     let text = level(&format!("{BALL}\n    {BALL}"), "", "gravity", "dt: 0.01");
     let (line, _, msg) = error_of(&text);
-    assert_eq!(line, line_of(&text, "\"ball\""));
+    // The error points at the second "ball", the one to rename.
+    assert_eq!(line, line_of(&text, "\"ball\"") + 1);
     assert!(msg.contains("used twice"), "{msg}");
 }
 
@@ -144,13 +199,21 @@ fn undeclared_effects_say_which_effect_to_add() {
     for (text, needle, effect) in cases {
         let (line, _, msg) = error_of(&text);
         assert_eq!(line, line_of(&text, needle), "{msg}");
-        assert!(msg.contains(&format!("add `{effect}` to `effects")), "{msg}");
+        assert!(
+            msg.contains(&format!("add `{effect}` to `effects")),
+            "{msg}"
+        );
     }
 }
 
 #[test]
 fn restitution_above_one_and_effects_that_need_others() {
-    let text = level("(name: \"ball\", shape: Circle(radius: 0.1), restitution: 1.5),", "", "gravity, contacts, restitution", "dt: 0.01");
+    let text = level(
+        "(name: \"ball\", shape: Circle(radius: 0.1), restitution: 1.5),",
+        "",
+        "gravity, contacts, restitution",
+        "dt: 0.01",
+    );
     let (_, _, msg) = error_of(&text);
     assert!(msg.contains("would create energy"), "{msg}");
     let text = level(BALL, "", "gravity, friction", "dt: 0.01");
@@ -160,7 +223,12 @@ fn restitution_above_one_and_effects_that_need_others() {
 
 #[test]
 fn dynamic_body_without_mass_or_inertia() {
-    let text = level("(name: \"ball\", shape: Segment(a: (0.0, 0.0), b: (1.0, 0.0))),", "", "gravity", "dt: 0.01");
+    let text = level(
+        "(name: \"ball\", shape: Segment(a: (0.0, 0.0), b: (1.0, 0.0))),",
+        "",
+        "gravity",
+        "dt: 0.01",
+    );
     let (line, _, msg) = error_of(&text);
     assert_eq!(line, line_of(&text, "Segment(a: (0.0"));
     assert!(msg.contains("has no mass"), "{msg}");
@@ -170,8 +238,16 @@ mod cli {
     use std::process::Command;
 
     fn rigidlab(args: &[&str]) -> (i32, String, String) {
-        let out = Command::new(env!("CARGO_BIN_EXE_rigidlab")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
-        (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+        let out = Command::new(env!("CARGO_BIN_EXE_rigidlab"))
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stdout).into(),
+            String::from_utf8_lossy(&out.stderr).into(),
+        )
     }
 
     fn temp(name: &str, text: &str) -> std::path::PathBuf {
@@ -184,10 +260,18 @@ mod cli {
 
     #[test]
     fn bad_level_exits_2_with_located_message() {
-        let p = temp("bad.ron", "Level(title: \"x\", bodies: [(name: \"a\", shape: Circle(radius: -1.0))])");
+        let p = temp(
+            "bad.ron",
+            "Level(title: \"x\", bodies: [(name: \"a\", shape: Circle(radius: -1.0))])",
+        );
         let (code, _, err) = rigidlab(&["check", p.to_str().unwrap()]);
         assert_eq!(code, 2, "{err}");
-        assert!(err.contains("bad.ron:1:") && err.contains("radius must be positive") && err.contains("help:"), "{err}");
+        assert!(
+            err.contains("bad.ron:1:")
+                && err.contains("radius must be positive")
+                && err.contains("help:"),
+            "{err}"
+        );
     }
 
     #[test]
@@ -217,14 +301,46 @@ mod cli {
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
         assert_eq!(v["passed"], true);
         let l = &v["levels"][0];
-        for key in ["file", "title", "passed", "steps", "sim_time", "wall_ms", "effects", "checks", "questions"] {
+        for key in [
+            "file",
+            "title",
+            "passed",
+            "steps",
+            "sim_time",
+            "wall_ms",
+            "effects",
+            "checks",
+            "questions",
+        ] {
             assert!(l.get(key).is_some(), "missing {key}");
         }
-        for key in ["kind", "subject", "theory", "engine", "max_abs_error", "max_rel_error", "tolerance", "passed"] {
+        for key in [
+            "kind",
+            "subject",
+            "theory",
+            "engine",
+            "max_abs_error",
+            "max_rel_error",
+            "tolerance",
+            "passed",
+        ] {
             assert!(l["checks"][0].get(key).is_some(), "missing checks.{key}");
         }
-        for key in ["id", "ask", "unit", "expected", "analysis", "engine", "rel_error", "tolerance", "passed"] {
-            assert!(l["questions"][0].get(key).is_some(), "missing questions.{key}");
+        for key in [
+            "id",
+            "ask",
+            "unit",
+            "expected",
+            "analysis",
+            "engine",
+            "rel_error",
+            "tolerance",
+            "passed",
+        ] {
+            assert!(
+                l["questions"][0].get(key).is_some(),
+                "missing questions.{key}"
+            );
         }
         assert_eq!(l["steps"], 60);
         assert_eq!(l["effects"], serde_json::json!(["gravity"]));
@@ -232,7 +348,14 @@ mod cli {
 
     #[test]
     fn student_answers_are_graded() {
-        let (_, out, _) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--answer", "speed=9.8", "--answer", "height=4.0"]);
+        let (_, out, _) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=9.8",
+            "--answer",
+            "height=4.0",
+        ]);
         assert!(out.contains("student answer 9.8 -> correct"), "{out}");
         assert!(out.contains("student answer 4 -> wrong"), "{out}");
     }

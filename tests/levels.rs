@@ -30,10 +30,17 @@ fn free_fall_follows_the_closed_form_every_step() {
     for s in &snaps {
         let b = &s.bodies[0];
         // Discrete solution: exact up to f32 rounding (1e-6 of 10 m, accumulated over 240 substeps).
-        assert!((b.com.y - discrete(10.0, 0.0, -G, s.time, h)).abs() < 2e-5, "t = {}: y = {}", s.time, b.com.y);
+        assert!(
+            (b.com.y - discrete(10.0, 0.0, -G, s.time, h)).abs() < 2e-5,
+            "t = {}: y = {}",
+            s.time,
+            b.com.y
+        );
         assert!((b.velocity.y + G * s.time).abs() < 1e-4);
         // Closed form y0 - g t^2 / 2: off by exactly g h t / 2 (<= 0.0205 m at t = 1 s).
-        assert!((b.com.y - (10.0 - 0.5 * G * s.time * s.time)).abs() <= 0.5 * G * h * s.time + 2e-5);
+        assert!(
+            (b.com.y - (10.0 - 0.5 * G * s.time * s.time)).abs() <= 0.5 * G * h * s.time + 2e-5
+        );
     }
 }
 
@@ -44,8 +51,16 @@ fn projectile_follows_the_closed_form_every_step() {
     let h = snaps[1].dt / 4.0;
     for s in &snaps {
         let b = &s.bodies[0];
-        assert!((b.com.x - v0 * s.time).abs() < 2e-5, "x is exact: t = {}", s.time);
-        assert!((b.com.y - discrete(0.0, v0, -G, s.time, h)).abs() < 2e-5, "t = {}", s.time);
+        assert!(
+            (b.com.x - v0 * s.time).abs() < 2e-5,
+            "x is exact: t = {}",
+            s.time
+        );
+        assert!(
+            (b.com.y - discrete(0.0, v0, -G, s.time, h)).abs() < 2e-5,
+            "t = {}",
+            s.time
+        );
     }
 }
 
@@ -83,7 +98,14 @@ fn pendulum_angle_tracks_the_reference_solution() {
     // over 0.8 s at dt = 1/60 s, 4 substeps (h = 1/240 s). Budget: 0.75% of the 1.05 rad amplitude.
     assert!(worst < 8e-3, "worst angle error {worst:.2e} rad");
     // And the error shrinks with the substep (first order): 16 substeps at 1/240 s.
-    let fine = run("levels/kinetics/simple_pendulum.ron", &Options { dt: Some(1.0 / 240.0), substeps: Some(16), ..Default::default() });
+    let fine = run(
+        "levels/kinetics/simple_pendulum.ron",
+        &Options {
+            dt: Some(1.0 / 240.0),
+            substeps: Some(16),
+            ..Default::default()
+        },
+    );
     let mut worst_fine: f64 = 0.0;
     for s in &fine {
         let r = s.bodies[1].com;
@@ -92,7 +114,10 @@ fn pendulum_angle_tracks_the_reference_solution() {
     }
     // First order in h predicts 16x less error for h 16x smaller (measured 3.50e-4 rad: 15.6x).
     // Require at least 8x so that a drop to half an order fails.
-    assert!(worst_fine < worst / 8.0, "refining h by 16x: {worst_fine:.2e} vs {worst:.2e}");
+    assert!(
+        worst_fine < worst / 8.0,
+        "refining h by 16x: {worst_fine:.2e} vs {worst:.2e}"
+    );
 }
 
 #[test]
@@ -107,9 +132,16 @@ fn block_on_incline_slides_with_a_equal_g_sin_minus_mu_cos() {
         let along = (b.com - x0).dot(dir);
         let t = s.time;
         // Speed: exact a t but the soft contact takes a few steps to settle: 1% of v.
-        assert!((b.velocity.length() - a * t).abs() < 0.01 * a * t + 1e-3, "t = {t}: v = {}", b.velocity.length());
+        assert!(
+            (b.velocity.length() - a * t).abs() < 0.01 * a * t + 1e-3,
+            "t = {t}: v = {}",
+            b.velocity.length()
+        );
         // Distance: closed form plus the integrator's a h t / 2 (h = dt / 4), within 1%.
-        assert!((along - 0.5 * a * t * t).abs() < 0.01 * 0.5 * a * t * t + 0.5 * a * s.dt / 4.0 * t, "t = {t}: s = {along}");
+        assert!(
+            (along - 0.5 * a * t * t).abs() < 0.01 * 0.5 * a * t * t + 0.5 * a * s.dt / 4.0 * t,
+            "t = {t}: s = {along}"
+        );
         // It slides along the face, not into or off it.
         assert!((b.com - x0).perp_dot(dir).abs() < 2e-3);
     }
@@ -122,10 +154,21 @@ fn bouncing_ball_falls_freely_then_rebounds_to_e_squared_h() {
     let t_impact = (2.0 * 1.0 / G).sqrt();
     for s in snaps.iter().filter(|s| s.time < t_impact - 0.01) {
         let y = s.bodies[1].com.y;
-        assert!((y - discrete(1.1, 0.0, -G, s.time, h)).abs() < 2e-5, "free flight before impact, t = {}", s.time);
-        assert!(s.contacts.iter().all(|c| c.points.iter().all(|p| p.normal_impulse == 0.0)));
+        assert!(
+            (y - discrete(1.1, 0.0, -G, s.time, h)).abs() < 2e-5,
+            "free flight before impact, t = {}",
+            s.time
+        );
+        assert!(s
+            .contacts
+            .iter()
+            .all(|c| c.points.iter().all(|p| p.normal_impulse == 0.0)));
     }
-    let apex = snaps.iter().filter(|s| s.time > 0.6).map(|s| s.bodies[1].com.y).fold(f64::MIN, f64::max);
+    let apex = snaps
+        .iter()
+        .filter(|s| s.time > 0.6)
+        .map(|s| s.bodies[1].com.y)
+        .fold(f64::MIN, f64::max);
     // e^2 h = 0.64 m above the floor -> center at 0.74 m. Known gap (see the level): the rebound is
     // short by O(h), measured 0.732 m at this step; bound 1.5%.
     assert!((apex - 0.74).abs() < 0.015 * 0.74, "apex {apex}");
@@ -155,7 +198,13 @@ fn without_contacts_no_collider_enters_the_narrow_phase() {
     assert!(a.com.y < -0.1);
 
     // With every stage on, the same scene has colliders and contact pairs.
-    let mut all = Simulation::new(&scene, &Options { all_effects: true, ..Default::default() });
+    let mut all = Simulation::new(
+        &scene,
+        &Options {
+            all_effects: true,
+            ..Default::default()
+        },
+    );
     for _ in 0..10 {
         all.step().unwrap();
     }
@@ -170,7 +219,11 @@ fn undeclared_ccd_and_sleeping_are_off() {
     assert_eq!(sim.world.integration_parameters.max_ccd_substeps, 0);
     for (_, rb) in sim.world.bodies.iter() {
         assert!(!rb.is_ccd_enabled());
-        assert_eq!(rb.activation().normalized_linear_threshold, -1.0, "sleeping disabled");
+        assert_eq!(
+            rb.activation().normalized_linear_threshold,
+            -1.0,
+            "sleeping disabled"
+        );
     }
 }
 
@@ -181,7 +234,12 @@ fn every_level_round_trips_through_save_and_load() {
     for f in files {
         let scene = level::load(&f).unwrap_or_else(|e| panic!("{e}"));
         let saved = to_ron(&scene.level);
-        let back = parse(&f, &saved).unwrap_or_else(|e| panic!("{}: saved text does not load back: {e}\n{saved}", f.display()));
+        let back = parse(&f, &saved).unwrap_or_else(|e| {
+            panic!(
+                "{}: saved text does not load back: {e}\n{saved}",
+                f.display()
+            )
+        });
         assert_eq!(back.level, scene.level, "{}", f.display());
     }
 }

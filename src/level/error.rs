@@ -1,5 +1,6 @@
 //! Located errors for level files: `file:line:col: message` plus how to fix it.
 
+use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -54,100 +55,124 @@ impl LevelError {
 }
 
 /// Finds where an item or one of its fields is written in the source, so that
-/// semantic errors (found after parsing) can point at a line.
+/// semantic errors (found after parsing) can point at a line. Line starts and the
+/// offsets of every `name: "..."` / `id: "..."` value are indexed once, so locating
+/// stays cheap on levels with thousands of items.
 pub struct Locator<'a> {
     text: &'a str,
+    line_starts: Vec<usize>,
+    /// Offsets of the quoted value of every `name:` or `id:` field, by value, in file order.
+    items: HashMap<&'a str, Vec<usize>>,
+}
+
+/// Byte offset of `key:` (as a field name, not inside a longer word) in `text[from..]`.
+fn find_key(text: &str, key: &str, from: usize) -> Option<usize> {
+    let mut start = from;
+    while let Some(i) = text.get(start..)?.find(key) {
+        let at = start + i;
+        let prev = if at == 0 {
+            b' '
+        } else {
+            text.as_bytes()[at - 1]
+        };
+        let before_ok = !prev.is_ascii_alphanumeric() && prev != b'_';
+        if before_ok && text[at + key.len()..].trim_start().starts_with(':') {
+            return Some(at);
+        }
+        start = at + key.len();
+    }
+    None
 }
 
 impl<'a> Locator<'a> {
     pub fn new(text: &'a str) -> Self {
-        Locator { text }
+        let line_starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        let mut items: HashMap<&str, Vec<usize>> = HashMap::new();
+        for key in ["name", "id"] {
+            let mut from = 0;
+            while let Some(k) = find_key(text, key, from) {
+                from = k + key.len();
+                let after_colon = from + text[from..].find(':').map_or(0, |c| c + 1);
+                let value = text[after_colon..].trim_start();
+                let start = text.len() - value.len();
+                if let Some(end) = value.strip_prefix('"').and_then(|v| v.find('"')) {
+                    items
+                        .entry(&text[start + 1..start + 1 + end])
+                        .or_default()
+                        .push(start);
+                }
+            }
+        }
+        for offsets in items.values_mut() {
+            offsets.sort_unstable();
+        }
+        Locator {
+            text,
+            line_starts,
+            items,
+        }
     }
 
     fn pos(&self, offset: usize) -> (usize, usize) {
-        let before = &self.text[..offset.min(self.text.len())];
-        let line = before.matches('\n').count() + 1;
-        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-        (line, col)
+        let offset = offset.min(self.text.len());
+        let line = self.line_starts.partition_point(|&s| s <= offset).max(1);
+        let start = self.line_starts[line - 1];
+        (line, self.text[start..offset].chars().count() + 1)
     }
 
-    /// Byte offset of `key:` (as a field name, not inside a longer word) at or after `from`.
-    fn find_key(&self, key: &str, from: usize) -> Option<usize> {
-        let mut start = from;
-        while let Some(i) = self.text[start..].find(key) {
-            let at = start + i;
-            let before_ok = at == 0
-                || !self.text.as_bytes()[at - 1].is_ascii_alphanumeric()
-                    && self.text.as_bytes()[at - 1] != b'_';
-            let rest = self.text[at + key.len()..].trim_start();
-            if before_ok && rest.starts_with(':') {
-                return Some(at);
-            }
-            start = at + key.len();
-        }
-        None
-    }
-
-    /// Offset of the item named `name` inside the section `section` (e.g. "bodies").
-    fn item(&self, section: &str, name: &str) -> Option<usize> {
-        let from = self.find_key(section, 0).unwrap_or(0);
-        let quoted = format!("\"{name}\"");
-        let mut start = from;
-        while let Some(i) = self.text[start..].find(&quoted) {
-            let at = start + i;
-            // Prefer the occurrence that is the item's `name:` / `id:` field.
-            let head = self.text[..at].trim_end();
-            if head.ends_with(':') {
-                let key_end = head.len() - 1;
-                let key_start = head[..key_end]
-                    .trim_end()
-                    .rfind(|c: char| !c.is_alphanumeric() && c != '_')
-                    .map_or(0, |k| k + 1);
-                let key = head[key_start..key_end].trim();
-                if key == "name" || key == "id" {
-                    return Some(at);
-                }
-            }
-            start = at + quoted.len();
-        }
-        None
+    /// Offset of the `nth` item named `name` after the key of `section` (e.g. "bodies").
+    fn item(&self, section: &str, name: &str, nth: usize) -> Option<usize> {
+        let from = find_key(self.text, section, 0).unwrap_or(0);
+        self.items
+            .get(name)?
+            .iter()
+            .copied()
+            .filter(|&o| o >= from)
+            .nth(nth)
     }
 
     /// Line and column of a section's key, e.g. `world`.
     pub fn section(&self, section: &str) -> (usize, usize) {
-        self.find_key(section, 0).map_or((1, 1), |o| self.pos(o))
+        find_key(self.text, section, 0).map_or((1, 1), |o| self.pos(o))
     }
 
     /// Line and column of `field` in `section`'s top level (e.g. world.dt), else of the section.
     pub fn section_field(&self, section: &str, field: &str) -> (usize, usize) {
-        match self.find_key(section, 0) {
-            Some(s) => self.find_key(field, s).map_or(self.pos(s), |o| self.pos(o)),
+        match find_key(self.text, section, 0) {
+            Some(s) => find_key(self.text, field, s).map_or(self.pos(s), |o| self.pos(o)),
             None => (1, 1),
         }
     }
 
     /// Line and column of the item named `name` in `section`.
     pub fn item_pos(&self, section: &str, name: &str) -> (usize, usize) {
-        self.item(section, name)
+        self.item(section, name, 0)
             .map_or_else(|| self.section(section), |o| self.pos(o))
     }
 
-    /// Line and column of `field` inside the item named `name` of `section`
-    /// (the first `field:` after the item's name and before the next item's name).
+    /// Line and column of the second item named `name` in `section` (a duplicate).
+    pub fn duplicate_pos(&self, section: &str, name: &str) -> (usize, usize) {
+        self.item(section, name, 1)
+            .map_or_else(|| self.item_pos(section, name), |o| self.pos(o))
+    }
+
+    /// Line and column of `field` inside the item named `name` of `section`: the first
+    /// `field:` between the item's opening parenthesis and the next item's name.
     pub fn field_pos(&self, section: &str, name: &str, field: &str) -> (usize, usize) {
-        let Some(item) = self.item(section, name) else {
+        let Some(item) = self.item(section, name, 0) else {
             return self.section(section);
         };
-        let next_item = self.find_key("name", item + 1).unwrap_or(self.text.len());
-        // Fields may also precede `name:` within the item; look back to the opening paren.
+        let next_item = find_key(self.text, "name", item + 1).unwrap_or(self.text.len());
         let open = self.text[..item].rfind('(').unwrap_or(item);
-        let hit = self.find_key(field, open).filter(|&o| o < next_item);
+        let hit = find_key(&self.text[..next_item], field, open);
         self.pos(hit.unwrap_or(item))
     }
 
     /// Position of the `index`-th occurrence of `Variant(` after `section:` (for unnamed items).
     pub fn nth_in_section(&self, section: &str, index: usize) -> (usize, usize) {
-        let Some(s) = self.find_key(section, 0) else {
+        let Some(s) = find_key(self.text, section, 0) else {
             return (1, 1);
         };
         let body = &self.text[s..];

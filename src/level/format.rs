@@ -30,6 +30,9 @@ pub struct Level {
     pub joints: Vec<JointDef>,
     #[serde(default)]
     pub springs: Vec<SpringDef>,
+    /// Ratio constraints: pulleys, cables on drums, gears, racks (need `joints`).
+    #[serde(default)]
+    pub couplings: Vec<CouplingDef>,
     #[serde(default)]
     pub loads: Vec<LoadDef>,
     #[serde(default)]
@@ -283,6 +286,31 @@ pub enum Motor {
     },
 }
 
+/// A ratio constraint holding `sum(ratio_i * q_i)` at its initial value, where each q_i
+/// is a body's mass-center x or y (m) or its angle (rad). An inextensible cable over a
+/// massless pulley is `y_A + y_B = const`; a cable wound on a drum of radius r is
+/// `y_A - r * angle_drum = const`; a gear pair is `r1 * angle_1 + r2 * angle_2 = const`.
+/// The constraint is bilateral (a cable here can push as well as pull).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingDef {
+    pub name: String,
+    /// At least two terms.
+    pub terms: Vec<CouplingTerm>,
+}
+
+/// One term `ratio * q` of a coupling.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingTerm {
+    pub body: String,
+    pub coordinate: Coordinate,
+    /// Dimensionless for x/y terms in a cable; a length (m) for an angle term.
+    pub ratio: f64,
+}
+
+pub use crate::snapshot::Coordinate;
+
 /// A linear spring-damper applied as forces by rigidlab (exact Hooke law).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -354,12 +382,19 @@ pub enum EventDef {
         #[serde(default)]
         angular: f64,
     },
+    /// Weld two bodies together with a fixed joint at their first contact (a bullet
+    /// embedding in a block, a plastic impact that sticks). Needs `contacts` and `joints`.
+    WeldOnContact {
+        name: String,
+        body1: String,
+        body2: String,
+    },
 }
 
 impl EventDef {
     pub fn name(&self) -> &str {
         match self {
-            EventDef::Impulse { name, .. } => name,
+            EventDef::Impulse { name, .. } | EventDef::WeldOnContact { name, .. } => name,
         }
     }
 }
@@ -432,7 +467,13 @@ fn default_student_tolerance() -> f64 {
     0.01
 }
 
-/// A measurable quantity of one body or joint.
+/// A measurable quantity of one body, joint, spring, load or contact pair.
+///
+/// Every question is read twice (see `checks::questions`): `engine` is what the engine did
+/// (read from its motion and reactions), `analysis` is the textbook formula named below applied
+/// to the engine's state (its mass properties, pose and pre-event velocities), or none where the
+/// quantity has no independent formula. "Centered" forces are the mean of the two steps around
+/// the sample; accelerations are central finite differences of the velocities.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Quantity {
@@ -440,17 +481,20 @@ pub enum Quantity {
     X(String),
     /// y of the mass center, m.
     Y(String),
-    /// Body angle, rad.
+    /// Body angle, rad, continuous (turns add up) from the initial angle.
     Angle(String),
-    /// x velocity of the mass center, m/s.
+    /// x velocity of the mass center, m/s. Analysis: at an impact or impulse event (`FirstContact`,
+    /// `ContactEnds`, `AfterEvent`), the impulse-momentum solution (IM-9/IM-11/IM-12, RM-10).
     Vx(String),
-    /// y velocity of the mass center, m/s.
+    /// y velocity of the mass center, m/s. Analysis as `Vx`.
     Vy(String),
-    /// Speed of the mass center, m/s.
+    /// Speed of the mass center, m/s. Analysis as `Vx`.
     Speed(String),
-    /// Angular velocity, rad/s.
+    /// Angular velocity, rad/s. Analysis as `Vx`.
     Omega(String),
-    /// Kinetic energy 1/2 m v^2 + 1/2 I w^2, J.
+    /// Kinetic energy 1/2 m v^2 + 1/2 I w^2, J (6/9). Analysis: work-energy (RE-7)
+    /// T0 + work of gravity, of the body's springs and of its loads along the engine's path,
+    /// i.e. assuming the body's joints and contacts do no work.
     KineticEnergy(String),
     /// Magnitude of the joint reaction force (mean over the step), N.
     JointForce(String),
@@ -458,19 +502,172 @@ pub enum Quantity {
     ContactForce(String),
     /// Distance travelled by the mass center, m.
     Distance(String),
+
+    /// The time of the `at` event, s (interpolated between steps for crossings). Needs an event
+    /// `at` (not `Max`/`Min`). No analysis.
+    Time,
+    /// x acceleration of the mass center, m/s^2 (central difference). Analysis: sum F / m
+    /// from the engine's free-body diagram (6/1).
+    Ax(String),
+    /// y acceleration of the mass center, m/s^2. Analysis as `Ax`.
+    Ay(String),
+    /// Magnitude of the mass-center acceleration, m/s^2. Analysis as `Ax`.
+    Accel(String),
+    /// Angular acceleration, rad/s^2 (central difference). Analysis: sum M_G / I_G (6/1).
+    Alpha(String),
+    /// x of a body point given in the body frame (m), world frame, m.
+    PointX { body: String, point: V2 },
+    /// y of a body point given in the body frame (m), world frame, m (a ladder's top).
+    PointY { body: String, point: V2 },
+    /// Distance between two bodies' mass centers |r_B - r_A|, m.
+    RelativeDistance(String, String),
+    /// Relative speed |v_B - v_A| of two mass centers, m/s.
+    RelativeSpeed(String, String),
+    /// Angle of the second body minus that of the first, rad (continuous).
+    RelativeAngle(String, String),
+    /// Direction of the mass-center velocity, rad from +x (atan2). Analysis as `Vx`.
+    Direction(String),
+    /// Work of gravity on the body since the start, J: engine = the integral of m g . v dt
+    /// (trapezoid over steps); analysis = m g . (r_G - r_G0) (path independence, 10.2.18).
+    GravityWork(String),
+    /// Work done by the named spring on the bodies since the start, J: engine = sum of the held
+    /// spring force times its ends' displacements; analysis = -(1/2 k x^2 - 1/2 k x0^2) (10.2.21).
+    SpringWork(String),
+    /// Extension of the named spring (length - rest length), m. No analysis.
+    SpringExtension(String),
+    /// Work of the named load (force and couple) since the start, J: engine = sum of held
+    /// force . displacement of its point + couple x turn; analysis = F . (r_P - r_P0) + M (theta -
+    /// theta0) when the load is constant (10.3.2), none otherwise.
+    LoadWork(String),
+    /// Work of the friction forces between two bodies on `body` since the start, J: engine =
+    /// sum of friction impulse . velocity of the body's contact point; analysis = -mu N s: the
+    /// Coulomb law with the level's mu, the engine's normal force and slip (WE-6).
+    FrictionWork { body: String, other: String },
+    /// Period of a body swinging on the named pivot joint, s: engine = mean time between
+    /// successive extremes of the body angle of the same kind; analysis = 4 sqrt(I_O/(m g d)) K(sin(theta_0/2))
+    /// with I_O, m, d = |OG| and the amplitude theta_0 from the engine's initial state (exact large-amplitude period).
+    PendulumPeriod { body: String, joint: String },
+    /// Period of a body on springs, s: engine = mean time between successive extremes of its
+    /// displacement along its first spring; analysis = 2 pi sqrt(m / sum k) with the engine's m
+    /// and each spring's k = 2 V_e / x^2 from the snapshot.
+    SpringPeriod(String),
+    /// Acceleration of the mass center of a body rolling on `ground`, m/s^2 (downhill component,
+    /// central difference): analysis = g sin(theta) / (1 + k_G^2 / r^2) with theta from the engine's
+    /// contact normal, r = |G - contact point| and k_G^2 = I_G / m (RK-8 with 6/1).
+    RollingAcceleration { body: String, ground: String },
+    /// Friction force a rolling body needs from `ground`, N (centered): analysis =
+    /// m g sin(theta) k_G^2 / (k_G^2 + r^2).
+    RollingFriction { body: String, ground: String },
+    /// Friction-to-normal force ratio F/N at the rolling contact (the least mu for rolling):
+    /// analysis = tan(theta) k_G^2 / (k_G^2 + r^2).
+    RollingFrictionNeeded { body: String, ground: String },
+    /// Angular velocity of a link, rad/s: engine = the link's omega; analysis = the instantaneous
+    /// center (RK-11) found from the velocities the neighbouring bodies give the pins `known` and
+    /// `other` (two joints on the link); omega = |v_known| / |known - C| with its sign.
+    LinkOmega {
+        link: String,
+        known: String,
+        other: String,
+    },
+    /// Speed of the pin of joint `pin` as a point of `link`, m/s: engine = |v_G + omega k x r|;
+    /// analysis = |omega_C| |pin - C| with C from `known` and `other` as in `LinkOmega`.
+    PinSpeed {
+        link: String,
+        known: String,
+        other: String,
+        pin: String,
+    },
+    /// Reaction force of a joint on its moving body, N (centered mean over the step), as a
+    /// component. Analysis, when one body is fixed and the other turns about the pin with no other
+    /// joint or contact (fixed-axis rotation, PL-8/PL-12): R = m a_G - sum F with
+    /// alpha = sum M_O / I_O and a_G = alpha k x r_{G/O} - omega^2 r_{G/O} from the engine's omega.
+    JointReaction {
+        joint: String,
+        #[serde(default)]
+        component: Component,
+    },
+    /// Reaction impulse of a joint on its moving body over the step that ends at the sample, N s
+    /// (with `AfterEvent`: the impulse through the pin during the blow). Analysis at `AfterEvent`:
+    /// the pin impulse of the impulse-momentum solution (RM-10, CP-3).
+    JointImpulse {
+        joint: String,
+        #[serde(default)]
+        component: Component,
+    },
+    /// Normal force between two bodies (sum over contact points, centered), N. No analysis.
+    ContactNormalForce { body: String, other: String },
+    /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered).
+    /// Analysis: the one-degree-of-freedom power balance (RE-11): M omega_rel = sum (m a_G . v_G
+    /// + I_G alpha omega) - power of gravity, loads and springs, over the dynamic bodies.
+    MotorTorque(String),
+    /// Apex height of the mass center after the first contact of `body` with `other` ends
+    /// (until the next contact), m. Analysis: the apex of free flight, y_c + v'^2 / (2 g), from
+    /// the impact solution (IM-13).
+    ReboundHeight { body: String, other: String },
+    /// Coefficient of restitution measured across the first contact of the pair:
+    /// e = -(v_rel' . n)/(v_rel . n) with the engine's velocities brought to the contact instant.
+    /// Analysis: the coefficient the level declares for the pair (the textbook input, IM-9).
+    Restitution { body: String, other: String },
+    /// Mechanical energy (T + V_g) the pair loses across its first contact, J. Analysis: the
+    /// kinetic-energy loss of the impulse-momentum solution (IM-14).
+    EnergyLost { body: String, other: String },
+}
+
+/// A component of a vector quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Component {
+    /// The magnitude.
+    #[default]
+    Magnitude,
+    /// The world x component.
+    X,
+    /// The world y component.
+    Y,
+    /// Along n, from the moving body's G toward the joint anchor (centripetal), signed.
+    Normal,
+    /// Along k x (G - anchor): the direction G moves for positive omega, signed.
+    Tangential,
 }
 
 /// When a question's quantity is read.
+///
+/// Crossings are interpolated linearly between the two steps that bracket them (both the
+/// quantity and the time); contact events read the nearest step on the stated side.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum When {
     /// At the end of the run.
     #[default]
     End,
-    /// At this time, s (the step nearest to it).
+    /// At this time, s (interpolated between the two steps around it).
     Time(f64),
     /// The largest value over the run (optionally from a time on).
     Max(#[serde(default)] f64),
     /// The smallest value over the run (optionally from a time on).
     Min(#[serde(default)] f64),
+    /// The first time the body's (continuous) angle crosses `angle`, rad.
+    Angle { body: String, angle: f64 },
+    /// The first time the quantity `of` crosses `value` at or after `after` s.
+    Crossing {
+        of: Quantity,
+        value: f64,
+        #[serde(default)]
+        after: f64,
+    },
+    /// The last step before `body` first touches `other` (any body when omitted): the
+    /// pre-impact state. Velocity analyses use the state carried on to the contact instant.
+    FirstContact {
+        body: String,
+        #[serde(default)]
+        other: Option<String>,
+    },
+    /// The first step after the first contact of `body` with `other` (any body when omitted)
+    /// stops pushing: the post-impact state, or the moment a body leaves a wall.
+    ContactEnds {
+        body: String,
+        #[serde(default)]
+        other: Option<String>,
+    },
+    /// The end of the step in which the named impulse event acted: the state just after the blow.
+    AfterEvent(String),
 }

@@ -99,7 +99,7 @@ impl V<'_> {
             }
             if !seen.insert(n) {
                 // Point at the second occurrence.
-                let first = self.loc.item_pos(section, n);
+                let first = self.loc.duplicate_pos(section, n);
                 return Err(self.err(
                     first,
                     format!("the name \"{n}\" is used twice in `{section}`"),
@@ -147,6 +147,7 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
     v.unique("bodies", level.bodies.iter().map(|b| b.name.as_str()))?;
     v.unique("joints", level.joints.iter().map(|j| j.name.as_str()))?;
     v.unique("springs", level.springs.iter().map(|s| s.name.as_str()))?;
+    v.unique("couplings", level.couplings.iter().map(|c| c.name.as_str()))?;
     v.unique("loads", level.loads.iter().map(|l| l.name.as_str()))?;
     v.unique("events", level.events.iter().map(|e| e.name()))?;
     v.unique("questions", level.questions.iter().map(|q| q.id.as_str()))?;
@@ -165,6 +166,9 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
     }
     for s in &level.springs {
         spring(&v, s)?;
+    }
+    for c in &level.couplings {
+        coupling(&v, c)?;
     }
     for l in &level.loads {
         load(&v, l)?;
@@ -537,6 +541,47 @@ fn joint(v: &V, j: &JointDef) -> R {
     Ok(())
 }
 
+fn coupling(v: &V, c: &CouplingDef) -> R {
+    let pos = v.loc.item_pos("couplings", &c.name);
+    v.need(
+        Effect::Joints,
+        pos,
+        &format!("coupling \"{}\" is defined", c.name),
+    )?;
+    if c.terms.len() < 2 {
+        return Err(v.err(
+            pos,
+            format!("coupling \"{}\" has {} term(s)", c.name, c.terms.len()),
+            "a coupling ties at least two coordinates: add terms",
+        ));
+    }
+    let mut any_dynamic = false;
+    for t in &c.terms {
+        let b = v.body_ref(&t.body, "couplings", &c.name, "body")?;
+        any_dynamic |=
+            b.kind == BodyKind::Dynamic && !(t.coordinate == Coordinate::Angle && b.lock_rotation);
+        v.finite(t.ratio, "coupling ratio", pos)?;
+        if t.ratio == 0.0 {
+            return Err(v.err(
+                pos,
+                format!(
+                    "coupling \"{}\" has a zero ratio for body \"{}\"",
+                    c.name, t.body
+                ),
+                "remove the term or give it a non-zero ratio",
+            ));
+        }
+    }
+    if !any_dynamic {
+        return Err(v.err(
+            pos,
+            format!("coupling \"{}\" ties no coordinate that can move", c.name),
+            "include a dynamic body's free coordinate",
+        ));
+    }
+    Ok(())
+}
+
 fn spring(v: &V, s: &SpringDef) -> R {
     let at = |f: &str| v.loc.field_pos("springs", &s.name, f);
     v.need(
@@ -647,6 +692,29 @@ fn load(v: &V, l: &LoadDef) -> R {
 
 fn event(v: &V, e: &EventDef) -> R {
     match e {
+        EventDef::WeldOnContact { name, body1, body2 } => {
+            let pos = v.loc.item_pos("events", name);
+            v.need(
+                Effect::Contacts,
+                pos,
+                &format!("event \"{name}\" welds on contact"),
+            )?;
+            v.need(
+                Effect::Joints,
+                pos,
+                &format!("event \"{name}\" creates a fixed joint"),
+            )?;
+            v.body_ref(body1, "events", name, "body1")?;
+            v.body_ref(body2, "events", name, "body2")?;
+            if body1 == body2 {
+                return Err(v.err(
+                    pos,
+                    format!("event \"{name}\" welds body \"{body1}\" to itself"),
+                    "name two different bodies",
+                ));
+            }
+            Ok(())
+        }
         EventDef::Impulse {
             name,
             at: t,
@@ -699,45 +767,180 @@ fn question(v: &V, q: &QuestionDef) -> R {
         "",
         at("tolerance"),
     )?;
-    v.positive(
-        q.student_tolerance,
-        &format!("question \"{}\" student_tolerance", q.id),
-        "",
-        at("student_tolerance"),
-    )?;
-    let subject = match &q.quantity {
-        Quantity::X(b)
-        | Quantity::Y(b)
-        | Quantity::Angle(b)
-        | Quantity::Vx(b)
-        | Quantity::Vy(b)
-        | Quantity::Speed(b)
-        | Quantity::Omega(b)
-        | Quantity::KineticEnergy(b)
-        | Quantity::ContactForce(b)
-        | Quantity::Distance(b) => ("body", b),
-        Quantity::JointForce(j) => ("joint", j),
-    };
-    let known = match subject.0 {
-        "body" => v.level.bodies.iter().any(|b| &b.name == subject.1),
-        _ => v.level.joints.iter().any(|j| &j.name == subject.1),
-    };
-    if !known {
+    for (kind, name) in quantity_refs(&q.quantity) {
+        question_ref(v, q, kind, name, "quantity")?;
+    }
+    match &q.at {
+        When::Time(t) | When::Max(t) | When::Min(t) => {
+            v.non_negative(*t, "question time", "s", at("at"))?
+        }
+        When::End => {}
+        When::Angle { body, angle } => {
+            question_ref(v, q, "body", body, "at")?;
+            v.finite(*angle, "question angle", at("at"))?;
+        }
+        When::Crossing { of, value, after } => {
+            for (kind, name) in quantity_refs(of) {
+                question_ref(v, q, kind, name, "at")?;
+            }
+            if matches!(of, Quantity::Time) {
+                return Err(v.err(
+                    at("at"),
+                    format!("question \"{}\" waits for `Time` to cross a value", q.id),
+                    "use `at: Time(t)` to read at a time",
+                ));
+            }
+            v.finite(*value, "crossing value", at("at"))?;
+            v.non_negative(*after, "crossing `after`", "s", at("at"))?;
+        }
+        When::FirstContact { body, other } | When::ContactEnds { body, other } => {
+            v.need(
+                Effect::Contacts,
+                at("at"),
+                &format!("question \"{}\" waits for a contact", q.id),
+            )?;
+            question_ref(v, q, "body", body, "at")?;
+            if let Some(o) = other {
+                question_ref(v, q, "body", o, "at")?;
+            }
+        }
+        When::AfterEvent(e) => question_ref(v, q, "event", e, "at")?,
+    }
+    if matches!(q.quantity, Quantity::Time)
+        && matches!(q.at, When::End | When::Max(_) | When::Min(_))
+    {
         return Err(v.err(
-            at("quantity"),
-            format!(
-                "question \"{}\" asks about the {} \"{}\", which does not exist",
-                q.id, subject.0, subject.1
-            ),
-            format!("name a {} of this level", subject.0),
+            at("at"),
+            format!("question \"{}\" asks for the time of `{:?}`, which is not an event", q.id, q.at),
+            "give an event: `at: Angle(..)`, `Crossing(..)`, `FirstContact(..)`, `ContactEnds(..)` or `AfterEvent(..)`",
         ));
     }
-    match q.at {
-        When::Time(t) | When::Max(t) | When::Min(t) => {
-            v.non_negative(t, "question time", "s", at("at"))
+    let needs = |e: Effect, what: &str| {
+        v.need(
+            e,
+            at("quantity"),
+            &format!("question \"{}\" asks for {what}", q.id),
+        )
+    };
+    match &q.quantity {
+        Quantity::RollingAcceleration { .. }
+        | Quantity::RollingFriction { .. }
+        | Quantity::RollingFrictionNeeded { .. }
+        | Quantity::ContactNormalForce { .. }
+        | Quantity::FrictionWork { .. }
+        | Quantity::ReboundHeight { .. }
+        | Quantity::Restitution { .. }
+        | Quantity::EnergyLost { .. } => needs(Effect::Contacts, "a contact quantity")?,
+        Quantity::PendulumPeriod { .. }
+        | Quantity::LinkOmega { .. }
+        | Quantity::PinSpeed { .. }
+        | Quantity::JointReaction { .. }
+        | Quantity::JointImpulse { .. }
+        | Quantity::JointForce(_) => needs(Effect::Joints, "a joint quantity")?,
+        Quantity::MotorTorque(_) => needs(Effect::Motors, "a motor torque")?,
+        Quantity::SpringPeriod(_) | Quantity::SpringWork(_) | Quantity::SpringExtension(_) => {
+            needs(Effect::Springs, "a spring quantity")?
         }
-        When::End => Ok(()),
+        _ => {}
     }
+    if let Quantity::MotorTorque(j) = &q.quantity {
+        if v.level
+            .joints
+            .iter()
+            .any(|d| &d.name == j && d.motor.is_none())
+        {
+            return Err(v.err(
+                at("quantity"),
+                format!("question \"{}\" asks for the motor torque of joint \"{j}\", which has no motor", q.id),
+                "give the joint a `motor`, or ask for its reaction",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The named items a quantity refers to, as (kind, name).
+fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
+    use Quantity as Q;
+    match q {
+        Q::X(b)
+        | Q::Y(b)
+        | Q::Angle(b)
+        | Q::Vx(b)
+        | Q::Vy(b)
+        | Q::Speed(b)
+        | Q::Omega(b)
+        | Q::KineticEnergy(b)
+        | Q::ContactForce(b)
+        | Q::Distance(b)
+        | Q::Ax(b)
+        | Q::Ay(b)
+        | Q::Accel(b)
+        | Q::Alpha(b)
+        | Q::Direction(b)
+        | Q::GravityWork(b)
+        | Q::SpringPeriod(b)
+        | Q::PointX { body: b, .. }
+        | Q::PointY { body: b, .. } => vec![("body", b)],
+        Q::RelativeDistance(a, b) | Q::RelativeSpeed(a, b) | Q::RelativeAngle(a, b) => {
+            vec![("body", a), ("body", b)]
+        }
+        Q::FrictionWork { body, other }
+        | Q::ContactNormalForce { body, other }
+        | Q::ReboundHeight { body, other }
+        | Q::Restitution { body, other }
+        | Q::EnergyLost { body, other } => vec![("body", body), ("body", other)],
+        Q::RollingAcceleration { body, ground }
+        | Q::RollingFriction { body, ground }
+        | Q::RollingFrictionNeeded { body, ground } => vec![("body", body), ("body", ground)],
+        Q::JointForce(j)
+        | Q::MotorTorque(j)
+        | Q::JointReaction { joint: j, .. }
+        | Q::JointImpulse { joint: j, .. } => vec![("joint", j)],
+        Q::PendulumPeriod { body, joint } => vec![("body", body), ("joint", joint)],
+        Q::LinkOmega { link, known, other } => {
+            vec![("body", link), ("joint", known), ("joint", other)]
+        }
+        Q::PinSpeed {
+            link,
+            known,
+            other,
+            pin,
+        } => {
+            vec![
+                ("body", link),
+                ("joint", known),
+                ("joint", other),
+                ("joint", pin),
+            ]
+        }
+        Q::SpringWork(s) | Q::SpringExtension(s) => vec![("spring", s)],
+        Q::LoadWork(l) => vec![("load", l)],
+        Q::Time => vec![],
+    }
+}
+
+/// Checks that a question's reference names an item of the level.
+fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field: &str) -> R {
+    let l = v.level;
+    let known = match kind {
+        "body" => l.bodies.iter().any(|b| b.name == name),
+        "joint" => l.joints.iter().any(|j| j.name == name),
+        "spring" => l.springs.iter().any(|s| s.name == name),
+        "load" => l.loads.iter().any(|x| x.name == name),
+        _ => l.events.iter().any(|e| e.name() == name),
+    };
+    if known {
+        return Ok(());
+    }
+    Err(v.err(
+        v.loc.field_pos("questions", &q.id, field),
+        format!(
+            "question \"{}\" asks about the {kind} \"{name}\", which does not exist",
+            q.id
+        ),
+        format!("name a {kind} of this level"),
+    ))
 }
 
 fn effects_consistent(v: &V) -> R {

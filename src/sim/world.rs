@@ -14,10 +14,17 @@ pub struct Simulation {
     pub effects: Effects,
     pub world: PhysicsWorld,
     bodies: Vec<RigidBodyHandle>,
-    collider_body: HashMap<ColliderHandle, usize>,
     joints: Vec<ImpulseJointHandle>,
+    /// Definitions of `joints` (the level's, then welds created at run time).
+    joint_defs: Vec<JointDef>,
     body_index: HashMap<String, usize>,
     snapshot: Snapshot,
+    /// Initial value of each coupling's sum.
+    coupling_rest: Vec<f64>,
+    /// Welds still waiting for their first contact: (event name, body1, body2).
+    pending_welds: Vec<(String, usize, usize)>,
+    /// Bodies that loads or springs act on (their forces are reset every step).
+    forced_bodies: Vec<usize>,
     /// Speed limit beyond which the run is declared exploded, m/s.
     pub max_speed: f64,
 }
@@ -32,14 +39,13 @@ impl Simulation {
         let contacts = effects.has(Effect::Contacts);
 
         let mut bodies = Vec::new();
-        let mut collider_body = HashMap::new();
         let mut body_index = HashMap::new();
         for (i, b) in level.bodies.iter().enumerate() {
             let h = world.insert_body(build::body_builder(b, &effects));
             if contacts {
                 for c in build::colliders(b, &effects) {
-                    let ch = world.insert_collider(c, Some(h));
-                    collider_body.insert(ch, i);
+                    // user_data carries the body's index for reading contacts back.
+                    world.insert_collider(c.user_data(i as u128), Some(h));
                 }
             }
             bodies.push(h);
@@ -63,6 +69,7 @@ impl Simulation {
                 contacts: Vec::new(),
                 joints: Vec::new(),
                 springs: Vec::new(),
+                couplings: Vec::new(),
                 loads: Vec::new(),
                 impulses: Vec::new(),
             },
@@ -70,13 +77,52 @@ impl Simulation {
             effects,
             world,
             bodies,
-            collider_body,
             joints,
+            joint_defs: Vec::new(),
             body_index,
+            coupling_rest: Vec::new(),
+            pending_welds: Vec::new(),
+            forced_bodies: Vec::new(),
             max_speed: 1e4,
         };
+        sim.joint_defs = if sim.effects.has(Effect::Joints) {
+            sim.level.joints.clone()
+        } else {
+            Vec::new()
+        };
+        sim.pending_welds = sim
+            .level
+            .events
+            .iter()
+            .filter_map(|e| match e {
+                EventDef::WeldOnContact { name, body1, body2 } => {
+                    Some((name.clone(), sim.body_index[body1], sim.body_index[body2]))
+                }
+                _ => None,
+            })
+            .collect();
+        let mut forced: Vec<usize> = sim
+            .level
+            .loads
+            .iter()
+            .map(|l| sim.body_index[&l.body])
+            .collect();
+        for s in &sim.level.springs {
+            forced.push(sim.body_index[&s.body1]);
+            forced.extend(s.body2.as_ref().map(|b| sim.body_index[b]));
+        }
+        forced.sort_unstable();
+        forced.dedup();
+        sim.forced_bodies = forced;
         sim.read_bodies();
         sim.snapshot.springs = sim.spring_states(false);
+        sim.coupling_rest = sim
+            .level
+            .couplings
+            .iter()
+            .map(|c| sim.coupling_value(c))
+            .collect();
+        sim.snapshot.couplings = sim.coupling_states(&vec![0.0; sim.level.couplings.len()]);
         sim
     }
 
@@ -123,7 +169,10 @@ impl Simulation {
                 point,
                 impulse,
                 angular,
-            } = e;
+            } = e
+            else {
+                continue;
+            };
             // The event acts at the start of the step that begins nearest to its time.
             if *at >= t0 - 0.5 * dt && *at < t0 + 0.5 * dt {
                 let i = self.body_index[body];
@@ -142,8 +191,10 @@ impl Simulation {
         }
 
         // Loads and springs: forces held over the step, evaluated at its middle (loads) or start (springs).
-        for h in &self.bodies {
-            self.world.bodies[*h].reset_forces(false);
+        // Only bodies that carry loads or springs: touching a body through `&mut` marks it as
+        // changed, and rapier then redoes per-body work for it in the next step.
+        for &i in &self.forced_bodies {
+            self.world.bodies[self.bodies[i]].reset_forces(false);
         }
         self.snapshot.loads.clear();
         let t_mid = t0 + 0.5 * dt;
@@ -179,6 +230,7 @@ impl Simulation {
         }
 
         self.world.step();
+        let lambdas = self.solve_couplings();
 
         self.snapshot.step = step;
         self.snapshot.time = step as f64 * dt;
@@ -186,7 +238,9 @@ impl Simulation {
         self.read_bodies();
         self.guard()?;
         self.read_contacts();
+        self.weld_on_contact();
         self.read_joints();
+        self.snapshot.couplings = self.coupling_states(&lambdas);
         // Spring state: forces held during the step, length and energy at its end.
         let end = self.spring_states(false);
         self.snapshot.springs = springs
@@ -243,76 +297,90 @@ impl Simulation {
     }
 
     fn read_bodies(&mut self) {
-        let fresh = self.snapshot.bodies.is_empty();
-        for (i, h) in self.bodies.iter().enumerate() {
-            let rb = &self.world.bodies[*h];
-            let mp = rb.mass_properties().local_mprops;
-            let dynamic = rb.is_dynamic();
-            let state = BodyState {
-                name: String::new(),
-                kind: self.level.bodies[i].kind,
-                position: to_d(rb.translation()),
-                angle: rb.rotation().angle() as f64,
-                // From the pose, not rb.center_of_mass(): rapier refreshes that only inside a step.
-                com: to_d(*rb.position() * mp.local_com),
-                velocity: to_d(rb.linvel()),
-                omega: rb.angvel() as f64,
-                mass: if dynamic { mp.mass() as f64 } else { 0.0 },
-                inertia: if dynamic {
-                    mp.principal_inertia() as f64
-                } else {
-                    0.0
-                },
-                local_com: to_d(mp.local_com),
-            };
-            if fresh {
+        if self.snapshot.bodies.is_empty() {
+            // Names, kinds and mass properties are set once: they do not change during a run.
+            // Mass properties are the ones handed to rapier (parry's, from the shapes); rapier
+            // itself only folds them into the body inside its first step.
+            for (i, h) in self.bodies.iter().enumerate() {
+                let rb = &self.world.bodies[*h];
+                let def = &self.level.bodies[i];
+                let dynamic = def.kind == BodyKind::Dynamic;
+                let mp = build::mass_properties(def);
                 self.snapshot.bodies.push(BodyState {
                     name: self.level.bodies[i].name.clone(),
-                    ..state
+                    kind: self.level.bodies[i].kind,
+                    position: to_d(rb.translation()),
+                    angle: rb.rotation().angle() as f64,
+                    // From the pose, not rb.center_of_mass(): rapier refreshes that only inside a step.
+                    com: to_d(*rb.position() * mp.local_com),
+                    velocity: to_d(rb.linvel()),
+                    omega: rb.angvel() as f64,
+                    mass: if dynamic { mp.mass() as f64 } else { 0.0 },
+                    inertia: if dynamic && !def.lock_rotation {
+                        mp.principal_inertia() as f64
+                    } else {
+                        0.0
+                    },
+                    local_com: to_d(mp.local_com),
                 });
-            } else {
-                let b = &mut self.snapshot.bodies[i];
-                let name = std::mem::take(&mut b.name);
-                *b = BodyState { name, ..state };
             }
+            return;
+        }
+        for (b, h) in self.snapshot.bodies.iter_mut().zip(&self.bodies) {
+            let rb = &self.world.bodies[*h];
+            let pose = rb.position();
+            b.position = to_d(pose.translation);
+            // Continuous angle: add the wrapped change since the last snapshot.
+            b.angle += wrap_pi(pose.rotation.angle() as f64 - b.angle);
+            let rot = DVec2::new(pose.rotation.re as f64, pose.rotation.im as f64);
+            b.com = b.position + rot.rotate(b.local_com);
+            b.velocity = to_d(rb.linvel());
+            b.omega = rb.angvel() as f64;
         }
     }
 
     fn read_contacts(&mut self) {
-        self.snapshot.contacts.clear();
+        // Overwrite the previous step's entries in place: no allocation per manifold in steady state.
+        let contacts = &mut self.snapshot.contacts;
+        let mut n = 0;
         for pair in self.world.narrow_phase.contact_pairs() {
             if !pair.has_any_active_contact() {
                 continue;
             }
-            let (Some(&b1), Some(&b2)) = (
-                self.collider_body.get(&pair.collider1),
-                self.collider_body.get(&pair.collider2),
-            ) else {
-                continue;
-            };
-            let pose1 = *self.world.colliders[pair.collider1].position();
+            // Colliders carry their body's index in user_data (set when the world is built).
+            let (c1, c2) = (
+                &self.world.colliders[pair.collider1],
+                &self.world.colliders[pair.collider2],
+            );
+            let (b1, b2) = (c1.user_data as usize, c2.user_data as usize);
+            let pose1 = *c1.position();
             for m in pair.manifolds() {
                 if m.points.is_empty() {
                     continue;
                 }
-                let points = m
-                    .points
-                    .iter()
-                    .map(|pt| ContactPoint {
-                        point: to_d(pose1 * pt.local_p1),
-                        distance: pt.dist as f64,
-                        normal_impulse: pt.data.impulse as f64,
-                        tangent_impulse: pt.data.tangent_impulse[0] as f64,
-                    })
-                    .collect();
-                self.snapshot.contacts.push(ContactState {
-                    body1: b1,
-                    body2: b2,
-                    normal: to_d(m.data.normal),
-                    points,
-                });
+                if n == contacts.len() {
+                    contacts.push(ContactState {
+                        body1: 0,
+                        body2: 0,
+                        normal: DVec2::ZERO,
+                        points: Vec::new(),
+                    });
+                }
+                let c = &mut contacts[n];
+                n += 1;
+                c.body1 = b1;
+                c.body2 = b2;
+                c.normal = to_d(m.data.normal);
+                c.points.clear();
+                c.points.extend(m.points.iter().map(|pt| ContactPoint {
+                    point: to_d(pose1 * pt.local_p1),
+                    distance: pt.dist as f64,
+                    normal_impulse: pt.data.impulse as f64,
+                    tangent_impulse: pt.data.tangent_impulse[0] as f64,
+                }));
             }
         }
+        contacts.truncate(n);
     }
 
     fn read_joints(&mut self) {
@@ -324,7 +392,7 @@ impl Simulation {
                 .impulse_joints
                 .get(*h)
                 .expect("joint handles stay valid");
-            let def = &self.level.joints[k];
+            let def = &self.joint_defs[k];
             let (i1, i2) = (self.body_index[&def.body1], self.body_index[&def.body2]);
             let (rb1, rb2) = (
                 &self.world.bodies[self.bodies[i1]],
@@ -414,6 +482,223 @@ impl Simulation {
             });
         }
         out
+    }
+}
+
+/// Wraps an angle difference to (-pi, pi].
+fn wrap_pi(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    a - TAU * ((a + PI) / TAU).floor()
+}
+
+impl Simulation {
+    fn coordinate(&self, body: usize, c: Coordinate) -> (f64, f64, f64) {
+        // (q, dq/dt, inverse generalized mass) of a body coordinate.
+        let rb = &self.world.bodies[self.bodies[body]];
+        let mp = rb.mass_properties();
+        let dynamic = rb.is_dynamic();
+        let com = *rb.position() * mp.local_mprops.local_com;
+        match c {
+            Coordinate::X => (
+                com.x as f64,
+                rb.linvel().x as f64,
+                if dynamic {
+                    mp.effective_inv_mass.x as f64
+                } else {
+                    0.0
+                },
+            ),
+            Coordinate::Y => (
+                com.y as f64,
+                rb.linvel().y as f64,
+                if dynamic {
+                    mp.effective_inv_mass.y as f64
+                } else {
+                    0.0
+                },
+            ),
+            Coordinate::Angle => {
+                let prev = self.snapshot.bodies[body].angle;
+                let q = prev + wrap_pi(rb.rotation().angle() as f64 - prev);
+                (
+                    q,
+                    rb.angvel() as f64,
+                    if dynamic {
+                        mp.effective_world_inv_inertia as f64
+                    } else {
+                        0.0
+                    },
+                )
+            }
+        }
+    }
+
+    fn coupling_value(&self, c: &CouplingDef) -> f64 {
+        c.terms
+            .iter()
+            .map(|t| t.ratio * self.coordinate(self.body_index[&t.body], t.coordinate).0)
+            .sum()
+    }
+
+    /// Enforces every coupling after rapier's step: Gauss-Seidel on velocities (the impulse
+    /// lambda that makes sum(c_i v_i) = 0; exact in one pass for a single coupling, iterated for
+    /// couplings that share a body), then a position projection that removes the drift without
+    /// adding velocity. Returns each coupling's impulse over the step.
+    fn solve_couplings(&mut self) -> Vec<f64> {
+        let n = self.level.couplings.len();
+        let mut lambdas = vec![0.0; n];
+        if n == 0 || !self.effects.has(Effect::Joints) {
+            return lambdas;
+        }
+        let terms: Vec<Vec<(usize, Coordinate, f64)>> = self
+            .level
+            .couplings
+            .iter()
+            .map(|c| {
+                c.terms
+                    .iter()
+                    .map(|t| (self.body_index[&t.body], t.coordinate, t.ratio))
+                    .collect()
+            })
+            .collect();
+        for pass in 0..2 {
+            // pass 0: velocities; pass 1: positions.
+            for _sweep in 0..64 {
+                let mut worst: f64 = 0.0;
+                for (k, ts) in terms.iter().enumerate() {
+                    let (mut num, mut den) = (0.0, 0.0);
+                    for &(b, c, r) in ts {
+                        let (q, v, w) = self.coordinate(b, c);
+                        num += r * if pass == 0 { v } else { q };
+                        den += r * r * w;
+                    }
+                    if den <= 0.0 {
+                        continue;
+                    }
+                    let target = if pass == 0 {
+                        0.0
+                    } else {
+                        self.coupling_rest[k]
+                    };
+                    let mu = -(num - target) / den;
+                    worst = worst.max((num - target).abs());
+                    if pass == 0 {
+                        lambdas[k] += mu;
+                    }
+                    for &(b, c, r) in ts {
+                        let w = self.coordinate(b, c).2;
+                        if w == 0.0 {
+                            continue;
+                        }
+                        let d = (r * w * mu) as Real;
+                        let rb = &mut self.world.bodies[self.bodies[b]];
+                        match (pass, c) {
+                            (0, Coordinate::X) => {
+                                rb.set_linvel(rb.linvel() + Vector::new(d, 0.0), true)
+                            }
+                            (0, Coordinate::Y) => {
+                                rb.set_linvel(rb.linvel() + Vector::new(0.0, d), true)
+                            }
+                            (0, Coordinate::Angle) => rb.set_angvel(rb.angvel() + d, true),
+                            (_, Coordinate::X) => {
+                                rb.set_translation(rb.translation() + Vector::new(d, 0.0), true)
+                            }
+                            (_, Coordinate::Y) => {
+                                rb.set_translation(rb.translation() + Vector::new(0.0, d), true)
+                            }
+                            (_, Coordinate::Angle) => {
+                                // Turn about the mass center, not the body origin.
+                                let local_com = rb.mass_properties().local_mprops.local_com;
+                                let com = *rb.position() * local_com;
+                                let rot = Rotation::new(rb.rotation().angle() + d);
+                                rb.set_position(Pose::from_parts(com - rot * local_com, rot), true);
+                            }
+                        }
+                    }
+                }
+                if worst < 1e-12 {
+                    break;
+                }
+            }
+        }
+        lambdas
+    }
+
+    fn coupling_states(&self, lambdas: &[f64]) -> Vec<CouplingState> {
+        self.level
+            .couplings
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let value = self.coupling_value(c);
+                CouplingState {
+                    name: c.name.clone(),
+                    terms: c
+                        .terms
+                        .iter()
+                        .map(|t| (self.body_index[&t.body], t.coordinate, t.ratio))
+                        .collect(),
+                    impulse: lambdas[k],
+                    value,
+                    drift: value - self.coupling_rest[k],
+                }
+            })
+            .collect()
+    }
+
+    /// Creates the fixed joint of a `WeldOnContact` event once its bodies touch.
+    fn weld_on_contact(&mut self) {
+        let mut k = 0;
+        while k < self.pending_welds.len() {
+            let (name, b1, b2) = self.pending_welds[k].clone();
+            let touch = self
+                .snapshot
+                .contacts
+                .iter()
+                .find(|c| (c.body1 == b1 && c.body2 == b2) || (c.body1 == b2 && c.body2 == b1));
+            let Some(point) = touch
+                .and_then(|c| {
+                    c.points
+                        .iter()
+                        .find(|p| p.normal_impulse > 0.0 || p.distance <= 0.0)
+                })
+                .map(|p| p.point)
+            else {
+                k += 1;
+                continue;
+            };
+            let (h1, h2) = (self.bodies[b1], self.bodies[b2]);
+            let p = Pose::from_parts(
+                Vector::new(point.x as Real, point.y as Real),
+                Rotation::IDENTITY,
+            );
+            let f1 = self.world.bodies[h1].position().inverse() * p;
+            let f2 = self.world.bodies[h2].position().inverse() * p;
+            let joint = GenericJointBuilder::new(JointAxesMask::LOCKED_FIXED_AXES)
+                .local_frame1(f1)
+                .local_frame2(f2)
+                .contacts_enabled(false)
+                .build();
+            self.joints
+                .push(self.world.insert_impulse_joint(h1, h2, joint));
+            let (n1, n2) = (
+                self.level.bodies[b1].name.clone(),
+                self.level.bodies[b2].name.clone(),
+            );
+            let to_v2 = |v: Vector| (v.x as f64, v.y as f64);
+            self.joint_defs.push(JointDef {
+                name,
+                kind: JointKind::Fixed,
+                body1: n1,
+                body2: n2,
+                anchor1: to_v2(f1.translation),
+                anchor2: to_v2(f2.translation),
+                axis: (1.0, 0.0),
+                limits: None,
+                motor: None,
+            });
+            self.pending_welds.remove(k);
+        }
     }
 }
 
