@@ -1,16 +1,283 @@
 //! The Bevy sandbox: a thin shell of plugins over the core (feature `app`).
+//!
+//! - [`physics`]: the core `Simulation` stepped in `FixedUpdate` at the level's dt, so the window
+//!   computes the numbers `rigidlab check` computes;
+//! - [`view`], [`draw`], [`geometry`]: camera, filled bodies, outlines, joints, springs, ground;
+//! - [`overlays`]: the textbook's vectors and diagrams, from the snapshot ([`quantities`]);
+//! - [`panels`] and [`tools`]: the egui panels and the mouse tools of the sandbox window;
+//! - [`render`]: the same scene drawn into a PNG without a window.
 
-use crate::level::Scene;
+pub mod draw;
+pub mod geometry;
+pub mod overlays;
+pub mod panels;
+pub mod physics;
+pub mod quantities;
+pub mod render;
+pub mod tools;
+pub mod view;
+
+pub use physics::{LiveChecks, Physics, PhysicsPlugin, PhysicsStep};
+
+use crate::level::{Level, Scene};
+use crate::sim::Options;
+use bevy::prelude::*;
+use bevy_egui::{egui, EguiContexts, EguiPrimaryContextPass};
+use draw::Drawing;
+use overlays::{Overlays, Scales};
 use std::path::{Path, PathBuf};
+use view::{palette, Outlines, View};
+
+/// Drawing of the running scene: meshes, lines, overlays, labels (no panels, no camera).
+pub struct ScenePlugin {
+    /// Paint the title/time/legend box (renders; the sandbox shows these in its panels).
+    pub legend: bool,
+}
+
+/// The set of the scene drawing systems (after the physics step).
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct SceneDraw;
+
+impl Plugin for ScenePlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<View>()
+            .init_resource::<Outlines>()
+            .init_resource::<Drawing>()
+            .init_resource::<Overlays>()
+            .add_systems(
+                Update,
+                (
+                    view::spawn_meshes,
+                    view::sync_camera,
+                    view::sync_meshes,
+                    build_drawing,
+                    draw::emit_gizmos,
+                )
+                    .chain()
+                    .in_set(SceneDraw)
+                    .after(PhysicsStep),
+            )
+            .add_systems(EguiPrimaryContextPass, paint_labels);
+        if self.legend {
+            app.add_systems(EguiPrimaryContextPass, paint_legend.after(paint_labels));
+        }
+    }
+}
+
+/// Body lines, overlays and scale bar of this frame.
+pub fn build_drawing(
+    phys: Res<Physics>,
+    mut view: ResMut<View>,
+    outlines: Res<Outlines>,
+    ov: Res<Overlays>,
+    tool: Option<Res<tools::ToolState>>,
+    mut d: ResMut<Drawing>,
+) {
+    let s = phys.snapshot();
+    if view.generation_speed != Some(phys.generation) {
+        view.generation_speed = Some(phys.generation);
+        view.max_speed = 0.0;
+    }
+    let fastest = s
+        .bodies
+        .iter()
+        .map(|b| b.velocity.length())
+        .fold(0.0, f64::max);
+    if fastest.is_finite() && fastest > view.max_speed {
+        view.max_speed = fastest;
+    }
+    d.clear(view.m_per_px);
+    view::scene_lines(
+        &phys.sim.level,
+        &outlines.bodies,
+        &outlines.index,
+        s,
+        view.m_per_px,
+        &mut d,
+    );
+    if let Some(i) = ov.selected {
+        view::highlight(&outlines.bodies, s, i, &mut d);
+    }
+    let scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
+    overlays::build(&ov, &phys, &outlines.bodies, &scales, &mut d);
+    if let Some(tool) = tool {
+        tools::preview(&tool, &phys, &scales, &mut d);
+    }
+    view::scale_bar(&view, &mut d);
+}
+
+pub(crate) fn color32(c: Color) -> egui::Color32 {
+    let c = c.to_srgba();
+    egui::Color32::from_rgba_unmultiplied(
+        (c.red * 255.0).round() as u8,
+        (c.green * 255.0).round() as u8,
+        (c.blue * 255.0).round() as u8,
+        (c.alpha * 255.0).round() as u8,
+    )
+}
+
+fn egui_rect(r: Rect) -> egui::Rect {
+    egui::Rect::from_min_max(egui::pos2(r.min.x, r.min.y), egui::pos2(r.max.x, r.max.y))
+}
+
+/// The labels of the drawing, in screen space, each on a light box so it reads over lines.
+fn paint_labels(mut contexts: EguiContexts, d: Res<Drawing>, view: Res<View>) -> Result {
+    let ctx = contexts.ctx_mut()?;
+    let painter = ctx
+        .layer_painter(egui::LayerId::new(
+            egui::Order::Background,
+            egui::Id::new("rigidlab-labels"),
+        ))
+        .with_clip_rect(egui_rect(view.viewport));
+    let bg = color32(palette::BACKGROUND.with_alpha(0.8));
+    let mut placed: Vec<egui::Rect> = Vec::new();
+    for l in &d.labels {
+        let galley = painter.layout_no_wrap(
+            l.text.clone(),
+            egui::FontId::proportional(l.size),
+            color32(l.color),
+        );
+        let size = galley.size();
+        // Centered on the point, or pushed out along `dir` until its box clears the point.
+        let push = 5.0 + 0.5 * (l.dir.x.abs() * size.x + l.dir.y.abs() * size.y);
+        let p = view.to_screen(l.at) + l.offset + l.dir * push;
+        let home = egui::pos2(p.x - 0.5 * size.x, p.y - 0.5 * size.y);
+        // A label that would cover another moves to the nearest free spot: a line down or up, or
+        // to either side.
+        let step = size.y + 3.0;
+        let candidates = [
+            (0.0, 0.0),
+            (0.0, 1.0),
+            (0.0, -1.0),
+            (1.0, 0.0),
+            (-1.0, 0.0),
+            (0.0, 2.0),
+            (0.0, -2.0),
+            (1.0, 1.0),
+            (-1.0, 1.0),
+        ];
+        let min = candidates
+            .iter()
+            .map(|(cx, cy)| home + egui::vec2(cx * (size.x + 6.0), cy * step))
+            .find(|m| {
+                let r = egui::Rect::from_min_size(*m, size).expand(1.5);
+                !placed.iter().any(|q| q.intersects(r))
+            })
+            .unwrap_or(home);
+        let rect = egui::Rect::from_min_size(min, size).expand(1.5);
+        placed.push(rect);
+        painter.rect_filled(rect, 2.0, bg);
+        painter.galley(min, galley, color32(l.color));
+    }
+    Ok(())
+}
+
+/// Title, time and the color key (renders).
+fn paint_legend(mut contexts: EguiContexts, phys: Res<Physics>, ov: Res<Overlays>) -> Result {
+    let ctx = contexts.ctx_mut()?;
+    egui::Area::new(egui::Id::new("rigidlab-legend"))
+        .fixed_pos(egui::pos2(10.0, 8.0))
+        .show(ctx, |ui| {
+            egui::Frame::new()
+                .fill(color32(palette::BACKGROUND.with_alpha(0.85)))
+                .inner_margin(6.0)
+                .show(ui, |ui| {
+                    let s = phys.snapshot();
+                    ui.label(
+                        egui::RichText::new(&phys.sim.level.title)
+                            .strong()
+                            .color(color32(palette::TEXT)),
+                    );
+                    ui.label(
+                        egui::RichText::new(format!(
+                            "t = {:.3} s   dt = {:.4} s",
+                            s.time,
+                            phys.sim.dt()
+                        ))
+                        .color(color32(palette::TEXT)),
+                    );
+                    for (text, color) in
+                        panels::legend_entries(&ov, &phys.sim.level, phys.frame_window())
+                    {
+                        ui.label(egui::RichText::new(text).color(color32(color)));
+                    }
+                });
+        });
+    Ok(())
+}
+
+/// The scene the sandbox opens with when there is no level to show.
+fn empty_scene() -> Scene {
+    Scene {
+        file: PathBuf::from("untitled.ron"),
+        level: Level {
+            title: "Empty scene".into(),
+            source: Default::default(),
+            statement: "No level loaded: pick one in the level browser, or spawn bodies.".into(),
+            effects: vec![
+                crate::level::Effect::Gravity,
+                crate::level::Effect::Contacts,
+            ],
+            world: Default::default(),
+            bodies: Vec::new(),
+            joints: Vec::new(),
+            springs: Vec::new(),
+            couplings: Vec::new(),
+            loads: Vec::new(),
+            events: Vec::new(),
+            checks: Vec::new(),
+            questions: Vec::new(),
+        },
+    }
+}
 
 /// Opens the sandbox window: the level browser over `levels`, or `level` directly.
 pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
-    let _ = (levels, level);
-    Err("the sandbox window is not built yet".into())
+    render::vulkan_check()?;
+    let browser = panels::Browser::scan(&levels);
+    let scene = match &level {
+        Some(p) => crate::level::load(p).map_err(|e| e.to_string())?,
+        None => browser.first_loadable().unwrap_or_else(empty_scene),
+    };
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: "rigidlab".into(),
+            resolution: (1440, 900).into(),
+            ..default()
+        }),
+        ..default()
+    }));
+    app.add_plugins(bevy_egui::EguiPlugin::default());
+    app.insert_resource(ClearColor(palette::BACKGROUND));
+    app.add_plugins(PhysicsPlugin {
+        scene,
+        options: Options::default(),
+        paused: true,
+    });
+    app.add_plugins(ScenePlugin { legend: false });
+    app.insert_resource(browser);
+    app.add_plugins((panels::PanelsPlugin, tools::ToolsPlugin));
+    app.add_systems(Startup, panels::spawn_cameras);
+    if std::env::var_os("RIGIDLAB_CONTINUOUS").is_some() {
+        // Xvfb has no window manager: the window never gets focus and Bevy would throttle.
+        app.insert_resource(bevy::winit::WinitSettings::continuous());
+    }
+    let exit = app.run();
+    if exit.is_error() {
+        return Err("the sandbox window closed with an error".into());
+    }
+    Ok(())
 }
 
 /// Renders `scene` at simulated time `time` into a PNG at `out`.
+///
+/// The overlays are velocity, free-body diagram, trails and labels; `RIGIDLAB_OVERLAYS=vacfkhtl`
+/// (letters as the sandbox keys) picks others.
 pub fn render(scene: &Scene, time: f64, out: &Path) -> Result<(), String> {
-    let _ = (scene, time, out);
-    Err("rendering is not built yet".into())
+    let mut opts = render::RenderOptions::default();
+    if let Ok(letters) = std::env::var("RIGIDLAB_OVERLAYS") {
+        opts.overlays = render::RenderOptions::overlays_from_letters(&letters)?;
+    }
+    render::render_frame(scene, time, Some(out), &opts).map(|_| ())
 }

@@ -493,8 +493,10 @@ pub enum Quantity {
     /// Angular velocity, rad/s. Analysis as `Vx`.
     Omega(String),
     /// Kinetic energy 1/2 m v^2 + 1/2 I w^2, J (6/9). Analysis: work-energy (RE-7)
-    /// T0 + work of gravity, of the body's springs and of its loads along the engine's path,
-    /// i.e. assuming the body's joints and contacts do no work.
+    /// T0 + work of gravity, of the body's springs, loads and impulse events along the engine's path,
+    /// i.e. assuming the body's joints and contacts do no work; given at configuration events
+    /// (crossings, angles, extremes: not at `Time` or `End`, where the engine's configuration itself
+    /// carries its integration error); at impacts and blows, the impulse-momentum solution's T.
     KineticEnergy(String),
     /// Magnitude of the joint reaction force (mean over the step), N.
     JointForce(String),
@@ -519,6 +521,16 @@ pub enum Quantity {
     PointX { body: String, point: V2 },
     /// y of a body point given in the body frame (m), world frame, m (a ladder's top).
     PointY { body: String, point: V2 },
+    /// Speed of a body point given in the body frame (m), m/s: |v_G + omega k x r| (RK-6).
+    /// Analysis as `Vx` (at impacts and blows).
+    PointSpeed { body: String, point: V2 },
+    /// Acceleration magnitude of a body point given in the body frame (m), m/s^2: engine = central
+    /// difference of that material point's velocity; analysis = a_G + alpha k x r - omega^2 r (RK-10)
+    /// with a_G and alpha from Newton-Euler on the engine's forces (6/1) and the engine's omega.
+    PointAccel { body: String, point: V2 },
+    /// The impulse of the named coupling (cable, pulley, gear) over the step divided by dt (centered):
+    /// for unit ratios, the cable's tension, N (each term received `ratio` times it). No analysis.
+    CouplingForce(String),
     /// Distance between two bodies' mass centers |r_B - r_A|, m.
     RelativeDistance(String, String),
     /// Relative speed |v_B - v_A| of two mass centers, m/s.
@@ -585,6 +597,10 @@ pub enum Quantity {
         joint: String,
         #[serde(default)]
         component: Component,
+        /// Average over this time window centered on the sample, s (default: the two steps around
+        /// it). rapier's reactions in a closed chain of soft joints fluctuate from step to step.
+        #[serde(default)]
+        window: f64,
     },
     /// Reaction impulse of a joint on its moving body over the step that ends at the sample, N s
     /// (with `AfterEvent`: the impulse through the pin during the blow). Analysis at `AfterEvent`:
@@ -596,10 +612,15 @@ pub enum Quantity {
     },
     /// Normal force between two bodies (sum over contact points, centered), N. No analysis.
     ContactNormalForce { body: String, other: String },
-    /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered).
-    /// Analysis: the one-degree-of-freedom power balance (RE-11): M omega_rel = sum (m a_G . v_G
-    /// + I_G alpha omega) - power of gravity, loads and springs, over the dynamic bodies.
-    MotorTorque(String),
+    /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered, or
+    /// averaged over `window` s). Analysis: the one-degree-of-freedom power balance (RE-11):
+    /// M omega_rel = sum (m a_G . v_G + I_G alpha omega) - power of gravity, loads and springs,
+    /// over the dynamic bodies.
+    MotorTorque {
+        joint: String,
+        #[serde(default)]
+        window: f64,
+    },
     /// Apex height of the mass center after the first contact of `body` with `other` ends
     /// (until the next contact), m. Analysis: the apex of free flight, y_c + v'^2 / (2 g), from
     /// the impact solution (IM-13).
@@ -662,7 +683,8 @@ pub enum When {
         other: Option<String>,
     },
     /// The first step after the first contact of `body` with `other` (any body when omitted)
-    /// stops pushing: the post-impact state, or the moment a body leaves a wall.
+    /// stops pushing (and stays quiet for 0.05 s): the post-impact state, or the moment a body
+    /// leaves a wall. Velocity analyses give the impact solution at the touching instant.
     ContactEnds {
         body: String,
         #[serde(default)]
@@ -670,4 +692,8 @@ pub enum When {
     },
     /// The end of the step in which the named impulse event acted: the state just after the blow.
     AfterEvent(String),
+    /// The end of the first step, when the joints first act: bodies whose initial velocities break a
+    /// joint are caught by it impulsively (a plate whose corner is caught by a pivot). Velocity
+    /// analyses use the impulse-momentum solution from the initial state, as for `AfterEvent`.
+    FirstStep,
 }

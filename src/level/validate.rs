@@ -805,6 +805,7 @@ fn question(v: &V, q: &QuestionDef) -> R {
             }
         }
         When::AfterEvent(e) => question_ref(v, q, "event", e, "at")?,
+        When::FirstStep => {}
     }
     if matches!(q.quantity, Quantity::Time)
         && matches!(q.at, When::End | When::Max(_) | When::Min(_))
@@ -837,13 +838,19 @@ fn question(v: &V, q: &QuestionDef) -> R {
         | Quantity::JointReaction { .. }
         | Quantity::JointImpulse { .. }
         | Quantity::JointForce(_) => needs(Effect::Joints, "a joint quantity")?,
-        Quantity::MotorTorque(_) => needs(Effect::Motors, "a motor torque")?,
+        Quantity::MotorTorque { .. } => needs(Effect::Motors, "a motor torque")?,
         Quantity::SpringPeriod(_) | Quantity::SpringWork(_) | Quantity::SpringExtension(_) => {
             needs(Effect::Springs, "a spring quantity")?
         }
         _ => {}
     }
-    if let Quantity::MotorTorque(j) = &q.quantity {
+    match &q.quantity {
+        Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
+            v.non_negative(*window, "averaging window", "s", at("quantity"))?
+        }
+        _ => {}
+    }
+    if let Quantity::MotorTorque { joint: j, .. } = &q.quantity {
         if v.level
             .joints
             .iter()
@@ -881,7 +888,10 @@ fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         | Q::GravityWork(b)
         | Q::SpringPeriod(b)
         | Q::PointX { body: b, .. }
-        | Q::PointY { body: b, .. } => vec![("body", b)],
+        | Q::PointY { body: b, .. }
+        | Q::PointSpeed { body: b, .. }
+        | Q::PointAccel { body: b, .. } => vec![("body", b)],
+        Q::CouplingForce(c) => vec![("coupling", c)],
         Q::RelativeDistance(a, b) | Q::RelativeSpeed(a, b) | Q::RelativeAngle(a, b) => {
             vec![("body", a), ("body", b)]
         }
@@ -894,7 +904,7 @@ fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         | Q::RollingFriction { body, ground }
         | Q::RollingFrictionNeeded { body, ground } => vec![("body", body), ("body", ground)],
         Q::JointForce(j)
-        | Q::MotorTorque(j)
+        | Q::MotorTorque { joint: j, .. }
         | Q::JointReaction { joint: j, .. }
         | Q::JointImpulse { joint: j, .. } => vec![("joint", j)],
         Q::PendulumPeriod { body, joint } => vec![("body", body), ("joint", joint)],
@@ -928,6 +938,7 @@ fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field: &str) -> 
         "joint" => l.joints.iter().any(|j| j.name == name),
         "spring" => l.springs.iter().any(|s| s.name == name),
         "load" => l.loads.iter().any(|x| x.name == name),
+        "coupling" => l.couplings.iter().any(|x| x.name == name),
         _ => l.events.iter().any(|e| e.name() == name),
     };
     if known {

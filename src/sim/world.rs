@@ -353,7 +353,7 @@ impl Simulation {
                 &self.world.colliders[pair.collider2],
             );
             let (b1, b2) = (c1.user_data as usize, c2.user_data as usize);
-            let pose1 = *c1.position();
+            let (pose1, pose2) = (*c1.position(), *c2.position());
             for m in pair.manifolds() {
                 if m.points.is_empty() {
                     continue;
@@ -374,7 +374,10 @@ impl Simulation {
                 c.points.clear();
                 c.points.extend(m.points.iter().map(|pt| ContactPoint {
                     point: to_d(pose1 * pt.local_p1),
-                    distance: pt.dist as f64,
+                    // From the current poses: rapier recycles contacts, and a recycled point
+                    // keeps the distance of its last full update (a 9 mm overlap read as 0).
+                    distance: ((pose2 * pt.local_p2 - pose1 * pt.local_p1).dot(m.data.normal))
+                        as f64,
                     normal_impulse: pt.data.impulse as f64,
                     tangent_impulse: pt.data.tangent_impulse[0] as f64,
                 }));

@@ -1,36 +1,9 @@
-//! The probes behind each check kind.
+//! The closed-form constant-acceleration check (free fall, projectile).
 
-use super::{kind_name, CheckResult, ErrorTrack, Probe};
-use crate::level::{CheckDef, CheckKind, Level};
+use super::super::{kind_name, CheckResult, ErrorTrack, Probe};
+use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
-
-pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
-    match def.kind {
-        CheckKind::ConstantAcceleration => Box::new(ConstantAcceleration::new(level, def)),
-        // Kinds not implemented yet report as failing with a note, never as passing.
-        _ => Box::new(NotImplemented { def: def.clone() }),
-    }
-}
-
-struct NotImplemented {
-    def: CheckDef,
-}
-
-impl Probe for NotImplemented {
-    fn observe(&mut self, _: &Snapshot) {}
-    fn finish(self: Box<Self>) -> CheckResult {
-        let mut r = ErrorTrack::default().result(
-            &self.def,
-            kind_name(self.def.kind),
-            self.def.body.clone().unwrap_or_default(),
-            1.0,
-            "this check kind is not implemented yet".into(),
-        );
-        r.passed = false;
-        r
-    }
-}
 
 /// Closed-form motion under a constant force (free fall, projectile: MK 2/x, HA 11.x):
 /// r(t) = r0 + v0 t + 1/2 a t^2 with a = g + F/m. Theory is the closed form from the initial
@@ -38,7 +11,7 @@ impl Probe for NotImplemented {
 ///
 /// Error budget: symplectic Euler over substeps of h = dt/substeps gives x_n = x0 + v0 t + 1/2 a t (t + h),
 /// so the position error grows as 1/2 |a| h t: relative to 1/2 |a| t^2 it is h / t.
-struct ConstantAcceleration {
+pub(super) struct ConstantAcceleration {
     def: CheckDef,
     body: String,
     index: Option<usize>,
@@ -50,7 +23,7 @@ struct ConstantAcceleration {
 }
 
 impl ConstantAcceleration {
-    fn new(level: &Level, def: &CheckDef) -> Self {
+    pub(super) fn new(level: &Level, def: &CheckDef) -> Self {
         // Constant loads on the body add F/m to g.
         let body = def.body.clone().unwrap_or_default();
         let _ = level;

@@ -1,0 +1,116 @@
+//! Work and energy (concepts.md sections 3 and 9): kinetic energy in its textbook forms,
+//! potential energy, power, the work of a step's impulse, and the work-energy ledger.
+
+use super::{cross, Motion};
+use glam::DVec2;
+
+/// Kinetic energy of a translating body: T = 1/2 m v^2 (6/7, WE-8).
+pub fn kinetic_energy_translation(m: f64, v: DVec2) -> f64 {
+    0.5 * m * v.length_squared()
+}
+
+/// Kinetic energy in fixed-axis rotation about O: T = 1/2 I_O omega^2 (6/8).
+pub fn kinetic_energy_fixed_axis(i_o: f64, omega: f64) -> f64 {
+    0.5 * i_o * omega * omega
+}
+
+/// Kinetic energy in general plane motion: T = 1/2 m v_G^2 + 1/2 I_G omega^2 (6/9, the König theorem).
+pub fn kinetic_energy(m: f64, v_g: DVec2, i_g: f64, omega: f64) -> f64 {
+    0.5 * m * v_g.length_squared() + 0.5 * i_g * omega * omega
+}
+
+/// Kinetic energy about the instantaneous center C: T = 1/2 I_C omega^2 with
+/// I_C = I_G + m |r_G - r_C|^2 (6/10 with MP-2).
+pub fn kinetic_energy_about_ic(m: f64, i_g: f64, r_g: DVec2, r_c: DVec2, omega: f64) -> f64 {
+    let i_c = super::mass::parallel_axis(i_g, m, (r_g - r_c).length());
+    0.5 * i_c * omega * omega
+}
+
+/// Gravitational potential energy V_g = -m g . r_G (WE-13: V_g = W y with y up when g = (0, -g)).
+pub fn gravity_potential(m: f64, gravity: DVec2, r_g: DVec2) -> f64 {
+    -m * gravity.dot(r_g)
+}
+
+/// Elastic potential energy of a linear spring, V_e = 1/2 k x^2 (WE-13).
+pub fn spring_potential(k: f64, x: f64) -> f64 {
+    0.5 * k * x * x
+}
+
+/// Power of a force F at a point moving with v_P plus a couple M on a body turning at omega:
+/// P = F . v_P + M omega (WE-10, RE-8).
+pub fn power(force: DVec2, v_p: DVec2, couple: f64, omega: f64) -> f64 {
+    force.dot(v_p) + couple * omega
+}
+
+/// Work of an impulse J applied over a step at world point p (plus an angular impulse `couple`),
+/// with the body's states at the two ends of the step: U = J . v_P,mid + couple omega_mid, where
+/// v_P,mid = v_G,mid + omega_mid k x r_{P/G}.
+///
+/// Why the mean velocity: for a rigid body, 1/2 m (v1^2 - v0^2) = m (v1 - v0) . (v0 + v1)/2 and
+/// 1/2 I (w1^2 - w0^2) = I (w1 - w0)(w0 + w1)/2, so with these works T1 - T0 equals the sum of the
+/// step's works exactly whenever the step's impulses balance m dv and I dw (WE-9 per step).
+pub fn work_of_impulse(j: DVec2, p: DVec2, couple: f64, before: &Motion, after: &Motion) -> f64 {
+    let mid = Motion::mid(before, after);
+    j.dot(mid.velocity_at(p)) + couple * mid.omega
+}
+
+/// Work of an impulse J acting with lever arm r_{P/G} from the mass center (plus an angular impulse):
+/// U = J . (v_G,mid + omega_mid k x r_{P/G}) + couple omega_mid. With the arms the step's moments
+/// were taken with, the works of all a body's impulses add up to T1 - T0 exactly when
+/// sum J = m dv_G and sum (r x J) + couples = I_G d_omega (see [`work_of_impulse`]).
+pub fn work_of_impulse_with_arm(
+    j: DVec2,
+    arm: DVec2,
+    couple: f64,
+    before: &Motion,
+    after: &Motion,
+) -> f64 {
+    let mid = Motion::mid(before, after);
+    j.dot(super::kinematics::point_velocity(
+        mid.velocity,
+        mid.omega,
+        arm,
+    )) + couple * mid.omega
+}
+
+/// Work of a pair of equal and opposite impulses (J on body B at p, -J on body A at p):
+/// U = J . v_{B/A,mid}. This is the energy a contact dissipates (friction, an inelastic impact).
+pub fn work_of_pair_impulse(
+    j: DVec2,
+    p: DVec2,
+    a: (&Motion, &Motion),
+    b: (&Motion, &Motion),
+) -> f64 {
+    work_of_impulse(j, p, 0.0, b.0, b.1) - work_of_impulse(j, p, 0.0, a.0, a.1)
+}
+
+/// Moment of a force about a point O: M_O = (r_{P/O} x F)_z.
+pub fn moment_about(o: DVec2, p: DVec2, f: DVec2) -> f64 {
+    cross(p - o, f)
+}
+
+/// The work-energy ledger T1 + V1 + U'_{1-2} = T2 + V2 (WE-14, RE-7 in MK's form): U' is the
+/// work of every force except weight and springs.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Ledger {
+    /// Kinetic energy T, J.
+    pub kinetic: f64,
+    /// Gravitational potential V_g, J.
+    pub gravity: f64,
+    /// Elastic potential V_e, J.
+    pub elastic: f64,
+    /// Work of the non-conservative forces since the start, U', J.
+    pub work_nc: f64,
+}
+
+impl Ledger {
+    /// Mechanical energy E = T + V_g + V_e.
+    pub fn mechanical(&self) -> f64 {
+        self.kinetic + self.gravity + self.elastic
+    }
+
+    /// E - U': constant when the ledger balances (E(0) by WE-14).
+    pub fn balance(&self) -> f64 {
+        self.mechanical() - self.work_nc
+    }
+}

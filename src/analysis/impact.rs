@@ -1,0 +1,196 @@
+//! Impact (concepts.md IM-9 to IM-15, RM-10): detecting impacts from contact impulses and
+//! measuring restitution, tangential velocity change, energy lost and angular momentum about
+//! the contact point.
+//!
+//! The engine resolves an impact inside one step (or a few): the impact is bracketed by the
+//! steps whose contact impulse between the pair is impulsive, and "just before" and "just after"
+//! are the states at the ends of the bracket (general caveat 5 of concepts.md).
+
+use super::{cross, Motion};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// Coefficient of restitution from the normal components of the relative velocity of the
+/// contact points (B over A, n from A to B): e = -(v_B2 - v_A2).n / (v_B1 - v_A1).n (IM-9, IM-12).
+pub fn coefficient_of_restitution(v_rel_before_n: f64, v_rel_after_n: f64) -> f64 {
+    -v_rel_after_n / v_rel_before_n
+}
+
+/// Velocities after a direct central impact (IM-9):
+/// v_A2 = [m_A v_A1 + m_B v_B1 - m_B e (v_A1 - v_B1)]/(m_A + m_B),
+/// v_B2 = [m_A v_A1 + m_B v_B1 + m_A e (v_A1 - v_B1)]/(m_A + m_B).
+pub fn central_impact_velocities(m_a: f64, m_b: f64, v_a1: f64, v_b1: f64, e: f64) -> (f64, f64) {
+    let p = m_a * v_a1 + m_b * v_b1;
+    let m = m_a + m_b;
+    (
+        (p - m_b * e * (v_a1 - v_b1)) / m,
+        (p + m_a * e * (v_a1 - v_b1)) / m,
+    )
+}
+
+/// Kinetic energy lost in a direct central impact (IM-14):
+/// dT = 1/2 m_A m_B/(m_A + m_B) (1 - e^2)(v_A1 - v_B1)^2. `m_b = inf` is a fixed barrier.
+pub fn central_impact_energy_loss(m_a: f64, m_b: f64, v_a1: f64, v_b1: f64, e: f64) -> f64 {
+    let mu = if m_b.is_infinite() {
+        m_a
+    } else {
+        m_a * m_b / (m_a + m_b)
+    };
+    0.5 * mu * (1.0 - e * e) * (v_a1 - v_b1).powi(2)
+}
+
+/// The contact between bodies a and b in one snapshot, summed over manifolds and points, with
+/// the normal oriented from a to b.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PairContact {
+    /// Unit normal from a to b (impulse-weighted over manifolds).
+    pub normal: DVec2,
+    /// Impulse-weighted mean contact point (first point if no impulse), world.
+    pub point: DVec2,
+    /// Total impulse on b over the step, N s (a gets the opposite).
+    pub impulse_on_b: DVec2,
+    /// Sum of the normal impulses, N s.
+    pub normal_impulse: f64,
+    /// Number of contact points.
+    pub points: usize,
+}
+
+/// The contact between a and b in `snap`, if their colliders touch (or are within prediction distance).
+pub fn pair_contact(snap: &Snapshot, a: usize, b: usize) -> Option<PairContact> {
+    let mut out = PairContact::default();
+    let (mut wsum, mut psum, mut nsum) = (0.0, DVec2::ZERO, DVec2::ZERO);
+    let mut first: Option<(DVec2, DVec2)> = None;
+    for c in &snap.contacts {
+        let sign = if c.body1 == a && c.body2 == b {
+            1.0
+        } else if c.body1 == b && c.body2 == a {
+            -1.0
+        } else {
+            continue;
+        };
+        let n = c.normal * sign;
+        out.impulse_on_b += c.impulse_on_body2() * sign;
+        for p in &c.points {
+            first.get_or_insert((p.point, n));
+            wsum += p.normal_impulse;
+            psum += p.point * p.normal_impulse;
+            nsum += n * p.normal_impulse;
+            out.normal_impulse += p.normal_impulse;
+            out.points += 1;
+        }
+    }
+    let (p0, n0) = first?;
+    if wsum > 0.0 {
+        out.normal = nsum.normalize_or(n0);
+        out.point = psum / wsum;
+    } else {
+        out.normal = n0;
+        out.point = p0;
+    }
+    Some(out)
+}
+
+/// What one impact did, from the states at the two ends of its bracket.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ImpactMeasure {
+    /// Normal from a to b at the first impulsive step.
+    pub normal: DVec2,
+    /// Contact point C (fixed in space for the angular-momentum balance).
+    pub point: DVec2,
+    /// Relative normal velocity (B over A, along n) before and after, m/s: negative when approaching.
+    pub v_n_before: f64,
+    pub v_n_after: f64,
+    /// Relative tangential velocity before and after, m/s.
+    pub v_t_before: f64,
+    pub v_t_after: f64,
+    /// Measured e = -v_n_after / v_n_before (IM-9).
+    pub e: f64,
+    /// Total contact impulse on b over the bracket, N s.
+    pub impulse_on_b: DVec2,
+}
+
+/// Measures an impact between a and b at contact point `p` with normal `n` (a to b).
+pub fn measure_impact(
+    a: (&Motion, &Motion),
+    b: (&Motion, &Motion),
+    p: DVec2,
+    n: DVec2,
+    impulse_on_b: DVec2,
+) -> ImpactMeasure {
+    let t = n.perp();
+    let before = b.0.velocity_at(p) - a.0.velocity_at(p);
+    let after = b.1.velocity_at(p) - a.1.velocity_at(p);
+    let (v_n_before, v_n_after) = (before.dot(n), after.dot(n));
+    ImpactMeasure {
+        normal: n,
+        point: p,
+        v_n_before,
+        v_n_after,
+        v_t_before: before.dot(t),
+        v_t_after: after.dot(t),
+        e: coefficient_of_restitution(v_n_before, v_n_after),
+        impulse_on_b,
+    }
+}
+
+/// Is the impact eccentric for a body? The line of the normal impulse through the contact point
+/// misses G by more than `tol` (IM-15: then the textbook uses momentum and angular momentum, not e).
+pub fn is_eccentric(r_g: DVec2, p: DVec2, n: DVec2, tol: f64) -> bool {
+    cross(p - r_g, n).abs() > tol
+}
+
+/// Follows one pair's contact impulses step by step and brackets impacts: an impact starts at a
+/// step whose normal impulse is impulsive (more than `threshold` N s, after a step below it) and
+/// lasts while the following steps carry more than `fraction` of the first step's impulse.
+#[derive(Debug, Clone, Default)]
+pub struct ImpactDetector {
+    pub threshold: f64,
+    pub fraction: f64,
+    active: Option<f64>,
+    previous: f64,
+}
+
+/// What the detector says about a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bracket {
+    /// No impact in progress.
+    Quiet,
+    /// This step starts an impact.
+    Start,
+    /// This step continues the impact.
+    Continue,
+    /// The previous step was the impact's last; this step is not part of it.
+    End,
+}
+
+impl ImpactDetector {
+    pub fn new(threshold: f64, fraction: f64) -> Self {
+        ImpactDetector {
+            threshold,
+            fraction,
+            active: None,
+            previous: 0.0,
+        }
+    }
+
+    /// Feeds the normal impulse of the pair in a step.
+    pub fn step(&mut self, normal_impulse: f64) -> Bracket {
+        let prev = std::mem::replace(&mut self.previous, normal_impulse);
+        match self.active {
+            Some(first) if normal_impulse > self.fraction * first => Bracket::Continue,
+            Some(_) => {
+                self.active = None;
+                Bracket::End
+            }
+            None if normal_impulse > self.threshold && prev <= self.threshold => {
+                self.active = Some(normal_impulse);
+                Bracket::Start
+            }
+            None => Bracket::Quiet,
+        }
+    }
+
+    pub fn in_impact(&self) -> bool {
+        self.active.is_some()
+    }
+}

@@ -1,0 +1,101 @@
+//! Rigid-body kinematics (concepts.md section 5): body points, finite differences, the
+//! instantaneous center of zero velocity.
+
+use super::{cross, k_cross};
+use glam::DVec2;
+
+/// Velocity of a body point: v_P = v_G + omega k x r_{P/G} (RK-6, RK-4 vector form).
+pub fn point_velocity(v_g: DVec2, omega: f64, r: DVec2) -> DVec2 {
+    v_g + k_cross(omega, r)
+}
+
+/// Acceleration of a body point: a_P = a_G + alpha k x r_{P/G} - omega^2 r_{P/G} (RK-10).
+pub fn point_acceleration(a_g: DVec2, alpha: f64, omega: f64, r: DVec2) -> DVec2 {
+    a_g + k_cross(alpha, r) - omega * omega * r
+}
+
+/// Mass-center acceleration by a finite difference over one physics step, a_G = (v_1 - v_0)/dt
+/// (`FD` in concepts.md: over the physics step, not the render frame).
+pub fn acceleration_fd(v0: DVec2, v1: DVec2, dt: f64) -> DVec2 {
+    (v1 - v0) / dt
+}
+
+/// Angular acceleration by a finite difference over one physics step, alpha = (omega_1 - omega_0)/dt (RK-3).
+pub fn angular_acceleration_fd(omega0: f64, omega1: f64, dt: f64) -> f64 {
+    (omega1 - omega0) / dt
+}
+
+/// An angle difference brought into (-pi, pi] (body angles are reported in that range).
+pub fn wrap_angle(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let r = a.rem_euclid(TAU);
+    if r > PI {
+        r - TAU
+    } else {
+        r
+    }
+}
+
+/// The instantaneous center of zero velocity C: r_C = r_A + (k x v_A)/omega (RK-11).
+/// `None` when omega = 0 (pure translation: C is at infinity) or when C lies farther than
+/// `max_distance` from A (numerically at infinity).
+pub fn instantaneous_center(
+    r_a: DVec2,
+    v_a: DVec2,
+    omega: f64,
+    max_distance: f64,
+) -> Option<DVec2> {
+    if omega == 0.0 {
+        return None;
+    }
+    let d = DVec2::new(-v_a.y, v_a.x) / omega;
+    if !d.is_finite() || d.length() > max_distance {
+        None
+    } else {
+        Some(r_a + d)
+    }
+}
+
+/// The velocity of the body's pose origin or mass center implied by the **positions** the
+/// engine drew, for symplectic Euler over `substeps` substeps per step.
+///
+/// Symplectic Euler moves each substep with the substep's *new* velocity, so the displacement
+/// over a step is dt times the mean substep velocity: dr_n/dt = v_{n-1} + c (v_n - v_{n-1}) with
+/// c = (S + 1)/(2S) when the velocity changes linearly through the step. Solving with the next
+/// step's displacement as well gives v_n = c dr_n/dt + (1 - c) dr_{n+1}/dt, exact for constant
+/// acceleration (error O(dt^2) times the jerk). S -> infinity gives the central difference.
+pub fn velocity_from_positions(dr_n: DVec2, dr_next: DVec2, dt: f64, substeps: usize) -> DVec2 {
+    let c = substep_weight(substeps);
+    (c * dr_n + (1.0 - c) * dr_next) / dt
+}
+
+/// The angular counterpart of [`velocity_from_positions`] (angle steps already unwrapped).
+pub fn omega_from_angles(dtheta_n: f64, dtheta_next: f64, dt: f64, substeps: usize) -> f64 {
+    let c = substep_weight(substeps);
+    (c * dtheta_n + (1.0 - c) * dtheta_next) / dt
+}
+
+/// c = (S + 1)/(2S): the weight of the new end of the step in the mean substep velocity.
+pub fn substep_weight(substeps: usize) -> f64 {
+    let s = substeps.max(1) as f64;
+    (s + 1.0) / (2.0 * s)
+}
+
+/// Relative velocity of body B's point over body A's point at a common world point:
+/// v_{B/A} = (v_GB + omega_B k x r_{P/GB}) - (v_GA + omega_A k x r_{P/GA}) (RK-6 on each body).
+pub fn relative_point_velocity(a: &super::Motion, b: &super::Motion, p: DVec2) -> DVec2 {
+    b.velocity_at(p) - a.velocity_at(p)
+}
+
+/// Slip velocity at a contact: the tangential part of the relative velocity of the two bodies'
+/// points at the contact, along t = (-n_y, n_x) (RK-8: zero when rolling without slipping).
+pub fn slip_velocity(a: &super::Motion, b: &super::Motion, p: DVec2, normal: DVec2) -> f64 {
+    relative_point_velocity(a, b, p).dot(normal.perp())
+}
+
+/// Angular velocity of the line from A to B from the two points' velocities:
+/// omega = (r_{B/A} x v_{B/A})_z / |r_{B/A}|^2 (RK-6 solved for omega).
+pub fn omega_from_two_points(r_a: DVec2, v_a: DVec2, r_b: DVec2, v_b: DVec2) -> f64 {
+    let r = r_b - r_a;
+    cross(r, v_b - v_a) / r.length_squared()
+}

@@ -1,0 +1,548 @@
+//! Plane kinetics (concepts.md section 7): the free-body diagram of a body (or a set of
+//! bodies) over one physics step, read from the snapshot, and the Newton-Euler residuals
+//! against the kinetic diagram (6/1, 6/2, 6/4).
+//!
+//! A step's free-body diagram is a list of impulses, each with the point where it acted.
+//! Sources and where their data comes from (see `snapshot.rs` for sign conventions):
+//! - gravity: m g dt at G, taken at the mean of the substeps' start positions (rapier adds
+//!   g h to the velocity at the start of each substep h = dt/S, wherever G then is);
+//! - applied loads and springs: force dt held over the step; rapier turns a force at a point
+//!   into a force at G plus the constant couple (r_{P/G} x F) computed at the start of the step,
+//!   so the line of action moves with G but does not turn with the body;
+//! - event impulses: applied at the start of the step at their point;
+//! - contacts: every point's normal and friction impulse over the step, at the point the narrow
+//!   phase found at the start of the step (rapier keeps that world-space lever arm from G for the
+//!   whole step, `solver_dp1/2` in its contact constraints);
+//! - joints: the reaction impulse at the anchor, with the row solver's angular impulse about G
+//!   (which carries any constraint couple and motor torque);
+//! - couplings (pulleys, cables, gears): `ratio * lambda` along x or y at G, or as a couple for an
+//!   angle term. A coupling is never internal to a set: its ground (the pulley's axle) takes load.
+
+use super::{cross, Motion};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// Where an impulse of the free-body diagram comes from (indices into the snapshot's lists).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    Gravity,
+    Load(usize),
+    Spring(usize),
+    Event(usize),
+    Contact {
+        contact: usize,
+        point: usize,
+    },
+    Joint(usize),
+    /// A ratio constraint (pulley, cable, gear); the second index is the term.
+    Coupling(usize, usize),
+}
+
+/// One impulse of a body's free-body diagram over a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepImpulse {
+    /// The body it acts on (index into `Snapshot::bodies`).
+    pub body: usize,
+    pub source: Source,
+    /// Impulse over the step, N s (world axes).
+    pub impulse: DVec2,
+    /// Where its line of action passes (world) while it acts: for moments about fixed points.
+    pub point: DVec2,
+    /// Its arm from the body's G while it acts: for moments about G.
+    pub arm: DVec2,
+    /// A pure couple's angular impulse, N m s.
+    pub couple: f64,
+}
+
+impl StepImpulse {
+    /// Angular impulse about the mass center, (r_{P/G} x J)_z + couple.
+    pub fn moment_about_g(&self) -> f64 {
+        cross(self.arm, self.impulse) + self.couple
+    }
+
+    /// Angular impulse about a fixed world point O, (r_{P/O} x J)_z + couple.
+    pub fn moment_about(&self, o: DVec2) -> f64 {
+        cross(self.point - o, self.impulse) + self.couple
+    }
+}
+
+/// The mean of the substeps' start positions of G over a step, for S substeps and a G moving
+/// linearly from g0 to g1: g0 + (S - 1)/(2S) (g1 - g0). This is where gravity's impulse acts.
+pub fn gravity_point(g0: DVec2, g1: DVec2, substeps: usize) -> DVec2 {
+    let s = substeps.max(1) as f64;
+    g0 + (g1 - g0) * ((s - 1.0) / (2.0 * s))
+}
+
+/// The bodies' states at the start of a step (the previous snapshot's).
+#[derive(Debug, Clone, Copy)]
+pub enum Before<'a> {
+    /// Every body, indexed like `Snapshot::bodies`.
+    All(&'a [Motion]),
+    /// Only one body (enough for that body's own free-body diagram).
+    One(usize, &'a Motion),
+}
+
+impl<'a> From<&'a [Motion]> for Before<'a> {
+    fn from(v: &'a [Motion]) -> Self {
+        Before::All(v)
+    }
+}
+
+impl<'a> From<&'a Vec<Motion>> for Before<'a> {
+    fn from(v: &'a Vec<Motion>) -> Self {
+        Before::All(v)
+    }
+}
+
+impl Before<'_> {
+    /// Body i's state at the start of the step, if known.
+    pub fn get(&self, i: usize) -> Option<&Motion> {
+        match self {
+            Before::All(v) => v.get(i),
+            Before::One(k, m) => (*k == i).then_some(*m),
+        }
+    }
+}
+
+/// Visits every external impulse on a set of bodies over the step that led to `snap`.
+///
+/// `before` holds the bodies' states at the start of the step (the previous snapshot); with
+/// `Before::One(k, ..)` the set is at most body k. `in_set(i)`
+/// selects the bodies. Bodies without mass (fixed, kinematic) are never in the set. Forces
+/// between two bodies of the set are internal and are skipped (they cancel in the set's sums,
+/// MK 6/5). For one body, use `|i| i == body`.
+pub fn for_each_external_impulse(
+    before: Before,
+    snap: &Snapshot,
+    substeps: usize,
+    in_set: impl Fn(usize) -> bool,
+    visit: impl FnMut(StepImpulse),
+) {
+    for_each_external_impulse_with(before, snap, substeps, None, in_set, visit)
+}
+
+/// [`for_each_external_impulse`] with the contact lever arms tracked across steps by
+/// [`ContactArms`] (exact when rapier recycles contact manifolds; see there).
+pub fn for_each_external_impulse_with(
+    before: Before,
+    snap: &Snapshot,
+    substeps: usize,
+    arms: Option<&ContactArms>,
+    in_set: impl Fn(usize) -> bool,
+    visit: impl FnMut(StepImpulse),
+) {
+    visit_impulses(before, snap, substeps, arms, in_set, true, visit)
+}
+
+/// Visits every impulse on every body with mass over the step that led to `snap`, both sides of
+/// each contact, joint and spring: each body's own free-body diagram, all in one pass.
+pub fn for_each_body_impulse(
+    before: &[Motion],
+    snap: &Snapshot,
+    substeps: usize,
+    arms: Option<&ContactArms>,
+    visit: impl FnMut(StepImpulse),
+) {
+    visit_impulses(
+        Before::All(before),
+        snap,
+        substeps,
+        arms,
+        |_| true,
+        false,
+        visit,
+    )
+}
+
+fn visit_impulses(
+    before: Before,
+    snap: &Snapshot,
+    substeps: usize,
+    arms: Option<&ContactArms>,
+    in_set: impl Fn(usize) -> bool,
+    skip_internal: bool,
+    mut visit: impl FnMut(StepImpulse),
+) {
+    let dt = snap.dt;
+    if dt <= 0.0 {
+        return;
+    }
+    let only = match before {
+        Before::One(k, _) => Some(k),
+        Before::All(_) => None,
+    };
+    let member = |i: usize| {
+        i < snap.bodies.len()
+            && snap.bodies[i].mass > 0.0
+            && only.is_none_or(|k| k == i)
+            && in_set(i)
+    };
+    let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
+    let g_point = |i: usize| gravity_point(start(i), snap.bodies[i].com, substeps);
+
+    // With one body's start state only, the set is (at most) that body: skip the scan.
+    let bodies = match before {
+        Before::One(k, _) => k..(k + 1).min(snap.bodies.len()),
+        Before::All(_) => 0..snap.bodies.len(),
+    };
+    if snap.gravity != DVec2::ZERO {
+        for i in bodies {
+            let b = &snap.bodies[i];
+            if member(i) {
+                visit(StepImpulse {
+                    body: i,
+                    source: Source::Gravity,
+                    impulse: b.mass * snap.gravity * dt,
+                    point: g_point(i),
+                    arm: DVec2::ZERO,
+                    couple: 0.0,
+                });
+            }
+        }
+    }
+    // A force held over the step, applied by rapier as a force at G plus a constant couple.
+    let held = |i: usize, source: Source, p: DVec2, f: DVec2, torque: f64| {
+        let arm = p - start(i);
+        StepImpulse {
+            body: i,
+            source,
+            impulse: f * dt,
+            point: g_point(i) + arm,
+            arm,
+            couple: torque * dt,
+        }
+    };
+    for (k, l) in snap.loads.iter().enumerate() {
+        if member(l.body) {
+            visit(held(l.body, Source::Load(k), l.point, l.force, l.torque));
+        }
+    }
+    for (k, s) in snap.springs.iter().enumerate() {
+        let (in1, in2) = (member(s.body1), s.body2.is_some_and(member));
+        if skip_internal && in1 && in2 {
+            continue;
+        }
+        if in1 {
+            visit(held(
+                s.body1,
+                Source::Spring(k),
+                s.applied_at1,
+                s.force_on_body1,
+                0.0,
+            ));
+        }
+        if in2 {
+            let b2 = s.body2.unwrap_or_default();
+            visit(held(
+                b2,
+                Source::Spring(k),
+                s.applied_at2,
+                -s.force_on_body1,
+                0.0,
+            ));
+        }
+    }
+    for (k, e) in snap.impulses.iter().enumerate() {
+        if member(e.body) {
+            visit(StepImpulse {
+                body: e.body,
+                source: Source::Event(k),
+                impulse: e.impulse,
+                point: e.point,
+                arm: e.point - start(e.body),
+                couple: e.angular_impulse,
+            });
+        }
+    }
+    for (k, c) in snap.contacts.iter().enumerate() {
+        let (in1, in2) = (member(c.body1), member(c.body2));
+        if !in1 && !in2 || skip_internal && in1 && in2 {
+            continue; // neither, or internal to the set
+        }
+        let t = c.tangent();
+        let body1_now = Motion::from(&snap.bodies[c.body1]);
+        for (q, p) in c.points.iter().enumerate() {
+            let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
+            let source = Source::Contact {
+                contact: k,
+                point: q,
+            };
+            // The lever arm from G that rapier's solver used: frozen at the narrow phase's last
+            // full update of the manifold (tracked by `arms`), else the point as the narrow phase
+            // found it at the start of this step.
+            let tracked = arms.and_then(|a| a.get(k, q));
+            let p1 = contact_point_at_start(&body1_now, before.get(c.body1), p.point);
+            if in2 {
+                // The point on body2's surface: body1's point moved by the separation along n.
+                let arm = tracked.map_or(p1 + c.normal * p.distance - start(c.body2), |t| t.1);
+                visit(StepImpulse {
+                    body: c.body2,
+                    source,
+                    impulse: j2,
+                    point: g_point(c.body2) + arm,
+                    arm,
+                    couple: 0.0,
+                });
+            }
+            if in1 {
+                let arm = tracked.map_or(p1 - start(c.body1), |t| t.0);
+                visit(StepImpulse {
+                    body: c.body1,
+                    source,
+                    impulse: -j2,
+                    point: g_point(c.body1) + arm,
+                    arm,
+                    couple: 0.0,
+                });
+            }
+        }
+    }
+    for (k, j) in snap.joints.iter().enumerate() {
+        let (in1, in2) = (member(j.body1), member(j.body2));
+        if !in1 && !in2 || skip_internal && in1 && in2 {
+            continue;
+        }
+        let sides = [
+            (
+                in2,
+                j.body2,
+                j.impulse_on_body2,
+                j.anchor,
+                j.angular_impulse_on_body2,
+            ),
+            (
+                in1,
+                j.body1,
+                -j.impulse_on_body2,
+                j.anchor1,
+                j.angular_impulse_on_body1,
+            ),
+        ];
+        for (inside, body, imp, at, angular) in sides {
+            if !inside {
+                continue;
+            }
+            let arm = at - snap.bodies[body].com;
+            visit(StepImpulse {
+                body,
+                source: Source::Joint(k),
+                impulse: imp,
+                point: at,
+                arm,
+                // The row solver's angular impulse about G minus the moment of the linear part.
+                couple: angular - cross(arm, imp),
+            });
+        }
+    }
+    couplings(snap, &member, &g_point, &mut visit);
+}
+
+/// Visits the coupling impulses on the set (see [`for_each_external_impulse`]).
+fn couplings(
+    snap: &Snapshot,
+    member: &impl Fn(usize) -> bool,
+    g_point: &impl Fn(usize) -> DVec2,
+    visit: &mut impl FnMut(StepImpulse),
+) {
+    use crate::snapshot::Coordinate;
+    for (k, c) in snap.couplings.iter().enumerate() {
+        for (q, &(body, coordinate, ratio)) in c.terms.iter().enumerate() {
+            if !member(body) {
+                continue;
+            }
+            let x = ratio * c.impulse;
+            let (impulse, couple) = match coordinate {
+                Coordinate::X => (DVec2::new(x, 0.0), 0.0),
+                Coordinate::Y => (DVec2::new(0.0, x), 0.0),
+                Coordinate::Angle => (DVec2::ZERO, x),
+            };
+            visit(StepImpulse {
+                body,
+                source: Source::Coupling(k, q),
+                impulse,
+                point: g_point(body),
+                arm: DVec2::ZERO,
+                couple,
+            });
+        }
+    }
+}
+
+/// The lever arms (contact point minus G, world axes) rapier's contact solver used, tracked from
+/// step to step.
+///
+/// rapier 0.36 recycles contact manifolds: the narrow phase refreshes a pair only every few steps
+/// while the bodies move little, and in between the solver reuses the world-space lever arms
+/// frozen at the last full update (`ContactData::solver_dp1/2`), while the recorded points stay
+/// those of that update too. The arms are then (point - G) at the start of the update's step.
+/// A manifold is taken as recycled when its point is unchanged in body1's frame.
+#[derive(Debug, Clone, Default)]
+pub struct ContactArms {
+    /// Entries of the last snapshot, contact by contact.
+    entries: Vec<ArmEntry>,
+    /// Per contact of the last snapshot: (first entry, number of points), or `u32::MAX` if untracked.
+    rows: Vec<(u32, u32)>,
+    previous: Vec<ArmEntry>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ArmEntry {
+    /// (body1, body2, ordinal of the manifold among the pair's, point index).
+    key: (usize, usize, usize, usize),
+    local1: DVec2,
+    arm1: DVec2,
+    arm2: DVec2,
+}
+
+impl ContactArms {
+    /// Records the arms of all of `snap`'s contacts; call once per step, with the bodies' start states.
+    pub fn update(&mut self, before: Before, snap: &Snapshot) {
+        self.update_for(before, snap, |_| true)
+    }
+
+    /// Records the arms of the contacts that touch a body for which `track(i)` holds.
+    pub fn update_for(&mut self, before: Before, snap: &Snapshot, track: impl Fn(usize) -> bool) {
+        std::mem::swap(&mut self.entries, &mut self.previous);
+        self.entries.clear();
+        self.rows.clear();
+        let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
+        for (k, c) in snap.contacts.iter().enumerate() {
+            if !(track(c.body1) || track(c.body2)) {
+                self.rows.push((u32::MAX, 0));
+                continue;
+            }
+            let ordinal = snap.contacts[..k]
+                .iter()
+                .filter(|d| d.body1 == c.body1 && d.body2 == c.body2)
+                .count();
+            let body1_now = Motion::from(&snap.bodies[c.body1]);
+            self.rows
+                .push((self.entries.len() as u32, c.points.len() as u32));
+            for (q, p) in c.points.iter().enumerate() {
+                let key = (c.body1, c.body2, ordinal, q);
+                let local1 =
+                    DVec2::from_angle(-body1_now.angle).rotate(p.point - body1_now.position);
+                let tol = 1e-6 * (1.0 + local1.length());
+                // Contacts usually come in the same order step after step: try the same slot first.
+                let slot = self.entries.len();
+                let prev = match self.previous.get(slot) {
+                    Some(e) if e.key == key => Some(*e),
+                    _ => self.previous.iter().find(|e| e.key == key).copied(),
+                };
+                let entry = match prev {
+                    Some(e) if (e.local1 - local1).length() <= tol => e,
+                    _ => {
+                        let p1 = contact_point_at_start(&body1_now, before.get(c.body1), p.point);
+                        ArmEntry {
+                            key,
+                            local1,
+                            arm1: p1 - start(c.body1),
+                            arm2: p1 + c.normal * p.distance - start(c.body2),
+                        }
+                    }
+                };
+                self.entries.push(entry);
+            }
+        }
+    }
+
+    /// The arms (on body1, on body2) of contact k, point q of the last snapshot recorded.
+    pub fn get(&self, k: usize, q: usize) -> Option<(DVec2, DVec2)> {
+        let &(first, n) = self.rows.get(k)?;
+        if first == u32::MAX || q as u32 >= n {
+            return None;
+        }
+        self.entries
+            .get(first as usize + q)
+            .map(|e| (e.arm1, e.arm2))
+    }
+}
+
+/// Where a contact point read at the end of a step (`pose1_end * local_p1`, so carried along by
+/// body1) was at the start of the step, when the narrow phase found it: the same body-1 point at
+/// body1's start pose. Unknown start poses (a body outside `before`) keep the end position.
+pub fn contact_point_at_start(
+    body1_end: &Motion,
+    body1_start: Option<&Motion>,
+    p_end: DVec2,
+) -> DVec2 {
+    match body1_start {
+        Some(b0) => {
+            let local = DVec2::from_angle(-body1_end.angle).rotate(p_end - body1_end.position);
+            b0.world_point(local)
+        }
+        None => p_end,
+    }
+}
+
+/// The free-body diagram of one body over the step that led to `snap`.
+/// `before`: the bodies' states at the start of the step (a `Before`, or every body's as a slice).
+pub fn free_body<'a>(
+    before: impl Into<Before<'a>>,
+    snap: &Snapshot,
+    body: usize,
+    substeps: usize,
+) -> Vec<StepImpulse> {
+    let mut out = Vec::new();
+    for_each_external_impulse(
+        before.into(),
+        snap,
+        substeps,
+        |i| i == body,
+        |s| out.push(s),
+    );
+    out
+}
+
+/// The resultant of a step's impulses: sum J and the angular impulses about G and about O.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Resultant {
+    /// Sum of impulses, N s (= sum F dt).
+    pub impulse: DVec2,
+    /// Sum of angular impulses about each body's own G, N m s.
+    pub moment_g: f64,
+    /// Sum of angular impulses about the fixed point O, N m s.
+    pub moment_o: f64,
+}
+
+impl Resultant {
+    pub fn add(&mut self, s: &StepImpulse, o: DVec2) {
+        self.impulse += s.impulse;
+        self.moment_g += s.moment_about_g();
+        self.moment_o += s.moment_about(o);
+    }
+}
+
+/// Newton-Euler over one step (6/1): sum F - m a_G and sum M_G - I_G alpha, with a_G and alpha
+/// by finite differences of the velocities at the two ends of the step and the force sums as the
+/// step's impulses over dt. Returns (force residual N, moment residual N m).
+pub fn newton_euler_residual(
+    m: f64,
+    i_g: f64,
+    before: &Motion,
+    after: &Motion,
+    sum_impulse: DVec2,
+    sum_moment_g: f64,
+    dt: f64,
+) -> (DVec2, f64) {
+    let a_g = super::kinematics::acceleration_fd(before.velocity, after.velocity, dt);
+    let alpha = super::kinematics::angular_acceleration_fd(before.omega, after.omega, dt);
+    (sum_impulse / dt - m * a_g, sum_moment_g / dt - i_g * alpha)
+}
+
+/// The kinetic-diagram moment about an arbitrary point P: I_G alpha + (rho x m a_G)_z with
+/// rho = r_G - r_P (6/2). Equal to sum M_P.
+pub fn kinetic_moment_about(m: f64, i_g: f64, alpha: f64, r_g: DVec2, a_g: DVec2, p: DVec2) -> f64 {
+    i_g * alpha + cross(r_g - p, m * a_g)
+}
+
+/// The kinetic-diagram moment about a fixed pivot O of a body in fixed-axis rotation:
+/// I_O alpha (6/4). Equal to sum M_O, in which the pivot reaction has no moment.
+pub fn kinetic_moment_fixed_axis(i_o: f64, alpha: f64) -> f64 {
+    i_o * alpha
+}
+
+/// The resultant force of a kinetic diagram, m a_G (6/1).
+pub fn kinetic_force(m: f64, a_g: DVec2) -> DVec2 {
+    m * a_g
+}

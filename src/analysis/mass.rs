@@ -1,0 +1,266 @@
+//! Mass properties from the shape formulas (concepts.md section 6, MP-1 to MP-9).
+//!
+//! These are the textbook's numbers, computed from the level's description alone
+//! (shape, mass or density, inertia or radius-of-gyration override): nothing here
+//! asks the engine, so they can be compared with what rapier (parry) computed.
+
+use crate::level::{BodyDef, Shape};
+use glam::DVec2;
+use std::f64::consts::PI;
+
+/// Mass, mass center (body frame) and centroidal moment of inertia I_G of a body.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MassProps {
+    /// m, kg.
+    pub mass: f64,
+    /// Mass center G in the body frame, m (MP-4).
+    pub com: DVec2,
+    /// I_G about the z axis through G, kg m^2 (MP-1).
+    pub inertia: f64,
+}
+
+impl MassProps {
+    /// Radius of gyration about G, k_G = sqrt(I_G / m) (MP-3).
+    pub fn radius_of_gyration(&self) -> f64 {
+        radius_of_gyration(self.inertia, self.mass)
+    }
+
+    /// Moment of inertia about the z axis through a point at distance `d` from G (MP-2).
+    pub fn about(&self, d: f64) -> f64 {
+        parallel_axis(self.inertia, self.mass, d)
+    }
+}
+
+/// Disc (or solid cylinder) about its center: I = 1/2 m r^2 (MP-9).
+pub fn disc_inertia(m: f64, r: f64) -> f64 {
+    0.5 * m * r * r
+}
+
+/// Thin ring (hoop) about its center: I = m r^2 (MP-9, the point-mass form at distance r).
+pub fn thin_ring_inertia(m: f64, r: f64) -> f64 {
+    m * r * r
+}
+
+/// Annulus of inner radius r_i and outer radius r_o about its center: I = 1/2 m (r_i^2 + r_o^2)
+/// (MP-1 integrated; r_i = 0 gives the disc, r_i -> r_o the thin ring).
+pub fn ring_inertia(m: f64, r_inner: f64, r_outer: f64) -> f64 {
+    0.5 * m * (r_inner * r_inner + r_outer * r_outer)
+}
+
+/// Homogeneous slender bar about its center: I_G = 1/12 m l^2 (MP-6).
+pub fn slender_bar_inertia(m: f64, l: f64) -> f64 {
+    m * l * l / 12.0
+}
+
+/// Slender bar about one end: I_O = 1/3 m l^2 (MP-6, = MP-2 with d = l/2).
+pub fn slender_bar_end_inertia(m: f64, l: f64) -> f64 {
+    m * l * l / 3.0
+}
+
+/// Rectangle a x b about its center: I = 1/12 m (a^2 + b^2) (MP-9).
+pub fn rectangle_inertia(m: f64, a: f64, b: f64) -> f64 {
+    m * (a * a + b * b) / 12.0
+}
+
+/// Point mass at distance d from the axis: I = m d^2 (MP-9).
+pub fn point_mass_inertia(m: f64, d: f64) -> f64 {
+    m * d * d
+}
+
+/// Capsule (stadium) of straight length `length` between the cap centers and radius r,
+/// about its center: the rectangle 2r x length plus two half-discs moved out by the
+/// parallel-axis theorem (MP-9). With a = 4r/(3 pi) the half-disc's centroid offset and
+/// m_c the mass of both caps: I = m_r (L^2 + 4 r^2)/12 + m_c (r^2/2 + L^2/4 + L a).
+pub fn capsule_inertia(m: f64, length: f64, radius: f64) -> f64 {
+    let (l, r) = (length, radius);
+    let (a_rect, a_caps) = (2.0 * r * l, PI * r * r);
+    let area = a_rect + a_caps;
+    if area <= 0.0 {
+        return 0.0;
+    }
+    let (m_r, m_c) = (m * a_rect / area, m * a_caps / area);
+    let a = 4.0 * r / (3.0 * PI);
+    m_r * (l * l + 4.0 * r * r) / 12.0 + m_c * (r * r / 2.0 + l * l / 4.0 + l * a)
+}
+
+/// Parallel-axis theorem: I_O = I_G + m d^2, d the distance between the parallel axes (MP-2).
+pub fn parallel_axis(i_g: f64, m: f64, d: f64) -> f64 {
+    i_g + m * d * d
+}
+
+/// Radius of gyration k = sqrt(I / m) (MP-3); 0 for a massless body.
+pub fn radius_of_gyration(i: f64, m: f64) -> f64 {
+    if m > 0.0 {
+        (i / m).max(0.0).sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// The area, centroid and polar second moment about the centroid (per unit density)
+/// of a plane shape: what a density multiplies into mass properties.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AreaProps {
+    /// A, m^2.
+    pub area: f64,
+    /// Centroid, m.
+    pub centroid: DVec2,
+    /// J_C = integral of |r - c|^2 dA, m^4.
+    pub polar: f64,
+}
+
+/// Convex hull of a point set, counter-clockwise (Andrew's monotone chain); the level format
+/// uses the hull of a polygon's points.
+pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
+    let mut p: Vec<DVec2> = points.to_vec();
+    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let turn = |o: DVec2, a: DVec2, b: DVec2| super::cross(a - o, b - o);
+    let half = |pts: &mut dyn Iterator<Item = DVec2>| {
+        let mut h: Vec<DVec2> = Vec::new();
+        for q in pts {
+            while h.len() >= 2 && turn(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
+                h.pop();
+            }
+            h.push(q);
+        }
+        h.pop();
+        h
+    };
+    let mut hull = half(&mut p.iter().copied());
+    hull.extend(half(&mut p.iter().rev().copied()));
+    hull
+}
+
+/// Area properties of a simple polygon by triangulation from the origin (MP-9 "polygon: by
+/// triangulation"): each edge (p_i, p_i+1) spans a triangle with the origin of signed area
+/// c_i / 2, c_i = p_i x p_i+1, and second moment c_i/12 (x_i^2 + x_i x_i+1 + x_i+1^2 + same in y).
+pub fn polygon_area_props(points: &[DVec2]) -> AreaProps {
+    let n = points.len();
+    let (mut a2, mut cx, mut cy, mut j) = (0.0, 0.0, 0.0, 0.0);
+    for i in 0..n {
+        let (p, q) = (points[i], points[(i + 1) % n]);
+        let c = super::cross(p, q);
+        a2 += c;
+        cx += (p.x + q.x) * c;
+        cy += (p.y + q.y) * c;
+        j += c * (p.x * p.x + p.x * q.x + q.x * q.x + p.y * p.y + p.y * q.y + q.y * q.y);
+    }
+    let area = a2 / 2.0;
+    if area.abs() < 1e-300 {
+        return AreaProps::default();
+    }
+    let centroid = DVec2::new(cx, cy) / (3.0 * a2);
+    let j_origin = j / 12.0;
+    // Orientation-independent: divide out the sign of the area.
+    let s = area.signum();
+    AreaProps {
+        area: area.abs(),
+        centroid,
+        polar: s * j_origin - area.abs() * centroid.length_squared(),
+    }
+}
+
+/// Area properties of a level shape (in its own frame); segments have none.
+pub fn shape_area_props(shape: &Shape) -> AreaProps {
+    match shape {
+        Shape::Circle { radius } => AreaProps {
+            area: PI * radius * radius,
+            centroid: DVec2::ZERO,
+            polar: disc_inertia(PI * radius * radius, *radius),
+        },
+        Shape::Box { width, height } => AreaProps {
+            area: width * height,
+            centroid: DVec2::ZERO,
+            polar: rectangle_inertia(width * height, *width, *height),
+        },
+        Shape::Capsule { length, radius } => {
+            let area = 2.0 * radius * length + PI * radius * radius;
+            AreaProps {
+                area,
+                centroid: DVec2::ZERO,
+                polar: capsule_inertia(area, *length, *radius),
+            }
+        }
+        Shape::Polygon { points } => {
+            let pts: Vec<DVec2> = points.iter().map(|p| DVec2::new(p.0, p.1)).collect();
+            polygon_area_props(&convex_hull(&pts))
+        }
+        Shape::Segment { .. } => AreaProps::default(),
+        Shape::Compound { parts } => {
+            // Each part moved to its offset and turned (turning keeps the polar moment), then
+            // combined about the common centroid by the parallel-axis theorem (MP-2, MP-4).
+            let placed: Vec<AreaProps> = parts
+                .iter()
+                .map(|p| {
+                    let a = shape_area_props(&p.shape);
+                    AreaProps {
+                        centroid: DVec2::new(p.offset.0, p.offset.1)
+                            + DVec2::from_angle(p.angle).rotate(a.centroid),
+                        ..a
+                    }
+                })
+                .collect();
+            let area: f64 = placed.iter().map(|a| a.area).sum();
+            if area <= 0.0 {
+                return AreaProps::default();
+            }
+            let centroid = placed.iter().map(|a| a.centroid * a.area).sum::<DVec2>() / area;
+            let polar = placed
+                .iter()
+                .map(|a| parallel_axis(a.polar, a.area, (a.centroid - centroid).length()))
+                .sum();
+            AreaProps {
+                area,
+                centroid,
+                polar,
+            }
+        }
+    }
+}
+
+/// Mass properties of a shape of uniform area density rho (MP-1: I = rho * integral r^2 dA).
+pub fn of_shape(shape: &Shape, density: f64) -> MassProps {
+    let a = shape_area_props(shape);
+    MassProps {
+        mass: density * a.area,
+        com: a.centroid,
+        inertia: density * a.polar,
+    }
+}
+
+/// The textbook mass properties of a body as its level describes it: the shape's formula at
+/// the given mass (or density, default `default_density`), then the level's I_G or k_G
+/// override (MP-3: I_G = m k_G^2). Shapes without area (segments, no shape) put G at the body
+/// origin and I_G = 0 unless overridden.
+pub fn of_body(def: &BodyDef, default_density: f64) -> MassProps {
+    let a = def.shape.as_ref().map(shape_area_props).unwrap_or_default();
+    let mut mp = match (def.mass, def.density) {
+        (Some(m), _) => MassProps {
+            mass: m,
+            com: a.centroid,
+            inertia: if a.area > 0.0 {
+                m * a.polar / a.area
+            } else {
+                0.0
+            },
+        },
+        (None, d) => {
+            let rho = d.unwrap_or(default_density);
+            MassProps {
+                mass: rho * a.area,
+                com: a.centroid,
+                inertia: rho * a.polar,
+            }
+        }
+    };
+    if let Some(i) = def.inertia {
+        mp.inertia = i;
+    } else if let Some(k) = def.radius_of_gyration {
+        mp.inertia = mp.mass * k * k;
+    }
+    mp
+}

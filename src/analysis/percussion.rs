@@ -1,0 +1,60 @@
+//! The center of percussion of a body in fixed-axis rotation (concepts.md section 8, MK Art. 6/4).
+
+use super::{cross, k_cross};
+use glam::DVec2;
+
+/// Distance from the pivot O to the center of percussion Q along OG: q = I_O/(m r_bar) =
+/// k_O^2 / r_bar (CP-1). `None` when r_bar = 0: rotation about G has no Q (a pure couple).
+pub fn center_of_percussion_distance(i_o: f64, m: f64, r_bar: f64) -> Option<f64> {
+    if r_bar > 0.0 && m > 0.0 {
+        Some(i_o / (m * r_bar))
+    } else {
+        None
+    }
+}
+
+/// The center of percussion Q in world coordinates, on the line from the pivot O through G
+/// at q = (I_G + m r_bar^2)/(m r_bar) from O (CP-1 with MP-2).
+pub fn center_of_percussion(o: DVec2, r_g: DVec2, i_g: f64, m: f64) -> Option<DVec2> {
+    let d = r_g - o;
+    let r_bar = d.length();
+    let i_o = super::mass::parallel_axis(i_g, m, r_bar);
+    center_of_percussion_distance(i_o, m, r_bar).map(|q| o + d / r_bar * q)
+}
+
+/// One impulse acting on the pinned body during a window: J at world point p, plus a couple.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Blow {
+    pub impulse: DVec2,
+    pub point: DVec2,
+    pub couple: f64,
+}
+
+/// The pivot's reaction impulse on a body in rotation about the fixed pivot O over a window
+/// of length `dt` that starts with the blows (CP-3, generalized from JH P9.7.13):
+/// - angular impulse about O (the pivot has no moment there, 6/17): I_O d_omega = sum (r_{P/O} x J) + couples;
+/// - linear impulse (6/12): m dv_G = sum J + J_O, with dv_G = d_omega k x r_{G/O} - omega_1^2 r_{G/O} dt
+///   (the tangential jump plus the centripetal part over the window, PL-8).
+///
+/// Returns (J_O, omega_1). With a single blow perpendicular to OG at distance h from O on a body at
+/// rest, J_O = P (m r_bar h / I_O - 1), zero exactly at h = q (the center of percussion).
+pub fn pivot_impulse(
+    m: f64,
+    i_o: f64,
+    o: DVec2,
+    r_g: DVec2,
+    omega0: f64,
+    blows: &[Blow],
+    dt: f64,
+) -> (DVec2, f64) {
+    let r = r_g - o;
+    let angular: f64 = blows
+        .iter()
+        .map(|b| cross(b.point - o, b.impulse) + b.couple)
+        .sum();
+    let d_omega = angular / i_o;
+    let omega1 = omega0 + d_omega;
+    let dv_g = k_cross(d_omega, r) - omega1 * omega1 * r * dt;
+    let sum_j: DVec2 = blows.iter().map(|b| b.impulse).sum();
+    (m * dv_g - sum_j, omega1)
+}

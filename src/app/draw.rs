@@ -1,0 +1,212 @@
+//! A frame's line drawing as plain data (world coordinates, m), then emitted as gizmos.
+//!
+//! The scene and overlay builders fill a [`Drawing`] from the snapshot; `emit_gizmos` turns it into
+//! Bevy gizmos and the labels are painted by egui in screen space. Keeping the drawing as data lets
+//! the frame benchmark time everything up to the renderer.
+
+use bevy::gizmos::config::GizmoConfigGroup;
+use bevy::gizmos::gizmos::GizmoBuffer;
+use bevy::prelude::*;
+use glam::DVec2;
+
+/// Bevy's glam (0.32) from the core's (0.33): field copy.
+pub fn v2(p: DVec2) -> Vec2 {
+    Vec2::new(p.x as f32, p.y as f32)
+}
+
+/// One line primitive, world coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Prim {
+    Line(DVec2, DVec2, Color),
+    /// A polyline, closed or open.
+    Poly(Vec<DVec2>, bool, Color),
+    /// An arrow; the tip length is in pixels (screen-constant heads).
+    Arrow(DVec2, DVec2, Color),
+    Circle(DVec2, f64, Color),
+    /// A dot of a given radius in pixels.
+    Dot(DVec2, f64, Color),
+    /// A dashed line (dash length in pixels).
+    Dashed(DVec2, DVec2, Color),
+    /// A circular arrow (couple, angular velocity) around a point, radius in pixels, CCW if positive.
+    Curl(DVec2, f64, f64, Color),
+}
+
+/// A text label at a world point, offset in pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Label {
+    pub at: DVec2,
+    pub offset: Vec2,
+    /// Screen direction (y down) to push the label out along, clear of the point (arrow tips);
+    /// zero: centered on the point.
+    pub dir: Vec2,
+    pub text: String,
+    pub color: Color,
+    pub size: f32,
+}
+
+/// What a frame draws besides the filled meshes.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct Drawing {
+    pub prims: Vec<Prim>,
+    pub labels: Vec<Label>,
+    /// Meters per logical pixel of the view the drawing was built for.
+    pub m_per_px: f64,
+}
+
+impl Drawing {
+    pub fn clear(&mut self, m_per_px: f64) {
+        self.prims.clear();
+        self.labels.clear();
+        self.m_per_px = m_per_px;
+    }
+    pub fn label(&mut self, at: DVec2, offset: Vec2, text: impl Into<String>, color: Color) {
+        self.labels.push(Label {
+            at,
+            offset,
+            dir: Vec2::ZERO,
+            text: text.into(),
+            color,
+            size: 13.0,
+        });
+    }
+
+    /// A label just beyond an arrow's tip, along the arrow (world direction `dir`).
+    pub fn tip_label(&mut self, tip: DVec2, dir: DVec2, text: impl Into<String>, color: Color) {
+        let d = Vec2::new(dir.x as f32, -dir.y as f32).normalize_or_zero();
+        self.labels.push(Label {
+            at: tip,
+            offset: Vec2::ZERO,
+            dir: if d == Vec2::ZERO {
+                Vec2::new(0.0, -1.0)
+            } else {
+                d
+            },
+            text: text.into(),
+            color,
+            size: 13.0,
+        });
+    }
+}
+
+/// Screen-constant sizes (pixels) of heads and dashes.
+const ARROW_HEAD_PX: f64 = 9.0;
+const DASH_PX: f64 = 6.0;
+
+pub fn emit_gizmos(drawing: Res<Drawing>, mut gizmos: Gizmos) {
+    emit(&drawing, &mut gizmos);
+}
+
+/// The drawing as gizmo line vertices (the CPU side of the line rendering).
+pub fn emit<C: GizmoConfigGroup, K: 'static + Send + Sync>(
+    drawing: &Drawing,
+    gizmos: &mut GizmoBuffer<C, K>,
+) {
+    let px = drawing.m_per_px.max(1e-12);
+    for p in &drawing.prims {
+        match p {
+            Prim::Line(a, b, c) => gizmos.line_2d(v2(*a), v2(*b), *c),
+            Prim::Poly(pts, closed, c) => {
+                let it = pts.iter().copied().map(v2);
+                if *closed && pts.len() > 2 {
+                    gizmos.linestrip_2d(it.chain(std::iter::once(v2(pts[0]))), *c);
+                } else {
+                    gizmos.linestrip_2d(it, *c);
+                }
+            }
+            Prim::Arrow(a, b, c) => {
+                let len = (*b - *a).length();
+                if len <= 0.5 * px {
+                    continue;
+                }
+                gizmos
+                    .arrow_2d(v2(*a), v2(*b), *c)
+                    .with_tip_length((ARROW_HEAD_PX * px).min(0.5 * len) as f32);
+            }
+            Prim::Circle(center, r, c) => {
+                gizmos
+                    .circle_2d(Isometry2d::from_translation(v2(*center)), *r as f32, *c)
+                    .resolution(48);
+            }
+            Prim::Dot(center, r_px, c) => {
+                // A small filled-looking dot: concentric circles.
+                let r = r_px * px;
+                for k in 1..=3 {
+                    gizmos
+                        .circle_2d(
+                            Isometry2d::from_translation(v2(*center)),
+                            (r * k as f64 / 3.0) as f32,
+                            *c,
+                        )
+                        .resolution(16);
+                }
+            }
+            Prim::Dashed(a, b, c) => {
+                let d = *b - *a;
+                let len = d.length();
+                if len <= 0.0 {
+                    continue;
+                }
+                let dash = DASH_PX * px;
+                let n = (len / (2.0 * dash)).ceil() as usize;
+                let u = d / len;
+                for k in 0..n.min(2000) {
+                    let s0 = 2.0 * dash * k as f64;
+                    let s1 = (s0 + dash).min(len);
+                    gizmos.line_2d(v2(*a + u * s0), v2(*a + u * s1), *c);
+                }
+            }
+            Prim::Curl(center, r_px, sign, c) => {
+                // Three quarters of a circle with a head at the end, turning the way of `sign`.
+                let r = r_px * px;
+                let n = 24;
+                let a0 = -0.75 * std::f64::consts::PI;
+                let sweep = 1.5 * std::f64::consts::PI * sign.signum();
+                let pts: Vec<DVec2> = (0..=n)
+                    .map(|k| *center + DVec2::from_angle(a0 + sweep * k as f64 / n as f64) * r)
+                    .collect();
+                gizmos.linestrip_2d(pts.iter().copied().map(v2), *c);
+                let end = pts[n];
+                let tangent = DVec2::from_angle(a0 + sweep).perp() * sign.signum();
+                let h = ARROW_HEAD_PX * px;
+                let back = end - tangent * h;
+                let side = tangent.perp() * 0.45 * h;
+                gizmos.line_2d(v2(end), v2(back + side), *c);
+                gizmos.line_2d(v2(end), v2(back - side), *c);
+            }
+        }
+    }
+}
+
+/// Formats a value with 3 significant figures and its SI unit.
+pub fn si(value: f64, unit: &str) -> String {
+    let a = value.abs();
+    let s = if a == 0.0 || (1e-3..1e5).contains(&a) {
+        let digits = if a == 0.0 {
+            2
+        } else {
+            (2 - a.log10().floor() as i32).clamp(0, 6) as usize
+        };
+        format!("{value:.digits$}")
+    } else {
+        format!("{value:.2e}")
+    };
+    if unit.is_empty() {
+        s
+    } else {
+        format!("{s} {unit}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::si;
+
+    #[test]
+    fn si_keeps_three_significant_figures() {
+        assert_eq!(si(3.13209, "m/s"), "3.13 m/s");
+        assert_eq!(si(19.62, "N"), "19.6 N");
+        assert_eq!(si(0.0123, "m"), "0.0123 m");
+        assert_eq!(si(1234.0, "J"), "1234 J");
+        assert_eq!(si(2.5e-6, "N"), "2.50e-6 N");
+    }
+}

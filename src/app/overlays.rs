@@ -1,0 +1,548 @@
+//! The overlays the textbook draws, built from the snapshot as lines and labels: velocity and
+//! acceleration vectors, the instantaneous center of zero velocity, the free-body diagram beside
+//! the kinetic diagram, angular momentum about a point, trails.
+
+use super::draw::{si, Drawing, Prim};
+use super::geometry::{self, Outline};
+use super::physics::Physics;
+use super::quantities::{self, ForceKind};
+use super::view::palette;
+use crate::snapshot::{BodyKind, Snapshot};
+use bevy::prelude::*;
+use glam::DVec2;
+
+/// Which overlays are on (panel check boxes and keys) and what they are about.
+#[derive(Resource, Debug, Clone, PartialEq)]
+pub struct Overlays {
+    /// V: velocity of each mass center (and of the clicked point).
+    pub velocity: bool,
+    /// A: acceleration of each mass center.
+    pub acceleration: bool,
+    /// C: instantaneous center of zero velocity, with lines to G and to the clicked point.
+    pub instant_center: bool,
+    /// F: free-body diagram.
+    pub free_body: bool,
+    /// K: kinetic diagram (m a_G, I_G alpha) beside the free-body diagram.
+    pub kinetic: bool,
+    /// H: angular momentum about the point O.
+    pub momentum: bool,
+    /// T: trails of the mass centers.
+    pub trails: bool,
+    /// L: magnitudes next to the arrows.
+    pub labels: bool,
+    /// The body the diagrams are about (None: every moving body when there are few).
+    pub selected: Option<usize>,
+    /// A clicked point, in the selected body's frame.
+    pub point: Option<(usize, DVec2)>,
+    /// The point O for H_O, world frame.
+    pub origin: DVec2,
+}
+
+impl Default for Overlays {
+    fn default() -> Self {
+        Overlays {
+            velocity: true,
+            acceleration: false,
+            instant_center: false,
+            free_body: false,
+            kinetic: false,
+            momentum: false,
+            trails: true,
+            labels: true,
+            selected: None,
+            point: None,
+            origin: DVec2::ZERO,
+        }
+    }
+}
+
+/// Diagrams are drawn for every moving body up to this many; beyond it, only for the selected one.
+const FEW: usize = 4;
+
+/// The longest arrow, as a fraction of the scene size (longer ones are clipped, their label is true).
+const MAX_ARROW: f64 = 0.45;
+
+/// Reference magnitudes that set the arrow scales: a reference maps to `REF_ARROW` of the scene.
+#[derive(Debug, Clone, Copy)]
+pub struct Scales {
+    /// m/s, m/s^2, N.
+    pub speed: f64,
+    pub accel: f64,
+    pub force: f64,
+    /// Scene size, m.
+    pub size: f64,
+    pub m_per_px: f64,
+}
+
+/// The longest arrow on screen, px (an impact's contact force would leave the view).
+const MAX_ARROW_PX: f64 = 170.0;
+
+const REF_ARROW: f64 = 0.15;
+
+impl Scales {
+    /// Scales from the scene: gravity and the heaviest body set forces; the fastest speed so far
+    /// sets velocities (it only grows, so arrows do not flicker).
+    pub fn of(s: &Snapshot, size: f64, speed_so_far: f64, m_per_px: f64) -> Scales {
+        let g = s.gravity.length();
+        let heaviest = s
+            .bodies
+            .iter()
+            .filter(|b| b.kind == BodyKind::Dynamic)
+            .map(|b| b.mass)
+            .fold(0.0, f64::max);
+        let loads = s.loads.iter().map(|l| l.force.length()).fold(0.0, f64::max);
+        let springs = s
+            .springs
+            .iter()
+            .map(|l| l.tension.abs())
+            .fold(0.0, f64::max);
+        let force = (heaviest * g).max(loads).max(springs);
+        Scales {
+            speed: speed_so_far.max((g * size).sqrt() * 0.5).max(1e-3),
+            accel: if g > 0.0 { g } else { 1.0 },
+            force: if force > 0.0 { force } else { 1.0 },
+            size,
+            m_per_px,
+        }
+    }
+
+    fn len(&self, magnitude: f64, reference: f64) -> f64 {
+        (magnitude / reference * REF_ARROW * self.size)
+            .min(MAX_ARROW * self.size)
+            .min(MAX_ARROW_PX * self.m_per_px)
+    }
+
+    /// An arrow of `vector` (with reference `reference`) from `from`.
+    fn arrow(&self, from: DVec2, vector: DVec2, reference: f64) -> DVec2 {
+        let m = vector.length();
+        if m == 0.0 {
+            return from;
+        }
+        from + vector / m * self.len(m, reference)
+    }
+}
+
+/// The bodies the diagrams are about.
+fn subjects(ov: &Overlays, s: &Snapshot) -> Vec<usize> {
+    if let Some(i) = ov.selected.filter(|i| *i < s.bodies.len()) {
+        return vec![i];
+    }
+    let moving: Vec<usize> = s
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.kind == BodyKind::Dynamic)
+        .map(|(i, _)| i)
+        .collect();
+    if moving.len() <= FEW {
+        moving
+    } else {
+        Vec::new()
+    }
+}
+
+fn force_color(k: ForceKind) -> Color {
+    match k {
+        ForceKind::Gravity => palette::GRAVITY,
+        ForceKind::ContactNormal => palette::NORMAL,
+        ForceKind::Friction => palette::FRICTION,
+        ForceKind::Joint => palette::REACTION,
+        ForceKind::Spring => palette::SPRING,
+        ForceKind::Load => palette::LOAD,
+        ForceKind::Coupling => palette::COUPLING,
+    }
+}
+
+/// Builds every enabled overlay into `d`.
+pub fn build(
+    ov: &Overlays,
+    phys: &Physics,
+    outlines: &[Outline],
+    scales: &Scales,
+    d: &mut Drawing,
+) {
+    let s = phys.snapshot();
+    let px = d.m_per_px;
+    let few = subjects(ov, s);
+    let labels = ov.labels;
+    let label_all = ov.labels
+        && few.len()
+            == s.bodies
+                .iter()
+                .filter(|b| b.kind == BodyKind::Dynamic)
+                .count();
+
+    if ov.trails {
+        for (trail, b) in phys.trails.iter().zip(&s.bodies) {
+            if b.kind != BodyKind::Fixed && trail.len() > 1 {
+                d.prims.push(Prim::Poly(
+                    trail.iter().copied().collect(),
+                    false,
+                    palette::TRAIL,
+                ));
+            }
+        }
+    }
+
+    if ov.velocity {
+        for (i, b) in s.bodies.iter().enumerate() {
+            if b.kind == BodyKind::Fixed {
+                continue;
+            }
+            let tip = scales.arrow(b.com, b.velocity, scales.speed);
+            d.prims.push(Prim::Arrow(b.com, tip, palette::VELOCITY));
+            if labels && (label_all || few.contains(&i)) && b.velocity.length() > 1e-9 {
+                d.tip_label(
+                    tip,
+                    b.velocity,
+                    format!("v_G = {}", si(b.velocity.length(), "m/s")),
+                    palette::VELOCITY,
+                );
+            }
+        }
+        if let Some((i, local)) = ov.point.filter(|(i, _)| *i < s.bodies.len()) {
+            let b = &s.bodies[i];
+            let p = b.world_point(local);
+            let v = quantities::point_velocity(b, p);
+            let tip = scales.arrow(p, v, scales.speed);
+            d.prims.push(Prim::Dot(p, 3.0, palette::VELOCITY));
+            d.prims.push(Prim::Arrow(p, tip, palette::VELOCITY));
+            if labels {
+                d.tip_label(
+                    tip,
+                    v,
+                    format!("v_P = {}", si(v.length(), "m/s")),
+                    palette::VELOCITY,
+                );
+            }
+        }
+    }
+
+    let acc = phys
+        .prev_velocities
+        .as_ref()
+        .map(|(prev, dt)| quantities::accelerations(s, prev, *dt));
+
+    if ov.acceleration {
+        if let Some(acc) = &acc {
+            for (i, (b, (a, _))) in s.bodies.iter().zip(acc).enumerate() {
+                if b.kind == BodyKind::Fixed {
+                    continue;
+                }
+                let tip = scales.arrow(b.com, *a, scales.accel);
+                d.prims.push(Prim::Arrow(b.com, tip, palette::ACCEL));
+                if labels && (label_all || few.contains(&i)) && a.length() > 1e-9 {
+                    d.tip_label(
+                        tip,
+                        *a,
+                        format!("a_G = {}", si(a.length(), "m/s²")),
+                        palette::ACCEL,
+                    );
+                }
+            }
+        }
+    }
+
+    if ov.instant_center {
+        for &i in &few {
+            let b = &s.bodies[i];
+            let size = outlines
+                .get(i)
+                .map_or(0.0, |o| extent(o, b.local_com))
+                .max(0.01);
+            match quantities::instant_center(b, size) {
+                Some(c) if (c - b.com).length() < 50.0 * scales.size => {
+                    d.prims.push(Prim::Dot(c, 4.0, palette::CENTER));
+                    d.prims.push(Prim::Dashed(c, b.com, palette::CENTER));
+                    if let Some((_, local)) = ov.point.filter(|(j, _)| *j == i) {
+                        d.prims
+                            .push(Prim::Dashed(c, b.world_point(local), palette::CENTER));
+                    }
+                    if labels {
+                        let r = (b.com - c).length();
+                        d.label(
+                            c,
+                            Vec2::new(0.0, 14.0),
+                            format!(
+                                "IC  (r_G/IC = {}, ω = {})",
+                                si(r, "m"),
+                                si(b.omega, "rad/s")
+                            ),
+                            palette::CENTER,
+                        );
+                    }
+                }
+                _ => {
+                    if labels && b.velocity.length() > 1e-3 * scales.speed {
+                        // Beside the body, across from the velocity arrow.
+                        let r = outlines.get(i).map_or(0.0, |o| extent(o, b.local_com));
+                        let away = -b.velocity.perp().normalize_or(DVec2::Y);
+                        d.tip_label(
+                            b.com + away * r,
+                            away,
+                            "IC at infinity (translation)",
+                            palette::CENTER,
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    if ov.instant_center {
+        for &i in &few {
+            if let Some((o, p, q)) = center_of_percussion(phys, i) {
+                d.prims.push(Prim::Dashed(o, p, palette::CENTER));
+                d.prims.push(Prim::Circle(p, 5.0 * px, palette::CENTER));
+                d.prims.push(Prim::Line(
+                    p - DVec2::new(5.0, 5.0) * px,
+                    p + DVec2::new(5.0, 5.0) * px,
+                    palette::CENTER,
+                ));
+                d.prims.push(Prim::Line(
+                    p - DVec2::new(5.0, -5.0) * px,
+                    p + DVec2::new(5.0, -5.0) * px,
+                    palette::CENTER,
+                ));
+                if labels {
+                    d.tip_label(
+                        p,
+                        p - o,
+                        format!("center of percussion, q = {}", si(q, "m")),
+                        palette::CENTER,
+                    );
+                }
+            }
+        }
+    }
+
+    if ov.free_body || ov.kinetic {
+        for &i in &few {
+            let b = &s.bodies[i];
+            if b.kind != BodyKind::Dynamic {
+                continue;
+            }
+            // Mean forces over the last frame's steps when the step is short (see free_body_mean).
+            let (forces, couple) = if phys.recent.len() > 1 {
+                quantities::free_body_mean(phys.recent.iter(), i)
+            } else {
+                quantities::free_body(s, i)
+            };
+            if ov.free_body {
+                for f in &forces {
+                    let color = force_color(f.kind);
+                    let len = scales.len(f.force.length(), scales.force);
+                    let u = f.force.normalize_or_zero();
+                    // Textbook convention: a push (contact, or any force toward G) is drawn ending at
+                    // its point, from outside; a pull (tension) starts at its point.
+                    // A force at the end of a light link (off the body's shape) is drawn along the
+                    // link, ending at its point, so it stays beside the body it acts on.
+                    let local = DVec2::from_angle(-b.angle).rotate(f.point - b.position);
+                    let off_shape = outlines
+                        .get(i)
+                        .is_some_and(|o| !o.filled.is_empty() && !o.contains(local, 2.0 * px));
+                    // Reactions (contacts, pins, cables) are drawn ending at their point.
+                    let pushes = matches!(
+                        f.kind,
+                        ForceKind::ContactNormal
+                            | ForceKind::Friction
+                            | ForceKind::Joint
+                            | ForceKind::Coupling
+                    ) || (f.kind != ForceKind::Gravity
+                        && (off_shape || f.force.dot(b.com - f.point) > 0.0));
+                    let (a, z) = if pushes {
+                        (f.point - u * len, f.point)
+                    } else {
+                        (f.point, f.point + u * len)
+                    };
+                    if len < 2.0 * px {
+                        continue;
+                    }
+                    d.prims.push(Prim::Arrow(a, z, color));
+                    if labels {
+                        // At the free end of the arrow: the tail for pushes, the head for pulls.
+                        let (at, dir) = if pushes { (a, -u) } else { (z, u) };
+                        d.tip_label(
+                            at,
+                            dir,
+                            format!("{} = {}", f.kind.symbol(), si(f.force.length(), "N")),
+                            color,
+                        );
+                    }
+                }
+                if couple.abs() > 1e-9 {
+                    d.prims.push(Prim::Curl(b.com, 16.0, couple, palette::LOAD));
+                    if labels {
+                        d.label(
+                            b.com,
+                            Vec2::new(24.0, 20.0),
+                            format!("M = {}", si(couple, "N m")),
+                            palette::LOAD,
+                        );
+                    }
+                }
+            }
+            if ov.kinetic {
+                // The acceleration over the same window as the forces.
+                let a = match (phys.recent.front(), phys.recent.back()) {
+                    (Some(first), Some(last))
+                        if phys.recent.len() > 1 && last.time > first.time =>
+                    {
+                        let (b0, b1) = (&first.bodies[i], &last.bodies[i]);
+                        let t = last.time - first.time;
+                        Some(((b1.velocity - b0.velocity) / t, (b1.omega - b0.omega) / t))
+                    }
+                    _ => acc.as_ref().map(|acc| acc[i]),
+                };
+                if let Some(a) = a {
+                    kinetic_diagram(i, s, outlines, a, &forces, scales, labels, d);
+                }
+            }
+        }
+    }
+
+    if ov.momentum {
+        let o = ov.origin;
+        let h = quantities::angular_momentum_about(s, o);
+        d.prims.push(Prim::Dot(o, 3.0, palette::MOMENTUM));
+        d.prims.push(Prim::Curl(
+            o,
+            22.0,
+            if h == 0.0 { 1.0 } else { h },
+            palette::MOMENTUM,
+        ));
+        if labels {
+            d.label(
+                o,
+                Vec2::new(0.0, 34.0),
+                format!("H_O = {}", si(h, "N m s")),
+                palette::MOMENTUM,
+            );
+        }
+    }
+}
+
+/// The center of percussion of body `i` if it is pinned to a fixed body: on the line from the pin O
+/// through G at q = k_O^2 / r_G from O (MK art. 6/4, eq. 6/5 with I_O = I_G + m r_G^2). A blow
+/// there leaves the pin without reaction. Returns (O, P, q).
+pub fn center_of_percussion(phys: &Physics, i: usize) -> Option<(DVec2, DVec2, f64)> {
+    let s = phys.snapshot();
+    let b = s.bodies.get(i)?;
+    if b.kind != BodyKind::Dynamic || b.mass <= 0.0 {
+        return None;
+    }
+    let level = &phys.sim.level;
+    s.joints.iter().enumerate().find_map(|(k, j)| {
+        let revolute = level
+            .joints
+            .get(k)
+            .is_some_and(|d| d.kind == crate::level::JointKind::Revolute);
+        let o = if j.body2 == i && s.bodies[j.body1].kind == BodyKind::Fixed {
+            j.anchor
+        } else if j.body1 == i && s.bodies[j.body2].kind == BodyKind::Fixed {
+            j.anchor1
+        } else {
+            return None;
+        };
+        let r = (b.com - o).length();
+        if !revolute || r < 1e-9 {
+            return None;
+        }
+        let q = (b.inertia / b.mass + r * r) / r;
+        Some((o, o + (b.com - o) / r * q, q))
+    })
+}
+
+/// Largest distance of the outline from the mass center, m.
+fn extent(o: &Outline, com: DVec2) -> f64 {
+    o.points().map(|p| (p - com).length()).fold(0.0, f64::max)
+}
+
+/// The kinetic diagram of body `i` drawn to the right of it: m a_G at G and I_G alpha as a curl
+/// (MK art. 6/2: the free-body diagram "equals" the kinetic diagram). The label gives sum F too,
+/// so the student sees Newton's law hold (to the O(dt) of the difference quotient).
+#[allow(clippy::too_many_arguments)]
+fn kinetic_diagram(
+    i: usize,
+    s: &Snapshot,
+    outlines: &[Outline],
+    (a, alpha): (DVec2, f64),
+    forces: &[quantities::Force],
+    scales: &Scales,
+    labels: bool,
+    d: &mut Drawing,
+) {
+    let b = &s.bodies[i];
+    let px = d.m_per_px;
+    let o = &outlines[i];
+    let r = extent(o, b.local_com).max(8.0 * px);
+    // Beside the body: its current width plus a gap.
+    let here = geometry::place(o, b.position, b.angle);
+    let mut aabb = geometry::Bounds::empty();
+    o.points().for_each(|p| aabb.add(here(p)));
+    let width = if aabb.is_empty() {
+        2.0 * r
+    } else {
+        aabb.size().x
+    };
+    let shift = DVec2::new(width + 90.0 * px, 0.0);
+    let to_world = geometry::place(o, b.position + shift, b.angle);
+    for poly in &o.filled {
+        d.prims.push(Prim::Poly(
+            poly.iter().map(|p| to_world(*p)).collect(),
+            true,
+            palette::OUTLINE,
+        ));
+    }
+    let g = b.com + shift;
+    d.prims.push(Prim::Circle(g, 3.0 * px, palette::OUTLINE));
+    let ma = a * b.mass;
+    let tip = scales.arrow(g, ma, scales.force);
+    d.prims.push(Prim::Arrow(g, tip, palette::ACCEL));
+    let ia = b.inertia * alpha;
+    if ia.abs() > 1e-12 {
+        d.prims.push(Prim::Curl(g, 14.0, ia, palette::ACCEL));
+    }
+    let sum: DVec2 = forces.iter().map(|f| f.force).sum();
+    d.label(b.com + 0.5 * shift, Vec2::ZERO, "=", palette::TEXT);
+    if labels {
+        d.tip_label(
+            tip,
+            ma,
+            format!("m a_G = {}", si(ma.length(), "N")),
+            palette::ACCEL,
+        );
+        d.label(
+            g,
+            Vec2::new(0.0, 22.0 + (r / px) as f32),
+            format!("ΣF = {}   I_G α = {}", si(sum.length(), "N"), si(ia, "N m")),
+            palette::TEXT,
+        );
+    }
+}
+
+/// Keys: V A C F K H T L toggle the overlays.
+pub fn overlay_keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut ov: ResMut<Overlays>,
+    egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+) {
+    if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
+        return;
+    }
+    let ov = &mut *ov;
+    for (key, flag) in [
+        (KeyCode::KeyV, &mut ov.velocity),
+        (KeyCode::KeyA, &mut ov.acceleration),
+        (KeyCode::KeyC, &mut ov.instant_center),
+        (KeyCode::KeyF, &mut ov.free_body),
+        (KeyCode::KeyK, &mut ov.kinetic),
+        (KeyCode::KeyH, &mut ov.momentum),
+        (KeyCode::KeyT, &mut ov.trails),
+        (KeyCode::KeyL, &mut ov.labels),
+    ] {
+        if keys.just_pressed(key) {
+            *flag = !*flag;
+        }
+    }
+}

@@ -1,0 +1,389 @@
+//! The physics plugin: the core [`Simulation`] stepped in `FixedUpdate` at the level's dt.
+//!
+//! One `FixedUpdate` = one `Simulation::step`, with `Time<Fixed>` set to the level's dt, so the
+//! window computes exactly the numbers `rigidlab check` computes (tests/app.rs asserts it bit for
+//! bit). Time scale acts on `Time<Virtual>`, never on dt. Everything the overlays and plots need
+//! per step (previous velocities, trails, energy series) is recorded here, step by step, so it does
+//! not depend on the frame rate.
+
+use super::quantities;
+use crate::checks::questions::{QuestionProbe, QuestionResult};
+use crate::checks::{probe_for, CheckResult, Probe};
+use crate::level::Scene;
+use crate::sim::{Options, Simulation};
+use crate::snapshot::Snapshot;
+use bevy::prelude::*;
+use glam::DVec2;
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
+
+/// The set the physics step runs in (in `FixedUpdate`, and in `Update` for single steps).
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct PhysicsStep;
+
+/// Runs a scene: inserts [`Physics`] and [`LiveChecks`] and steps in `FixedUpdate`.
+pub struct PhysicsPlugin {
+    pub scene: Scene,
+    pub options: Options,
+    /// Start paused (the sandbox waits for play; tests and renders run at once).
+    pub paused: bool,
+}
+
+impl Plugin for PhysicsPlugin {
+    fn build(&self, app: &mut App) {
+        let phys = Physics::new(self.scene.clone(), self.options.clone(), self.paused);
+        app.insert_resource(Time::<Fixed>::from_seconds(phys.sim.dt()));
+        app.insert_non_send(LiveChecks::new(&phys));
+        app.insert_resource(phys);
+        app.add_systems(PreUpdate, new_frame);
+        app.add_systems(
+            FixedUpdate,
+            (fixed_step, observe_checks).chain().in_set(PhysicsStep),
+        );
+        app.add_systems(
+            Update,
+            (manual_steps, observe_checks, sync_fixed_timestep)
+                .chain()
+                .in_set(PhysicsStep),
+        );
+    }
+}
+
+/// Recent wall times of `Simulation::step`, for the solver panel.
+#[derive(Debug, Clone, Default)]
+pub struct StepTimes {
+    recent: VecDeque<f64>,
+}
+
+impl StepTimes {
+    const KEEP: usize = 120;
+    pub fn push(&mut self, ms: f64) {
+        if self.recent.len() == Self::KEEP {
+            self.recent.pop_front();
+        }
+        self.recent.push_back(ms);
+    }
+    /// Median of the recent steps, ms (the machine is noisy: a median, not a mean).
+    pub fn median_ms(&self) -> Option<f64> {
+        if self.recent.is_empty() {
+            return None;
+        }
+        let mut v: Vec<f64> = self.recent.iter().copied().collect();
+        v.sort_by(f64::total_cmp);
+        Some(v[v.len() / 2])
+    }
+}
+
+/// One sample of the live plots.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeriesPoint {
+    pub t: f64,
+    /// Kinetic energy T, J.
+    pub kinetic: f64,
+    /// Gravitational potential energy V_g (zero at y = 0), J.
+    pub gravity: f64,
+    /// Elastic potential energy V_e of the springs, J.
+    pub elastic: f64,
+    /// Angular momentum about the world origin H_O, N m s.
+    pub h_o: f64,
+}
+
+impl SeriesPoint {
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.gravity + self.elastic
+    }
+}
+
+/// Everything about the running level. The snapshot of the last step is `sim.snapshot()`.
+#[derive(Resource)]
+pub struct Physics {
+    /// The level as played (spawned bodies and solver changes included).
+    pub scene: Scene,
+    pub options: Options,
+    pub sim: Simulation,
+    /// Bumped by every reset/rebuild, so views and checks know to start over.
+    pub generation: u64,
+    pub paused: bool,
+    /// Single steps requested while paused (run in `Update`).
+    pub steps_requested: u32,
+    /// Pause when the level's duration is reached (where `rigidlab check` stops).
+    pub stop_at_end: bool,
+    /// Why the run stopped (an explosion), shown in the panel.
+    pub error: Option<String>,
+    pub step_times: StepTimes,
+    /// v_G and omega of every body before the last step, and its dt (for accelerations).
+    pub prev_velocities: Option<(Vec<(DVec2, f64)>, f64)>,
+    /// Mass-center positions for the trails, one deque per body.
+    pub trails: Vec<VecDeque<DVec2>>,
+    /// Energy and momentum against time (thinned to at most `SERIES_MAX` points).
+    pub series: Vec<SeriesPoint>,
+    series_every: u64,
+    /// Set when the user pushed or dragged a body: the run is no longer the exercise's.
+    pub interfered: bool,
+    /// Wall time the physics may take per frame, ms: beyond it the remaining fixed steps of the
+    /// frame are dropped (the scene runs slower than real time instead of freezing the window).
+    pub frame_budget_ms: f64,
+    frame_ms: f64,
+    /// Steps were dropped recently to keep the window responsive.
+    pub behind: bool,
+    /// The last steps' snapshots when a frame spans several steps (small dt, few bodies), oldest
+    /// first, for diagrams averaged over a frame; empty otherwise.
+    pub recent: VecDeque<Snapshot>,
+    /// The state at t = 0 (checks start from it even when the first step ran before they looked).
+    pub initial: Snapshot,
+}
+
+/// Beyond this many bodies, diagrams are not averaged over a frame (the copies would cost).
+const RECENT_MAX_BODIES: usize = 200;
+
+/// Trails keep this many points per body.
+pub const TRAIL_LEN: usize = 240;
+const SERIES_MAX: usize = 4000;
+
+impl Physics {
+    pub fn new(scene: Scene, options: Options, paused: bool) -> Self {
+        let sim = Simulation::new(&scene, &options);
+        let initial = sim.snapshot().clone();
+        let sim_initial = &initial;
+        let mut p = Physics {
+            scene,
+            options,
+            sim,
+            generation: 0,
+            paused,
+            steps_requested: 0,
+            stop_at_end: true,
+            error: None,
+            step_times: StepTimes::default(),
+            prev_velocities: None,
+            trails: Vec::new(),
+            series: Vec::new(),
+            series_every: 1,
+            interfered: false,
+            frame_budget_ms: 30.0,
+            recent: VecDeque::new(),
+            frame_ms: 0.0,
+            behind: false,
+            initial: Snapshot::clone(sim_initial),
+        };
+        p.start_records();
+        p
+    }
+
+    fn start_records(&mut self) {
+        self.initial = self.sim.snapshot().clone();
+        let s = self.sim.snapshot();
+        self.trails = s.bodies.iter().map(|b| VecDeque::from([b.com])).collect();
+        self.series = vec![series_point(s)];
+        self.series_every = 1;
+        self.prev_velocities = None;
+        self.recent.clear();
+    }
+
+    /// How many steps one displayed frame (1/60 s) spans: the window of the averaged diagrams.
+    pub fn frame_window(&self) -> usize {
+        if self.sim.snapshot().bodies.len() > RECENT_MAX_BODIES {
+            return 1;
+        }
+        ((1.0 / 60.0) / self.sim.dt()).round().max(1.0) as usize
+    }
+
+    /// Back to t = 0 with the current scene and options.
+    pub fn reset(&mut self) {
+        self.sim = Simulation::new(&self.scene, &self.options);
+        self.generation += 1;
+        self.error = None;
+        self.steps_requested = 0;
+        self.interfered = false;
+        self.step_times = StepTimes::default();
+        self.start_records();
+    }
+
+    /// Replaces the scene (level browser, spawned body) and resets.
+    pub fn load(&mut self, scene: Scene) {
+        self.scene = scene;
+        self.reset();
+    }
+
+    pub fn snapshot(&self) -> &Snapshot {
+        self.sim.snapshot()
+    }
+
+    /// True once the level's duration has been simulated.
+    pub fn at_end(&self) -> bool {
+        self.sim.snapshot().step >= self.sim.total_steps()
+    }
+
+    /// One physics step and its records. Returns false when the run cannot go on.
+    pub fn advance(&mut self) -> bool {
+        if self.error.is_some() {
+            return false;
+        }
+        let before: Vec<(DVec2, f64)> = self
+            .sim
+            .snapshot()
+            .bodies
+            .iter()
+            .map(|b| (b.velocity, b.omega))
+            .collect();
+        let t0 = Instant::now();
+        let result = self.sim.step().map(|_| ());
+        self.step_times.push(t0.elapsed().as_secs_f64() * 1e3);
+        if let Err(e) = result {
+            self.error = Some(format!("the simulation stopped at {e}"));
+            self.paused = true;
+            return false;
+        }
+        let window = self.frame_window();
+        if window > 1 {
+            if self.recent.len() >= window {
+                self.recent.pop_front();
+            }
+            self.recent.push_back(self.sim.snapshot().clone());
+        } else if !self.recent.is_empty() {
+            self.recent.clear();
+        }
+        let s = self.sim.snapshot();
+        self.prev_velocities = Some((before, s.dt));
+        // Trails: one point every step, but no closer than needed for a smooth curve.
+        let keep_every = ((1.0 / 120.0) / s.dt).round().max(1.0) as u64;
+        if s.step % keep_every == 0 {
+            for (trail, b) in self.trails.iter_mut().zip(&s.bodies) {
+                if trail.len() == TRAIL_LEN {
+                    trail.pop_front();
+                }
+                trail.push_back(b.com);
+            }
+        }
+        if s.step % self.series_every == 0 {
+            let p = series_point(s);
+            self.series.push(p);
+            if self.series.len() >= SERIES_MAX {
+                // Keep every other point: the plot stays within SERIES_MAX over any run length.
+                let thinned: Vec<SeriesPoint> = self.series.iter().step_by(2).copied().collect();
+                self.series = thinned;
+                self.series_every *= 2;
+            }
+        }
+        if self.stop_at_end && self.at_end() {
+            self.paused = true;
+        }
+        true
+    }
+}
+
+fn series_point(s: &Snapshot) -> SeriesPoint {
+    SeriesPoint {
+        t: s.time,
+        kinetic: quantities::kinetic_energy(s),
+        gravity: quantities::gravity_potential(s),
+        elastic: s.springs.iter().map(|sp| sp.energy).sum(),
+        h_o: quantities::angular_momentum_about(s, DVec2::ZERO),
+    }
+}
+
+fn fixed_step(mut phys: ResMut<Physics>) {
+    if phys.paused {
+        return;
+    }
+    // The first step of a frame always runs, so one FixedUpdate is always one step.
+    if phys.frame_ms > phys.frame_budget_ms {
+        phys.behind = true;
+        return;
+    }
+    let t0 = Instant::now();
+    phys.advance();
+    phys.frame_ms += t0.elapsed().as_secs_f64() * 1e3;
+}
+
+fn new_frame(mut phys: ResMut<Physics>) {
+    phys.frame_ms = 0.0;
+}
+
+fn manual_steps(mut phys: ResMut<Physics>) {
+    while phys.steps_requested > 0 {
+        phys.steps_requested -= 1;
+        if !phys.advance() {
+            phys.steps_requested = 0;
+        }
+    }
+}
+
+/// Keeps `Time<Fixed>` at the simulation's dt after solver changes.
+fn sync_fixed_timestep(phys: Res<Physics>, mut fixed: ResMut<Time<Fixed>>) {
+    let dt = Duration::from_secs_f64(phys.sim.dt());
+    if fixed.timestep() != dt {
+        fixed.set_timestep(dt);
+    }
+}
+
+/// The level's checks and questions, fed every snapshot as `rigidlab check` feeds them.
+///
+/// Non-send because `checks::Probe` is not `Send`; results appear when the level's duration is
+/// reached (a probe reports only when finished).
+pub struct LiveChecks {
+    generation: u64,
+    last_step: Option<u64>,
+    probes: Vec<Box<dyn Probe>>,
+    questions: Vec<QuestionProbe>,
+    /// Set at the level's end: the same results `rigidlab check` prints.
+    pub checks: Option<Vec<CheckResult>>,
+    pub answers: Option<Vec<QuestionResult>>,
+}
+
+impl LiveChecks {
+    pub fn new(phys: &Physics) -> Self {
+        let level = &phys.sim.level;
+        let mut live = LiveChecks {
+            generation: phys.generation,
+            last_step: Some(0),
+            probes: level.checks.iter().map(|c| probe_for(level, c)).collect(),
+            questions: level.questions.iter().map(QuestionProbe::new).collect(),
+            checks: None,
+            answers: None,
+        };
+        for p in live.probes.iter_mut() {
+            p.observe(&phys.initial);
+        }
+        for q in live.questions.iter_mut() {
+            q.observe(&phys.initial);
+        }
+        live
+    }
+
+    /// Feeds the current snapshot once (idempotent within a step), finishing at the level's end.
+    pub fn observe(&mut self, phys: &Physics) {
+        if self.generation != phys.generation {
+            *self = LiveChecks::new(phys);
+        }
+        let s = phys.snapshot();
+        if self.last_step == Some(s.step) || self.checks.is_some() {
+            return;
+        }
+        self.last_step = Some(s.step);
+        for p in self.probes.iter_mut() {
+            p.observe(s);
+        }
+        for q in self.questions.iter_mut() {
+            q.observe(s);
+        }
+        if phys.at_end() {
+            self.checks = Some(
+                std::mem::take(&mut self.probes)
+                    .into_iter()
+                    .map(|p| p.finish())
+                    .collect(),
+            );
+            self.answers = Some(
+                std::mem::take(&mut self.questions)
+                    .into_iter()
+                    .map(|q| q.finish(None))
+                    .collect(),
+            );
+        }
+    }
+}
+
+fn observe_checks(phys: Res<Physics>, mut live: NonSendMut<LiveChecks>) {
+    live.observe(&phys);
+}

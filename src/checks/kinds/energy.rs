@@ -1,0 +1,669 @@
+//! Energy checks: `kinetic_energy_g`, `kinetic_energy_ic`, `work_energy`.
+
+use super::{
+    before_of, body_def, copy_motions, dynamic_body, misconfigured, result, scale_or, subject_of,
+    subject_set, substeps, textbook_mass, v2, Summary, Worst,
+};
+use crate::analysis::energy::{
+    gravity_potential, kinetic_energy, kinetic_energy_about_ic, work_of_impulse_with_arm,
+    work_of_pair_impulse,
+};
+use crate::analysis::kinematics::{
+    instantaneous_center, omega_from_angles, velocity_from_positions, wrap_angle,
+};
+use crate::analysis::kinetics::{for_each_external_impulse_with, Before, ContactArms, Source};
+use crate::analysis::mass::MassProps;
+use crate::analysis::Motion;
+use crate::checks::{CheckResult, Probe};
+use crate::level::{CheckDef, JointKind, Level};
+use crate::snapshot::{BodyState, Snapshot};
+use glam::DVec2;
+
+/// The engine's kinetic energy of a body: 6/9 with rapier's v_G, omega, m and I_G.
+fn engine_ke(b: &BodyState) -> f64 {
+    kinetic_energy(b.mass, b.velocity, b.inertia, b.omega)
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// `kinetic_energy_g`: T = 1/2 m v_G^2 + 1/2 I_G omega^2 (6/9) of the motion the engine drew,
+/// against the engine's own kinetic energy.
+///
+/// Theory: 6/9 with the shape formula's m and I_G (`analysis::mass`) and with v_G and omega
+/// taken from the engine's **poses** (G placed by the formula's mass center): the velocity that
+/// the positions imply for symplectic Euler over S substeps (`kinematics::velocity_from_positions`,
+/// exact for constant acceleration). Engine: 6/9 with rapier's velocity state and its own mass
+/// properties. So the check fails if rapier's mass properties differ from the shape's, or if the
+/// bodies do not move with the velocities the engine reports (position correction, a wrong substep
+/// count). Each sample needs the steps either side, so the last step is not compared, and steps
+/// with an event impulse on the body (a velocity jump) are skipped.
+/// Scale: the largest kinetic energy of the run.
+pub(super) fn kinetic_energy_g(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    match dynamic_body(level, def) {
+        Ok(b) => Box::new(KineticEnergyG {
+            def: def.clone(),
+            name: b.name.clone(),
+            mass: textbook_mass(b),
+            substeps: substeps(level),
+            index: None,
+            history: Vec::with_capacity(2),
+            worst: Worst::default(),
+            max_t: 0.0,
+            skipped: 0,
+            last: (0.0, 0.0),
+        }),
+        Err(e) => misconfigured(def, e),
+    }
+}
+
+struct KineticEnergyG {
+    def: CheckDef,
+    name: String,
+    mass: MassProps,
+    substeps: usize,
+    index: Option<usize>,
+    /// (pose G, angle, engine T, time, had an event impulse) at steps n-1 and n.
+    history: Vec<(DVec2, f64, f64, f64, bool)>,
+    worst: Worst,
+    max_t: f64,
+    skipped: u64,
+    last: (f64, f64),
+}
+
+impl Probe for KineticEnergyG {
+    fn observe(&mut self, s: &Snapshot) {
+        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+            return;
+        };
+        self.index = Some(i);
+        let b = &s.bodies[i];
+        let g = Motion::from(b).world_point(self.mass.com);
+        let t_engine = engine_ke(b);
+        self.max_t = self.max_t.max(t_engine);
+        let event = s.impulses.iter().any(|e| e.body == i);
+        if self.history.len() == 2 {
+            let (g0, a0, _, _, _) = self.history[0];
+            let (g1, a1, t1, time1, ev1) = self.history[1];
+            if s.dt > 0.0 && !ev1 && !event {
+                let v = velocity_from_positions(g1 - g0, g - g1, s.dt, self.substeps);
+                let w = omega_from_angles(
+                    wrap_angle(a1 - a0),
+                    wrap_angle(b.angle - a1),
+                    s.dt,
+                    self.substeps,
+                );
+                let t_theory = kinetic_energy(self.mass.mass, v, self.mass.inertia, w);
+                self.worst.add(t_theory - t1, time1);
+                self.last = (t_theory, t1);
+            } else {
+                self.skipped += 1;
+            }
+            self.history.remove(0);
+        }
+        self.history.push((g, b.angle, t_engine, s.time, event));
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        let scale = scale_or(self.max_t, 1.0);
+        let note = format!(
+            "T from the drawn poses (S = {} substeps) vs rapier's state; worst {:.2e} J at t = {:.3} s; max T {:.4} J{}",
+            self.substeps,
+            self.worst.max,
+            self.worst.at_time,
+            self.max_t,
+            if self.skipped > 0 {
+                format!("; {} samples skipped (event impulses or start)", self.skipped)
+            } else {
+                String::new()
+            }
+        );
+        result(
+            &self.def,
+            subject_of(&self.def),
+            Summary {
+                theory: self.last.0,
+                engine: self.last.1,
+                max_abs: self.worst.max,
+                max_rel: self.worst.max / scale,
+                final_abs: self.worst.last,
+                final_rel: self.worst.last / scale,
+                samples: self.worst.samples,
+                scale,
+                note,
+            },
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// Where the instantaneous center comes from.
+#[derive(Debug, Clone, PartialEq)]
+enum Center {
+    /// A fixed pivot O (`point`): fixed-axis rotation, T = 1/2 I_O omega^2 (6/8).
+    Fixed(DVec2),
+    /// Rolling without slipping on `other` (a fixed body): C is the contact point (RK-8).
+    Contact(String),
+    /// The kinematic center r_C = r_G + (k x v_G)/omega (RK-11); at infinity T = 1/2 m v^2 (6/7).
+    Kinematic,
+}
+
+/// `kinetic_energy_ic`: T = 1/2 I_C omega^2 about the instantaneous center C (6/10), against
+/// the engine's T.
+///
+/// Theory: I_C = I_G + m |r_G - r_C|^2 (MP-2) with the shape formula's m, I_G and mass center,
+/// times the engine's omega. C is, by the check's fields:
+/// - `point`: a fixed pivot O, so T = 1/2 I_O omega^2 (6/8);
+/// - `other`: the contact point with that (fixed) body, the center of a body rolling without
+///   slipping (the body's own surface point); steps without contact are skipped;
+/// - neither: the kinematic center from v_G and omega (then only the mass properties differ
+///   from the engine's side).
+///
+/// Engine: 6/9 with rapier's v_G, omega, m and I_G. The two agree only if the engine's motion has
+/// its instantaneous center where the textbook puts it: no slip at the contact, no drift at the pivot.
+/// Scale: the largest kinetic energy of the run. The note gives the largest slip velocity.
+pub(super) fn kinetic_energy_ic(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let b = match dynamic_body(level, def) {
+        Ok(b) => b,
+        Err(e) => return misconfigured(def, e),
+    };
+    let center = match (&def.point, &def.other) {
+        (Some(p), _) => Center::Fixed(v2(*p)),
+        (None, Some(o)) => {
+            if body_def(level, o).is_none() {
+                return misconfigured(def, format!("`other` \"{o}\" is not a body of this level"));
+            }
+            Center::Contact(o.clone())
+        }
+        (None, None) => Center::Kinematic,
+    };
+    Box::new(KineticEnergyIc {
+        def: def.clone(),
+        name: b.name.clone(),
+        mass: textbook_mass(b),
+        center,
+        worst: Worst::default(),
+        max_t: 0.0,
+        skipped: 0,
+        max_slip: 0.0,
+        max_normal: 0.0,
+        at_infinity: 0,
+        before: Vec::new(),
+        arms: ContactArms::default(),
+        index: None,
+        last: (0.0, 0.0),
+    })
+}
+
+struct KineticEnergyIc {
+    def: CheckDef,
+    name: String,
+    mass: MassProps,
+    center: Center,
+    worst: Worst,
+    max_t: f64,
+    skipped: u64,
+    max_slip: f64,
+    /// Largest relative normal velocity at the contact (rapier lets it differ from zero).
+    max_normal: f64,
+    at_infinity: u64,
+    before: Vec<Motion>,
+    arms: ContactArms,
+    index: Option<usize>,
+    last: (f64, f64),
+}
+
+impl Probe for KineticEnergyIc {
+    fn observe(&mut self, s: &Snapshot) {
+        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+            return;
+        };
+        self.index = Some(i);
+        let b = &s.bodies[i];
+        if b.mass <= 0.0 {
+            // The initial snapshot: rapier computes mass properties inside the first step.
+            return;
+        }
+        let motion = Motion::from(b);
+        let g = motion.world_point(self.mass.com);
+        let t_engine = engine_ke(b);
+        self.max_t = self.max_t.max(t_engine);
+        let (m, i_g) = (self.mass.mass, self.mass.inertia);
+        let c = match &self.center {
+            Center::Fixed(o) => Some(*o),
+            Center::Contact(other) => {
+                let Some(k) = s.body_index(other) else {
+                    return;
+                };
+                if s.dt > 0.0 && !self.before.is_empty() {
+                    self.arms
+                        .update_for(Before::All(&self.before), s, |x| x == i || x == k);
+                }
+                // The body's own contact point(s) with `other`, weighted by normal impulse: G plus
+                // the lever arm the solver used (recorded points go stale while rapier recycles
+                // the manifold; the arm of a rolling disc stays -r n).
+                let (mut sum, mut w, mut n, mut normal) = (DVec2::ZERO, 0.0, 0, DVec2::ZERO);
+                for (ci, c) in s.contacts.iter().enumerate() {
+                    if !((c.body1 == i && c.body2 == k) || (c.body1 == k && c.body2 == i)) {
+                        continue;
+                    }
+                    for (q, p) in c.points.iter().enumerate() {
+                        let own = match (self.arms.get(ci, q), c.body1 == i) {
+                            (Some((a1, _)), true) => b.com + a1,
+                            (Some((_, a2)), false) => b.com + a2,
+                            (None, true) => p.point,
+                            (None, false) => p.point + c.normal * p.distance,
+                        };
+                        let wt = p.normal_impulse.max(1e-12);
+                        sum += own * wt;
+                        w += wt;
+                        n += 1;
+                        normal = c.normal;
+                    }
+                }
+                if n == 0 {
+                    self.skipped += 1;
+                    copy_motions(&mut self.before, s);
+                    return;
+                }
+                let c = sum / w;
+                let other = Motion::from(&s.bodies[k]);
+                let v_rel = motion.velocity_at(c) - other.velocity_at(c);
+                self.max_slip = self.max_slip.max(v_rel.dot(normal.perp()).abs());
+                self.max_normal = self.max_normal.max(v_rel.dot(normal).abs());
+                copy_motions(&mut self.before, s);
+                Some(c)
+            }
+            Center::Kinematic => instantaneous_center(g, b.velocity, b.omega, 1e9),
+        };
+        let t_theory = match c {
+            Some(c) => kinetic_energy_about_ic(m, i_g, g, c, b.omega),
+            None => {
+                // Pure translation: C at infinity, T = 1/2 m v^2 (6/7).
+                self.at_infinity += 1;
+                crate::analysis::energy::kinetic_energy_translation(m, b.velocity)
+            }
+        };
+        self.worst.add(t_theory - t_engine, s.time);
+        self.last = (t_theory, t_engine);
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        let scale = scale_or(self.max_t, 1.0);
+        let how = match &self.center {
+            Center::Fixed(o) => format!("1/2 I_O w^2 about the pivot ({:.3}, {:.3}) (6/8)", o.x, o.y),
+            Center::Contact(o) => format!(
+                "1/2 I_C w^2 about the contact with \"{o}\" (rolling, 6/10); largest slip {:.2e} m/s, largest normal velocity at C {:.2e} m/s",
+                self.max_slip, self.max_normal
+            ),
+            Center::Kinematic => "1/2 I_C w^2 about the kinematic center (6/10)".to_string(),
+        };
+        let mut note = format!(
+            "{how}; worst {:.2e} J at t = {:.3} s; max T {:.4} J",
+            self.worst.max, self.worst.at_time, self.max_t
+        );
+        if self.skipped > 0 {
+            note += &format!("; {} steps without contact skipped", self.skipped);
+        }
+        if self.at_infinity > 0 {
+            note += &format!(
+                "; {} steps in translation (C at infinity)",
+                self.at_infinity
+            );
+        }
+        result(
+            &self.def,
+            subject_of(&self.def),
+            Summary {
+                theory: self.last.0,
+                engine: self.last.1,
+                max_abs: self.worst.max,
+                max_rel: self.worst.max / scale,
+                final_abs: self.worst.last,
+                final_rel: self.worst.last / scale,
+                samples: self.worst.samples,
+                scale,
+                note,
+            },
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// `work_energy`: the ledger T1 + V1 + U'_{1-2} = T2 + V2 (WE-14, RE-7) of a body or the scene.
+///
+/// Engine: E = T + V_g + V_e from rapier's state (T by 6/9 with rapier's m, I_G; V_g = -m g . r_G;
+/// V_e = 1/2 k x^2 of the springs counted in the ledger).
+/// Theory: E(0) + U', U' the work of the non-conservative forces summed step by step from the
+/// free-body diagram: applied loads and couples, event impulses, contact impulses (friction, and
+/// the normal impulse of an inelastic impact) at the contact points, joint motors, spring
+/// damping, couplings. Each step's impulse does work J . v_P,mid (`energy::work_of_impulse`, exact
+/// for a rigid body when the impulses balance the momentum change). Ideal joints do no work in
+/// theory, so E - E(0) - U' is the engine's energy error (soft joints, the substep integrator);
+/// the note gives it and its drift per period when the body oscillates.
+///
+/// Springs count in V_e when all their attached bodies are in the ledger (or the other end is
+/// the ground); otherwise their force is external and its work goes into U'.
+/// Scale: the energy that flows, max over the run of T, |V_g - V_g0|, |V_e - V_e0| and |U'|.
+pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let body = match &def.body {
+        Some(_) => match dynamic_body(level, def) {
+            Ok(b) => Some(b.name.clone()),
+            Err(e) => return misconfigured(def, e),
+        },
+        None => None,
+    };
+    Box::new(WorkEnergy {
+        def: def.clone(),
+        level_joints: level
+            .joints
+            .iter()
+            .map(|j| (j.name.clone(), j.kind, v2(j.axis)))
+            .collect(),
+        stiffness: level.springs.iter().map(|s| s.stiffness).collect(),
+        body,
+        substeps: substeps(level),
+        set: Vec::new(),
+        before: Vec::new(),
+        arms: ContactArms::default(),
+        springs_before: Vec::new(),
+        e0: None,
+        u_nc: 0.0,
+        by_source: [0.0; 6],
+        worst: Worst::default(),
+        scale: 0.0,
+        v_g0: 0.0,
+        v_e0: 0.0,
+        last: (0.0, 0.0),
+        residual: Vec::new(),
+        crossings: Vec::new(),
+        last_omega: 0.0,
+    })
+}
+
+/// Indices into `WorkEnergy::by_source`.
+const LOADS: usize = 0;
+const EVENTS: usize = 1;
+const CONTACTS: usize = 2;
+const MOTORS: usize = 3;
+const DAMPING: usize = 4;
+const OTHER: usize = 5;
+
+struct WorkEnergy {
+    def: CheckDef,
+    /// (name, kind, axis in body1's frame) of the level's joints.
+    level_joints: Vec<(String, JointKind, DVec2)>,
+    /// Stiffness per spring, in the snapshot's order.
+    stiffness: Vec<f64>,
+    body: Option<String>,
+    substeps: usize,
+    set: Vec<usize>,
+    /// Every body's state at the start of the step.
+    before: Vec<Motion>,
+    arms: ContactArms,
+    /// (extension, length) per spring at the start of the step.
+    springs_before: Vec<(f64, f64)>,
+    e0: Option<f64>,
+    u_nc: f64,
+    by_source: [f64; 6],
+    worst: Worst,
+    scale: f64,
+    v_g0: f64,
+    v_e0: f64,
+    last: (f64, f64),
+    /// (time, E_engine - E_theory) per step, for the drift rate.
+    residual: Vec<(f64, f64)>,
+    /// Times at which omega of the first body of the set changed sign (oscillation periods).
+    crossings: Vec<f64>,
+    last_omega: f64,
+}
+
+impl WorkEnergy {
+    fn in_set(&self, i: usize) -> bool {
+        self.set.contains(&i)
+    }
+
+    /// Does a spring's elastic energy belong to the ledger? When each end is on a body of the
+    /// set or on the fixed ground.
+    fn spring_in_ledger(&self, s: &crate::snapshot::SpringState, snap: &Snapshot) -> bool {
+        let held =
+            |i: usize| self.in_set(i) || snap.bodies[i].kind == crate::snapshot::BodyKind::Fixed;
+        (self.in_set(s.body1) || s.body2.is_some_and(|b| self.in_set(b)))
+            && held(s.body1)
+            && s.body2.is_none_or(held)
+    }
+
+    /// The non-conservative work of the step that led to `s`.
+    fn step_work(&mut self, s: &Snapshot) {
+        let state = |i: usize, _: &[usize]| -> (Motion, Motion) {
+            (self.before[i], Motion::from(&s.bodies[i]))
+        };
+        {
+            let set = &self.set;
+            self.arms
+                .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
+        }
+        let mut add = [0.0; 6];
+        let set = self.set.clone();
+        let ledger: Vec<bool> = s
+            .springs
+            .iter()
+            .map(|sp| self.spring_in_ledger(sp, s))
+            .collect();
+        for_each_external_impulse_with(
+            before_of(&set, &self.before),
+            s,
+            self.substeps,
+            Some(&self.arms),
+            |i| set.contains(&i),
+            |imp| {
+                let slot = match imp.source {
+                    Source::Gravity | Source::Joint(_) => return,
+                    Source::Spring(k) if ledger[k] => return,
+                    Source::Load(_) => LOADS,
+                    Source::Event(_) => EVENTS,
+                    Source::Contact { .. } => CONTACTS,
+                    Source::Spring(_) | Source::Coupling(..) => OTHER,
+                };
+                let (b0, b1) = state(imp.body, &set);
+                add[slot] += work_of_impulse_with_arm(imp.impulse, imp.arm, imp.couple, &b0, &b1);
+            },
+        );
+        // Contacts between two bodies of the set: the pair's work J . v_rel (friction, impact loss).
+        for (k, c) in s.contacts.iter().enumerate() {
+            if !(set.contains(&c.body1) && set.contains(&c.body2)) {
+                continue;
+            }
+            let (a, b) = (state(c.body1, &set), state(c.body2, &set));
+            for (q, p) in c.points.iter().enumerate() {
+                let j = c.normal * p.normal_impulse + c.tangent() * p.tangent_impulse;
+                add[CONTACTS] += match self.arms.get(k, q) {
+                    Some((arm1, arm2)) => {
+                        work_of_impulse_with_arm(j, arm2, 0.0, &b.0, &b.1)
+                            - work_of_impulse_with_arm(j, arm1, 0.0, &a.0, &a.1)
+                    }
+                    None => work_of_pair_impulse(j, p.point, (&a.0, &a.1), (&b.0, &b.1)),
+                };
+            }
+        }
+        // Joints: motors do work; the rest of the reaction is ideal (no work) in theory.
+        for j in &s.joints {
+            let (in1, in2) = (set.contains(&j.body1), set.contains(&j.body2));
+            if !in1 && !in2 {
+                continue;
+            }
+            let def = self.level_joints.iter().find(|d| d.0 == j.name);
+            let mut motor = 0.0;
+            if j.motor_impulse != 0.0 {
+                if let Some((_, kind, axis)) = def {
+                    let rate = |i: usize, p: DVec2| -> (f64, f64) {
+                        let (b0, b1) = state(i, &set);
+                        let mid = Motion::mid(&b0, &b1);
+                        let world_axis = DVec2::from_angle(s.bodies[j.body1].angle)
+                            .rotate(axis.normalize_or(DVec2::X));
+                        (mid.omega, world_axis.dot(mid.velocity_at(p)))
+                    };
+                    let slide = matches!(kind, JointKind::Prismatic | JointKind::PinSlot);
+                    let mut term = |i: usize, p: DVec2, sign: f64| {
+                        let (w, v) = rate(i, p);
+                        motor += sign * j.motor_impulse * if slide { v } else { w };
+                    };
+                    if in2 {
+                        term(j.body2, j.anchor, 1.0);
+                    }
+                    if in1 {
+                        term(j.body1, j.anchor1, -1.0);
+                    }
+                }
+            }
+            add[MOTORS] += motor;
+        }
+        // Spring damping (the c dx/dt part of the held tension) for springs in the ledger.
+        for (k, sp) in s.springs.iter().enumerate() {
+            if !ledger[k] {
+                continue;
+            }
+            if let (Some(&(x0, l0)), Some(&stiff)) =
+                (self.springs_before.get(k), self.stiffness.get(k))
+            {
+                add[DAMPING] += -(sp.tension - stiff * x0) * (sp.length - l0);
+            }
+        }
+        for (k, a) in add.iter().enumerate() {
+            self.by_source[k] += a;
+        }
+        self.u_nc += add.iter().sum::<f64>();
+    }
+}
+
+impl Probe for WorkEnergy {
+    fn observe(&mut self, s: &Snapshot) {
+        if self.set.is_empty() {
+            let index = match &self.body {
+                Some(n) => match s.body_index(n) {
+                    Some(i) => Some(i),
+                    None => return,
+                },
+                None => None,
+            };
+            self.set = subject_set(s, index);
+        }
+        let v_e: f64 = s
+            .springs
+            .iter()
+            .filter(|sp| self.spring_in_ledger(sp, s))
+            .map(|sp| sp.energy)
+            .sum();
+        if self.before.is_empty() || s.dt <= 0.0 {
+            // The initial state: E(0) needs the masses, which rapier fills in the first step.
+            self.v_e0 = v_e;
+            copy_motions(&mut self.before, s);
+            self.springs_before = s
+                .springs
+                .iter()
+                .map(|sp| (sp.extension, sp.length))
+                .collect();
+            return;
+        }
+        if self.e0.is_none() {
+            let (mut t0, mut vg0) = (0.0, 0.0);
+            for &i in &self.set {
+                let (b, m) = (&s.bodies[i], &self.before[i]);
+                t0 += kinetic_energy(b.mass, m.velocity, b.inertia, m.omega);
+                vg0 += gravity_potential(b.mass, s.gravity, m.com);
+            }
+            self.v_g0 = vg0;
+            self.e0 = Some(t0 + vg0 + self.v_e0);
+        }
+        self.step_work(s);
+        let (mut t, mut v_g) = (0.0, 0.0);
+        for &i in &self.set {
+            let b = &s.bodies[i];
+            t += engine_ke(b);
+            v_g += gravity_potential(b.mass, s.gravity, b.com);
+        }
+        let e = t + v_g + v_e;
+        let theory = self.e0.unwrap_or(e) + self.u_nc;
+        self.worst.add(e - theory, s.time);
+        self.residual.push((s.time, e - theory));
+        self.last = (theory, e);
+        self.scale = self
+            .scale
+            .max(t)
+            .max((v_g - self.v_g0).abs())
+            .max((v_e - self.v_e0).abs())
+            .max(self.u_nc.abs());
+        if let Some(&i) = self.set.first() {
+            let w = s.bodies[i].omega;
+            if w != 0.0 && self.last_omega != 0.0 && w.signum() != self.last_omega.signum() {
+                self.crossings.push(s.time);
+            }
+            if w != 0.0 {
+                self.last_omega = w;
+            }
+        }
+        copy_motions(&mut self.before, s);
+        self.springs_before.clear();
+        self.springs_before
+            .extend(s.springs.iter().map(|sp| (sp.extension, sp.length)));
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        let scale = scale_or(self.scale, 1.0);
+        let names = ["loads", "events", "contacts", "motors", "damping", "other"];
+        let works: Vec<String> = names
+            .iter()
+            .zip(self.by_source)
+            .filter(|(_, w)| *w != 0.0)
+            .map(|(n, w)| format!("{n} {w:+.4e}"))
+            .collect();
+        let mut note = format!(
+            "U' {:+.4e} J ({}); E(end) - E(0) - U' = {:+.3e} J (ideal joints and springs do no net work: this is the engine's energy error)",
+            self.u_nc,
+            if works.is_empty() { "none".to_string() } else { works.join(", ") },
+            self.last.1 - self.last.0,
+        );
+        // Drift rate: least-squares slope of the residual over time.
+        if self.residual.len() >= 2 {
+            let n = self.residual.len() as f64;
+            let (st, se) = self
+                .residual
+                .iter()
+                .fold((0.0, 0.0), |(a, b), (t, e)| (a + t, b + e));
+            let (mt, me) = (st / n, se / n);
+            let (num, den) = self.residual.iter().fold((0.0, 0.0), |(a, b), (t, e)| {
+                (a + (t - mt) * (e - me), b + (t - mt).powi(2))
+            });
+            let slope = if den > 0.0 { num / den } else { 0.0 };
+            if self.crossings.len() >= 3 {
+                let k = self.crossings.len() - 1;
+                let period = 2.0 * (self.crossings[k] - self.crossings[0]) / k as f64;
+                note += &format!(
+                    "; drift {:+.3e} J per period ({:+.2e} of the scale; period {:.4} s, {:.1} periods)",
+                    slope * period,
+                    slope * period / scale,
+                    period,
+                    self.residual.last().map_or(0.0, |r| r.0) / period
+                );
+            } else {
+                note += &format!("; drift rate {:+.3e} J/s", slope);
+            }
+        }
+        result(
+            &self.def,
+            subject_of(&self.def),
+            Summary {
+                theory: self.last.0,
+                engine: self.last.1,
+                max_abs: self.worst.max,
+                max_rel: self.worst.max / scale,
+                final_abs: self.worst.last,
+                final_rel: self.worst.last / scale,
+                samples: self.worst.samples,
+                scale,
+                note,
+            },
+        )
+    }
+}

@@ -1,0 +1,360 @@
+//! `restitution`: impacts between two bodies, e measured against e set (IM-9 to IM-15).
+
+use super::{
+    body_def, copy_motions, dynamic_body, misconfigured, result, subject_of, substeps, Summary,
+};
+use crate::analysis::energy::kinetic_energy;
+use crate::analysis::impact::{
+    central_impact_energy_loss, is_eccentric, measure_impact, pair_contact, Bracket, ImpactDetector,
+};
+use crate::analysis::kinetics::{for_each_external_impulse_with, Before, ContactArms, Source};
+use crate::analysis::momentum::angular_momentum_about;
+use crate::analysis::Motion;
+use crate::checks::{CheckResult, Probe};
+use crate::level::{CheckDef, Effect, Level};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// `restitution`: every impact between `body` and `other` (or any partner) is bracketed from the
+/// contact impulses (`analysis::impact::ImpactDetector`: a step whose normal impulse exceeds twice
+/// what gravity gives the pair in a step starts it; it lasts while the impulse stays above 20% of
+/// the first step's), and measured from the states at the bracket's ends.
+///
+/// Central impact (the normal through the contact passes within 1% of k_G of each body's G):
+/// theory e set in the level (the larger of the two bodies' `restitution`, the sim's combine rule),
+/// engine e = -v'_n/v_n from the relative normal velocity of the contact points (IM-9); error
+/// |e - e_set| on the scale 1 (perfectly elastic). The note adds the tangential velocity change, the
+/// kinetic energy lost against IM-14 and the contact impulse against the momentum change.
+///
+/// Eccentric impact (IM-15: the textbook does not use e for it): theory H about the contact point
+/// C after = H_C before plus the non-impulsive forces' angular impulse about C over the bracket
+/// (RM-10: the impulsive reaction passes through C); engine H_C after from rapier's state (6/15);
+/// error relative to |H_C before|. The measured e at C is shown as information only.
+pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let b = match dynamic_body(level, def) {
+        Ok(b) => b,
+        Err(e) => return misconfigured(def, e),
+    };
+    let other = match &def.other {
+        Some(o) => match body_def(level, o) {
+            Some(d) => Some(d.name.clone()),
+            None => {
+                return misconfigured(def, format!("`other` \"{o}\" is not a body of this level"))
+            }
+        },
+        None => None,
+    };
+    let restitution = |name: &str| {
+        if level.effects.contains(&Effect::Restitution) {
+            body_def(level, name)
+                .and_then(|d| d.restitution)
+                .unwrap_or(0.0)
+        } else {
+            0.0
+        }
+    };
+    Box::new(Restitution {
+        def: def.clone(),
+        name: b.name.clone(),
+        other,
+        e_body: restitution(&b.name),
+        level_restitution: level
+            .bodies
+            .iter()
+            .map(|d| (d.name.clone(), restitution(&d.name)))
+            .collect(),
+        substeps: substeps(level),
+        index: None,
+        partner: None,
+        before: Vec::new(),
+        arms: ContactArms::default(),
+        detector: None,
+        open: None,
+        impacts: Vec::new(),
+    })
+}
+
+/// An impact in progress.
+struct Open {
+    start_time: f64,
+    a0: Motion,
+    b0: Motion,
+    a1: Motion,
+    b1: Motion,
+    normal: DVec2,
+    point: DVec2,
+    impulse: DVec2,
+    /// Angular impulse about C of the non-impulsive forces over the bracket.
+    other_moment: f64,
+    steps: u32,
+    points: usize,
+    /// The two bodies as they were at the start (mass properties, names).
+    body_a: crate::snapshot::BodyState,
+    body_b: crate::snapshot::BodyState,
+}
+
+struct Done {
+    eccentric: bool,
+    e: f64,
+    e_set: f64,
+    h_before: f64,
+    h_theory: f64,
+    h_engine: f64,
+    note: String,
+}
+
+struct Restitution {
+    def: CheckDef,
+    name: String,
+    other: Option<String>,
+    e_body: f64,
+    level_restitution: Vec<(String, f64)>,
+    substeps: usize,
+    index: Option<usize>,
+    partner: Option<usize>,
+    before: Vec<Motion>,
+    arms: ContactArms,
+    detector: Option<ImpactDetector>,
+    open: Option<Open>,
+    impacts: Vec<Done>,
+}
+
+impl Restitution {
+    /// H about C of a body (6/15); nothing for a body without mass.
+    fn h_about(b: &crate::snapshot::BodyState, m: &Motion, c: DVec2) -> f64 {
+        if b.mass > 0.0 {
+            angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, c)
+        } else {
+            0.0
+        }
+    }
+
+    fn close(&mut self) {
+        let Some(o) = self.open.take() else { return };
+        let m = measure_impact((&o.a0, &o.a1), (&o.b0, &o.b1), o.point, o.normal, o.impulse);
+        let (ba, bb) = (&o.body_a, &o.body_b);
+        let e_set = self.e_body.max(
+            self.level_restitution
+                .iter()
+                .find(|(n, _)| n == &bb.name)
+                .map_or(0.0, |x| x.1),
+        );
+        let k_g = |b: &crate::snapshot::BodyState| {
+            crate::analysis::mass::radius_of_gyration(b.inertia, b.mass)
+        };
+        let eccentric = [(ba, &o.a0), (bb, &o.b0)].iter().any(|(b, st)| {
+            b.mass > 0.0
+                && b.inertia > 0.0
+                && is_eccentric(st.com, o.point, o.normal, 0.01 * k_g(b))
+        });
+        let h_before = Self::h_about(ba, &o.a0, o.point) + Self::h_about(bb, &o.b0, o.point);
+        let h_engine = Self::h_about(ba, &o.a1, o.point) + Self::h_about(bb, &o.b1, o.point);
+        let h_theory = h_before + o.other_moment;
+        let t = |b: &crate::snapshot::BodyState, st: &Motion| {
+            if b.mass > 0.0 {
+                kinetic_energy(b.mass, st.velocity, b.inertia, st.omega)
+            } else {
+                0.0
+            }
+        };
+        let lost = t(ba, &o.a0) + t(bb, &o.b0) - t(ba, &o.a1) - t(bb, &o.b1);
+        let mb = if bb.mass > 0.0 {
+            bb.mass
+        } else {
+            f64::INFINITY
+        };
+        let lost_theory = central_impact_energy_loss(ba.mass, mb, 0.0, m.v_n_before, e_set);
+        // Momentum along n of the body against the contact impulse on it (IM-9).
+        let dp = ba.mass * (o.a1.velocity - o.a0.velocity).dot(m.normal);
+        let j_on_a = -o.impulse.dot(m.normal);
+        let mut note = format!(
+            "t = {:.4} s ({} step{}, {} point{}): approach {:.4} m/s, e measured {:.5} (set {:.3}), tangential {:+.4} -> {:+.4} m/s, T lost {:.4e} J",
+            o.start_time,
+            o.steps,
+            if o.steps == 1 { "" } else { "s" },
+            o.points,
+            if o.points == 1 { "" } else { "s" },
+            -m.v_n_before,
+            m.e,
+            e_set,
+            m.v_t_before,
+            m.v_t_after,
+            lost
+        );
+        if eccentric {
+            note += &format!(
+                ", eccentric: H_C before {:.5}, after theory {:.5}, engine {:.5} N m s (e not a textbook quantity here)",
+                h_before, h_theory, h_engine
+            );
+        } else {
+            note += &format!(
+                " (IM-14: {:.4e} J), normal impulse on \"{}\" {:.4e} N s vs m dv_n {:.4e} N s",
+                lost_theory, ba.name, j_on_a, dp
+            );
+        }
+        self.impacts.push(Done {
+            eccentric,
+            e: m.e,
+            e_set,
+            h_before,
+            h_theory,
+            h_engine,
+            note,
+        });
+    }
+}
+
+impl Probe for Restitution {
+    fn observe(&mut self, s: &Snapshot) {
+        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+            return;
+        };
+        self.index = Some(i);
+        if self.partner.is_none() {
+            self.partner = match &self.other {
+                Some(o) => s.body_index(o),
+                // Any partner: the one with the largest normal impulse this step.
+                None => s
+                    .contacts
+                    .iter()
+                    .filter(|c| c.body1 == i || c.body2 == i)
+                    .max_by(|a, b| {
+                        let n = |c: &crate::snapshot::ContactState| {
+                            c.points.iter().map(|p| p.normal_impulse).sum::<f64>()
+                        };
+                        n(a).total_cmp(&n(b))
+                    })
+                    .map(|c| if c.body1 == i { c.body2 } else { c.body1 }),
+            };
+        }
+        if let (false, Some(k)) = (self.before.is_empty(), self.partner) {
+            self.arms
+                .update_for(Before::All(&self.before), s, |x| x == i || x == k);
+        }
+        if let (Some(k), false) = (self.partner, self.before.is_empty()) {
+            let detector = self.detector.get_or_insert_with(|| {
+                let weight: f64 = [i, k]
+                    .iter()
+                    .map(|&x| s.bodies[x].mass * s.gravity.length())
+                    .sum();
+                ImpactDetector::new(2.0 * weight * s.dt + 1e-12, 0.2)
+            });
+            let pc = pair_contact(s, i, k);
+            let bracket = detector.step(pc.map_or(0.0, |c| c.normal_impulse));
+            let (now_a, now_b) = (Motion::from(&s.bodies[i]), Motion::from(&s.bodies[k]));
+            match (bracket, pc) {
+                (Bracket::Start, Some(c)) => {
+                    self.open = Some(Open {
+                        start_time: s.time - s.dt,
+                        a0: self.before[i],
+                        b0: self.before[k],
+                        a1: now_a,
+                        b1: now_b,
+                        normal: c.normal,
+                        point: c.point,
+                        impulse: DVec2::ZERO,
+                        other_moment: 0.0,
+                        steps: 0,
+                        points: c.points,
+                        body_a: s.bodies[i].clone(),
+                        body_b: s.bodies[k].clone(),
+                    });
+                }
+                (Bracket::End, _) => self.close(),
+                _ => {}
+            }
+            if let (Some(o), Some(c)) = (self.open.as_mut(), pc) {
+                o.a1 = now_a;
+                o.b1 = now_b;
+                o.impulse += c.impulse_on_b;
+                o.steps += 1;
+                o.points = o.points.max(c.points);
+                let point = o.point;
+                let mut other_moment = 0.0;
+                for_each_external_impulse_with(
+                    Before::All(&self.before),
+                    s,
+                    self.substeps,
+                    Some(&self.arms),
+                    |x| x == i || x == k,
+                    |imp| {
+                        let between = match imp.source {
+                            Source::Contact { contact, .. } => {
+                                let c = &s.contacts[contact];
+                                (c.body1 == i && c.body2 == k) || (c.body1 == k && c.body2 == i)
+                            }
+                            _ => false,
+                        };
+                        if !between {
+                            other_moment += imp.moment_about(point);
+                        }
+                    },
+                );
+                o.other_moment += other_moment;
+            }
+        }
+        copy_motions(&mut self.before, s);
+    }
+
+    fn finish(mut self: Box<Self>) -> CheckResult {
+        let subject = subject_of(&self.def);
+        // An impact still in progress at the end is measured with the last states.
+        self.close();
+        if self.impacts.is_empty() {
+            return result(
+                &self.def,
+                subject,
+                Summary {
+                    note: "no impact was detected (no step with an impulsive contact between the pair)".into(),
+                    max_rel: f64::INFINITY,
+                    ..Summary::default()
+                },
+            );
+        }
+        let errors: Vec<(f64, f64)> = self
+            .impacts
+            .iter()
+            .map(|d| {
+                if d.eccentric {
+                    let scale = d.h_before.abs().max(f64::MIN_POSITIVE);
+                    (
+                        (d.h_engine - d.h_theory).abs(),
+                        (d.h_engine - d.h_theory).abs() / scale,
+                    )
+                } else {
+                    ((d.e - d.e_set).abs(), (d.e - d.e_set).abs())
+                }
+            })
+            .collect();
+        let first = &self.impacts[0];
+        let (theory, engine, scale) = if first.eccentric {
+            (first.h_theory, first.h_engine, first.h_before.abs())
+        } else {
+            (first.e_set, first.e, 1.0)
+        };
+        let max_rel = errors.iter().map(|e| e.1).fold(0.0, f64::max);
+        let max_abs = errors.iter().map(|e| e.0).fold(0.0, f64::max);
+        let last = errors.last().copied().unwrap_or_default();
+        let note = self
+            .impacts
+            .iter()
+            .map(|d| d.note.clone())
+            .collect::<Vec<_>>()
+            .join("; ");
+        result(
+            &self.def,
+            subject,
+            Summary {
+                theory,
+                engine,
+                max_abs,
+                max_rel,
+                final_abs: last.0,
+                final_rel: last.1,
+                samples: self.impacts.len() as u64,
+                scale,
+                note,
+            },
+        )
+    }
+}

@@ -1,0 +1,232 @@
+//! The probes behind each check kind.
+//!
+//! Every probe computes its "theory" and its "engine" value from independent inputs:
+//! theory uses the textbook's data (the shape formulas of `analysis::mass`, the level's
+//! givens, the free-body diagram read from the step's impulses), engine uses what rapier
+//! holds (its velocities, its own mass properties) or what its motion shows. Each kind
+//! documents its pair, its error scale and its known engine limitations in its module.
+//!
+//! | kind | theory | engine | scale |
+//! |---|---|---|---|
+//! | `mass_properties` | shape formulas (MP-9), parallel axis | rapier/parry mass properties | m, I_G, k_G |
+//! | `kinetic_energy_g` | 6/9 with formula m, I_G and v, omega from the drawn poses | rapier's v, omega, m, I_G | max T |
+//! | `kinetic_energy_ic` | 1/2 I_C omega^2 (6/10, 6/8) about the contact point / pivot / IC | rapier's 6/9 | max T |
+//! | `angular_momentum_fixed_point` | sum M_O of the free-body diagram | dH_O/dt (6/15) of rapier's state | max sum M_O |
+//! | `center_of_percussion` | pivot impulse of a struck pinned body (CP-3) / sum M_Q = 0 (CP-2) | joint impulse read from rapier | the blow |
+//! | `newton_euler` | sum F, sum M_G of the free-body diagram | m a_G, I_G alpha by finite differences | max force |
+//! | `work_energy` | E(0) + U' (non-conservative work) | T + V_g + V_e of rapier's state | energy that flows |
+//! | `impulse_momentum` | G(0) + integral sum F dt (and H_O) | G, H_O of rapier's state | max G, H_O |
+//! | `restitution` | e set in the level (or H_C conserved when eccentric) | e from velocities (or H_C after) | 1 (or H_C before) |
+
+mod constant;
+mod energy;
+mod impact;
+mod kinetics;
+mod mass;
+mod momentum;
+mod percussion;
+
+use super::{kind_name, CheckResult, Probe};
+use crate::analysis::mass::MassProps;
+use crate::level::{BodyDef, CheckDef, CheckKind, Level};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    match def.kind {
+        CheckKind::ConstantAcceleration => {
+            Box::new(constant::ConstantAcceleration::new(level, def))
+        }
+        CheckKind::MassProperties => mass::probe(level, def),
+        CheckKind::KineticEnergyG => energy::kinetic_energy_g(level, def),
+        CheckKind::KineticEnergyIc => energy::kinetic_energy_ic(level, def),
+        CheckKind::WorkEnergy => energy::work_energy(level, def),
+        CheckKind::AngularMomentumFixedPoint => momentum::angular_momentum_fixed_point(level, def),
+        CheckKind::ImpulseMomentum => momentum::impulse_momentum(level, def),
+        CheckKind::NewtonEuler => kinetics::probe(level, def),
+        CheckKind::CenterOfPercussion => percussion::probe(level, def),
+        CheckKind::Restitution => impact::probe(level, def),
+    }
+}
+
+/// Substeps per physics step as the level sets them (rapier's `num_solver_iterations`).
+/// Needed where the integrator's substep structure enters a formula (gravity's point of
+/// action, velocities from positions). A `--substeps` override on the command line is not
+/// visible here (the snapshot does not carry it), which makes those O(h^2) corrections O(h).
+pub(super) fn substeps(level: &Level) -> usize {
+    level.world.substeps.max(1)
+}
+
+pub(super) fn body_def<'a>(level: &'a Level, name: &str) -> Option<&'a BodyDef> {
+    level.bodies.iter().find(|b| b.name == name)
+}
+
+/// The textbook mass properties of a body (shape formula, level's mass/density/overrides).
+pub(super) fn textbook_mass(def: &BodyDef) -> MassProps {
+    crate::analysis::mass::of_body(def, crate::sim::DEFAULT_DENSITY)
+}
+
+/// Everything a result needs beyond the level's check definition.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Summary {
+    pub theory: f64,
+    pub engine: f64,
+    pub max_abs: f64,
+    pub max_rel: f64,
+    pub final_abs: f64,
+    pub final_rel: f64,
+    pub samples: u64,
+    pub scale: f64,
+    pub note: String,
+}
+
+pub(super) fn result(def: &CheckDef, subject: String, s: Summary) -> CheckResult {
+    CheckResult {
+        kind: kind_name(def.kind).to_string(),
+        subject,
+        theory: s.theory,
+        engine: s.engine,
+        max_abs_error: s.max_abs,
+        max_rel_error: s.max_rel,
+        final_abs_error: s.final_abs,
+        final_rel_error: s.final_rel,
+        tolerance: def.tolerance,
+        passed: s.samples > 0 && s.max_rel.is_finite() && s.max_rel <= def.tolerance,
+        samples: s.samples,
+        scale: s.scale,
+        why: def.why.clone(),
+        note: s.note,
+    }
+}
+
+/// Largest-error bookkeeping with a scale known only at the end of the run.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Worst {
+    pub max: f64,
+    pub last: f64,
+    pub at_time: f64,
+    pub samples: u64,
+}
+
+impl Worst {
+    pub fn add(&mut self, err: f64, time: f64) {
+        let err = if err.is_nan() {
+            f64::INFINITY
+        } else {
+            err.abs()
+        };
+        if err > self.max || self.samples == 0 {
+            self.max = self.max.max(err);
+            self.at_time = time;
+        }
+        self.last = err;
+        self.samples += 1;
+    }
+}
+
+/// A positive scale: the given one, or `fallback` when it is zero or not finite.
+pub(super) fn scale_or(scale: f64, fallback: f64) -> f64 {
+    if scale.is_finite() && scale > 0.0 {
+        scale
+    } else {
+        fallback
+    }
+}
+
+/// A check that cannot run as declared: it fails and says why (never passes silently).
+pub(super) struct Misconfigured {
+    pub def: CheckDef,
+    pub subject: String,
+    pub why: String,
+}
+
+impl Probe for Misconfigured {
+    fn observe(&mut self, _: &Snapshot) {}
+    fn finish(self: Box<Self>) -> CheckResult {
+        result(
+            &self.def,
+            self.subject,
+            Summary {
+                note: self.why,
+                max_rel: f64::INFINITY,
+                ..Summary::default()
+            },
+        )
+    }
+}
+
+pub(super) fn misconfigured(def: &CheckDef, why: impl Into<String>) -> Box<dyn Probe> {
+    Box::new(Misconfigured {
+        def: def.clone(),
+        subject: subject_of(def),
+        why: why.into(),
+    })
+}
+
+/// "body \"bar\"", "the scene", plus the point when given.
+pub(super) fn subject_of(def: &CheckDef) -> String {
+    let mut s = match &def.body {
+        Some(b) => format!("body \"{b}\""),
+        None => "the scene".to_string(),
+    };
+    if let Some(o) = &def.other {
+        s += &format!(" with \"{o}\"");
+    }
+    if let Some(p) = def.point {
+        s += &format!(" about ({:.3}, {:.3})", p.0, p.1);
+    }
+    s
+}
+
+/// Resolves a check's `body` to a dynamic body of the level, or says why it cannot.
+pub(super) fn dynamic_body<'a>(level: &'a Level, def: &CheckDef) -> Result<&'a BodyDef, String> {
+    let Some(name) = &def.body else {
+        return Err(format!(
+            "a {} check needs `body: \"...\"`",
+            kind_name(def.kind)
+        ));
+    };
+    let Some(b) = body_def(level, name) else {
+        return Err(format!("\"{name}\" is not a body of this level"));
+    };
+    if b.kind != crate::level::BodyKind::Dynamic {
+        return Err(format!(
+            "body \"{name}\" is not dynamic: a {} check needs a body that moves under forces",
+            kind_name(def.kind)
+        ));
+    }
+    Ok(b)
+}
+
+/// Copies every body's motion into `v` in place (no allocation once sized).
+pub(super) fn copy_motions(v: &mut Vec<crate::analysis::Motion>, s: &Snapshot) {
+    v.resize(s.bodies.len(), crate::analysis::Motion::default());
+    for (m, b) in v.iter_mut().zip(&s.bodies) {
+        *m = crate::analysis::Motion::from(b);
+    }
+}
+
+/// The start-of-step states for a set: one body's alone, or everyone's.
+pub(super) fn before_of<'a>(
+    set: &[usize],
+    all: &'a [crate::analysis::Motion],
+) -> crate::analysis::kinetics::Before<'a> {
+    match set {
+        [i] if *i < all.len() => crate::analysis::kinetics::Before::One(*i, &all[*i]),
+        _ => crate::analysis::kinetics::Before::All(all),
+    }
+}
+
+pub(super) fn v2(p: (f64, f64)) -> DVec2 {
+    DVec2::new(p.0, p.1)
+}
+
+/// Body indices of a check's subject: the named body, or every dynamic body.
+pub(super) fn subject_set(snap: &Snapshot, body: Option<usize>) -> Vec<usize> {
+    match body {
+        Some(i) => vec![i],
+        None => (0..snap.bodies.len())
+            .filter(|&i| snap.bodies[i].mass > 0.0)
+            .collect(),
+    }
+}

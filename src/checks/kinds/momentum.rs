@@ -1,0 +1,388 @@
+//! Momentum checks: `angular_momentum_fixed_point`, `impulse_momentum`.
+
+use super::{
+    before_of, copy_motions, dynamic_body, misconfigured, result, scale_or, subject_of,
+    subject_set, substeps, v2, Summary, Worst,
+};
+use crate::analysis::kinetics::{for_each_external_impulse_with, ContactArms, Resultant};
+use crate::analysis::momentum::{angular_momentum_about, linear_momentum};
+use crate::analysis::Motion;
+use crate::checks::{CheckResult, Probe};
+use crate::level::{CheckDef, Level};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// The set's linear momentum and angular momentum about O (6/12, 6/15, 6/19), with rapier's
+/// masses from `s` and the motions given (`None`: those of `s`). rapier reports zero mass in the
+/// initial snapshot (it computes mass properties inside the first step), so the initial momenta
+/// are taken with the first step's masses and the initial motions.
+fn momenta(s: &Snapshot, set: &[usize], o: DVec2, motions: Option<&[Motion]>) -> (DVec2, f64) {
+    set.iter().fold((DVec2::ZERO, 0.0), |(g, h), &i| {
+        let b = &s.bodies[i];
+        let m = motions.map_or_else(|| Motion::from(b), |v| v[i]);
+        (
+            g + linear_momentum(b.mass, m.velocity),
+            h + angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, o),
+        )
+    })
+}
+
+/// The step's external resultant on the set, moments about O.
+fn step_resultant(
+    before: &[Motion],
+    s: &Snapshot,
+    set: &[usize],
+    o: DVec2,
+    substeps: usize,
+    arms: Option<&ContactArms>,
+) -> Resultant {
+    let mut r = Resultant::default();
+    for_each_external_impulse_with(
+        before_of(set, before),
+        s,
+        substeps,
+        arms,
+        |i| set.contains(&i),
+        |imp| r.add(&imp, o),
+    );
+    r
+}
+
+/// The body's pivot: the anchor of its first joint to a body that does not move (fixed or
+/// kinematic at rest), at the first snapshot.
+fn pivot_of(s: &Snapshot, i: usize) -> Option<DVec2> {
+    s.joints.iter().find_map(|j| {
+        if j.body2 == i && s.bodies[j.body1].mass == 0.0 {
+            Some(j.anchor1)
+        } else if j.body1 == i && s.bodies[j.body2].mass == 0.0 {
+            Some(j.anchor)
+        } else {
+            None
+        }
+    })
+}
+
+/// The subject of a momentum check: one dynamic body or the whole scene.
+fn resolve(level: &Level, def: &CheckDef) -> Result<Option<String>, String> {
+    match &def.body {
+        Some(_) => dynamic_body(level, def).map(|b| Some(b.name.clone())),
+        None => Ok(None),
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// `angular_momentum_fixed_point`: sum M_O = dH_O/dt about a fixed point O (6/17, IM-7), step by step.
+///
+/// Theory: the moments about O of every external force of the free-body diagram over the step
+/// (gravity at G, the joint reactions at their anchors, contacts, loads, springs, events,
+/// couplings), divided by dt. Engine: the change of H_O = I_G omega + r_{G/O} x m v_G (6/15) of
+/// rapier's state over the step, divided by dt: a finite difference of the engine's motion.
+/// O is `point`, or else the body's pivot (its joint to a fixed body). For a pin at O the pivot
+/// reaction has (almost) no moment, so the check tests gravity's moment against the motion
+/// (PL-5); the note gives the largest moment the reactions did have about O.
+/// Scale, step by step: the step's moment level max(|sum M_O|, |dH_O/dt|, m |g| |r_G - O|) (so one
+/// blow does not hide the other steps); the reported scale is the one at the worst step.
+pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let body = match resolve(level, def) {
+        Ok(b) => b,
+        Err(e) => return misconfigured(def, e),
+    };
+    if body.is_none() && def.point.is_none() {
+        return misconfigured(
+            def,
+            "a scene-wide angular_momentum_fixed_point check needs `point: (x, y)`",
+        );
+    }
+    Box::new(AngularMomentumFixedPoint {
+        def: def.clone(),
+        body,
+        substeps: substeps(level),
+        o: def.point.map(v2),
+        set: Vec::new(),
+        before: Vec::new(),
+        arms: ContactArms::default(),
+        worst: Worst::default(),
+        rel: Worst::default(),
+        scale_at_worst: 0.0,
+        max_moment: 0.0,
+        max_reaction_moment: 0.0,
+        last: (0.0, 0.0),
+        unresolved: None,
+    })
+}
+
+struct AngularMomentumFixedPoint {
+    def: CheckDef,
+    body: Option<String>,
+    substeps: usize,
+    o: Option<DVec2>,
+    set: Vec<usize>,
+    before: Vec<Motion>,
+    arms: ContactArms,
+    worst: Worst,
+    rel: Worst,
+    scale_at_worst: f64,
+    max_moment: f64,
+    max_reaction_moment: f64,
+    last: (f64, f64),
+    unresolved: Option<String>,
+}
+
+impl Probe for AngularMomentumFixedPoint {
+    fn observe(&mut self, s: &Snapshot) {
+        if self.unresolved.is_some() {
+            return;
+        }
+        if self.set.is_empty() {
+            let index = match &self.body {
+                Some(n) => match s.body_index(n) {
+                    Some(i) => Some(i),
+                    None => return,
+                },
+                None => None,
+            };
+            self.set = subject_set(s, index);
+            if self.o.is_none() {
+                self.o = index.and_then(|i| pivot_of(s, i));
+                if self.o.is_none() {
+                    self.unresolved = Some(
+                        "no `point` given and the body has no joint to a fixed body: give the fixed point O".into(),
+                    );
+                    return;
+                }
+            }
+        }
+        let o = self.o.unwrap_or_default();
+        if s.dt > 0.0 && !self.before.is_empty() {
+            let (_, h) = momenta(s, &self.set, o, None);
+            let (_, h_before) = momenta(s, &self.set, o, Some(&self.before));
+            let set = &self.set;
+            self.arms
+                .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
+            let r = step_resultant(
+                &self.before,
+                s,
+                &self.set,
+                o,
+                self.substeps,
+                Some(&self.arms),
+            );
+            let theory = r.moment_o / s.dt;
+            let engine = (h - h_before) / s.dt;
+            let weight: f64 = self
+                .set
+                .iter()
+                .map(|&i| s.bodies[i].mass * s.gravity.length() * (s.bodies[i].com - o).length())
+                .sum();
+            let level = theory.abs().max(engine.abs()).max(weight).max(1e-12);
+            let rel = (theory - engine).abs() / level;
+            if rel > self.rel.max || self.rel.samples == 0 {
+                self.scale_at_worst = level;
+            }
+            self.rel.add(rel, s.time);
+            self.worst.add(theory - engine, s.time);
+            self.max_moment = self.max_moment.max(theory.abs()).max(engine.abs());
+            let mut reaction = 0.0;
+            for_each_external_impulse_with(
+                before_of(&self.set, &self.before),
+                s,
+                self.substeps,
+                Some(&self.arms),
+                |i| self.set.contains(&i),
+                |imp| {
+                    if matches!(imp.source, crate::analysis::kinetics::Source::Joint(_)) {
+                        reaction += imp.moment_about(o);
+                    }
+                },
+            );
+            self.max_reaction_moment = self.max_reaction_moment.max((reaction / s.dt).abs());
+            self.last = (theory, engine);
+        }
+        copy_motions(&mut self.before, s);
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        if let Some(why) = self.unresolved {
+            return misconfigured(&self.def, why).finish();
+        }
+        let scale = scale_or(self.scale_at_worst, 1.0);
+        let o = self.o.unwrap_or_default();
+        let note = format!(
+            "O = ({:.4}, {:.4}); worst step t = {:.3} s (moment level {:.4} N m there); largest residual {:.2e} N m at t = {:.3} s; max |sum M_O| {:.4} N m; the joint reactions' largest moment about O {:.2e} N m",
+            o.x, o.y, self.rel.at_time, scale, self.worst.max, self.worst.at_time, self.max_moment, self.max_reaction_moment
+        );
+        let mut subject = subject_of(&self.def);
+        if self.def.point.is_none() {
+            subject += &format!(" about its pivot ({:.3}, {:.3})", o.x, o.y);
+        }
+        result(
+            &self.def,
+            subject,
+            Summary {
+                theory: self.last.0,
+                engine: self.last.1,
+                max_abs: self.worst.max,
+                max_rel: self.rel.max,
+                final_abs: self.worst.last,
+                final_rel: self.rel.last,
+                samples: self.rel.samples,
+                scale,
+                note,
+            },
+        )
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// `impulse_momentum`: G(t) = G(0) + integral of sum F dt (6/12, IM-2, IM-3), and with `point`
+/// also H_O(t) = H_O(0) + integral of sum M_O dt about that fixed point (6/17, IM-7), over every
+/// window [0, t] of the run.
+///
+/// Theory: the initial momentum plus the running sum of every external impulse of the free-body
+/// diagram (for the scene: forces between its bodies are internal and cancel, 6/18).
+/// Engine: G and H_O of rapier's state at t. A system with no external impulse shows the
+/// conservation laws (IM-4, IM-8).
+/// Scale: the largest |G| (and |H_O|) of the run, theory or engine; the reported relative error
+/// is the larger of the two.
+pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let body = match resolve(level, def) {
+        Ok(b) => b,
+        Err(e) => return misconfigured(def, e),
+    };
+    Box::new(ImpulseMomentum {
+        def: def.clone(),
+        body,
+        substeps: substeps(level),
+        o: def.point.map(v2),
+        set: Vec::new(),
+        before: Vec::new(),
+        arms: ContactArms::default(),
+        started: false,
+        g_theory: DVec2::ZERO,
+        h_theory: 0.0,
+        g_worst: Worst::default(),
+        h_worst: Worst::default(),
+        g_scale: 0.0,
+        h_scale: 0.0,
+        last: (0.0, 0.0),
+    })
+}
+
+struct ImpulseMomentum {
+    def: CheckDef,
+    body: Option<String>,
+    substeps: usize,
+    o: Option<DVec2>,
+    set: Vec<usize>,
+    before: Vec<Motion>,
+    arms: ContactArms,
+    started: bool,
+    g_theory: DVec2,
+    h_theory: f64,
+    g_worst: Worst,
+    h_worst: Worst,
+    g_scale: f64,
+    h_scale: f64,
+    last: (f64, f64),
+}
+
+impl Probe for ImpulseMomentum {
+    fn observe(&mut self, s: &Snapshot) {
+        let o = self.o.unwrap_or_default();
+        if self.set.is_empty() {
+            let index = match &self.body {
+                Some(n) => match s.body_index(n) {
+                    Some(i) => Some(i),
+                    None => return,
+                },
+                None => None,
+            };
+            self.set = subject_set(s, index);
+            copy_motions(&mut self.before, s);
+            return;
+        }
+        if s.dt <= 0.0 {
+            return;
+        }
+        if !self.started {
+            // G(0), H_O(0): the initial motions with the masses of the first step.
+            let (g, h) = momenta(s, &self.set, o, Some(&self.before));
+            self.g_theory = g;
+            self.h_theory = h;
+            self.started = true;
+        }
+        {
+            let set = &self.set;
+            self.arms
+                .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
+            let r = step_resultant(
+                &self.before,
+                s,
+                &self.set,
+                o,
+                self.substeps,
+                Some(&self.arms),
+            );
+            self.g_theory += r.impulse;
+            self.h_theory += r.moment_o;
+        }
+        let (g, h) = momenta(s, &self.set, o, None);
+        self.g_worst.add((g - self.g_theory).length(), s.time);
+        self.g_scale = self.g_scale.max(g.length()).max(self.g_theory.length());
+        if self.o.is_some() {
+            self.h_worst.add(h - self.h_theory, s.time);
+            self.h_scale = self.h_scale.max(h.abs()).max(self.h_theory.abs());
+            self.last = (self.h_theory, h);
+        } else {
+            self.last = (self.g_theory.length(), g.length());
+        }
+        copy_motions(&mut self.before, s);
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        let g_scale = scale_or(self.g_scale, 1.0);
+        let h_scale = scale_or(self.h_scale, 1.0);
+        let g_rel = self.g_worst.max / g_scale;
+        let mut note = format!(
+            "G: worst |G - G(0) - sum J| {:.2e} N s at t = {:.3} s (scale {:.4} N s)",
+            self.g_worst.max, self.g_worst.at_time, g_scale
+        );
+        let (mut max_rel, mut final_rel, mut max_abs, mut final_abs, mut scale) = (
+            g_rel,
+            self.g_worst.last / g_scale,
+            self.g_worst.max,
+            self.g_worst.last,
+            g_scale,
+        );
+        if let Some(o) = self.o {
+            let h_rel = self.h_worst.max / h_scale;
+            note += &format!(
+                "; H about ({:.4}, {:.4}): worst {:.2e} N m s at t = {:.3} s (scale {:.4} N m s)",
+                o.x, o.y, self.h_worst.max, self.h_worst.at_time, h_scale
+            );
+            // The headline is H_O (theory/engine report it); the error is the worse of the two.
+            max_abs = self.h_worst.max;
+            final_abs = self.h_worst.last;
+            scale = h_scale;
+            final_rel = final_rel.max(self.h_worst.last / h_scale);
+            max_rel = max_rel.max(h_rel);
+        }
+        result(
+            &self.def,
+            subject_of(&self.def),
+            Summary {
+                theory: self.last.0,
+                engine: self.last.1,
+                max_abs,
+                max_rel,
+                final_abs,
+                final_rel,
+                samples: self.g_worst.samples,
+                scale,
+                note,
+            },
+        )
+    }
+}

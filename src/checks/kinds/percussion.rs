@@ -1,0 +1,281 @@
+//! `center_of_percussion`: the pivot reaction of a struck pinned body (CP-3), or the resultant
+//! through the center of percussion (CP-2).
+
+use super::{
+    dynamic_body, misconfigured, result, scale_or, subject_of, substeps, textbook_mass, v2,
+    Summary, Worst,
+};
+use crate::analysis::kinetics::{
+    for_each_external_impulse_with, gravity_point, Before, ContactArms, Source,
+};
+use crate::analysis::mass::{parallel_axis, MassProps};
+use crate::analysis::percussion::{center_of_percussion_distance, pivot_impulse, Blow};
+use crate::analysis::Motion;
+use crate::checks::{CheckResult, Probe};
+use crate::level::{CheckDef, EventDef, Level};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// `center_of_percussion` for a body pinned to a fixed body.
+///
+/// With an `Impulse` event on the body (a strike), every strike step compares:
+/// - theory: the pivot's reaction impulse predicted for rotation about the fixed pivot O
+///   (`percussion::pivot_impulse`: angular impulse about O gives d_omega = (r_{Q/O} x P)/I_O,
+///   then J_O = m dv_G - P, plus gravity and the centripetal term over the step), with the
+///   shape formula's m, I_G and G (I_O by MP-2); zero for a blow at q = k_O^2/r_bar;
+/// - engine: the joint's reaction impulse over that step, read from rapier (`sim::joints`).
+///
+/// Compared: the tangential component (perpendicular to OG), which CP-3 is about; the radial part
+/// (weight, the centripetal m r_bar w^2 dt that rapier's velocity-level pin supplies a step late) is
+/// in the note. Scale: the blow's impulse |P|. Without events it checks CP-2 every step: the moment of all
+/// forces (gravity, the pin reaction, loads, contacts) about Q is zero; theory 0, engine
+/// sum M_Q from the free-body diagram; scale: the largest |sum M_O| of the run and m g q.
+///
+/// The pin is the joint named by `other` (a joint, or the joint to the body `other`), else the
+/// body's first joint. O is `point` or that joint's anchor. Known engine limitation: joint
+/// impulses are read from the last substep, so with substeps > 1 the impulsive reaction (all in
+/// the first substep) is not seen; strike levels run with one substep.
+pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let b = match dynamic_body(level, def) {
+        Ok(b) => b,
+        Err(e) => return misconfigured(def, e),
+    };
+    let joint = match &def.other {
+        Some(o) => level.joints.iter().find(|j| &j.name == o).or_else(|| {
+            level.joints.iter().find(|j| {
+                (j.body1 == b.name && &j.body2 == o) || (j.body2 == b.name && &j.body1 == o)
+            })
+        }),
+        None => level
+            .joints
+            .iter()
+            .find(|j| j.body1 == b.name || j.body2 == b.name),
+    };
+    let Some(joint) = joint else {
+        return misconfigured(
+            def,
+            format!(
+                "body \"{}\" has no pin joint to take the pivot reaction from",
+                b.name
+            ),
+        );
+    };
+    let strikes = level
+        .events
+        .iter()
+        .filter(|e| matches!(e, EventDef::Impulse { body, .. } if body == &b.name))
+        .count();
+    Box::new(CenterOfPercussion {
+        def: def.clone(),
+        name: b.name.clone(),
+        joint: joint.name.clone(),
+        mass: textbook_mass(b),
+        substeps: substeps(level),
+        strikes,
+        o: def.point.map(v2),
+        index: None,
+        before: None,
+        arms: ContactArms::default(),
+        worst: Worst::default(),
+        blow: 0.0,
+        max_moment: 0.0,
+        q: 0.0,
+        strike_notes: Vec::new(),
+        last: (0.0, 0.0),
+    })
+}
+
+struct CenterOfPercussion {
+    def: CheckDef,
+    name: String,
+    joint: String,
+    mass: MassProps,
+    substeps: usize,
+    strikes: usize,
+    o: Option<DVec2>,
+    index: Option<usize>,
+    before: Option<Motion>,
+    arms: ContactArms,
+    worst: Worst,
+    /// Largest blow |P| (strike mode).
+    blow: f64,
+    /// Largest |sum M_O| (moment mode), N m.
+    max_moment: f64,
+    q: f64,
+    strike_notes: Vec<String>,
+    last: (f64, f64),
+}
+
+impl CenterOfPercussion {
+    fn pivot_reaction(&self, s: &Snapshot, i: usize) -> Option<DVec2> {
+        let j = s.joints.iter().find(|j| j.name == self.joint)?;
+        Some(if j.body2 == i {
+            j.impulse_on_body2
+        } else {
+            -j.impulse_on_body2
+        })
+    }
+}
+
+impl Probe for CenterOfPercussion {
+    fn observe(&mut self, s: &Snapshot) {
+        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+            return;
+        };
+        self.index = Some(i);
+        let b = &s.bodies[i];
+        let now = Motion::from(b);
+        if self.o.is_none() {
+            self.o = s.joints.iter().find(|j| j.name == self.joint).map(|j| {
+                if j.body2 == i {
+                    j.anchor
+                } else {
+                    j.anchor1
+                }
+            });
+        }
+        let (Some(o), Some(before)) = (self.o, self.before) else {
+            self.before = Some(now);
+            return;
+        };
+        let m = self.mass;
+        let g_before = before.world_point(m.com);
+        let r_bar = (g_before - o).length();
+        let i_o = parallel_axis(m.inertia, m.mass, r_bar);
+        self.q = center_of_percussion_distance(i_o, m.mass, r_bar).unwrap_or(f64::INFINITY);
+        if s.dt > 0.0 {
+            self.arms.update_for(Before::One(i, &before), s, |k| k == i);
+            let reaction = self.pivot_reaction(s, i);
+            if self.strikes > 0 {
+                let events: Vec<Blow> = s
+                    .impulses
+                    .iter()
+                    .filter(|e| e.body == i)
+                    .map(|e| Blow {
+                        impulse: e.impulse,
+                        point: e.point,
+                        couple: e.angular_impulse,
+                    })
+                    .collect();
+                if let (false, Some(reaction)) = (events.is_empty(), reaction) {
+                    let p: DVec2 = events.iter().map(|e| e.impulse).sum();
+                    // Non-impulsive forces over the step: gravity at G and the loads on the body.
+                    let mut blows = events.clone();
+                    let g_now = now.world_point(m.com);
+                    blows.push(Blow {
+                        impulse: m.mass * s.gravity * s.dt,
+                        point: gravity_point(g_before, g_now, self.substeps),
+                        couple: 0.0,
+                    });
+                    for l in s.loads.iter().filter(|l| l.body == i) {
+                        blows.push(Blow {
+                            impulse: l.force * s.dt,
+                            point: l.point,
+                            couple: l.torque * s.dt,
+                        });
+                    }
+                    let (theory, omega1) =
+                        pivot_impulse(m.mass, i_o, o, g_before, before.omega, &blows, s.dt);
+                    self.blow = self.blow.max(p.length());
+                    // CP-3 is about the tangential reaction (perpendicular to OG): the radial part
+                    // (weight, centripetal m r_bar w^2) is non-impulsive, and rapier's velocity-level
+                    // pin supplies the centripetal part a step late. Compare along t, report both.
+                    let radial = (g_before - o).normalize_or(DVec2::NEG_Y);
+                    let mut t = radial.perp();
+                    if t.dot(p) < 0.0 {
+                        t = -t;
+                    }
+                    self.worst.add((theory - reaction).dot(t), s.time);
+                    self.last = (theory.dot(t), reaction.dot(t));
+                    let r = g_before - o;
+                    let h = events
+                        .iter()
+                        .map(|e| (e.point - o).dot(r.normalize_or(DVec2::ZERO)))
+                        .sum::<f64>()
+                        / events.len() as f64;
+                    self.strike_notes.push(format!(
+                        "t = {:.4} s: blow {:.4} N s at h = {:.4} m (h/q = {:.4}); tangential pivot impulse theory {:+.4e}, engine {:+.4e} N s (radial {:+.4e} / {:+.4e}); omega after theory {:.5}, engine {:.5} rad/s",
+                        s.time, p.length(), h, h / self.q, self.last.0, self.last.1, theory.dot(radial), reaction.dot(radial), omega1, now.omega
+                    ));
+                }
+            } else {
+                // CP-2: the resultant of all forces passes through Q, so sum M_Q = 0.
+                let dir = (g_before - o).normalize_or(DVec2::ZERO);
+                let q_point = o + dir * self.q;
+                let (mut m_q, mut m_o) = (0.0, 0.0);
+                for_each_external_impulse_with(
+                    Before::One(i, &before),
+                    s,
+                    self.substeps,
+                    Some(&self.arms),
+                    |k| k == i,
+                    |imp| {
+                        m_q += imp.moment_about(q_point);
+                        if !matches!(imp.source, Source::Joint(_)) {
+                            m_o += imp.moment_about(o);
+                        }
+                    },
+                );
+                let engine = m_q / s.dt;
+                self.max_moment = self
+                    .max_moment
+                    .max((m_o / s.dt).abs())
+                    .max(m.mass * s.gravity.length() * self.q);
+                self.worst.add(engine, s.time);
+                self.last = (0.0, engine);
+            }
+        }
+        self.before = Some(now);
+    }
+
+    fn finish(self: Box<Self>) -> CheckResult {
+        let o = self.o.unwrap_or_default();
+        let mut subject = subject_of(&self.def);
+        subject += &format!(" pinned at ({:.3}, {:.3})", o.x, o.y);
+        let (scale, mut note) = if self.strikes > 0 {
+            (
+                scale_or(self.blow, 1.0),
+                format!(
+                    "q = k_O^2/r_bar = {:.5} m; worst tangential |J_O theory - engine| {:.2e} N s",
+                    self.q, self.worst.max
+                ),
+            )
+        } else {
+            (
+                scale_or(self.max_moment, 1.0),
+                format!(
+                    "sum M_Q about Q at q = {:.5} m: worst {:.2e} N m at t = {:.3} s",
+                    self.q, self.worst.max, self.worst.at_time
+                ),
+            )
+        };
+        for n in &self.strike_notes {
+            note += "; ";
+            note += n;
+        }
+        if self.strikes > 0 && self.worst.samples == 0 {
+            note += "; no strike step was seen";
+        }
+        if self.strikes > 0 && self.substeps > 1 {
+            note += &format!(
+                "; with {} substeps the joint reads only its last substep and misses the impulsive reaction",
+                self.substeps
+            );
+        }
+        result(
+            &self.def,
+            subject,
+            Summary {
+                theory: self.last.0,
+                engine: self.last.1,
+                max_abs: self.worst.max,
+                max_rel: self.worst.max / scale,
+                final_abs: self.worst.last,
+                final_rel: self.worst.last / scale,
+                samples: self.worst.samples,
+                scale,
+                note,
+            },
+        )
+    }
+}

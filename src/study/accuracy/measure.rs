@@ -1,0 +1,579 @@
+//! Running one level at one solver setting: errors (full runs, conservation runs,
+//! self-consistency pieces against a reference) and cost (timed stepping).
+
+use super::metrics;
+use crate::checks::questions::QuestionProbe;
+use crate::checks::{probe_for, CheckResult, Probe};
+use crate::level::{BodyKind, CheckKind, EventDef, Level, Profile, Scene};
+use crate::sim::{Engine, Options};
+use crate::snapshot::{BodyState, Snapshot};
+use serde::Serialize;
+use std::time::{Duration, Instant};
+
+/// Floating-point precision of the engine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Precision {
+    F32,
+    F64,
+}
+
+impl Precision {
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+}
+
+/// One point of the sweep: the solver knobs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setting {
+    /// Physics step, s.
+    pub dt: f64,
+    /// rapier's num_solver_iterations.
+    pub substeps: usize,
+    /// rapier's num_internal_pgs_iterations.
+    pub iterations: usize,
+    pub precision: Precision,
+    /// Every effect stage on (`Options::all_effects`) instead of only the declared ones.
+    pub all_effects: bool,
+}
+
+impl Setting {
+    /// The level's own settings (f32, declared effects).
+    pub fn of_level(level: &Level) -> Self {
+        Setting {
+            dt: level.world.dt,
+            substeps: level.world.substeps,
+            iterations: level.world.solver_iterations,
+            precision: Precision::F32,
+            all_effects: false,
+        }
+    }
+
+    /// rapier's defaults: dt 1/60 s, 4 substeps, 1 PGS iteration (f32, declared effects).
+    pub fn rapier_default() -> Self {
+        Setting {
+            dt: 1.0 / 60.0,
+            substeps: 4,
+            iterations: 1,
+            precision: Precision::F32,
+            all_effects: false,
+        }
+    }
+
+    pub fn options(&self) -> Options {
+        Options {
+            dt: Some(self.dt),
+            substeps: Some(self.substeps),
+            solver_iterations: Some(self.iterations),
+            all_effects: self.all_effects,
+        }
+    }
+
+    /// Same knobs (dt compared to a part in 1e9).
+    pub fn same(&self, o: &Setting) -> bool {
+        (self.dt - o.dt).abs() <= 1e-9 * self.dt.max(o.dt)
+            && self.substeps == o.substeps
+            && self.iterations == o.iterations
+            && self.precision == o.precision
+            && self.all_effects == o.all_effects
+    }
+
+    /// "1/60" when 1/dt is a whole number, else the step in seconds.
+    pub fn dt_label(&self) -> String {
+        dt_label(self.dt)
+    }
+
+    pub fn effects_name(&self) -> &'static str {
+        if self.all_effects {
+            "all"
+        } else {
+            "declared"
+        }
+    }
+
+    /// "dt 1/60 s, 4 substeps, 1 iteration, f32"
+    pub fn label(&self) -> String {
+        format!(
+            "dt {} s, {} substep{}, {} iteration{}, {}{}",
+            self.dt_label(),
+            self.substeps,
+            if self.substeps == 1 { "" } else { "s" },
+            self.iterations,
+            if self.iterations == 1 { "" } else { "s" },
+            self.precision.name(),
+            if self.all_effects {
+                ", all effects"
+            } else {
+                ""
+            }
+        )
+    }
+}
+
+pub fn dt_label(dt: f64) -> String {
+    let hz = 1.0 / dt;
+    if (hz - hz.round()).abs() < 1e-6 * hz {
+        format!("1/{}", hz.round() as u64)
+    } else {
+        format!("{dt}")
+    }
+}
+
+/// What the study needs from each precision's `Simulation`, beyond [`Engine`].
+pub trait StudyEngine: Engine + Sized {
+    fn build(scene: &Scene, opts: &Options) -> Self;
+    /// Overwrites every non-fixed body's pose and velocity (restarting a piece from a reference state).
+    fn restart(&mut self, bodies: &[BodyState]);
+}
+
+macro_rules! study_engine {
+    ($sim:ty, $rapier:ident) => {
+        impl StudyEngine for $sim {
+            fn build(scene: &Scene, opts: &Options) -> Self {
+                <$sim>::new(scene, opts)
+            }
+            fn restart(&mut self, bodies: &[BodyState]) {
+                use $rapier::prelude::{Pose, Real, Vector};
+                let handles = self.body_handles().to_vec();
+                for (h, b) in handles.iter().zip(bodies) {
+                    if b.kind == BodyKind::Fixed {
+                        continue;
+                    }
+                    let rb = &mut self.world.bodies[*h];
+                    let v = |p: glam::DVec2| Vector::new(p.x as Real, p.y as Real);
+                    rb.set_position(Pose::new(v(b.position), b.angle as Real), true);
+                    // rapier's linvel is the mass center's velocity, as the snapshot's.
+                    rb.set_linvel(v(b.velocity), true);
+                    rb.set_angvel(b.omega as Real, true);
+                }
+            }
+        }
+    };
+}
+
+study_engine!(crate::sim::Simulation, rapier2d);
+study_engine!(crate::sim64::Simulation, rapier2d_f64);
+
+/// Calls `f` with the engine of the setting's precision.
+macro_rules! with_engine {
+    ($precision:expr, $f:ident ( $($arg:expr),* )) => {
+        match $precision {
+            Precision::F32 => $f::<crate::sim::Simulation>($($arg),*),
+            Precision::F64 => $f::<crate::sim64::Simulation>($($arg),*),
+        }
+    };
+}
+
+/// A copy of the scene whose clock starts at `t0` of the original: events before it (already
+/// applied by a reference that stepped with `h_ref`) are dropped, later ones and load tables shifted.
+pub fn shifted(scene: &Scene, t0: f64, h_ref: f64) -> Scene {
+    let mut level = scene.level.clone();
+    level.checks.clear();
+    level.questions.clear();
+    // The reference applied an event at the start of the step nearest to it.
+    // Events without a time (welds on contact) stay: the fresh simulation re-detects them.
+    level.events.retain(|e| match e {
+        EventDef::Impulse { at, .. } => *at >= t0 - 0.5 * h_ref,
+        _ => true,
+    });
+    for e in &mut level.events {
+        if let EventDef::Impulse { at, .. } = e {
+            *at = (*at - t0).max(0.0);
+        }
+    }
+    for l in &mut level.loads {
+        if let Some(Profile::Table(rows)) = &mut l.force {
+            for r in rows.iter_mut() {
+                r.0 -= t0;
+            }
+        }
+        if let Some(Profile::Table(rows)) = &mut l.torque {
+            for r in rows.iter_mut() {
+                r.0 -= t0;
+            }
+        }
+    }
+    Scene {
+        file: scene.file.clone(),
+        level,
+    }
+}
+
+/// A scene whose duration is `duration` (conservation runs go on longer than the exercise).
+pub fn with_duration(scene: &Scene, duration: f64) -> Scene {
+    let mut s = scene.clone();
+    s.level.world.duration = duration;
+    s
+}
+
+/// The results of running the level's whole duration at one setting.
+#[derive(Debug, Clone, Default)]
+pub struct FullRun {
+    /// The run was made (false: skipped over the time cap).
+    pub ran: bool,
+    /// Why the run stopped early (an explosion), if it did.
+    pub stopped: Option<String>,
+    /// Largest relative error of the level's questions against their textbook answers.
+    pub question_error: Option<f64>,
+    /// Largest relative error of the level's closed-form (constant_acceleration) checks.
+    pub closed_form_error: Option<f64>,
+    /// Largest error / tolerance over the level's graded checks and questions.
+    pub tolerance_ratio: Option<f64>,
+    /// Every graded check and question within its tolerance (None: the level grades nothing).
+    pub meets_tolerance: Option<bool>,
+    /// Largest separation of joint anchors over the run, m.
+    pub joint_drift_m: Option<f64>,
+}
+
+fn graded(c: &CheckResult) -> bool {
+    // Kinds not implemented yet observe nothing (samples 0) and are not a tolerance.
+    c.samples > 0
+}
+
+/// Runs the level's duration at `setting`, with its checks and questions.
+pub fn full_run(scene: &Scene, setting: &Setting) -> FullRun {
+    with_engine!(setting.precision, full_run_on(scene, setting))
+}
+
+fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
+    let mut sim = E::build(scene, &setting.options());
+    let level = &scene.level;
+    let mut probes: Vec<Box<dyn Probe>> =
+        level.checks.iter().map(|c| probe_for(level, c)).collect();
+    let mut questions: Vec<QuestionProbe> =
+        level.questions.iter().map(QuestionProbe::new).collect();
+    let mut joint_drift: Option<f64> = None;
+    let mut observe = |s: &Snapshot| {
+        for p in probes.iter_mut() {
+            p.observe(s);
+        }
+        for q in questions.iter_mut() {
+            q.observe(s);
+        }
+        if let Some(d) = metrics::max_joint_separation(s, level) {
+            joint_drift = Some(joint_drift.map_or(d, |m: f64| m.max(d)));
+        }
+    };
+    observe(sim.snapshot());
+    let mut stopped = None;
+    for _ in 0..sim.total_steps() {
+        match sim.step() {
+            Ok(s) => observe(s),
+            Err(e) => {
+                stopped = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    if stopped.is_some() {
+        return FullRun {
+            ran: true,
+            stopped,
+            ..FullRun::default()
+        };
+    }
+    let checks: Vec<CheckResult> = probes
+        .into_iter()
+        .map(|p| p.finish())
+        .filter(graded)
+        .collect();
+    let answers: Vec<_> = questions.into_iter().map(|q| q.finish(None)).collect();
+    let max = |it: &mut dyn Iterator<Item = f64>| {
+        it.fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
+    };
+    let question_error = max(&mut answers.iter().map(|q| q.rel_error));
+    let closed_form = crate::checks::kind_name(CheckKind::ConstantAcceleration);
+    let closed_form_error = max(&mut checks
+        .iter()
+        .filter(|c| c.kind == closed_form)
+        .map(|c| c.max_rel_error));
+    let ratio = |e: f64, tol: f64| {
+        if tol > 0.0 {
+            e / tol
+        } else if e == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
+    };
+    let tolerance_ratio = max(&mut checks
+        .iter()
+        .map(|c| ratio(c.max_rel_error, c.tolerance))
+        .chain(answers.iter().map(|q| ratio(q.rel_error, q.tolerance))));
+    let meets_tolerance = (!checks.is_empty() || !answers.is_empty())
+        .then(|| checks.iter().all(|c| c.passed) && answers.iter().all(|q| q.passed));
+    FullRun {
+        ran: true,
+        stopped: None,
+        question_error,
+        closed_form_error,
+        tolerance_ratio,
+        meets_tolerance,
+        joint_drift_m: joint_drift,
+    }
+}
+
+/// Drift rates from a conservation run (relative to the scale of the conserved quantity).
+#[derive(Debug, Clone, Default)]
+pub struct Conservation {
+    pub stopped: Option<String>,
+    /// Signed least-squares slope of E(t) divided by the peak kinetic energy, 1/s.
+    pub energy_drift_per_s: Option<f64>,
+    /// The same times the oscillation period, where the motion has one.
+    pub energy_drift_per_period: Option<f64>,
+    pub period_s: Option<f64>,
+    /// Slope of |L(t) - L(0)| (conserved components) over the momentum scale sum m|v|, 1/s.
+    pub momentum_drift_per_s: Option<f64>,
+    /// Slope of H_O(t) over its scale, 1/s (signed).
+    pub angular_momentum_drift_per_s: Option<f64>,
+}
+
+/// Runs `span` seconds and measures the drift of what the level conserves.
+pub fn conservation(
+    scene: &Scene,
+    setting: &Setting,
+    what: metrics::Conserved,
+    span: f64,
+) -> Conservation {
+    let long = with_duration(scene, span);
+    with_engine!(setting.precision, conservation_on(&long, setting, what))
+}
+
+fn conservation_on<E: StudyEngine>(
+    scene: &Scene,
+    setting: &Setting,
+    what: metrics::Conserved,
+) -> Conservation {
+    let mut sim = E::build(scene, &setting.options());
+    let n = sim.total_steps() as usize + 1;
+    let (mut t, mut e, mut ke, mut l, mut h) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
+    let (mut l_scale, mut h_scale) = (0.0f64, 0.0f64);
+    let m = metrics::mass_props(&scene.level);
+    let mut observe = |s: &Snapshot| {
+        t.push(s.time);
+        e.push(metrics::mechanical_energy(s, &m));
+        ke.push(metrics::kinetic_energy(s, &m));
+        l.push(metrics::linear_momentum(s, &m));
+        h.push(metrics::angular_momentum(s, &m));
+        l_scale = l_scale.max(metrics::momentum_scale(s, &m));
+        h_scale = h_scale.max(metrics::angular_momentum_scale(s, &m));
+    };
+    observe(sim.snapshot());
+    for _ in 1..n {
+        match sim.step() {
+            Ok(s) => observe(s),
+            Err(err) => {
+                return Conservation {
+                    stopped: Some(err.to_string()),
+                    ..Conservation::default()
+                }
+            }
+        }
+    }
+    let ke_peak = ke.iter().cloned().fold(0.0, f64::max);
+    let mut out = Conservation::default();
+    if what.energy && ke_peak > 0.0 {
+        out.energy_drift_per_s = metrics::slope(&t, &e).map(|s| s / ke_peak);
+        out.period_s = metrics::oscillation_period(&t, &ke);
+        out.energy_drift_per_period = out.energy_drift_per_s.zip(out.period_s).map(|(d, p)| d * p);
+    }
+    if let (Some(axes), true) = (what.momentum, l_scale > 0.0) {
+        let l0 = metrics::conserved_momentum(l[0], axes);
+        let dev: Vec<f64> = l
+            .iter()
+            .map(|x| (metrics::conserved_momentum(*x, axes) - l0).length())
+            .collect();
+        out.momentum_drift_per_s = metrics::slope(&t, &dev).map(|s| s / l_scale);
+    }
+    if what.angular_momentum && h_scale > 0.0 {
+        out.angular_momentum_drift_per_s = metrics::slope(&t, &h).map(|s| s / h_scale);
+    }
+    out
+}
+
+/// The engine's own f64 run at a very small step: the states every reference step.
+#[derive(Debug, Clone)]
+pub struct Reference {
+    pub setting: Setting,
+    /// states[k] = bodies at t = k dt.
+    pub states: Vec<Vec<BodyState>>,
+    pub stopped: Option<String>,
+}
+
+impl Reference {
+    pub fn duration(&self) -> f64 {
+        (self.states.len().saturating_sub(1)) as f64 * self.setting.dt
+    }
+
+    /// The bodies at time t, interpolated between reference steps (exact on the grid).
+    pub fn at(&self, t: f64) -> Option<Vec<BodyState>> {
+        let x = t / self.setting.dt;
+        let k = x.floor();
+        let s = x - k;
+        let k = k as usize;
+        if s < 1e-6 {
+            return self.states.get(k).cloned();
+        }
+        if 1.0 - s < 1e-6 {
+            return self.states.get(k + 1).cloned();
+        }
+        let (a, b) = (self.states.get(k)?, self.states.get(k + 1)?);
+        Some(
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| metrics::lerp_body(x, y, s))
+                .collect(),
+        )
+    }
+}
+
+/// Runs the f64 reference (its `precision` is ignored: always f64) over the level's duration.
+pub fn reference(scene: &Scene, setting: &Setting) -> Reference {
+    let setting = Setting {
+        precision: Precision::F64,
+        ..*setting
+    };
+    let mut sim = crate::sim64::Simulation::new(scene, &setting.options());
+    let mut states = vec![sim.snapshot().bodies.clone()];
+    let mut stopped = None;
+    for _ in 0..sim.total_steps() {
+        match sim.step() {
+            Ok(s) => states.push(s.bodies.clone()),
+            Err(e) => {
+                stopped = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    Reference {
+        setting,
+        states,
+        stopped,
+    }
+}
+
+/// Where the pieces start: `count` times spread evenly over [0, duration - piece] on the reference grid.
+pub fn piece_starts(duration: f64, piece: f64, count: usize, h_ref: f64) -> Vec<usize> {
+    let last = ((duration - piece).max(0.0) / h_ref).floor() as usize;
+    let mut out: Vec<usize> = (0..count.max(1))
+        .map(|i| {
+            if count <= 1 {
+                0
+            } else {
+                ((i as f64 / (count - 1) as f64) * last as f64).round() as usize
+            }
+        })
+        .collect();
+    out.dedup();
+    out
+}
+
+/// Self-consistency error (Erez, Tassa & Todorov 2015): the mean, over short pieces restarted from
+/// the reference, of the bodies' deviation from the reference at the end of each piece, m.
+///
+/// Each piece builds a fresh simulation of the scene with its clock shifted to the piece's start,
+/// overwrites every body's pose and velocity with the reference state there (through
+/// `sim.world.bodies`), takes round(piece / dt) steps and compares with the reference at that time
+/// ([`metrics::scene_deviation`]: mass-weighted RMS distance, so orientation counts too). Restarting
+/// keeps chaos from amplifying differences over the run.
+pub fn self_consistency(
+    scene: &Scene,
+    setting: &Setting,
+    reference: &Reference,
+    pieces: usize,
+    piece: f64,
+) -> Result<f64, String> {
+    with_engine!(
+        setting.precision,
+        self_consistency_on(scene, setting, reference, pieces, piece)
+    )
+}
+
+fn self_consistency_on<E: StudyEngine>(
+    scene: &Scene,
+    setting: &Setting,
+    reference: &Reference,
+    pieces: usize,
+    piece: f64,
+) -> Result<f64, String> {
+    let h_ref = reference.setting.dt;
+    let span = reference.duration();
+    let piece = piece.min(span);
+    let steps = ((piece / setting.dt).round() as usize).max(1);
+    let m = metrics::mass_props(&scene.level);
+    let mut sum = 0.0;
+    let mut n = 0;
+    for k0 in piece_starts(span, steps as f64 * setting.dt, pieces, h_ref) {
+        let t0 = k0 as f64 * h_ref;
+        let t1 = t0 + steps as f64 * setting.dt;
+        let Some(end) = reference.at(t1) else {
+            continue;
+        };
+        let mut sim = E::build(&shifted(scene, t0, h_ref), &setting.options());
+        sim.restart(&reference.states[k0]);
+        for _ in 0..steps {
+            sim.step().map_err(|e| e.to_string())?;
+        }
+        sum += metrics::scene_deviation(&sim.snapshot().bodies, &end, &m);
+        n += 1;
+    }
+    if n == 0 {
+        return Err("the reference is shorter than one step".into());
+    }
+    Ok(sum / n as f64)
+}
+
+/// One timing sample: wall time of stepping per simulated second, µs. The level's duration is run
+/// again and again until `min_total` of stepping has been timed (at least once), and the fastest
+/// run is kept: on a shared machine a run that was preempted is slower, never faster. The
+/// simulation is built outside the timer. None if a run stops (an explosion).
+pub fn cost_sample(scene: &Scene, setting: &Setting, min_total: Duration) -> Option<f64> {
+    with_engine!(setting.precision, cost_sample_on(scene, setting, min_total))
+}
+
+fn cost_sample_on<E: StudyEngine>(
+    scene: &Scene,
+    setting: &Setting,
+    min_total: Duration,
+) -> Option<f64> {
+    let mut total = Duration::ZERO;
+    let mut best = f64::INFINITY;
+    while total < min_total || best.is_infinite() {
+        let mut sim = E::build(scene, &setting.options());
+        let steps = sim.total_steps();
+        let start = Instant::now();
+        for _ in 0..steps {
+            if sim.step().is_err() {
+                return None;
+            }
+        }
+        let wall = start.elapsed();
+        total += wall;
+        best = best.min(wall.as_secs_f64() * 1e6 / (steps as f64 * sim.dt()));
+    }
+    Some(best)
+}
+
+/// Wall time per substep at `setting`, s, from one run of `span` seconds (a budget probe, not a
+/// reported cost). None if the run stops.
+pub fn unit_cost(scene: &Scene, setting: &Setting, span: f64) -> Option<f64> {
+    let short = with_duration(scene, span);
+    let steps = (span / setting.dt).round().max(1.0);
+    cost_sample(&short, setting, Duration::ZERO)
+        .map(|us_per_s| us_per_s * 1e-6 * span / (steps * setting.substeps as f64))
+}
+
+/// Predicted wall time of a run of `span` seconds at `setting`, s, from a [`unit_cost`].
+pub fn predicted(setting: &Setting, span: f64, unit: f64) -> f64 {
+    (span / setting.dt).round().max(1.0) * setting.substeps as f64 * unit
+}
