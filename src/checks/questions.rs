@@ -655,7 +655,7 @@ impl Impact {
                     return None;
                 }
                 // gap + v_n tau + a_n tau^2 / 2 = 0 while approaching: the root nearest the last free
-                // step, within one step either way (negative when the engine let the bodies overlap
+                // step, within three steps either way (negative when the engine let the bodies overlap
                 // before the contact acted: the textbook impact is at the touching instant).
                 let roots: Vec<f64> = if a_n.abs() < 1e-12 {
                     vec![-gap / v_n]
@@ -670,7 +670,7 @@ impl Impact {
                 };
                 let tau = roots
                     .into_iter()
-                    .filter(|t| v_n + a_n * t < 0.0 && t.abs() <= hit.dt)
+                    .filter(|t| v_n + a_n * t < 0.0 && t.abs() <= 3.0 * hit.dt)
                     .min_by(|a, b| a.abs().total_cmp(&b.abs()))
                     .unwrap_or(0.0);
                 (n, tau, None)
@@ -2223,12 +2223,6 @@ impl QuestionProbe {
                             && (sig == 0.0 || (s0 > 0.0) != (sig > 0.0));
                         if crossed {
                             let f = s0 / (s0 - sig);
-                            if std::env::var("RIGIDLAB_DEBUG_IMPACT").is_ok() {
-                                eprintln!(
-                                    "crossing {}: l={l:?} r={r:?} s0={s0} sig={sig} f={f}",
-                                    self.def.id
-                                );
-                            }
                             self.value = Some(lerp(l, r, f));
                             self.done = true;
                         }

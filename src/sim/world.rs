@@ -194,7 +194,11 @@ impl Simulation {
         // Only bodies that carry loads or springs: touching a body through `&mut` marks it as
         // changed, and rapier then redoes per-body work for it in the next step.
         for &i in &self.forced_bodies {
-            self.world.bodies[self.bodies[i]].reset_forces(false);
+            // rapier keeps forces and torques apart: both must be cleared, or every
+            // couple (and the moment of every off-center force) accumulates step after step.
+            let rb = &mut self.world.bodies[self.bodies[i]];
+            rb.reset_forces(false);
+            rb.reset_torques(false);
         }
         self.snapshot.loads.clear();
         let t_mid = t0 + 0.5 * dt;
