@@ -43,7 +43,11 @@ pub fn run_scene(
     let mut probes: Vec<Box<dyn Probe>> =
         level.checks.iter().map(|c| probe_for(level, c)).collect();
     let mut questions: Vec<QuestionProbe> =
-        level.questions.iter().map(QuestionProbe::new).collect();
+        level
+            .questions
+            .iter()
+            .map(|q| QuestionProbe::for_level(level, q))
+            .collect();
     let start = Instant::now();
     let mut steps = 0;
     let result = sim.run(|s| {

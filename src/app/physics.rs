@@ -338,7 +338,11 @@ impl LiveChecks {
             generation: phys.generation,
             last_step: Some(0),
             probes: level.checks.iter().map(|c| probe_for(level, c)).collect(),
-            questions: level.questions.iter().map(QuestionProbe::new).collect(),
+            questions: level
+                .questions
+                .iter()
+                .map(|q| QuestionProbe::for_level(level, q))
+                .collect(),
             checks: None,
             answers: None,
         };
