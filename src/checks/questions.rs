@@ -2342,6 +2342,11 @@ impl QuestionProbe {
             }
         };
         let rel_error = err(r.engine);
+        let analysis_rel_error = r.analysis.map(err);
+        // The engine and the textbook formula on the engine's state must both agree with the
+        // expected answer: a right engine number for the wrong reason is not a pass.
+        let passed = rel_error <= self.def.tolerance
+            && analysis_rel_error.is_none_or(|a| a <= self.def.tolerance);
         QuestionResult {
             id: self.def.id.clone(),
             ask: self.def.ask.clone(),
@@ -2350,9 +2355,9 @@ impl QuestionProbe {
             analysis: r.analysis,
             engine: r.engine,
             rel_error,
-            analysis_rel_error: r.analysis.map(err),
+            analysis_rel_error,
             tolerance: self.def.tolerance,
-            passed: rel_error <= self.def.tolerance,
+            passed,
             time: r.t,
             why: self.def.why.clone(),
             note: self.note,
