@@ -173,6 +173,25 @@ fn check(
             }
         }
     }
+    // A student's answer to a question that is not there would otherwise be silently ignored.
+    let asked: Vec<&str> = levels
+        .iter()
+        .flat_map(|l| l.questions.iter().map(|q| q.id.as_str()))
+        .collect();
+    let mut unknown: Vec<&str> = answers
+        .keys()
+        .map(String::as_str)
+        .filter(|id| !asked.contains(id))
+        .collect();
+    if !unknown.is_empty() {
+        unknown.sort_unstable();
+        eprintln!(
+            "error: --answer names no question in the levels run: {}\n  help: the questions are: {}",
+            unknown.join(", "),
+            if asked.is_empty() { "(none)".to_string() } else { asked.join(", ") }
+        );
+        bad_input = true;
+    }
     let report = Report {
         passed: levels.iter().all(|l| l.passed),
         levels,

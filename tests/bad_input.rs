@@ -361,6 +361,22 @@ mod cli {
     }
 
     #[test]
+    fn an_answer_to_a_missing_question_is_bad_input() {
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "spede=9.8",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("spede"), "{err}");
+        assert!(
+            err.contains("speed"),
+            "names the questions there are: {err}"
+        );
+    }
+
+    #[test]
     fn bad_flag_values_exit_2() {
         let (code, _, err) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--dt", "-1"]);
         assert_eq!(code, 2, "{err}");
