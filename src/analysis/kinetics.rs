@@ -383,6 +383,8 @@ pub struct ContactArms {
     /// Per contact of the last snapshot: (first entry, number of points), or `u32::MAX` if untracked.
     rows: Vec<(u32, u32)>,
     previous: Vec<ArmEntry>,
+    /// Manifolds seen per body pair in the current update (reused to avoid allocating).
+    ordinals: std::collections::HashMap<(usize, usize), usize>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -405,16 +407,19 @@ impl ContactArms {
         std::mem::swap(&mut self.entries, &mut self.previous);
         self.entries.clear();
         self.rows.clear();
+        self.ordinals.clear();
         let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
-        for (k, c) in snap.contacts.iter().enumerate() {
+        for c in snap.contacts.iter() {
             if !(track(c.body1) || track(c.body2)) {
                 self.rows.push((u32::MAX, 0));
                 continue;
             }
-            let ordinal = snap.contacts[..k]
-                .iter()
-                .filter(|d| d.body1 == c.body1 && d.body2 == c.body2)
-                .count();
+            // The manifold's ordinal among the pair's manifolds so far (a pair can have several).
+            let ordinal = {
+                let n = self.ordinals.entry((c.body1, c.body2)).or_insert(0);
+                *n += 1;
+                *n - 1
+            };
             let body1_now = Motion::from(&snap.bodies[c.body1]);
             self.rows
                 .push((self.entries.len() as u32, c.points.len() as u32));

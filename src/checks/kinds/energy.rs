@@ -2,7 +2,7 @@
 
 use super::{
     before_of, body_def, copy_motions, dynamic_body, misconfigured, result, scale_or, subject_of,
-    subject_set, substeps, textbook_mass, v2, Summary, Worst,
+    subject_set, substeps, textbook_mass, v2, BodySet, Summary, Worst,
 };
 use crate::analysis::energy::{
     gravity_potential, kinetic_energy, kinetic_energy_about_ic, work_of_impulse_with_arm,
@@ -364,7 +364,7 @@ pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         stiffness: level.springs.iter().map(|s| s.stiffness).collect(),
         body,
         substeps: substeps(level),
-        set: Vec::new(),
+        set: BodySet::default(),
         before: Vec::new(),
         arms: ContactArms::default(),
         springs_before: Vec::new(),
@@ -398,7 +398,7 @@ struct WorkEnergy {
     stiffness: Vec<f64>,
     body: Option<String>,
     substeps: usize,
-    set: Vec<usize>,
+    set: BodySet,
     /// Every body's state at the start of the step.
     before: Vec<Motion>,
     arms: ContactArms,
@@ -493,9 +493,9 @@ impl WorkEnergy {
             if !in1 && !in2 {
                 continue;
             }
-            let def = self.level_joints.iter().find(|d| d.0 == j.name);
             let mut motor = 0.0;
             if j.motor_impulse != 0.0 {
+                let def = self.level_joints.iter().find(|d| d.0 == j.name);
                 if let Some((_, kind, axis)) = def {
                     let rate = |i: usize, p: DVec2| -> (f64, f64) {
                         let (b0, b1) = state(i, &set);

@@ -222,11 +222,47 @@ pub(super) fn v2(p: (f64, f64)) -> DVec2 {
 }
 
 /// Body indices of a check's subject: the named body, or every dynamic body.
-pub(super) fn subject_set(snap: &Snapshot, body: Option<usize>) -> Vec<usize> {
-    match body {
+pub(super) fn subject_set(snap: &Snapshot, body: Option<usize>) -> BodySet {
+    let list: Vec<usize> = match body {
         Some(i) => vec![i],
         None => (0..snap.bodies.len())
             .filter(|&i| snap.bodies[i].mass > 0.0)
             .collect(),
+    };
+    let mut mask = vec![false; snap.bodies.len()];
+    for &i in &list {
+        if let Some(m) = mask.get_mut(i) {
+            *m = true;
+        }
+    }
+    BodySet { list, mask }
+}
+
+/// A check's subject bodies, in order, with O(1) membership: the scene-wide checks ask
+/// "is this body in the set?" for every impulse of every step.
+#[derive(Debug, Clone, Default)]
+pub(super) struct BodySet {
+    list: Vec<usize>,
+    mask: Vec<bool>,
+}
+
+impl BodySet {
+    pub(super) fn contains(&self, i: &usize) -> bool {
+        self.mask.get(*i).copied().unwrap_or(false)
+    }
+}
+
+impl<'a> IntoIterator for &'a BodySet {
+    type Item = &'a usize;
+    type IntoIter = std::slice::Iter<'a, usize>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.list.iter()
+    }
+}
+
+impl std::ops::Deref for BodySet {
+    type Target = [usize];
+    fn deref(&self) -> &[usize] {
+        &self.list
     }
 }

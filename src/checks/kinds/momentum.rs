@@ -2,7 +2,7 @@
 
 use super::{
     before_of, copy_motions, dynamic_body, misconfigured, result, scale_or, subject_of,
-    subject_set, substeps, v2, Summary, Worst,
+    subject_set, substeps, v2, BodySet, Summary, Worst,
 };
 use crate::analysis::kinetics::{for_each_external_impulse_with, ContactArms, Resultant};
 use crate::analysis::momentum::{angular_momentum_about, linear_momentum};
@@ -99,7 +99,7 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
         body,
         substeps: substeps(level),
         o: def.point.map(v2),
-        set: Vec::new(),
+        set: BodySet::default(),
         before: Vec::new(),
         arms: ContactArms::default(),
         worst: Worst::default(),
@@ -117,7 +117,7 @@ struct AngularMomentumFixedPoint {
     body: Option<String>,
     substeps: usize,
     o: Option<DVec2>,
-    set: Vec<usize>,
+    set: BodySet,
     before: Vec<Motion>,
     arms: ContactArms,
     worst: Worst,
@@ -256,7 +256,7 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         body,
         substeps: substeps(level),
         o: def.point.map(v2),
-        set: Vec::new(),
+        set: BodySet::default(),
         before: Vec::new(),
         arms: ContactArms::default(),
         started: false,
@@ -275,7 +275,7 @@ struct ImpulseMomentum {
     body: Option<String>,
     substeps: usize,
     o: Option<DVec2>,
-    set: Vec<usize>,
+    set: BodySet,
     before: Vec<Motion>,
     arms: ContactArms,
     started: bool,
