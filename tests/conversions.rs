@@ -155,3 +155,30 @@ fn naive_reading_of_rapier_joint_impulses_is_wrong_mid_swing() {
         }
     }
 }
+
+#[test]
+fn an_impulse_at_t0_acts_on_the_textbook_mass_properties() {
+    // A free 2 kg, 1 m x 0.2 m bar (I_G = m (a^2 + b^2)/12 = 0.173333 kg m^2), no gravity,
+    // struck at t = 0 by J = (0, 3) N s at r = (0.4, 0) from G (RM-10):
+    //   v_G = J / m = (0, 1.5) m/s;  w = (r x J) / I_G = 0.4 * 3 / 0.173333 = 6.923077 rad/s.
+    // rapier fills in mass properties only inside its first step, so this needs them set at build.
+    for contacts in ["", "contacts"] {
+        let mut s = sim(&format!(
+            r#"Level(title: "blow", effects: [{contacts}],
+            world: (dt: 0.016666666666666666, duration: 0.1),
+            bodies: [(name: "bar", shape: Box(width: 1.0, height: 0.2), mass: 2.0)],
+            events: [Impulse(name: "blow", at: 0.0, body: "bar", point: (0.4, 0.0), impulse: (0.0, 3.0))])"#
+        ));
+        let b = s.step().unwrap().bodies[0].clone();
+        assert!(
+            (b.velocity.x).abs() < 1e-6 && (b.velocity.y - 1.5).abs() < 1e-5,
+            "{contacts}: v = {}",
+            b.velocity
+        );
+        assert!(
+            (b.omega - 6.923077).abs() < 1e-4,
+            "{contacts}: w = {}",
+            b.omega
+        );
+    }
+}

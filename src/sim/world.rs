@@ -48,6 +48,10 @@ impl Simulation {
                     world.insert_collider(c.user_data(i as u128), Some(h));
                 }
             }
+            // rapier folds mass properties into a body only inside its first step; an impulse
+            // event at t = 0 (applied before that step) would then see zero mass and do nothing.
+            let rb = &mut world.bodies[h];
+            rb.recompute_mass_properties_from_colliders(&world.colliders);
             bodies.push(h);
             body_index.insert(b.name.clone(), i);
         }
