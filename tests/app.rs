@@ -311,3 +311,50 @@ fn render_shows_the_bob_where_the_core_puts_it() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The solver panel's error is the accuracy study's figure for the same settings: the worst
+/// relative error of the questions and closed-form checks, and the worst error / tolerance
+/// (src/study/accuracy/measure.rs `full_run`). Same simulation, same probes: equal to the bit.
+#[test]
+fn solver_panel_error_is_the_accuracy_studys_figure() {
+    use rigidlab::study::accuracy::measure::{full_run, Setting};
+    for (file, dt_div, substeps) in [
+        ("levels/kinematics/free_fall.ron", 1.0, None),
+        ("levels/energy/block_friction_work.ron", 1.0, None),
+        // Settings changed in the panel: dt / 2 and 8 substeps.
+        ("levels/energy/block_friction_work.ron", 2.0, Some(8)),
+    ] {
+        let scene = level::load(Path::new(file)).unwrap();
+        let mut setting = Setting::of_level(&scene.level);
+        setting.dt /= dt_div;
+        if let Some(n) = substeps {
+            setting.substeps = n;
+        }
+        let mut phys = Physics::new(scene.clone(), setting.options(), false);
+        let mut live = rigidlab::app::LiveChecks::new(&phys);
+        while !phys.at_end() {
+            assert!(phys.advance(), "{file}: {:?}", phys.error);
+            live.observe(&phys);
+        }
+        let (error, ratio) = rigidlab::app::panels::study_error(
+            live.checks.as_ref().unwrap(),
+            live.answers.as_ref().unwrap(),
+        );
+        let study = full_run(&scene, &setting);
+        let expected = match (study.question_error, study.closed_form_error) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        assert!(expected.is_some(), "{file}: the level has an exact answer");
+        assert_eq!(
+            error.map(f64::to_bits),
+            expected.map(f64::to_bits),
+            "{file}"
+        );
+        assert_eq!(
+            ratio.map(f64::to_bits),
+            study.tolerance_ratio.map(f64::to_bits),
+            "{file}"
+        );
+    }
+}

@@ -98,7 +98,13 @@ pub fn build_drawing(
     if let Some(i) = ov.selected {
         view::highlight(&outlines.bodies, s, i, &mut d);
     }
-    let scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
+    let mut scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
+    let vp = view.viewport;
+    let (a, b) = (
+        view.to_world(Vec2::new(vp.min.x, vp.max.y)),
+        view.to_world(Vec2::new(vp.max.x, vp.min.y)),
+    );
+    scales.visible = Some((a.min(b), a.max(b)));
     overlays::build(&ov, &phys, &outlines.bodies, &scales, &mut d);
     if let Some(tool) = tool {
         tools::preview(&tool, &phys, &scales, &mut d);
@@ -240,14 +246,40 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
         None => browser.first_loadable().unwrap_or_else(empty_scene),
     };
     let mut app = App::new();
-    app.add_plugins(DefaultPlugins.set(WindowPlugin {
-        primary_window: Some(Window {
-            title: "rigidlab".into(),
-            resolution: (1440, 900).into(),
-            ..default()
-        }),
-        ..default()
+    // winit panics when it cannot reach the display (DISPLAY set to a dead X server, a Wayland-only
+    // session: this build speaks X11): catch that and say what to do instead of a backtrace.
+    let hook = std::panic::take_hook();
+    let why = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
+    let why_hook = why.clone();
+    std::panic::set_hook(Box::new(move |info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| info.payload().downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        *why_hook.lock().unwrap() = msg;
     }));
+    let opened = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        app.add_plugins(DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(Window {
+                title: "rigidlab".into(),
+                resolution: (1440, 900).into(),
+                ..default()
+            }),
+            ..default()
+        }));
+    }));
+    std::panic::set_hook(hook);
+    if opened.is_err() {
+        let display = std::env::var("DISPLAY").unwrap_or_default();
+        return Err(format!(
+            "cannot open the sandbox window on DISPLAY={display:?} (this build needs an X11 server): {}\n\
+             Run the exercises headless instead:  rigidlab check levels\n\
+             or draw a level into a PNG:          rigidlab render LEVEL --time T --out FILE.png",
+            why.lock().unwrap().lines().next().unwrap_or("no reason given")
+        ));
+    }
     app.add_plugins(bevy_egui::EguiPlugin::default());
     app.insert_resource(ClearColor(palette::BACKGROUND));
     app.add_plugins(PhysicsPlugin {

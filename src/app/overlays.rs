@@ -72,6 +72,9 @@ pub struct Scales {
     /// Scene size, m.
     pub size: f64,
     pub m_per_px: f64,
+    /// The visible world rectangle (min, max), when known: diagrams drawn beside a body go to
+    /// the side that has room.
+    pub visible: Option<(DVec2, DVec2)>,
 }
 
 /// The longest arrow on screen, px (an impact's contact force would leave the view).
@@ -103,6 +106,7 @@ impl Scales {
             force: if force > 0.0 { force } else { 1.0 },
             size,
             m_per_px,
+            visible: None,
         }
     }
 
@@ -485,7 +489,17 @@ fn kinetic_diagram(
     } else {
         aabb.size().x
     };
-    let shift = DVec2::new(width + 90.0 * px, 0.0);
+    let mut shift = DVec2::new(width + 90.0 * px, 0.0);
+    // To the left when the copy would leave the view on the right by more than a corner (20 px)
+    // and fits on the left (a body near the viewport's right edge, e.g. when the panel is wide).
+    if let Some((lo, hi)) = scales.visible {
+        if !aabb.is_empty()
+            && aabb.max.x + shift.x > hi.x + 20.0 * px
+            && aabb.min.x - shift.x >= lo.x
+        {
+            shift = -shift;
+        }
+    }
     let to_world = geometry::place(o, b.position + shift, b.angle);
     for poly in &o.filled {
         d.prims.push(Prim::Poly(
@@ -500,7 +514,9 @@ fn kinetic_diagram(
     let tip = scales.arrow(g, ma, scales.force);
     d.prims.push(Prim::Arrow(g, tip, palette::ACCEL));
     let ia = b.inertia * alpha;
-    if ia.abs() > 1e-12 {
+    // alpha is a difference quotient: a couple below 1e-3 of (force scale x body size) is noise
+    // (a sliding block shows 1e-7 N m), drawn as none; the label keeps the number.
+    if ia.abs() > 1e-3 * scales.force * r {
         d.prims.push(Prim::Curl(g, 14.0, ia, palette::ACCEL));
     }
     let sum: DVec2 = forces.iter().map(|f| f.force).sum();

@@ -304,6 +304,7 @@ fn panels(
     egui::Panel::left("levels")
         .resizable(true)
         .default_size(300.0)
+        .size_range(200.0..=520.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 level_browser(ui, &mut browser, &phys, &mut load);
@@ -315,6 +316,7 @@ fn panels(
     egui::Panel::right("controls")
         .resizable(true)
         .default_size(330.0)
+        .size_range(260.0..=520.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 playback(ui, &mut phys, st, &mut view);
@@ -488,9 +490,15 @@ fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st: &mut UiSta
                     ));
                 }
                 Some(Ok((_, err, false))) => {
+                    // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
+                    let sign = if (err - 2.0).abs() <= q.tolerance {
+                        "; the magnitude is right: check the sign"
+                    } else {
+                        ""
+                    };
                     ui.label(rich(
                         format!(
-                            "✘ not yet: off by {:.2}% (tolerance {:.2}%)",
+                            "✘ not yet: off by {:.2}% (tolerance {:.2}%){sign}",
                             err * 100.0,
                             q.tolerance * 100.0
                         ),
@@ -698,7 +706,8 @@ fn tool_controls(
                 st.spawned += 1;
                 st.message = Some((note, true));
                 let paused = phys.paused;
-                phys.load(scene);
+                // Keep the camera where the user put it: the new body appears in view.
+                phys.load_keep_view(scene);
                 phys.paused = paused;
             }
         }
@@ -915,9 +924,11 @@ fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
     }
     match phys.step_times.median_ms() {
         Some(ms) => {
+            // The cost as `rigidlab study accuracy` reports it: wall µs per simulated second.
             ui.label(format!(
-                "step time {:.3} ms (median of the last steps) = {:.0}× real time",
+                "step time {:.3} ms (median of the last steps) = {:.0} µs per simulated s, {:.0}× real time",
                 ms,
+                ms * 1e3 / dt,
                 dt * 1e3 / ms.max(1e-9)
             ));
         }
@@ -940,16 +951,76 @@ fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
             (last.total() - e0) / scale * 100.0
         ));
     }
-    if let Some(checks) = &live.checks {
-        let worst = checks.iter().map(|c| c.max_rel_error).fold(0.0, f64::max);
-        if !checks.is_empty() {
-            ui.label(format!("worst check error {:.3e} (relative)", worst));
+    match (&live.checks, &live.answers) {
+        (Some(checks), Some(answers)) => {
+            let (error, ratio) = study_error(checks, answers);
+            if let Some(e) = error {
+                ui.label(format!(
+                    "error against the textbook answers {e:.3e} (relative, as `rigidlab study accuracy` measures it)"
+                ));
+            }
+            if let Some(r) = ratio {
+                ui.label(format!(
+                    "worst error / tolerance {r:.3} (checks and questions)"
+                ));
+            }
+            if phys.interfered {
+                ui.label(rich(
+                    "(you pushed the scene: not the exercise's error)",
+                    palette::FRICTION,
+                ));
+            }
         }
+        _ if !phys.sim.level.checks.is_empty() || !phys.sim.level.questions.is_empty() => {
+            ui.label(format!(
+                "error against the textbook answers: at t = {:.3} s (the level's end)",
+                phys.sim.level.world.duration
+            ));
+        }
+        _ => {}
     }
     if phys.options != Default::default() && ui.small_button("level's settings").clicked() {
         phys.options = Default::default();
         phys.reset();
     }
+}
+
+/// The error the accuracy study plots for a level with exact answers (src/study/accuracy.rs,
+/// `measure::full_run`): the worst relative error of the questions and of the closed-form
+/// (constant-acceleration) checks; and the worst error-to-tolerance ratio of all checks and
+/// questions.
+pub fn study_error(
+    checks: &[crate::checks::CheckResult],
+    answers: &[crate::checks::questions::QuestionResult],
+) -> (Option<f64>, Option<f64>) {
+    let closed_form = crate::checks::kind_name(crate::level::CheckKind::ConstantAcceleration);
+    // As the study: kinds that observed nothing are not graded.
+    let checks: Vec<_> = checks.iter().filter(|c| c.samples > 0).collect();
+    let error = answers
+        .iter()
+        .map(|q| q.rel_error)
+        .chain(
+            checks
+                .iter()
+                .filter(|c| c.kind == closed_form)
+                .map(|c| c.max_rel_error),
+        )
+        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+    let ratio = |e: f64, tol: f64| {
+        if tol > 0.0 {
+            e / tol
+        } else if e == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
+    };
+    let worst = checks
+        .iter()
+        .map(|c| ratio(c.max_rel_error, c.tolerance))
+        .chain(answers.iter().map(|q| ratio(q.rel_error, q.tolerance)))
+        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+    (error, worst)
 }
 
 fn plots(ui: &mut egui::Ui, phys: &Physics) {
@@ -1073,6 +1144,16 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
     );
 }
 
+/// `text` cut to `n` characters with an ellipsis.
+fn clip(text: &str, n: usize) -> String {
+    if text.chars().count() <= n {
+        return text.to_string();
+    }
+    let mut out: String = text.chars().take(n - 1).collect();
+    out.push('…');
+    out
+}
+
 fn checks(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks) {
     let level = &phys.sim.level;
     if level.checks.is_empty() && level.questions.is_empty() {
@@ -1093,12 +1174,14 @@ fn checks(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks) {
                 .show(ui, |ui| {
                     ui.strong("check");
                     ui.strong("max error");
-                    ui.strong("tolerance");
+                    ui.strong("tol.");
                     ui.strong("");
                     ui.end_row();
                     for c in checks {
-                        ui.label(format!("{} {}", c.kind, c.subject))
-                            .on_hover_text(&c.why);
+                        // Clipped to a fixed length: a long subject would widen the panel over
+                        // the scene (egui grows a side panel to its widest row).
+                        ui.label(clip(&format!("{} {}", c.kind, c.subject), 18))
+                            .on_hover_text(format!("{} {}\n{}", c.kind, c.subject, c.why));
                         ui.label(format!("{:.2e}", c.max_rel_error));
                         ui.label(format!("{:.1e}", c.tolerance));
                         ui.label(if c.passed {
@@ -1109,7 +1192,8 @@ fn checks(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks) {
                         ui.end_row();
                     }
                     for q in answers {
-                        ui.label(format!("question {}", q.id)).on_hover_text(&q.why);
+                        ui.label(clip(&format!("question {}", q.id), 18))
+                            .on_hover_text(format!("{}\n{}", q.ask, q.why));
                         ui.label(format!("{:.2e}", q.rel_error));
                         ui.label(format!("{:.1e}", q.tolerance));
                         ui.label(if q.passed {

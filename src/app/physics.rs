@@ -103,6 +103,9 @@ pub struct Physics {
     pub sim: Simulation,
     /// Bumped by every reset/rebuild, so views and checks know to start over.
     pub generation: u64,
+    /// Bumped when the camera should refit: a new level, not a reset, a solver change or a
+    /// spawned body (those keep the user's view).
+    pub view_generation: u64,
     pub paused: bool,
     /// Single steps requested while paused (run in `Update`).
     pub steps_requested: u32,
@@ -150,6 +153,7 @@ impl Physics {
             options,
             sim,
             generation: 0,
+            view_generation: 0,
             paused,
             steps_requested: 0,
             stop_at_end: true,
@@ -201,6 +205,13 @@ impl Physics {
 
     /// Replaces the scene (level browser, spawned body) and resets.
     pub fn load(&mut self, scene: Scene) {
+        self.scene = scene;
+        self.reset();
+        self.view_generation = self.generation;
+    }
+
+    /// Replaces the scene like [`Physics::load`] but tells the camera not to refit.
+    pub fn load_keep_view(&mut self, scene: Scene) {
         self.scene = scene;
         self.reset();
     }

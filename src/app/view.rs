@@ -52,7 +52,11 @@ pub struct View {
     pub fit: bool,
     /// Bounds of the motion the fit used (also sets arrow scales).
     pub bounds: Bounds,
+    /// The `Physics::view_generation` the camera last refit for.
     pub generation: Option<u64>,
+    /// The `Physics::generation` `bounds` were computed for (a fit after a spawn or a solver
+    /// change recomputes them).
+    pub bounds_generation: Option<u64>,
     /// The fastest speed seen in this run (sets the velocity arrow scale), m/s.
     pub max_speed: f64,
     pub generation_speed: Option<u64>,
@@ -67,6 +71,7 @@ impl Default for View {
             fit: true,
             bounds: Bounds::empty(),
             generation: None,
+            bounds_generation: None,
             max_speed: 0.0,
             generation_speed: None,
         }
@@ -321,10 +326,13 @@ pub fn sync_camera(
     mut cams: Query<(&mut Transform, &mut Projection, &mut Camera), With<WorldCamera>>,
     windows: Query<&Window>,
 ) {
-    if view.generation != Some(phys.generation) {
-        view.generation = Some(phys.generation);
-        view.bounds = motion_bounds(&phys.scene, &phys.options);
+    if view.generation != Some(phys.view_generation) {
+        view.generation = Some(phys.view_generation);
         view.fit = true;
+    }
+    if view.fit && view.bounds_generation != Some(phys.generation) {
+        view.bounds_generation = Some(phys.generation);
+        view.bounds = motion_bounds(&phys.scene, &phys.options);
     }
     if view.fit {
         let b = view.bounds;
