@@ -260,7 +260,8 @@ fn visit_impulses(
             continue; // neither, or internal to the set
         }
         let t = c.tangent();
-        let body1_now = Motion::from(&snap.bodies[c.body1]);
+        // Carries body1's end-of-step points back to its start pose (one rotation per contact).
+        let back = StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1));
         for (q, p) in c.points.iter().enumerate() {
             let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
             let source = Source::Contact {
@@ -271,7 +272,10 @@ fn visit_impulses(
             // full update of the manifold (tracked by `arms`), else the point as the narrow phase
             // found it at the start of this step.
             let tracked = arms.and_then(|a| a.get(k, q));
-            let p1 = contact_point_at_start(&body1_now, before.get(c.body1), p.point);
+            let p1 = match tracked {
+                Some(_) => DVec2::ZERO, // unused: the tracked arms are used instead
+                None => back.point(p.point),
+            };
             if in2 {
                 // The point on body2's surface: body1's point moved by the separation along n.
                 let arm = tracked.map_or(p1 + c.normal * p.distance - start(c.body2), |t| t.1);
@@ -384,7 +388,74 @@ pub struct ContactArms {
     rows: Vec<(u32, u32)>,
     previous: Vec<ArmEntry>,
     /// Manifolds seen per body pair in the current update (reused to avoid allocating).
-    ordinals: std::collections::HashMap<(usize, usize), usize>,
+    ordinals: std::collections::HashMap<(usize, usize), usize, PairHash>,
+    /// `previous` by key, built on the first out-of-order lookup of an update.
+    index: std::collections::HashMap<(usize, usize, usize, usize), usize, PairHash>,
+    indexed: bool,
+}
+
+/// A cheap hasher for body-index pairs (the std SipHash cost more than the rest of the update).
+#[derive(Debug, Clone, Copy, Default)]
+struct PairHash;
+
+impl std::hash::BuildHasher for PairHash {
+    type Hasher = PairHasher;
+    fn build_hasher(&self) -> PairHasher {
+        PairHasher(0)
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct PairHasher(u64);
+
+impl std::hash::Hasher for PairHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.write_u64(i as u64);
+    }
+    fn write_u64(&mut self, i: u64) {
+        // FxHash's multiply-rotate step: fine for small integer keys.
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+/// Carries points read at the end of a step on a body (carried along by it) back to where they
+/// were at the start of the step: r_start = p0 + R(a0 - a1)(r_end - p1), one rotation per body.
+#[derive(Debug, Clone, Copy)]
+struct StartOfStep {
+    from: DVec2,
+    to: DVec2,
+    rotation: Option<DVec2>,
+}
+
+impl StartOfStep {
+    fn new(end: &crate::snapshot::BodyState, start: Option<&Motion>) -> Self {
+        match start {
+            Some(b0) => StartOfStep {
+                from: end.position,
+                to: b0.position,
+                // A body that did not turn (the ground) needs no rotation.
+                rotation: (b0.angle != end.angle).then(|| DVec2::from_angle(b0.angle - end.angle)),
+            },
+            None => StartOfStep {
+                from: DVec2::ZERO,
+                to: DVec2::ZERO,
+                rotation: None,
+            },
+        }
+    }
+
+    fn point(&self, p_end: DVec2) -> DVec2 {
+        let r = p_end - self.from;
+        self.to + self.rotation.map_or(r, |q| q.rotate(r))
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -405,6 +476,7 @@ impl ContactArms {
     /// Records the arms of the contacts that touch a body for which `track(i)` holds.
     pub fn update_for(&mut self, before: Before, snap: &Snapshot, track: impl Fn(usize) -> bool) {
         std::mem::swap(&mut self.entries, &mut self.previous);
+        self.indexed = false;
         self.entries.clear();
         self.rows.clear();
         self.ordinals.clear();
@@ -420,24 +492,37 @@ impl ContactArms {
                 *n += 1;
                 *n - 1
             };
-            let body1_now = Motion::from(&snap.bodies[c.body1]);
+            let b1 = &snap.bodies[c.body1];
+            // Body1's frame: one rotation per contact (none for an unturned ground).
+            let to_local = (b1.angle != 0.0).then(|| DVec2::from_angle(-b1.angle));
+            let back = StartOfStep::new(b1, before.get(c.body1));
             self.rows
                 .push((self.entries.len() as u32, c.points.len() as u32));
             for (q, p) in c.points.iter().enumerate() {
                 let key = (c.body1, c.body2, ordinal, q);
-                let local1 =
-                    DVec2::from_angle(-body1_now.angle).rotate(p.point - body1_now.position);
+                let r = p.point - b1.position;
+                let local1 = to_local.map_or(r, |q| q.rotate(r));
                 let tol = 1e-6 * (1.0 + local1.length());
                 // Contacts usually come in the same order step after step: try the same slot first.
                 let slot = self.entries.len();
                 let prev = match self.previous.get(slot) {
                     Some(e) if e.key == key => Some(*e),
-                    _ => self.previous.iter().find(|e| e.key == key).copied(),
+                    _ => {
+                        // Out of order (contacts came or went): index the last update's entries
+                        // once per update rather than scanning them per point.
+                        if !self.indexed {
+                            self.index.clear();
+                            self.index
+                                .extend(self.previous.iter().enumerate().map(|(k, e)| (e.key, k)));
+                            self.indexed = true;
+                        }
+                        self.index.get(&key).map(|&k| self.previous[k])
+                    }
                 };
                 let entry = match prev {
                     Some(e) if (e.local1 - local1).length() <= tol => e,
                     _ => {
-                        let p1 = contact_point_at_start(&body1_now, before.get(c.body1), p.point);
+                        let p1 = back.point(p.point);
                         ArmEntry {
                             key,
                             local1,

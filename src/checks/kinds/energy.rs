@@ -368,6 +368,7 @@ pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         before: Vec::new(),
         arms: ContactArms::default(),
         springs_before: Vec::new(),
+        ledger: Vec::new(),
         e0: None,
         u_nc: 0.0,
         by_source: [0.0; 6],
@@ -404,6 +405,8 @@ struct WorkEnergy {
     arms: ContactArms,
     /// (extension, length) per spring at the start of the step.
     springs_before: Vec<(f64, f64)>,
+    /// Per spring: is its V_e in the ledger (reused each step).
+    ledger: Vec<bool>,
     e0: Option<f64>,
     u_nc: f64,
     by_source: [f64; 6],
@@ -436,23 +439,21 @@ impl WorkEnergy {
 
     /// The non-conservative work of the step that led to `s`.
     fn step_work(&mut self, s: &Snapshot) {
-        let state = |i: usize, _: &[usize]| -> (Motion, Motion) {
-            (self.before[i], Motion::from(&s.bodies[i]))
-        };
+        let before = &self.before;
+        let state =
+            |i: usize, _: &[usize]| -> (Motion, Motion) { (before[i], Motion::from(&s.bodies[i])) };
         {
             let set = &self.set;
             self.arms
                 .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
         }
         let mut add = [0.0; 6];
-        let set = self.set.clone();
-        let ledger: Vec<bool> = s
-            .springs
-            .iter()
-            .map(|sp| self.spring_in_ledger(sp, s))
-            .collect();
+        let mut ledger = std::mem::take(&mut self.ledger);
+        ledger.clear();
+        ledger.extend(s.springs.iter().map(|sp| self.spring_in_ledger(sp, s)));
+        let set = &self.set;
         for_each_external_impulse_with(
-            before_of(&set, &self.before),
+            before_of(set, &self.before),
             s,
             self.substeps,
             Some(&self.arms),
@@ -466,7 +467,7 @@ impl WorkEnergy {
                     Source::Contact { .. } => CONTACTS,
                     Source::Spring(_) | Source::Coupling(..) => OTHER,
                 };
-                let (b0, b1) = state(imp.body, &set);
+                let (b0, b1) = state(imp.body, set);
                 add[slot] += work_of_impulse_with_arm(imp.impulse, imp.arm, imp.couple, &b0, &b1);
             },
         );
@@ -475,7 +476,7 @@ impl WorkEnergy {
             if !(set.contains(&c.body1) && set.contains(&c.body2)) {
                 continue;
             }
-            let (a, b) = (state(c.body1, &set), state(c.body2, &set));
+            let (a, b) = (state(c.body1, set), state(c.body2, set));
             for (q, p) in c.points.iter().enumerate() {
                 let j = c.normal * p.normal_impulse + c.tangent() * p.tangent_impulse;
                 add[CONTACTS] += match self.arms.get(k, q) {
@@ -498,7 +499,7 @@ impl WorkEnergy {
                 let def = self.level_joints.iter().find(|d| d.0 == j.name);
                 if let Some((_, kind, axis)) = def {
                     let rate = |i: usize, p: DVec2| -> (f64, f64) {
-                        let (b0, b1) = state(i, &set);
+                        let (b0, b1) = state(i, set);
                         let mid = Motion::mid(&b0, &b1);
                         let world_axis = DVec2::from_angle(s.bodies[j.body1].angle)
                             .rotate(axis.normalize_or(DVec2::X));
@@ -530,6 +531,7 @@ impl WorkEnergy {
                 add[DAMPING] += -(sp.tension - stiff * x0) * (sp.length - l0);
             }
         }
+        self.ledger = ledger;
         for (k, a) in add.iter().enumerate() {
             self.by_source[k] += a;
         }

@@ -31,7 +31,7 @@ fn momenta(s: &Snapshot, set: &[usize], o: DVec2, motions: Option<&[Motion]>) ->
 fn step_resultant(
     before: &[Motion],
     s: &Snapshot,
-    set: &[usize],
+    set: &BodySet,
     o: DVec2,
     substeps: usize,
     arms: Option<&ContactArms>,
@@ -160,13 +160,21 @@ impl Probe for AngularMomentumFixedPoint {
             let set = &self.set;
             self.arms
                 .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
-            let r = step_resultant(
-                &self.before,
+            // One pass: the resultant, and apart the joint reactions' moment about O.
+            let mut r = Resultant::default();
+            let mut reaction = 0.0;
+            for_each_external_impulse_with(
+                before_of(&self.set, &self.before),
                 s,
-                &self.set,
-                o,
                 self.substeps,
                 Some(&self.arms),
+                |i| self.set.contains(&i),
+                |imp| {
+                    r.add(&imp, o);
+                    if matches!(imp.source, crate::analysis::kinetics::Source::Joint(_)) {
+                        reaction += imp.moment_about(o);
+                    }
+                },
             );
             let theory = r.moment_o / s.dt;
             let engine = (h - h_before) / s.dt;
@@ -183,19 +191,6 @@ impl Probe for AngularMomentumFixedPoint {
             self.rel.add(rel, s.time);
             self.worst.add(theory - engine, s.time);
             self.max_moment = self.max_moment.max(theory.abs()).max(engine.abs());
-            let mut reaction = 0.0;
-            for_each_external_impulse_with(
-                before_of(&self.set, &self.before),
-                s,
-                self.substeps,
-                Some(&self.arms),
-                |i| self.set.contains(&i),
-                |imp| {
-                    if matches!(imp.source, crate::analysis::kinetics::Source::Joint(_)) {
-                        reaction += imp.moment_about(o);
-                    }
-                },
-            );
             self.max_reaction_moment = self.max_reaction_moment.max((reaction / s.dt).abs());
             self.last = (theory, engine);
         }
