@@ -115,6 +115,14 @@ pub struct World {
     pub solver_iterations: usize,
     /// Simulated time, s.
     pub duration: f64,
+    /// Contact stiffness: rapier's `contact_softness.natural_frequency`, Hz (None: rapier's
+    /// 30 Hz; contacts with fixed bodies use twice this, like rapier's 60 Hz default).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_hz: Option<f64>,
+    /// rapier's `RigidBody::set_allow_fast_rotation` on every body: lifts the (pi/4)/dt cap
+    /// that rapier puts on |omega| (off by default, like rapier).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub allow_fast_rotation: bool,
 }
 
 impl Default for World {
@@ -125,6 +133,8 @@ impl Default for World {
             substeps: 4,
             solver_iterations: 1,
             duration: 2.0,
+            contact_hz: None,
+            allow_fast_rotation: false,
         }
     }
 }

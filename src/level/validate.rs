@@ -221,6 +221,18 @@ fn world(v: &V) -> R {
             "use 1 to 1000 iterations (rapier's default is 1)",
         ));
     }
+    if let Some(hz) = w.contact_hz {
+        v.positive(hz, "world.contact_hz", "Hz", at("contact_hz"))?;
+        // rapier's contact bias needs the spring resolved by the step: beyond 1/(2 dt) (Nyquist)
+        // the softness saturates; 1e6 Hz is rapier's own "rigid" joint setting.
+        if hz > 1e6 {
+            return Err(v.err(
+                at("contact_hz"),
+                format!("world.contact_hz = {hz} Hz is out of range"),
+                "use 0 < contact_hz <= 1e6 Hz (rapier's default is 30 Hz)",
+            ));
+        }
+    }
     if let Some(g) = w.gravity {
         v.finite2(g, "world.gravity", at("gravity"))?;
         if g != (0.0, 0.0) {

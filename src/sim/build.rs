@@ -71,7 +71,7 @@ pub fn mass_properties(b: &BodyDef) -> MassProperties {
     MassProperties::new(com, mass as Real, inertia as Real)
 }
 
-pub(crate) fn body_builder(b: &BodyDef, fx: &Effects) -> RigidBodyBuilder {
+pub(crate) fn body_builder(b: &BodyDef, fx: &Effects, fast_rotation: bool) -> RigidBodyBuilder {
     let builder = match b.kind {
         BodyKind::Fixed => RigidBodyBuilder::fixed(),
         BodyKind::Dynamic => RigidBodyBuilder::dynamic(),
@@ -102,7 +102,7 @@ pub(crate) fn body_builder(b: &BodyDef, fx: &Effects) -> RigidBodyBuilder {
     if b.lock_rotation {
         builder = builder.lock_rotations();
     }
-    builder
+    builder.allow_fast_rotation(fast_rotation)
 }
 
 /// Colliders for a body's shape, only when contacts are simulated.
@@ -197,6 +197,11 @@ pub(crate) fn integration_parameters(
         .solver_iterations
         .unwrap_or(level.world.solver_iterations);
     p.max_ccd_substeps = if fx.has(Effect::Ccd) { 1 } else { 0 };
+    if let Some(hz) = level.world.contact_hz {
+        // Contacts with fixed bodies stay twice as stiff, as in rapier's defaults (30/60 Hz).
+        p.contact_softness.natural_frequency = hz as Real;
+        p.static_contact_softness.natural_frequency = (2.0 * hz) as Real;
+    }
     p
 }
 

@@ -11,6 +11,7 @@
 pub(crate) use rapier2d as rapier;
 
 mod build;
+pub mod energy;
 pub mod joints;
 pub mod options;
 mod world;

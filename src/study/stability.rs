@@ -149,8 +149,9 @@ impl Settings {
             substeps: w.substeps,
             iterations: w.solver_iterations,
             f64: spec.recorded.f64,
-            fast_rotation: spec.recorded.fast_rotation,
-            contact_hz: spec.recorded.contact_hz,
+            // The level declares these now (world.allow_fast_rotation, world.contact_hz).
+            fast_rotation: w.allow_fast_rotation || spec.recorded.fast_rotation,
+            contact_hz: w.contact_hz.or(spec.recorded.contact_hz),
             joint_hz: spec.recorded.joint_hz,
             dropped: Vec::new(),
         }
@@ -289,6 +290,9 @@ pub fn run(
         w.dt = settings.dt;
         w.substeps = settings.substeps;
         w.solver_iterations = settings.iterations;
+        // The simulation applies these from the level, as `rigidlab check` does.
+        w.allow_fast_rotation = settings.fast_rotation;
+        w.contact_hz = settings.contact_hz;
         if let Some(n) = steps {
             w.duration = n as f64 * settings.dt;
         }
@@ -304,16 +308,6 @@ pub fn run(
     let start = Instant::now();
     let error = if settings.f64 {
         let mut sim = crate::sim64::Simulation::new(&scene, &opts);
-        if settings.fast_rotation {
-            for h in sim.body_handles().to_vec() {
-                sim.world.bodies[h].set_allow_fast_rotation(true);
-            }
-        }
-        if let Some(hz) = settings.contact_hz {
-            let p = &mut sim.world.integration_parameters;
-            p.contact_softness.natural_frequency = hz as _;
-            p.static_contact_softness.natural_frequency = (2.0 * hz) as _;
-        }
         if let Some(hz) = settings.joint_hz {
             for (_, j) in sim.world.impulse_joints.iter_mut() {
                 j.data.softness.natural_frequency = hz as _;
@@ -327,16 +321,6 @@ pub fn run(
         )
     } else {
         let mut sim = crate::sim::Simulation::new(&scene, &opts);
-        if settings.fast_rotation {
-            for h in sim.body_handles().to_vec() {
-                sim.world.bodies[h].set_allow_fast_rotation(true);
-            }
-        }
-        if let Some(hz) = settings.contact_hz {
-            let p = &mut sim.world.integration_parameters;
-            p.contact_softness.natural_frequency = hz as _;
-            p.static_contact_softness.natural_frequency = (2.0 * hz) as _;
-        }
         if let Some(hz) = settings.joint_hz {
             for (_, j) in sim.world.impulse_joints.iter_mut() {
                 j.data.softness.natural_frequency = hz as _;
