@@ -42,12 +42,11 @@ pub fn run_scene(
     let level = &sim.level;
     let mut probes: Vec<Box<dyn Probe>> =
         level.checks.iter().map(|c| probe_for(level, c)).collect();
-    let mut questions: Vec<QuestionProbe> =
-        level
-            .questions
-            .iter()
-            .map(|q| QuestionProbe::for_level(level, q))
-            .collect();
+    let mut questions: Vec<QuestionProbe> = level
+        .questions
+        .iter()
+        .map(|q| QuestionProbe::for_level(level, q))
+        .collect();
     let start = Instant::now();
     let mut steps = 0;
     let result = sim.run(|s| {

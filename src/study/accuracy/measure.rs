@@ -244,12 +244,11 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
     let level = &scene.level;
     let mut probes: Vec<Box<dyn Probe>> =
         level.checks.iter().map(|c| probe_for(level, c)).collect();
-    let mut questions: Vec<QuestionProbe> =
-        level
-            .questions
-            .iter()
-            .map(|q| QuestionProbe::for_level(level, q))
-            .collect();
+    let mut questions: Vec<QuestionProbe> = level
+        .questions
+        .iter()
+        .map(|q| QuestionProbe::for_level(level, q))
+        .collect();
     let mut joint_drift: Option<f64> = None;
     let mut observe = |s: &Snapshot| {
         for p in probes.iter_mut() {
