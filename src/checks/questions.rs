@@ -1381,6 +1381,14 @@ impl Meter {
                 };
                 (self.acc, analysis)
             }
+            Quantity::LoadPower(name) => {
+                let l = s.loads.iter().find(|l| &l.name == name)?;
+                let b = &s.bodies[l.body];
+                // The load's point as it is at the sample: l.point is where it was at the step's start.
+                let p = b.world_point(to_local(&f.prev?.bodies[l.body], l.point));
+                let v_p = b.velocity + b.omega * (p - b.com).perp();
+                (l.force.dot(v_p) + l.torque * b.omega, None)
+            }
             Quantity::FrictionWork { .. } => (self.acc, ctx.known.then_some(self.acc_path)),
             Quantity::PendulumPeriod { body: b, joint } => {
                 (self.crossings.period(), self.pendulum_theory(s, b, joint))

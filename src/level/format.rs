@@ -561,6 +561,9 @@ pub enum Quantity {
     /// force . displacement of its point + couple x turn; analysis = F . (r_P - r_P0) + M (theta -
     /// theta0) when the load is constant (10.3.2), none otherwise.
     LoadWork(String),
+    /// Power of the named load at the sample, W (WE-10): P = F . v_P + M omega, with v_P the
+    /// velocity of its point of application and the force held over the step. No analysis.
+    LoadPower(String),
     /// Work of the friction forces between two bodies on `body` since the start, J: engine =
     /// sum of friction impulse . velocity of the body's contact point; analysis = -mu N s: the
     /// Coulomb law with the level's mu, the engine's normal force and slip (WE-6).

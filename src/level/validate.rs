@@ -937,7 +937,7 @@ fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
             ]
         }
         Q::SpringWork(s) | Q::SpringExtension(s) => vec![("spring", s)],
-        Q::LoadWork(l) => vec![("load", l)],
+        Q::LoadWork(l) | Q::LoadPower(l) => vec![("load", l)],
         Q::Time => vec![],
     }
 }
