@@ -54,7 +54,7 @@ fn scene_ron() -> String {
         );
         let _ = writeln!(
             checks,
-            r#"(kind: kinetic_energy_ic, body: "ball{k}", tolerance: 1.0),"#
+            r#"(kind: kinetic_energy_ic, body: "ball{k}", other: "floor", tolerance: 1.0),"#
         );
     }
     for k in 0..BARS {
@@ -80,7 +80,7 @@ fn scene_ron() -> String {
         );
         let _ = writeln!(
             checks,
-            r#"(kind: kinetic_energy_ic, body: "bar{k}", tolerance: 1.0),"#
+            r#"(kind: kinetic_energy_ic, body: "bar{k}", point: ({px}, 5.0), tolerance: 1.0),"#
         );
         let _ = writeln!(
             checks,

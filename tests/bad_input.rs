@@ -384,3 +384,18 @@ mod cli {
         assert_eq!(code, 2);
     }
 }
+
+#[test]
+fn a_check_that_would_compare_a_number_with_itself_is_rejected() {
+    // kinetic_energy_ic without `point` or `other` takes the instantaneous center from the
+    // engine's own velocities, where 1/2 I_C w^2 = 1/2 m v^2 + 1/2 I_G w^2 holds identically.
+    let text = level(
+        BALL,
+        "  checks: [(kind: kinetic_energy_ic, body: \"ball\", tolerance: 1e-3)],",
+        "gravity",
+        "dt: 0.01",
+    );
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "kinetic_energy_ic"));
+    assert!(msg.contains("point") && msg.contains("other"), "{msg}");
+}

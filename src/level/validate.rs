@@ -763,6 +763,15 @@ fn check(v: &V, i: usize, c: &CheckDef) -> R {
     if let Some(p) = c.point {
         v.finite2(p, "check point", pos)?;
     }
+    if c.kind == CheckKind::KineticEnergyIc && c.point.is_none() && c.other.is_none() {
+        // An instantaneous center found from the engine's own velocities makes 1/2 I_C w^2
+        // equal 1/2 m v^2 + 1/2 I_G w^2 identically: the check would compare a number with itself.
+        return Err(v.err(
+            pos,
+            "check kinetic_energy_ic has neither `point` nor `other`: it would compare the engine's kinetic energy with itself",
+            "give `point: (x, y)` for a body turning about a fixed pivot, or `other: \"ground\"` for a body rolling on it",
+        ));
+    }
     v.positive(c.tolerance, "check tolerance", "", pos)
 }
 
