@@ -1,7 +1,7 @@
 //! Runs a level headless from start to end: simulation, checks and questions in one pass.
 
 use crate::checks::questions::QuestionProbe;
-use crate::checks::{probe_for, Probe};
+use crate::checks::CheckSet;
 use crate::level::{self, LevelError, Scene};
 use crate::report::LevelReport;
 use crate::sim::{Options, SimError, Simulation};
@@ -40,8 +40,7 @@ pub fn run_scene(
 ) -> Result<LevelReport, RunError> {
     let mut sim = Simulation::new(scene, opts);
     let level = &sim.level;
-    let mut probes: Vec<Box<dyn Probe>> =
-        level.checks.iter().map(|c| probe_for(level, c)).collect();
+    let mut checks = CheckSet::new(level);
     let mut questions: Vec<QuestionProbe> = level
         .questions
         .iter()
@@ -51,9 +50,7 @@ pub fn run_scene(
     let mut steps = 0;
     let result = sim.run(|s| {
         steps = s.step;
-        for p in probes.iter_mut() {
-            p.observe(s);
-        }
+        checks.observe(s);
         for q in questions.iter_mut() {
             q.observe(s);
         }
@@ -64,7 +61,7 @@ pub fn run_scene(
         file: scene.file.display().to_string(),
         source,
     })?;
-    let checks: Vec<_> = probes.into_iter().map(|p| p.finish()).collect();
+    let checks = checks.finish();
     let questions: Vec<_> = questions
         .into_iter()
         .map(|q| {

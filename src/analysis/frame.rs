@@ -2,17 +2,87 @@
 //!
 //! [`FrameAnalysis::observe`] takes the snapshots in order and returns a [`Frame`]: per body its
 //! kinetic energy (6/9), momenta (6/12, 6/13), instantaneous center (RK-11), accelerations by
-//! finite differences, the free-body diagram's force and moment sums and the Newton-Euler
-//! residuals (6/1); for the scene T, V_g, V_e, G and H about the origin (6/18, 6/19). It costs
-//! O(bodies + contacts + joints) per step, for the app's overlays, the CSV and the benchmark.
+//! finite differences, the free-body diagram's impulse sums and the Newton-Euler residuals (6/1),
+//! and the non-conservative work of its forces over the step (WE-14); for the scene T, V_g, V_e,
+//! G and H about the origin (6/18, 6/19), the resultant of the external impulses (forces between
+//! two bodies of the scene are internal and cancel, 6/18) and the step's non-conservative work.
+//!
+//! The checks read this frame instead of walking the step's impulses each on its own (see
+//! `checks::CheckSet`): the walk, the contact lever arms and the start-of-step states are
+//! computed once per step. It costs O(bodies + contacts + joints + springs) per step.
 
 use super::energy::{gravity_potential, kinetic_energy};
 use super::kinematics::{acceleration_fd, angular_acceleration_fd, instantaneous_center};
-use super::kinetics::{for_each_body_impulse, Before, ContactArms};
-use super::momentum::{angular_momentum_about, angular_momentum_g, linear_momentum};
-use super::Motion;
-use crate::snapshot::Snapshot;
+use super::kinetics::{contact_arms_at_start, Before, ContactArms};
+use super::momentum::{angular_momentum_g, linear_momentum};
+use super::{cross, Motion};
+use crate::snapshot::{BodyKind, Coordinate, Snapshot};
 use glam::DVec2;
+
+/// Sums of a step's impulses on a body or a set of bodies (impulses over the step, N s and N m s).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ImpulseSums {
+    /// Sum of impulses, sum J = integral of sum F dt over the step (IM-2).
+    pub impulse: DVec2,
+    /// Sum of angular impulses about the world origin, sum (r_P x J)_z + couples (IM-7).
+    pub moment_origin: f64,
+    /// The part of `impulse` from joint reactions.
+    pub joint_impulse: DVec2,
+    /// The part of `moment_origin` from joint reactions.
+    pub joint_moment_origin: f64,
+}
+
+impl ImpulseSums {
+    /// Sum of angular impulses about a fixed point O: M_O = M_origin - (r_O x sum J)_z.
+    pub fn moment_about(&self, o: DVec2) -> f64 {
+        self.moment_origin - cross(o, self.impulse)
+    }
+
+    /// The joint reactions' angular impulse about O.
+    pub fn joint_moment_about(&self, o: DVec2) -> f64 {
+        self.joint_moment_origin - cross(o, self.joint_impulse)
+    }
+
+    fn add(&mut self, j: DVec2, moment_origin: f64, joint: bool) {
+        self.impulse += j;
+        self.moment_origin += moment_origin;
+        if joint {
+            self.joint_impulse += j;
+            self.joint_moment_origin += moment_origin;
+        }
+    }
+}
+
+/// The work U' of a step's non-conservative forces (WE-14), by source, J. Weight, springs whose
+/// ends are held by the subject or the ground (their V_e is in the ledger) and ideal joint
+/// reactions are not in it. Motors and spring damping are not either: they need the level's
+/// joint axes and spring constants (the `work_energy` check adds them).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepWork {
+    /// Applied loads (forces and couples).
+    pub loads: f64,
+    /// Impulse events.
+    pub events: f64,
+    /// Contact impulses (friction, impacts; both sides of a contact inside the subject).
+    pub contacts: f64,
+    /// Couplings, and springs with an end on a body outside the subject that is not the ground.
+    pub other: f64,
+}
+
+impl StepWork {
+    pub fn total(&self) -> f64 {
+        self.loads + self.events + self.contacts + self.other
+    }
+
+    fn add(&mut self, slot: Slot, u: f64) {
+        *match slot {
+            Slot::Loads => &mut self.loads,
+            Slot::Events => &mut self.events,
+            Slot::Contacts => &mut self.contacts,
+            Slot::Other => &mut self.other,
+        } += u;
+    }
+}
 
 /// One body's textbook quantities at the end of a step (zero for bodies without mass).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -34,31 +104,63 @@ pub struct BodyFrame {
     /// sum F - m a_G and sum M_G - I_G alpha (6/1).
     pub force_residual: DVec2,
     pub moment_residual: f64,
+    /// Every impulse of the body's free-body diagram over the step, summed.
+    pub impulses: ImpulseSums,
+    /// The non-conservative work done on the body over the step (springs count when their other
+    /// end is on another body that is not the ground).
+    pub work: StepWork,
+}
+
+/// Scene totals at one instant (the bodies with mass).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Totals {
+    /// Sum of T, J.
+    pub kinetic_energy: f64,
+    /// Sum of V_g = -m g . r_G, J (WE-13).
+    pub gravity_potential: f64,
+    /// System G (6/18), N s.
+    pub linear_momentum: DVec2,
+    /// System H about the world origin (6/19), N m s; about O: H_origin - (r_O x G)_z.
+    pub angular_momentum_origin: f64,
+}
+
+impl Totals {
+    /// System H about a point O (6/15 summed): H_O = H_origin - (r_O x G)_z.
+    pub fn angular_momentum_about(&self, o: DVec2) -> f64 {
+        self.angular_momentum_origin - cross(o, self.linear_momentum)
+    }
 }
 
 /// The whole scene at the end of a step.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Frame {
     pub time: f64,
+    /// The step's length (0 for the initial state).
+    pub dt: f64,
     /// Indexed like `Snapshot::bodies`.
     pub bodies: Vec<BodyFrame>,
-    /// Sum of T, J.
-    pub kinetic_energy: f64,
-    /// Sum of V_g = -m g . r_G, J (WE-13).
-    pub gravity_potential: f64,
+    /// T, V_g, G, H of the bodies with mass at the end of the step.
+    pub totals: Totals,
+    /// The same at the start of the step (the previous frame's; equal to `totals` initially).
+    pub totals_before: Totals,
     /// Sum of the springs' V_e = 1/2 k x^2, J.
     pub elastic_potential: f64,
-    /// System G (6/18), N s.
-    pub linear_momentum: DVec2,
-    /// System H about the world origin (6/19), N m s; move it with `momentum::transfer_angular_momentum`.
-    pub angular_momentum_origin: f64,
+    /// The external impulses on the system of all bodies with mass over the step (6/18).
+    pub external: ImpulseSums,
+    /// The non-conservative work done on that system over the step, internal contacts included.
+    pub work: StepWork,
+    /// Whether this frame closes a step (false for the initial state).
+    pub stepped: bool,
 }
 
 /// Computes a [`Frame`] per snapshot, keeping what it needs from the previous one.
 #[derive(Debug, Clone, Default)]
 pub struct FrameAnalysis {
     substeps: usize,
+    /// Every body's state at the start of the last step observed.
     before: Vec<Motion>,
+    /// ... and at its end (swapped into `before` at the next step).
+    after: Vec<Motion>,
     arms: ContactArms,
     frame: Frame,
 }
@@ -72,56 +174,292 @@ impl FrameAnalysis {
         }
     }
 
+    /// The bodies' states at the start of the step of the last frame (at its end for the initial
+    /// state).
+    pub fn start_of_step(&self) -> &[Motion] {
+        &self.before
+    }
+
+    /// The lever arms of the last step's contact points (see [`ContactArms`]).
+    pub fn arms(&self) -> &ContactArms {
+        &self.arms
+    }
+
+    /// The last frame computed.
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
     /// The frame of `snap` (the snapshots must come in order, the initial one first).
+    ///
+    /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
     pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
         let n = snap.bodies.len();
-        let f = &mut self.frame;
-        f.time = snap.time;
-        f.bodies.clear();
-        f.bodies.resize(n, BodyFrame::default());
-        f.kinetic_energy = 0.0;
-        f.gravity_potential = 0.0;
-        f.linear_momentum = DVec2::ZERO;
-        f.angular_momentum_origin = 0.0;
-        f.elastic_potential = snap.springs.iter().map(|s| s.energy).sum();
+        std::mem::swap(&mut self.before, &mut self.after);
+        self.after.clear();
+        self.after.extend(snap.bodies.iter().map(Motion::from));
         let stepped = snap.dt > 0.0 && self.before.len() == n;
+        if !stepped {
+            self.before.clone_from(&self.after);
+        }
+        let f = &mut self.frame;
+        if !stepped || f.bodies.len() != n {
+            f.bodies.clear();
+            f.bodies.resize(n, BodyFrame::default());
+        }
+        f.time = snap.time;
+        f.dt = snap.dt;
+        f.stepped = stepped;
+        f.external = ImpulseSums::default();
+        f.work = StepWork::default();
+        f.elastic_potential = snap.springs.iter().map(|s| s.energy).sum();
         if stepped {
             self.arms.update(Before::All(&self.before), snap);
-            let bodies = &mut f.bodies;
-            for_each_body_impulse(&self.before, snap, self.substeps, Some(&self.arms), |imp| {
-                let b = &mut bodies[imp.body];
-                b.force += imp.impulse;
-                b.moment_g += imp.moment_about_g();
-            });
+            let mut pass = Pass {
+                snap,
+                before: &self.before,
+                after: &self.after,
+                bodies: &mut f.bodies,
+                external: &mut f.external,
+                work: &mut f.work,
+                s_frac: {
+                    let s = self.substeps.max(1) as f64;
+                    (s - 1.0) / (2.0 * s)
+                },
+            };
+            pass.run(&self.arms);
         }
+        f.totals_before = f.totals;
+        let mut totals = Totals::default();
+        let inv_dt = if stepped { 1.0 / snap.dt } else { 0.0 };
         for (i, b) in snap.bodies.iter().enumerate() {
             if b.mass <= 0.0 {
                 continue;
             }
             let bf = &mut f.bodies[i];
+            let g = linear_momentum(b.mass, b.velocity);
+            let h_g = angular_momentum_g(b.inertia, b.omega);
             bf.kinetic_energy = kinetic_energy(b.mass, b.velocity, b.inertia, b.omega);
-            bf.linear_momentum = linear_momentum(b.mass, b.velocity);
-            bf.angular_momentum_g = angular_momentum_g(b.inertia, b.omega);
+            bf.linear_momentum = g;
+            bf.angular_momentum_g = h_g;
             bf.instantaneous_center = instantaneous_center(b.com, b.velocity, b.omega, 1e9);
             if stepped {
                 let m0 = &self.before[i];
-                bf.acceleration = acceleration_fd(m0.velocity, b.velocity, snap.dt);
-                bf.angular_acceleration = angular_acceleration_fd(m0.omega, b.omega, snap.dt);
-                bf.force /= snap.dt;
-                bf.moment_g /= snap.dt;
-                bf.force_residual = bf.force - b.mass * bf.acceleration;
-                bf.moment_residual = bf.moment_g - b.inertia * bf.angular_acceleration;
+                let a_g = acceleration_fd(m0.velocity, b.velocity, snap.dt);
+                let alpha = angular_acceleration_fd(m0.omega, b.omega, snap.dt);
+                // The pass left the impulse sums; the mean forces are those over dt.
+                bf.force = bf.impulses.impulse * inv_dt;
+                bf.moment_g *= inv_dt;
+                bf.acceleration = a_g;
+                bf.angular_acceleration = alpha;
+                bf.force_residual = bf.force - b.mass * a_g;
+                bf.moment_residual = bf.moment_g - b.inertia * alpha;
             }
-            f.kinetic_energy += bf.kinetic_energy;
-            f.gravity_potential += gravity_potential(b.mass, snap.gravity, b.com);
-            f.linear_momentum += bf.linear_momentum;
-            f.angular_momentum_origin +=
-                angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, DVec2::ZERO);
+            totals.kinetic_energy += bf.kinetic_energy;
+            totals.gravity_potential += gravity_potential(b.mass, snap.gravity, b.com);
+            totals.linear_momentum += g;
+            // H_O = I_G w + (r_G x m v_G)_z about the origin (6/15).
+            totals.angular_momentum_origin += h_g + cross(b.com, g);
         }
-        self.before.resize(n, Motion::default());
-        for (m, b) in self.before.iter_mut().zip(&snap.bodies) {
-            *m = Motion::from(b);
+        f.totals = totals;
+        if !stepped {
+            f.totals_before = totals;
         }
         &self.frame
+    }
+}
+
+/// Which `StepWork` entry an impulse's work goes to.
+#[derive(Clone, Copy)]
+enum Slot {
+    Loads,
+    Events,
+    Contacts,
+    Other,
+}
+
+/// One step's free-body diagrams of every body, summed as they are read.
+///
+/// The same impulses, points and lever arms as `kinetics::for_each_body_impulse` (which stays the
+/// reference: tests/frame.rs holds the two equal), read source by source without building a
+/// `StepImpulse` per impulse, so that the pass costs a few percent of the physics step.
+struct Pass<'a> {
+    snap: &'a Snapshot,
+    before: &'a [Motion],
+    after: &'a [Motion],
+    /// Where the sums accumulate: `impulses`, `moment_g` (as an impulse) and `work`.
+    bodies: &'a mut [BodyFrame],
+    external: &'a mut ImpulseSums,
+    work: &'a mut StepWork,
+    /// (S - 1)/(2S): where in the step gravity acts (`kinetics::gravity_point`).
+    s_frac: f64,
+}
+
+impl Pass<'_> {
+    fn has_mass(&self, i: usize) -> bool {
+        self.snap.bodies[i].mass > 0.0
+    }
+
+    /// The mean of the substeps' start positions of G (`kinetics::gravity_point`).
+    fn g_point(&self, i: usize) -> DVec2 {
+        let (g0, g1) = (self.before[i].com, self.after[i].com);
+        g0 + (g1 - g0) * self.s_frac
+    }
+
+    /// U = J . v_P,mid + couple omega_mid (`energy::work_of_impulse_with_arm`).
+    fn work_of(&self, i: usize, j: DVec2, arm: DVec2, couple: f64) -> f64 {
+        let (m0, m1) = (&self.before[i], &self.after[i]);
+        let v = 0.5 * (m0.velocity + m1.velocity);
+        let w = 0.5 * (m0.omega + m1.omega);
+        j.dot(v + super::k_cross(w, arm)) + couple * w
+    }
+
+    /// Adds an impulse J on body i acting at `point` with lever arm `arm` from G, plus a couple.
+    /// `internal`: its reaction acts on another body with mass. `work`: where its work goes
+    /// (for the body, and whether for the scene too).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn add(
+        &mut self,
+        i: usize,
+        j: DVec2,
+        point: DVec2,
+        arm: DVec2,
+        couple: f64,
+        joint: bool,
+        internal: bool,
+        work: Option<(Slot, bool)>,
+    ) {
+        let m_origin = cross(point, j) + couple;
+        let u = work.map(|_| self.work_of(i, j, arm, couple));
+        let acc = &mut self.bodies[i];
+        acc.moment_g += cross(arm, j) + couple;
+        acc.impulses.add(j, m_origin, joint);
+        if !internal {
+            self.external.add(j, m_origin, joint);
+        }
+        if let (Some((slot, scene)), Some(u)) = (work, u) {
+            acc.work.add(slot, u);
+            if scene {
+                self.work.add(slot, u);
+            }
+        }
+    }
+
+    fn run(&mut self, arms: &ContactArms) {
+        let snap = self.snap;
+        let dt = snap.dt;
+        let start = |p: &Self, i: usize| p.before[i].com;
+        // Every body with mass starts from its weight, m g dt at the gravity point (external).
+        let (mut weight, mut weight_moment) = (DVec2::ZERO, 0.0);
+        for (i, b) in snap.bodies.iter().enumerate() {
+            if b.mass > 0.0 {
+                let j = b.mass * snap.gravity * dt;
+                let m_origin = cross(self.g_point(i), j);
+                let bf = &mut self.bodies[i];
+                bf.impulses = ImpulseSums {
+                    impulse: j,
+                    moment_origin: m_origin,
+                    ..ImpulseSums::default()
+                };
+                bf.moment_g = 0.0;
+                bf.work = StepWork::default();
+                weight += j;
+                weight_moment += m_origin;
+            }
+        }
+        self.external.impulse += weight;
+        self.external.moment_origin += weight_moment;
+        // A force held over the step: rapier applies it at G plus the couple of its start-of-step
+        // arm, so its line of action moves with G (`kinetics` module doc).
+        for l in &snap.loads {
+            if self.has_mass(l.body) {
+                let arm = l.point - start(self, l.body);
+                let at = self.g_point(l.body) + arm;
+                let j = l.force * dt;
+                let work = Some((Slot::Loads, true));
+                self.add(l.body, j, at, arm, l.torque * dt, false, false, work);
+            }
+        }
+        for sp in &snap.springs {
+            let ends = [
+                (sp.body1, sp.body2, sp.applied_at1, sp.force_on_body1),
+                (sp.body2.unwrap_or(usize::MAX), Some(sp.body1), sp.applied_at2, -sp.force_on_body1),
+            ];
+            for (i, other, p, force) in ends {
+                if i == usize::MAX || !self.has_mass(i) {
+                    continue;
+                }
+                let internal = other.is_some_and(|o| self.has_mass(o));
+                // Held at the other end by the ground: V_e is in the ledger. By another body with
+                // mass: in the scene's ledger, not in the body's own. By a kinematic body: in neither.
+                let ground = other.is_none_or(|o| snap.bodies[o].kind == BodyKind::Fixed);
+                let work = (!ground).then_some((Slot::Other, !internal));
+                let arm = p - start(self, i);
+                let at = self.g_point(i) + arm;
+                self.add(i, force * dt, at, arm, 0.0, false, internal, work);
+            }
+        }
+        for e in &snap.impulses {
+            if self.has_mass(e.body) {
+                let arm = e.point - start(self, e.body);
+                let work = Some((Slot::Events, true));
+                self.add(e.body, e.impulse, e.point, arm, e.angular_impulse, false, false, work);
+            }
+        }
+        for (k, c) in snap.contacts.iter().enumerate() {
+            let (in1, in2) = (self.has_mass(c.body1), self.has_mass(c.body2));
+            if !in1 && !in2 {
+                continue;
+            }
+            let internal = in1 && in2;
+            let t = c.tangent();
+            for (q, p) in c.points.iter().enumerate() {
+                let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
+                let (arm1, arm2) = arms
+                    .get(k, q)
+                    .unwrap_or_else(|| contact_arms_at_start(snap, self.before, c, p));
+                let work = Some((Slot::Contacts, true));
+                if in2 {
+                    let at = self.g_point(c.body2) + arm2;
+                    self.add(c.body2, j2, at, arm2, 0.0, false, internal, work);
+                }
+                if in1 {
+                    let at = self.g_point(c.body1) + arm1;
+                    self.add(c.body1, -j2, at, arm1, 0.0, false, internal, work);
+                }
+            }
+        }
+        for j in &snap.joints {
+            let (in1, in2) = (self.has_mass(j.body1), self.has_mass(j.body2));
+            let internal = in1 && in2;
+            let sides = [
+                (in2, j.body2, j.impulse_on_body2, j.anchor, j.angular_impulse_on_body2),
+                (in1, j.body1, -j.impulse_on_body2, j.anchor1, j.angular_impulse_on_body1),
+            ];
+            for (inside, i, imp, at, angular) in sides {
+                if inside {
+                    // The row solver's angular impulse about G, less the moment of the linear part.
+                    let arm = at - self.after[i].com;
+                    self.add(i, imp, at, arm, angular - cross(arm, imp), true, internal, None);
+                }
+            }
+        }
+        for c in &snap.couplings {
+            for &(i, coordinate, ratio) in &c.terms {
+                if !self.has_mass(i) {
+                    continue;
+                }
+                let x = ratio * c.impulse;
+                let (j, couple) = match coordinate {
+                    Coordinate::X => (DVec2::new(x, 0.0), 0.0),
+                    Coordinate::Y => (DVec2::new(0.0, x), 0.0),
+                    Coordinate::Angle => (DVec2::ZERO, x),
+                };
+                let at = self.g_point(i);
+                let work = Some((Slot::Other, true));
+                self.add(i, j, at, DVec2::ZERO, couple, false, false, work);
+            }
+        }
     }
 }

@@ -16,13 +16,16 @@ pub fn point_acceleration(a_g: DVec2, alpha: f64, omega: f64, r: DVec2) -> DVec2
 
 /// Mass-center acceleration by a finite difference over one physics step, a_G = (v_1 - v_0)/dt
 /// (`FD` in concepts.md: over the physics step, not the render frame).
+#[inline]
 pub fn acceleration_fd(v0: DVec2, v1: DVec2, dt: f64) -> DVec2 {
-    (v1 - v0) / dt
+    // One reciprocal, which a loop over bodies computes once (a division costs ~10 products).
+    (v1 - v0) * (1.0 / dt)
 }
 
 /// Angular acceleration by a finite difference over one physics step, alpha = (omega_1 - omega_0)/dt (RK-3).
+#[inline]
 pub fn angular_acceleration_fd(omega0: f64, omega1: f64, dt: f64) -> f64 {
-    (omega1 - omega0) / dt
+    (omega1 - omega0) * (1.0 / dt)
 }
 
 /// An angle difference brought into (-pi, pi] (body angles are reported in that range).
@@ -39,6 +42,7 @@ pub fn wrap_angle(a: f64) -> f64 {
 /// The instantaneous center of zero velocity C: r_C = r_A + (k x v_A)/omega (RK-11).
 /// `None` when omega = 0 (pure translation: C is at infinity) or when C lies farther than
 /// `max_distance` from A (numerically at infinity).
+#[inline]
 pub fn instantaneous_center(
     r_a: DVec2,
     v_a: DVec2,
@@ -48,8 +52,9 @@ pub fn instantaneous_center(
     if omega == 0.0 {
         return None;
     }
-    let d = DVec2::new(-v_a.y, v_a.x) / omega;
-    if !d.is_finite() || d.length() > max_distance {
+    let d = DVec2::new(-v_a.y, v_a.x) * (1.0 / omega);
+    // Written so that a NaN or infinite distance also gives None.
+    if !(d.length_squared() <= max_distance * max_distance) {
         None
     } else {
         Some(r_a + d)

@@ -52,6 +52,11 @@ pub struct StepImpulse {
     pub arm: DVec2,
     /// A pure couple's angular impulse, N m s.
     pub couple: f64,
+    /// The body that takes the equal and opposite impulse (the other side of a contact, joint
+    /// or spring); None when the reaction is outside the scene's bodies (gravity, loads, events,
+    /// a spring to the ground, a coupling's axle). With a body of mass, the pair is internal to
+    /// any set holding both (MK 6/5).
+    pub other: Option<usize>,
 }
 
 impl StepImpulse {
@@ -196,12 +201,13 @@ fn visit_impulses(
                     point: g_point(i),
                     arm: DVec2::ZERO,
                     couple: 0.0,
+                    other: None,
                 });
             }
         }
     }
     // A force held over the step, applied by rapier as a force at G plus a constant couple.
-    let held = |i: usize, source: Source, p: DVec2, f: DVec2, torque: f64| {
+    let held = |i: usize, source: Source, p: DVec2, f: DVec2, torque: f64, other| {
         let arm = p - start(i);
         StepImpulse {
             body: i,
@@ -210,11 +216,19 @@ fn visit_impulses(
             point: g_point(i) + arm,
             arm,
             couple: torque * dt,
+            other,
         }
     };
     for (k, l) in snap.loads.iter().enumerate() {
         if member(l.body) {
-            visit(held(l.body, Source::Load(k), l.point, l.force, l.torque));
+            visit(held(
+                l.body,
+                Source::Load(k),
+                l.point,
+                l.force,
+                l.torque,
+                None,
+            ));
         }
     }
     for (k, s) in snap.springs.iter().enumerate() {
@@ -229,6 +243,7 @@ fn visit_impulses(
                 s.applied_at1,
                 s.force_on_body1,
                 0.0,
+                s.body2,
             ));
         }
         if in2 {
@@ -239,6 +254,7 @@ fn visit_impulses(
                 s.applied_at2,
                 -s.force_on_body1,
                 0.0,
+                Some(s.body1),
             ));
         }
     }
@@ -251,6 +267,7 @@ fn visit_impulses(
                 point: e.point,
                 arm: e.point - start(e.body),
                 couple: e.angular_impulse,
+                other: None,
             });
         }
     }
@@ -260,43 +277,52 @@ fn visit_impulses(
             continue; // neither, or internal to the set
         }
         let t = c.tangent();
-        // Carries body1's end-of-step points back to its start pose (one rotation per contact).
-        let back = StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1));
+        // Carries body1's end-of-step points back to its start pose (one rotation per contact,
+        // and only when an arm is not tracked).
+        let mut back: Option<StartOfStep> = None;
         for (q, p) in c.points.iter().enumerate() {
             let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
             let source = Source::Contact {
                 contact: k,
                 point: q,
             };
-            // The lever arm from G that rapier's solver used: frozen at the narrow phase's last
+            // The lever arms from G that rapier's solver used: frozen at the narrow phase's last
             // full update of the manifold (tracked by `arms`), else the point as the narrow phase
             // found it at the start of this step.
-            let tracked = arms.and_then(|a| a.get(k, q));
-            let p1 = match tracked {
-                Some(_) => DVec2::ZERO, // unused: the tracked arms are used instead
-                None => back.point(p.point),
+            let (arm1, arm2) = match arms.and_then(|a| a.get(k, q)) {
+                Some(tracked) => tracked,
+                None => {
+                    let back = back.get_or_insert_with(|| {
+                        StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1))
+                    });
+                    let p1 = back.point(p.point);
+                    // The point on body2's surface: body1's point moved by the separation along n.
+                    (
+                        p1 - start(c.body1),
+                        p1 + c.normal * p.distance - start(c.body2),
+                    )
+                }
             };
             if in2 {
-                // The point on body2's surface: body1's point moved by the separation along n.
-                let arm = tracked.map_or(p1 + c.normal * p.distance - start(c.body2), |t| t.1);
                 visit(StepImpulse {
                     body: c.body2,
                     source,
                     impulse: j2,
-                    point: g_point(c.body2) + arm,
-                    arm,
+                    point: g_point(c.body2) + arm2,
+                    arm: arm2,
                     couple: 0.0,
+                    other: Some(c.body1),
                 });
             }
             if in1 {
-                let arm = tracked.map_or(p1 - start(c.body1), |t| t.0);
                 visit(StepImpulse {
                     body: c.body1,
                     source,
                     impulse: -j2,
-                    point: g_point(c.body1) + arm,
-                    arm,
+                    point: g_point(c.body1) + arm1,
+                    arm: arm1,
                     couple: 0.0,
+                    other: Some(c.body2),
                 });
             }
         }
@@ -310,6 +336,7 @@ fn visit_impulses(
             (
                 in2,
                 j.body2,
+                j.body1,
                 j.impulse_on_body2,
                 j.anchor,
                 j.angular_impulse_on_body2,
@@ -317,12 +344,13 @@ fn visit_impulses(
             (
                 in1,
                 j.body1,
+                j.body2,
                 -j.impulse_on_body2,
                 j.anchor1,
                 j.angular_impulse_on_body1,
             ),
         ];
-        for (inside, body, imp, at, angular) in sides {
+        for (inside, body, other, imp, at, angular) in sides {
             if !inside {
                 continue;
             }
@@ -335,6 +363,7 @@ fn visit_impulses(
                 arm,
                 // The row solver's angular impulse about G minus the moment of the linear part.
                 couple: angular - cross(arm, imp),
+                other: Some(other),
             });
         }
     }
@@ -367,6 +396,7 @@ fn couplings(
                 point: g_point(body),
                 arm: DVec2::ZERO,
                 couple,
+                other: None,
             });
         }
     }
@@ -387,44 +417,18 @@ pub struct ContactArms {
     /// Per contact of the last snapshot: (first entry, number of points), or `u32::MAX` if untracked.
     rows: Vec<(u32, u32)>,
     previous: Vec<ArmEntry>,
-    /// Manifolds seen per body pair in the current update (reused to avoid allocating).
-    ordinals: std::collections::HashMap<(usize, usize), usize, PairHash>,
-    /// `previous` by key, built on the first out-of-order lookup of an update.
-    index: std::collections::HashMap<(usize, usize, usize, usize), usize, PairHash>,
-    indexed: bool,
+    /// Per body: the last entry whose body1 it is (`NONE` if none), for `entries` and
+    /// `previous`. With `next` and `previous_next` (per entry: the entry before it with the
+    /// same body1) this finds an entry by key in a chain a few entries long, whatever order
+    /// the contacts come in (rapier reorders its pairs as contacts come and go).
+    head: Vec<u32>,
+    previous_head: Vec<u32>,
+    next: Vec<u32>,
+    previous_next: Vec<u32>,
 }
 
-/// A cheap hasher for body-index pairs (the std SipHash cost more than the rest of the update).
-#[derive(Debug, Clone, Copy, Default)]
-struct PairHash;
-
-impl std::hash::BuildHasher for PairHash {
-    type Hasher = PairHasher;
-    fn build_hasher(&self) -> PairHasher {
-        PairHasher(0)
-    }
-}
-
-#[derive(Debug, Clone, Copy)]
-struct PairHasher(u64);
-
-impl std::hash::Hasher for PairHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-    fn write_usize(&mut self, i: usize) {
-        self.write_u64(i as u64);
-    }
-    fn write_u64(&mut self, i: u64) {
-        // FxHash's multiply-rotate step: fine for small integer keys.
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
+/// No entry.
+const NONE: u32 = u32::MAX;
 
 /// Carries points read at the end of a step on a body (carried along by it) back to where they
 /// were at the start of the step: r_start = p0 + R(a0 - a1)(r_end - p1), one rotation per body.
@@ -476,52 +480,53 @@ impl ContactArms {
     /// Records the arms of the contacts that touch a body for which `track(i)` holds.
     pub fn update_for(&mut self, before: Before, snap: &Snapshot, track: impl Fn(usize) -> bool) {
         std::mem::swap(&mut self.entries, &mut self.previous);
-        self.indexed = false;
+        std::mem::swap(&mut self.head, &mut self.previous_head);
+        std::mem::swap(&mut self.next, &mut self.previous_next);
         self.entries.clear();
+        self.next.clear();
+        self.head.clear();
+        self.head.resize(snap.bodies.len(), NONE);
         self.rows.clear();
-        self.ordinals.clear();
+        let mut last_pair: Option<((usize, usize), usize)> = None;
         let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
         for c in snap.contacts.iter() {
             if !(track(c.body1) || track(c.body2)) {
                 self.rows.push((u32::MAX, 0));
                 continue;
             }
-            // The manifold's ordinal among the pair's manifolds so far (a pair can have several).
-            let ordinal = {
-                let n = self.ordinals.entry((c.body1, c.body2)).or_insert(0);
-                *n += 1;
-                *n - 1
+            // The manifold's ordinal among the pair's manifolds (a pair can have several). rapier
+            // lists a collider pair's manifolds one after another and rigidlab gives a body one
+            // collider, so counting along a run of the same pair suffices. (Were a pair's
+            // manifolds ever apart, two would share a key; a wrong match then fails the
+            // same-point test below and the arms are taken afresh, as for a new manifold.)
+            let ordinal = match last_pair {
+                Some((pair, n)) if pair == (c.body1, c.body2) => n + 1,
+                _ => 0,
             };
+            last_pair = Some(((c.body1, c.body2), ordinal));
             let b1 = &snap.bodies[c.body1];
             // Body1's frame: one rotation per contact (none for an unturned ground).
             let to_local = (b1.angle != 0.0).then(|| DVec2::from_angle(-b1.angle));
-            let back = StartOfStep::new(b1, before.get(c.body1));
+            let mut back: Option<StartOfStep> = None;
             self.rows
                 .push((self.entries.len() as u32, c.points.len() as u32));
             for (q, p) in c.points.iter().enumerate() {
                 let key = (c.body1, c.body2, ordinal, q);
                 let r = p.point - b1.position;
                 let local1 = to_local.map_or(r, |q| q.rotate(r));
-                let tol = 1e-6 * (1.0 + local1.length());
-                // Contacts usually come in the same order step after step: try the same slot first.
-                let slot = self.entries.len();
-                let prev = match self.previous.get(slot) {
-                    Some(e) if e.key == key => Some(*e),
-                    _ => {
-                        // Out of order (contacts came or went): index the last update's entries
-                        // once per update rather than scanning them per point.
-                        if !self.indexed {
-                            self.index.clear();
-                            self.index
-                                .extend(self.previous.iter().enumerate().map(|(k, e)| (e.key, k)));
-                            self.indexed = true;
-                        }
-                        self.index.get(&key).map(|&k| self.previous[k])
-                    }
-                };
+                // Same point when within 1e-6 (1 + |r|) m: squared, no square roots.
+                let tol2 = 1e-12 * (1.0 + local1.length_squared()) * 2.0;
+                // The last update's entry with this key: along the chain of body1's entries.
+                let mut e = self.previous_head.get(c.body1).copied().unwrap_or(NONE);
+                while e != NONE && self.previous[e as usize].key != key {
+                    e = self.previous_next[e as usize];
+                }
+                let prev = (e != NONE).then(|| self.previous[e as usize]);
                 let entry = match prev {
-                    Some(e) if (e.local1 - local1).length() <= tol => e,
+                    Some(e) if (e.local1 - local1).length_squared() <= tol2 => e,
                     _ => {
+                        let back = back
+                            .get_or_insert_with(|| StartOfStep::new(b1, before.get(c.body1)));
                         let p1 = back.point(p.point);
                         ArmEntry {
                             key,
@@ -531,6 +536,8 @@ impl ContactArms {
                         }
                     }
                 };
+                self.next.push(self.head[c.body1]);
+                self.head[c.body1] = self.entries.len() as u32;
                 self.entries.push(entry);
             }
         }
@@ -546,6 +553,23 @@ impl ContactArms {
             .get(first as usize + q)
             .map(|e| (e.arm1, e.arm2))
     }
+}
+
+/// The lever arms (on body1, on body2) of a contact point as the narrow phase found it at the start
+/// of the step: body1's point carried back to its start pose, and on body2 that point moved by the
+/// separation along n; arms from each body's G at the start of the step.
+pub fn contact_arms_at_start(
+    snap: &Snapshot,
+    before: &[Motion],
+    c: &crate::snapshot::ContactState,
+    p: &crate::snapshot::ContactPoint,
+) -> (DVec2, DVec2) {
+    let p1 = StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1)).point(p.point);
+    let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
+    (
+        p1 - start(c.body1),
+        p1 + c.normal * p.distance - start(c.body2),
+    )
 }
 
 /// Where a contact point read at the end of a step (`pose1_end * local_p1`, so carried along by

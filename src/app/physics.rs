@@ -8,7 +8,7 @@
 
 use super::quantities;
 use crate::checks::questions::{QuestionProbe, QuestionResult};
-use crate::checks::{probe_for, CheckResult, Probe};
+use crate::checks::{CheckResult, CheckSet};
 use crate::level::Scene;
 use crate::sim::{Options, Simulation};
 use crate::snapshot::Snapshot;
@@ -335,7 +335,8 @@ fn sync_fixed_timestep(phys: Res<Physics>, mut fixed: ResMut<Time<Fixed>>) {
 pub struct LiveChecks {
     generation: u64,
     last_step: Option<u64>,
-    probes: Vec<Box<dyn Probe>>,
+    /// None once finished.
+    probes: Option<CheckSet>,
     questions: Vec<QuestionProbe>,
     /// Set at the level's end: the same results `rigidlab check` prints.
     pub checks: Option<Vec<CheckResult>>,
@@ -348,7 +349,7 @@ impl LiveChecks {
         let mut live = LiveChecks {
             generation: phys.generation,
             last_step: Some(0),
-            probes: level.checks.iter().map(|c| probe_for(level, c)).collect(),
+            probes: Some(CheckSet::new(level)),
             questions: level
                 .questions
                 .iter()
@@ -357,7 +358,7 @@ impl LiveChecks {
             checks: None,
             answers: None,
         };
-        for p in live.probes.iter_mut() {
+        if let Some(p) = live.probes.as_mut() {
             p.observe(&phys.initial);
         }
         for q in live.questions.iter_mut() {
@@ -376,19 +377,14 @@ impl LiveChecks {
             return;
         }
         self.last_step = Some(s.step);
-        for p in self.probes.iter_mut() {
+        if let Some(p) = self.probes.as_mut() {
             p.observe(s);
         }
         for q in self.questions.iter_mut() {
             q.observe(s);
         }
         if phys.at_end() {
-            self.checks = Some(
-                std::mem::take(&mut self.probes)
-                    .into_iter()
-                    .map(|p| p.finish())
-                    .collect(),
-            );
+            self.checks = self.probes.take().map(CheckSet::finish);
             self.answers = Some(
                 std::mem::take(&mut self.questions)
                     .into_iter()

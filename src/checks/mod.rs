@@ -8,6 +8,7 @@
 mod kinds;
 pub mod questions;
 
+use crate::analysis::frame::FrameAnalysis;
 use crate::level::{CheckDef, CheckKind, Level};
 use crate::snapshot::Snapshot;
 use serde::{Deserialize, Serialize};
@@ -43,7 +44,62 @@ pub struct CheckResult {
 pub trait Probe {
     /// Called with the initial snapshot (step 0) and then after every step.
     fn observe(&mut self, snap: &Snapshot);
+    /// Whether the probe reads the shared per-step [`Frame`] (then [`Probe::observe_frame`] is
+    /// called instead of [`Probe::observe`]).
+    fn wants_frame(&self) -> bool {
+        false
+    }
+    /// [`Probe::observe`] with the step's frame, computed once for all the probes of a run.
+    fn observe_frame(&mut self, snap: &Snapshot, _frame: &FrameAnalysis) {
+        self.observe(snap)
+    }
     fn finish(self: Box<Self>) -> CheckResult;
+}
+
+/// A level's checks over one run: the probes, and the one per-step analysis pass
+/// ([`FrameAnalysis`]) that those reading the free-body diagram share. Only built when a probe
+/// needs it, so a level pays for the analysis its checks ask for.
+pub struct CheckSet {
+    probes: Vec<Box<dyn Probe>>,
+    frame: Option<FrameAnalysis>,
+}
+
+impl CheckSet {
+    pub fn new(level: &Level) -> Self {
+        let probes: Vec<Box<dyn Probe>> =
+            level.checks.iter().map(|c| probe_for(level, c)).collect();
+        let frame = probes
+            .iter()
+            .any(|p| p.wants_frame())
+            .then(|| FrameAnalysis::new(level.world.substeps.max(1)));
+        CheckSet { probes, frame }
+    }
+
+    /// Feeds a snapshot (the initial one first, then one per step, in order) to every check.
+    pub fn observe(&mut self, snap: &Snapshot) {
+        if let Some(fa) = self.frame.as_mut() {
+            fa.observe(snap);
+        }
+        for p in self.probes.iter_mut() {
+            match &self.frame {
+                Some(fa) if p.wants_frame() => p.observe_frame(snap, fa),
+                _ => p.observe(snap),
+            }
+        }
+    }
+
+    /// The results, in the level's order.
+    pub fn finish(self) -> Vec<CheckResult> {
+        self.probes.into_iter().map(|p| p.finish()).collect()
+    }
+
+    pub fn len(&self) -> usize {
+        self.probes.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.probes.is_empty()
+    }
 }
 
 /// Error bookkeeping shared by probes: absolute error against a scale.

@@ -1,17 +1,16 @@
 //! Energy checks: `kinetic_energy_g`, `kinetic_energy_ic`, `work_energy`.
 
 use super::{
-    before_of, body_def, copy_motions, dynamic_body, misconfigured, result, scale_or, subject_of,
+    body_def, framed, FrameProbe, dynamic_body, misconfigured, result, scale_or, subject_of,
     subject_set, substeps, textbook_mass, v2, BodySet, Summary, Worst,
 };
 use crate::analysis::energy::{
-    gravity_potential, kinetic_energy, kinetic_energy_about_ic, work_of_impulse_with_arm,
-    work_of_pair_impulse,
+    gravity_potential, kinetic_energy, kinetic_energy_about_ic,
 };
+use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::kinematics::{
     instantaneous_center, omega_from_angles, velocity_from_positions, wrap_angle,
 };
-use crate::analysis::kinetics::{for_each_external_impulse_with, Before, ContactArms, Source};
 use crate::analysis::mass::MassProps;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -177,22 +176,23 @@ pub(super) fn kinetic_energy_ic(level: &Level, def: &CheckDef) -> Box<dyn Probe>
         }
         (None, None) => Center::Kinematic,
     };
-    Box::new(KineticEnergyIc {
-        def: def.clone(),
-        name: b.name.clone(),
-        mass: textbook_mass(b),
-        center,
-        worst: Worst::default(),
-        max_t: 0.0,
-        skipped: 0,
-        max_slip: 0.0,
-        max_normal: 0.0,
-        at_infinity: 0,
-        before: Vec::new(),
-        arms: ContactArms::default(),
-        index: None,
-        last: (0.0, 0.0),
-    })
+    framed(
+        level,
+        KineticEnergyIc {
+            def: def.clone(),
+            name: b.name.clone(),
+            mass: textbook_mass(b),
+            center,
+            worst: Worst::default(),
+            max_t: 0.0,
+            skipped: 0,
+            max_slip: 0.0,
+            max_normal: 0.0,
+            at_infinity: 0,
+            index: None,
+            last: (0.0, 0.0),
+        },
+    )
 }
 
 struct KineticEnergyIc {
@@ -207,14 +207,12 @@ struct KineticEnergyIc {
     /// Largest relative normal velocity at the contact (rapier lets it differ from zero).
     max_normal: f64,
     at_infinity: u64,
-    before: Vec<Motion>,
-    arms: ContactArms,
     index: Option<usize>,
     last: (f64, f64),
 }
 
-impl Probe for KineticEnergyIc {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for KineticEnergyIc {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
             return;
         };
@@ -235,10 +233,8 @@ impl Probe for KineticEnergyIc {
                 let Some(k) = s.body_index(other) else {
                     return;
                 };
-                if s.dt > 0.0 && !self.before.is_empty() {
-                    self.arms
-                        .update_for(Before::All(&self.before), s, |x| x == i || x == k);
-                }
+                // The lever arms the solver used, tracked by the shared frame.
+                let arms = fa.frame().stepped.then(|| fa.arms());
                 // The body's own contact point(s) with `other`, weighted by normal impulse: G plus
                 // the lever arm the solver used (recorded points go stale while rapier recycles
                 // the manifold; the arm of a rolling disc stays -r n).
@@ -248,7 +244,7 @@ impl Probe for KineticEnergyIc {
                         continue;
                     }
                     for (q, p) in c.points.iter().enumerate() {
-                        let own = match (self.arms.get(ci, q), c.body1 == i) {
+                        let own = match (arms.and_then(|a| a.get(ci, q)), c.body1 == i) {
                             (Some((a1, _)), true) => b.com + a1,
                             (Some((_, a2)), false) => b.com + a2,
                             (None, true) => p.point,
@@ -263,7 +259,6 @@ impl Probe for KineticEnergyIc {
                 }
                 if n == 0 {
                     self.skipped += 1;
-                    copy_motions(&mut self.before, s);
                     return;
                 }
                 let c = sum / w;
@@ -271,7 +266,6 @@ impl Probe for KineticEnergyIc {
                 let v_rel = motion.velocity_at(c) - other.velocity_at(c);
                 self.max_slip = self.max_slip.max(v_rel.dot(normal.perp()).abs());
                 self.max_normal = self.max_normal.max(v_rel.dot(normal).abs());
-                copy_motions(&mut self.before, s);
                 Some(c)
             }
             Center::Kinematic => instantaneous_center(g, b.velocity, b.omega, 1e9),
@@ -288,7 +282,7 @@ impl Probe for KineticEnergyIc {
         self.last = (t_theory, t_engine);
     }
 
-    fn finish(self: Box<Self>) -> CheckResult {
+    fn finish(self) -> CheckResult {
         let scale = scale_or(self.max_t, 1.0);
         let how = match &self.center {
             Center::Fixed(o) => format!("1/2 I_O w^2 about the pivot ({:.3}, {:.3}) (6/8)", o.x, o.y),
@@ -354,33 +348,33 @@ pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         },
         None => None,
     };
-    Box::new(WorkEnergy {
-        def: def.clone(),
-        level_joints: level
-            .joints
-            .iter()
-            .map(|j| (j.name.clone(), j.kind, v2(j.axis)))
-            .collect(),
-        stiffness: level.springs.iter().map(|s| s.stiffness).collect(),
-        body,
-        substeps: substeps(level),
-        set: BodySet::default(),
-        before: Vec::new(),
-        arms: ContactArms::default(),
-        springs_before: Vec::new(),
-        ledger: Vec::new(),
-        e0: None,
-        u_nc: 0.0,
-        by_source: [0.0; 6],
-        worst: Worst::default(),
-        scale: 0.0,
-        v_g0: 0.0,
-        v_e0: 0.0,
-        last: (0.0, 0.0),
-        residual: Vec::new(),
-        crossings: Vec::new(),
-        last_omega: 0.0,
-    })
+    framed(
+        level,
+        WorkEnergy {
+            def: def.clone(),
+            level_joints: level
+                .joints
+                .iter()
+                .map(|j| (j.name.clone(), j.kind, v2(j.axis)))
+                .collect(),
+            stiffness: level.springs.iter().map(|s| s.stiffness).collect(),
+            body,
+            index: None,
+            set: BodySet::default(),
+            springs_before: Vec::new(),
+            e0: None,
+            u_nc: 0.0,
+            by_source: [0.0; 6],
+            worst: Worst::default(),
+            scale: 0.0,
+            v_g0: 0.0,
+            v_e0: 0.0,
+            last: (0.0, 0.0),
+            residual: Vec::new(),
+            crossings: Vec::new(),
+            last_omega: 0.0,
+        },
+    )
 }
 
 /// Indices into `WorkEnergy::by_source`.
@@ -391,6 +385,9 @@ const MOTORS: usize = 3;
 const DAMPING: usize = 4;
 const OTHER: usize = 5;
 
+/// The `work_energy` probe (see [`work_energy`]). The step's work of loads, events, contacts,
+/// couplings and springs outside the ledger comes from the shared frame (`frame::StepWork`);
+/// motors and spring damping, which need the level's joint axes and spring constants, are added here.
 struct WorkEnergy {
     def: CheckDef,
     /// (name, kind, axis in body1's frame) of the level's joints.
@@ -398,15 +395,11 @@ struct WorkEnergy {
     /// Stiffness per spring, in the snapshot's order.
     stiffness: Vec<f64>,
     body: Option<String>,
-    substeps: usize,
+    /// The body's index (None for the scene).
+    index: Option<usize>,
     set: BodySet,
-    /// Every body's state at the start of the step.
-    before: Vec<Motion>,
-    arms: ContactArms,
     /// (extension, length) per spring at the start of the step.
     springs_before: Vec<(f64, f64)>,
-    /// Per spring: is its V_e in the ledger (reused each step).
-    ledger: Vec<bool>,
     e0: Option<f64>,
     u_nc: f64,
     by_source: [f64; 6],
@@ -438,91 +431,55 @@ impl WorkEnergy {
     }
 
     /// The non-conservative work of the step that led to `s`.
-    fn step_work(&mut self, s: &Snapshot) {
-        let before = &self.before;
-        let state =
-            |i: usize, _: &[usize]| -> (Motion, Motion) { (before[i], Motion::from(&s.bodies[i])) };
-        {
-            let set = &self.set;
-            self.arms
-                .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
-        }
+    fn step_work(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
+        let f = fa.frame();
+        let w = match self.index {
+            Some(i) => f.bodies[i].work,
+            None => f.work,
+        };
         let mut add = [0.0; 6];
-        let mut ledger = std::mem::take(&mut self.ledger);
-        ledger.clear();
-        ledger.extend(s.springs.iter().map(|sp| self.spring_in_ledger(sp, s)));
-        let set = &self.set;
-        for_each_external_impulse_with(
-            before_of(set, &self.before),
-            s,
-            self.substeps,
-            Some(&self.arms),
-            |i| set.contains(&i),
-            |imp| {
-                let slot = match imp.source {
-                    Source::Gravity | Source::Joint(_) => return,
-                    Source::Spring(k) if ledger[k] => return,
-                    Source::Load(_) => LOADS,
-                    Source::Event(_) => EVENTS,
-                    Source::Contact { .. } => CONTACTS,
-                    Source::Spring(_) | Source::Coupling(..) => OTHER,
-                };
-                let (b0, b1) = state(imp.body, set);
-                add[slot] += work_of_impulse_with_arm(imp.impulse, imp.arm, imp.couple, &b0, &b1);
-            },
-        );
-        // Contacts between two bodies of the set: the pair's work J . v_rel (friction, impact loss).
-        for (k, c) in s.contacts.iter().enumerate() {
-            if !(set.contains(&c.body1) && set.contains(&c.body2)) {
-                continue;
-            }
-            let (a, b) = (state(c.body1, set), state(c.body2, set));
-            for (q, p) in c.points.iter().enumerate() {
-                let j = c.normal * p.normal_impulse + c.tangent() * p.tangent_impulse;
-                add[CONTACTS] += match self.arms.get(k, q) {
-                    Some((arm1, arm2)) => {
-                        work_of_impulse_with_arm(j, arm2, 0.0, &b.0, &b.1)
-                            - work_of_impulse_with_arm(j, arm1, 0.0, &a.0, &a.1)
-                    }
-                    None => work_of_pair_impulse(j, p.point, (&a.0, &a.1), (&b.0, &b.1)),
-                };
-            }
-        }
+        add[LOADS] = w.loads;
+        add[EVENTS] = w.events;
+        add[CONTACTS] = w.contacts;
+        add[OTHER] = w.other;
+        let before = fa.start_of_step();
+        let state = |i: usize| -> (Motion, Motion) { (before[i], Motion::from(&s.bodies[i])) };
         // Joints: motors do work; the rest of the reaction is ideal (no work) in theory.
         for j in &s.joints {
-            let (in1, in2) = (set.contains(&j.body1), set.contains(&j.body2));
+            if j.motor_impulse == 0.0 {
+                continue;
+            }
+            let (in1, in2) = (self.in_set(j.body1), self.in_set(j.body2));
             if !in1 && !in2 {
                 continue;
             }
             let mut motor = 0.0;
-            if j.motor_impulse != 0.0 {
-                let def = self.level_joints.iter().find(|d| d.0 == j.name);
-                if let Some((_, kind, axis)) = def {
-                    let rate = |i: usize, p: DVec2| -> (f64, f64) {
-                        let (b0, b1) = state(i, set);
-                        let mid = Motion::mid(&b0, &b1);
-                        let world_axis = DVec2::from_angle(s.bodies[j.body1].angle)
-                            .rotate(axis.normalize_or(DVec2::X));
-                        (mid.omega, world_axis.dot(mid.velocity_at(p)))
-                    };
-                    let slide = matches!(kind, JointKind::Prismatic | JointKind::PinSlot);
-                    let mut term = |i: usize, p: DVec2, sign: f64| {
-                        let (w, v) = rate(i, p);
-                        motor += sign * j.motor_impulse * if slide { v } else { w };
-                    };
-                    if in2 {
-                        term(j.body2, j.anchor, 1.0);
-                    }
-                    if in1 {
-                        term(j.body1, j.anchor1, -1.0);
-                    }
+            let def = self.level_joints.iter().find(|d| d.0 == j.name);
+            if let Some((_, kind, axis)) = def {
+                let rate = |i: usize, p: DVec2| -> (f64, f64) {
+                    let (b0, b1) = state(i);
+                    let mid = Motion::mid(&b0, &b1);
+                    let world_axis = DVec2::from_angle(s.bodies[j.body1].angle)
+                        .rotate(axis.normalize_or(DVec2::X));
+                    (mid.omega, world_axis.dot(mid.velocity_at(p)))
+                };
+                let slide = matches!(kind, JointKind::Prismatic | JointKind::PinSlot);
+                let mut term = |i: usize, p: DVec2, sign: f64| {
+                    let (w, v) = rate(i, p);
+                    motor += sign * j.motor_impulse * if slide { v } else { w };
+                };
+                if in2 {
+                    term(j.body2, j.anchor, 1.0);
+                }
+                if in1 {
+                    term(j.body1, j.anchor1, -1.0);
                 }
             }
             add[MOTORS] += motor;
         }
         // Spring damping (the c dx/dt part of the held tension) for springs in the ledger.
         for (k, sp) in s.springs.iter().enumerate() {
-            if !ledger[k] {
+            if !self.spring_in_ledger(sp, s) {
                 continue;
             }
             if let (Some(&(x0, l0)), Some(&stiff)) =
@@ -531,7 +488,6 @@ impl WorkEnergy {
                 add[DAMPING] += -(sp.tension - stiff * x0) * (sp.length - l0);
             }
         }
-        self.ledger = ledger;
         for (k, a) in add.iter().enumerate() {
             self.by_source[k] += a;
         }
@@ -539,28 +495,46 @@ impl WorkEnergy {
     }
 }
 
-impl Probe for WorkEnergy {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for WorkEnergy {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         if self.set.is_empty() {
-            let index = match &self.body {
+            self.index = match &self.body {
                 Some(n) => match s.body_index(n) {
                     Some(i) => Some(i),
                     None => return,
                 },
                 None => None,
             };
-            self.set = subject_set(s, index);
+            self.set = subject_set(s, self.index);
         }
+        let f = fa.frame();
         let v_e: f64 = s
             .springs
             .iter()
             .filter(|sp| self.spring_in_ledger(sp, s))
             .map(|sp| sp.energy)
             .sum();
-        if self.before.is_empty() || s.dt <= 0.0 {
-            // The initial state: E(0) needs the masses, which rapier fills in the first step.
+        // T and V_g of the set, with rapier's m, I_G and the motions given.
+        let index = self.index;
+        let energies = |motions: Option<&[Motion]>| -> (f64, f64) {
+            match index {
+                Some(i) => {
+                    let b = &s.bodies[i];
+                    let m = motions.map_or_else(|| Motion::from(b), |v| v[i]);
+                    (
+                        kinetic_energy(b.mass, m.velocity, b.inertia, m.omega),
+                        gravity_potential(b.mass, s.gravity, m.com),
+                    )
+                }
+                None => {
+                    let t = if motions.is_some() { &f.totals_before } else { &f.totals };
+                    (t.kinetic_energy, t.gravity_potential)
+                }
+            }
+        };
+        if !f.stepped {
+            // The initial state.
             self.v_e0 = v_e;
-            copy_motions(&mut self.before, s);
             self.springs_before = s
                 .springs
                 .iter()
@@ -569,22 +543,12 @@ impl Probe for WorkEnergy {
             return;
         }
         if self.e0.is_none() {
-            let (mut t0, mut vg0) = (0.0, 0.0);
-            for &i in &self.set {
-                let (b, m) = (&s.bodies[i], &self.before[i]);
-                t0 += kinetic_energy(b.mass, m.velocity, b.inertia, m.omega);
-                vg0 += gravity_potential(b.mass, s.gravity, m.com);
-            }
+            let (t0, vg0) = energies(Some(fa.start_of_step()));
             self.v_g0 = vg0;
             self.e0 = Some(t0 + vg0 + self.v_e0);
         }
-        self.step_work(s);
-        let (mut t, mut v_g) = (0.0, 0.0);
-        for &i in &self.set {
-            let b = &s.bodies[i];
-            t += engine_ke(b);
-            v_g += gravity_potential(b.mass, s.gravity, b.com);
-        }
+        self.step_work(s, fa);
+        let (t, v_g) = energies(None);
         let e = t + v_g + v_e;
         let theory = self.e0.unwrap_or(e) + self.u_nc;
         self.worst.add(e - theory, s.time);
@@ -605,13 +569,12 @@ impl Probe for WorkEnergy {
                 self.last_omega = w;
             }
         }
-        copy_motions(&mut self.before, s);
         self.springs_before.clear();
         self.springs_before
             .extend(s.springs.iter().map(|sp| (sp.extension, sp.length)));
     }
 
-    fn finish(self: Box<Self>) -> CheckResult {
+    fn finish(self) -> CheckResult {
         let scale = scale_or(self.scale, 1.0);
         let names = ["loads", "events", "contacts", "motors", "damping", "other"];
         let works: Vec<String> = names

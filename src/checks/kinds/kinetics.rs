@@ -1,11 +1,11 @@
 //! `newton_euler`: the free-body diagram against the kinetic diagram, every step (6/1, 6/2).
 
 use super::{
-    dynamic_body, misconfigured, result, scale_or, subject_of, substeps, v2, Summary, Worst,
+    dynamic_body, framed, misconfigured, result, scale_or, subject_of, v2, FrameProbe, Summary,
+    Worst,
 };
-use crate::analysis::kinetics::{
-    for_each_external_impulse_with, newton_euler_residual, Before, ContactArms, Resultant,
-};
+use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::kinetics::newton_euler_residual;
 use crate::analysis::momentum::angular_momentum_about;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -31,22 +31,22 @@ use glam::DVec2;
 /// reaction in the first substep (a strike on a pinned body with substeps > 1) is missed entirely.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     match dynamic_body(level, def) {
-        Ok(b) => Box::new(NewtonEuler {
-            def: def.clone(),
-            name: b.name.clone(),
-            substeps: substeps(level),
-            p: def.point.map(v2),
-            index: None,
-            before: None,
-            arms: ContactArms::default(),
-            f: Worst::default(),
-            m: Worst::default(),
-            mp: Worst::default(),
-            f_scale: 0.0,
-            rel: Worst::default(),
-            k_g: 0.0,
-            last: (0.0, 0.0),
-        }),
+        Ok(b) => framed(
+            level,
+            NewtonEuler {
+                def: def.clone(),
+                name: b.name.clone(),
+                p: def.point.map(v2),
+                index: None,
+                f: Worst::default(),
+                m: Worst::default(),
+                mp: Worst::default(),
+                f_scale: 0.0,
+                rel: Worst::default(),
+                k_g: 0.0,
+                last: (0.0, 0.0),
+            },
+        ),
         Err(e) => misconfigured(def, e),
     }
 }
@@ -54,11 +54,8 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
 struct NewtonEuler {
     def: CheckDef,
     name: String,
-    substeps: usize,
     p: Option<DVec2>,
     index: Option<usize>,
-    before: Option<Motion>,
-    arms: ContactArms,
     f: Worst,
     m: Worst,
     mp: Worst,
@@ -70,8 +67,8 @@ struct NewtonEuler {
     last: (f64, f64),
 }
 
-impl Probe for NewtonEuler {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for NewtonEuler {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
             return;
         };
@@ -79,22 +76,16 @@ impl Probe for NewtonEuler {
         let b = &s.bodies[i];
         let now = Motion::from(b);
         self.k_g = crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
-        if let (Some(before), true) = (self.before, s.dt > 0.0) {
-            let p = self.p.unwrap_or(b.com);
-            self.arms.update_for(Before::One(i, &before), s, |k| k == i);
-            let mut r = Resultant::default();
-            for_each_external_impulse_with(
-                Before::One(i, &before),
-                s,
-                self.substeps,
-                Some(&self.arms),
-                |k| k == i,
-                |imp| r.add(&imp, p),
-            );
+        let f = fa.frame();
+        if f.stepped {
+            let before = fa.start_of_step()[i];
+            // The body's free-body diagram over the step, from the shared frame.
+            let sums = f.bodies[i].impulses;
+            let moment_g = f.bodies[i].moment_g * s.dt;
             let (df, dm) = newton_euler_residual(
-                b.mass, b.inertia, &before, &now, r.impulse, r.moment_g, s.dt,
+                b.mass, b.inertia, &before, &now, sums.impulse, moment_g, s.dt,
             );
-            let sum_f = r.impulse / s.dt;
+            let sum_f = sums.impulse / s.dt;
             let ma = b.mass * (now.velocity - before.velocity) / s.dt;
             let fs = sum_f
                 .length()
@@ -109,7 +100,7 @@ impl Probe for NewtonEuler {
                 let h = |m: &Motion| {
                     angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, p)
                 };
-                let dmp = r.moment_o / s.dt - (h(&now) - h(&before)) / s.dt;
+                let dmp = sums.moment_about(p) / s.dt - (h(&now) - h(&before)) / s.dt;
                 self.mp.add(dmp, s.time);
                 rel = rel.max(dmp.abs() / (fs * k.max((b.com - p).length())));
             }
@@ -119,10 +110,9 @@ impl Probe for NewtonEuler {
             self.rel.add(rel, s.time);
             self.last = (sum_f.length(), ma.length());
         }
-        self.before = Some(now);
     }
 
-    fn finish(self: Box<Self>) -> CheckResult {
+    fn finish(self) -> CheckResult {
         let fs = scale_or(self.f_scale, 1.0);
         let mut note = format!(
             "worst step at t = {:.3} s (F_s {:.4} N there); largest residuals: force {:.2e} N at t = {:.3} s, moment about G {:.2e} N m at t = {:.3} s (k_G {:.4} m)",

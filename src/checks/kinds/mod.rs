@@ -27,10 +27,53 @@ mod momentum;
 mod percussion;
 
 use super::{kind_name, CheckResult, Probe};
+use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::mass::MassProps;
 use crate::level::{BodyDef, CheckDef, CheckKind, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
+
+/// A probe that reads the shared per-step frame (`analysis::frame`) rather than walking the
+/// step's impulses itself.
+pub(super) trait FrameProbe {
+    fn observe_frame(&mut self, snap: &Snapshot, fa: &FrameAnalysis);
+    fn finish(self) -> CheckResult;
+}
+
+/// A [`FrameProbe`] as a [`Probe`]: fed by a `CheckSet` it reads the set's frame; fed snapshots
+/// alone (tests, tools) it runs its own frame pass.
+pub(super) struct Framed<P> {
+    inner: P,
+    substeps: usize,
+    own: Option<FrameAnalysis>,
+}
+
+pub(super) fn framed<P: FrameProbe + 'static>(level: &Level, inner: P) -> Box<dyn Probe> {
+    Box::new(Framed {
+        inner,
+        substeps: substeps(level),
+        own: None,
+    })
+}
+
+impl<P: FrameProbe> Probe for Framed<P> {
+    fn observe(&mut self, snap: &Snapshot) {
+        let fa = self
+            .own
+            .get_or_insert_with(|| FrameAnalysis::new(self.substeps));
+        fa.observe(snap);
+        self.inner.observe_frame(snap, fa);
+    }
+    fn wants_frame(&self) -> bool {
+        true
+    }
+    fn observe_frame(&mut self, snap: &Snapshot, fa: &FrameAnalysis) {
+        self.inner.observe_frame(snap, fa);
+    }
+    fn finish(self: Box<Self>) -> CheckResult {
+        self.inner.finish()
+    }
+}
 
 pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     match def.kind {
@@ -203,17 +246,6 @@ pub(super) fn copy_motions(v: &mut Vec<crate::analysis::Motion>, s: &Snapshot) {
     v.resize(s.bodies.len(), crate::analysis::Motion::default());
     for (m, b) in v.iter_mut().zip(&s.bodies) {
         *m = crate::analysis::Motion::from(b);
-    }
-}
-
-/// The start-of-step states for a set: one body's alone, or everyone's.
-pub(super) fn before_of<'a>(
-    set: &[usize],
-    all: &'a [crate::analysis::Motion],
-) -> crate::analysis::kinetics::Before<'a> {
-    match set {
-        [i] if *i < all.len() => crate::analysis::kinetics::Before::One(*i, &all[*i]),
-        _ => crate::analysis::kinetics::Before::All(all),
     }
 }
 

@@ -1,52 +1,16 @@
 //! Momentum checks: `angular_momentum_fixed_point`, `impulse_momentum`.
 
 use super::{
-    before_of, copy_motions, dynamic_body, misconfigured, result, scale_or, subject_of,
-    subject_set, substeps, v2, BodySet, Summary, Worst,
+    dynamic_body, framed, misconfigured, result, scale_or, subject_of, subject_set, v2, BodySet,
+    FrameProbe, Summary, Worst,
 };
-use crate::analysis::kinetics::{for_each_external_impulse_with, ContactArms, Resultant};
+use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::momentum::{angular_momentum_about, linear_momentum};
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
-
-/// The set's linear momentum and angular momentum about O (6/12, 6/15, 6/19), with rapier's
-/// masses from `s` and the motions given (`None`: those of `s`). rapier reports zero mass in the
-/// initial snapshot (it computes mass properties inside the first step), so the initial momenta
-/// are taken with the first step's masses and the initial motions.
-fn momenta(s: &Snapshot, set: &[usize], o: DVec2, motions: Option<&[Motion]>) -> (DVec2, f64) {
-    set.iter().fold((DVec2::ZERO, 0.0), |(g, h), &i| {
-        let b = &s.bodies[i];
-        let m = motions.map_or_else(|| Motion::from(b), |v| v[i]);
-        (
-            g + linear_momentum(b.mass, m.velocity),
-            h + angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, o),
-        )
-    })
-}
-
-/// The step's external resultant on the set, moments about O.
-fn step_resultant(
-    before: &[Motion],
-    s: &Snapshot,
-    set: &BodySet,
-    o: DVec2,
-    substeps: usize,
-    arms: Option<&ContactArms>,
-) -> Resultant {
-    let mut r = Resultant::default();
-    for_each_external_impulse_with(
-        before_of(set, before),
-        s,
-        substeps,
-        arms,
-        |i| set.contains(&i),
-        |imp| r.add(&imp, o),
-    );
-    r
-}
 
 /// The body's pivot: the anchor of its first joint to a body that does not move (fixed or
 /// kinematic at rest), at the first snapshot.
@@ -94,32 +58,32 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
             "a scene-wide angular_momentum_fixed_point check needs `point: (x, y)`",
         );
     }
-    Box::new(AngularMomentumFixedPoint {
-        def: def.clone(),
-        body,
-        substeps: substeps(level),
-        o: def.point.map(v2),
-        set: BodySet::default(),
-        before: Vec::new(),
-        arms: ContactArms::default(),
-        worst: Worst::default(),
-        rel: Worst::default(),
-        scale_at_worst: 0.0,
-        max_moment: 0.0,
-        max_reaction_moment: 0.0,
-        last: (0.0, 0.0),
-        unresolved: None,
-    })
+    framed(
+        level,
+        AngularMomentumFixedPoint {
+            def: def.clone(),
+            body,
+            o: def.point.map(v2),
+            index: None,
+            set: BodySet::default(),
+            worst: Worst::default(),
+            rel: Worst::default(),
+            scale_at_worst: 0.0,
+            max_moment: 0.0,
+            max_reaction_moment: 0.0,
+            last: (0.0, 0.0),
+            unresolved: None,
+        },
+    )
 }
 
 struct AngularMomentumFixedPoint {
     def: CheckDef,
     body: Option<String>,
-    substeps: usize,
     o: Option<DVec2>,
+    /// The body's index (None for the scene).
+    index: Option<usize>,
     set: BodySet,
-    before: Vec<Motion>,
-    arms: ContactArms,
     worst: Worst,
     rel: Worst,
     scale_at_worst: f64,
@@ -129,22 +93,22 @@ struct AngularMomentumFixedPoint {
     unresolved: Option<String>,
 }
 
-impl Probe for AngularMomentumFixedPoint {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for AngularMomentumFixedPoint {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         if self.unresolved.is_some() {
             return;
         }
         if self.set.is_empty() {
-            let index = match &self.body {
+            self.index = match &self.body {
                 Some(n) => match s.body_index(n) {
                     Some(i) => Some(i),
                     None => return,
                 },
                 None => None,
             };
-            self.set = subject_set(s, index);
+            self.set = subject_set(s, self.index);
             if self.o.is_none() {
-                self.o = index.and_then(|i| pivot_of(s, i));
+                self.o = self.index.and_then(|i| pivot_of(s, i));
                 if self.o.is_none() {
                     self.unresolved = Some(
                         "no `point` given and the body has no joint to a fixed body: give the fixed point O".into(),
@@ -154,50 +118,51 @@ impl Probe for AngularMomentumFixedPoint {
             }
         }
         let o = self.o.unwrap_or_default();
-        if s.dt > 0.0 && !self.before.is_empty() {
-            let (_, h) = momenta(s, &self.set, o, None);
-            let (_, h_before) = momenta(s, &self.set, o, Some(&self.before));
-            let set = &self.set;
-            self.arms
-                .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
-            // One pass: the resultant, and apart the joint reactions' moment about O.
-            let mut r = Resultant::default();
-            let mut reaction = 0.0;
-            for_each_external_impulse_with(
-                before_of(&self.set, &self.before),
-                s,
-                self.substeps,
-                Some(&self.arms),
-                |i| self.set.contains(&i),
-                |imp| {
-                    r.add(&imp, o);
-                    if matches!(imp.source, crate::analysis::kinetics::Source::Joint(_)) {
-                        reaction += imp.moment_about(o);
-                    }
-                },
-            );
-            let theory = r.moment_o / s.dt;
-            let engine = (h - h_before) / s.dt;
-            let weight: f64 = self
-                .set
-                .iter()
-                .map(|&i| s.bodies[i].mass * s.gravity.length() * (s.bodies[i].com - o).length())
-                .sum();
-            let level = theory.abs().max(engine.abs()).max(weight).max(1e-12);
-            let rel = (theory - engine).abs() / level;
-            if rel > self.rel.max || self.rel.samples == 0 {
-                self.scale_at_worst = level;
-            }
-            self.rel.add(rel, s.time);
-            self.worst.add(theory - engine, s.time);
-            self.max_moment = self.max_moment.max(theory.abs()).max(engine.abs());
-            self.max_reaction_moment = self.max_reaction_moment.max((reaction / s.dt).abs());
-            self.last = (theory, engine);
+        let f = fa.frame();
+        if !f.stepped {
+            return;
         }
-        copy_motions(&mut self.before, s);
+        // The step's external impulses on the set and H_O at both ends (6/15).
+        let (sums, h, h_before) = match self.index {
+            Some(i) => {
+                let b = &s.bodies[i];
+                let h = |m: &Motion| {
+                    angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, o)
+                };
+                (
+                    f.bodies[i].impulses,
+                    h(&Motion::from(b)),
+                    h(&fa.start_of_step()[i]),
+                )
+            }
+            None => (
+                f.external,
+                f.totals.angular_momentum_about(o),
+                f.totals_before.angular_momentum_about(o),
+            ),
+        };
+        let theory = sums.moment_about(o) / s.dt;
+        let engine = (h - h_before) / s.dt;
+        let reaction = sums.joint_moment_about(o);
+        let weight: f64 = self
+            .set
+            .iter()
+            .map(|&i| s.bodies[i].mass * (s.bodies[i].com - o).length())
+            .sum::<f64>()
+            * s.gravity.length();
+        let level = theory.abs().max(engine.abs()).max(weight).max(1e-12);
+        let rel = (theory - engine).abs() / level;
+        if rel > self.rel.max || self.rel.samples == 0 {
+            self.scale_at_worst = level;
+        }
+        self.rel.add(rel, s.time);
+        self.worst.add(theory - engine, s.time);
+        self.max_moment = self.max_moment.max(theory.abs()).max(engine.abs());
+        self.max_reaction_moment = self.max_reaction_moment.max((reaction / s.dt).abs());
+        self.last = (theory, engine);
     }
 
-    fn finish(self: Box<Self>) -> CheckResult {
+    fn finish(self) -> CheckResult {
         if let Some(why) = self.unresolved {
             return misconfigured(&self.def, why).finish();
         }
@@ -246,33 +211,33 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         Ok(b) => b,
         Err(e) => return misconfigured(def, e),
     };
-    Box::new(ImpulseMomentum {
-        def: def.clone(),
-        body,
-        substeps: substeps(level),
-        o: def.point.map(v2),
-        set: BodySet::default(),
-        before: Vec::new(),
-        arms: ContactArms::default(),
-        started: false,
-        g_theory: DVec2::ZERO,
-        h_theory: 0.0,
-        g_worst: Worst::default(),
-        h_worst: Worst::default(),
-        g_scale: 0.0,
-        h_scale: 0.0,
-        last: (0.0, 0.0),
-    })
+    framed(
+        level,
+        ImpulseMomentum {
+            def: def.clone(),
+            body,
+            o: def.point.map(v2),
+            index: None,
+            resolved: false,
+            started: false,
+            g_theory: DVec2::ZERO,
+            h_theory: 0.0,
+            g_worst: Worst::default(),
+            h_worst: Worst::default(),
+            g_scale: 0.0,
+            h_scale: 0.0,
+            last: (0.0, 0.0),
+        },
+    )
 }
 
 struct ImpulseMomentum {
     def: CheckDef,
     body: Option<String>,
-    substeps: usize,
     o: Option<DVec2>,
-    set: BodySet,
-    before: Vec<Motion>,
-    arms: ContactArms,
+    /// The body's index (None for the scene).
+    index: Option<usize>,
+    resolved: bool,
     started: bool,
     g_theory: DVec2,
     h_theory: f64,
@@ -283,47 +248,56 @@ struct ImpulseMomentum {
     last: (f64, f64),
 }
 
-impl Probe for ImpulseMomentum {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for ImpulseMomentum {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         let o = self.o.unwrap_or_default();
-        if self.set.is_empty() {
-            let index = match &self.body {
+        if !self.resolved {
+            self.index = match &self.body {
                 Some(n) => match s.body_index(n) {
                     Some(i) => Some(i),
                     None => return,
                 },
                 None => None,
             };
-            self.set = subject_set(s, index);
-            copy_motions(&mut self.before, s);
+            self.resolved = true;
+        }
+        let f = fa.frame();
+        if !f.stepped {
             return;
         }
-        if s.dt <= 0.0 {
-            return;
-        }
+        // G and H_O of the set from rapier's state, at the start of the step or at its end.
+        let momenta = |start: bool| -> (DVec2, f64) {
+            match self.index {
+                Some(i) => {
+                    let b = &s.bodies[i];
+                    let m = if start {
+                        fa.start_of_step()[i]
+                    } else {
+                        Motion::from(b)
+                    };
+                    (
+                        linear_momentum(b.mass, m.velocity),
+                        angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, o),
+                    )
+                }
+                None => {
+                    let t = if start { &f.totals_before } else { &f.totals };
+                    (t.linear_momentum, t.angular_momentum_about(o))
+                }
+            }
+        };
         if !self.started {
-            // G(0), H_O(0): the initial motions with the masses of the first step.
-            let (g, h) = momenta(s, &self.set, o, Some(&self.before));
-            self.g_theory = g;
-            self.h_theory = h;
+            // G(0), H_O(0).
+            (self.g_theory, self.h_theory) = momenta(true);
             self.started = true;
         }
-        {
-            let set = &self.set;
-            self.arms
-                .update_for(before_of(set, &self.before), s, |i| set.contains(&i));
-            let r = step_resultant(
-                &self.before,
-                s,
-                &self.set,
-                o,
-                self.substeps,
-                Some(&self.arms),
-            );
-            self.g_theory += r.impulse;
-            self.h_theory += r.moment_o;
-        }
-        let (g, h) = momenta(s, &self.set, o, None);
+        let sums = match self.index {
+            Some(i) => f.bodies[i].impulses,
+            None => f.external,
+        };
+        self.g_theory += sums.impulse;
+        self.h_theory += sums.moment_about(o);
+        let (g, h) = momenta(false);
         self.g_worst.add((g - self.g_theory).length(), s.time);
         self.g_scale = self.g_scale.max(g.length()).max(self.g_theory.length());
         if self.o.is_some() {
@@ -333,10 +307,9 @@ impl Probe for ImpulseMomentum {
         } else {
             self.last = (self.g_theory.length(), g.length());
         }
-        copy_motions(&mut self.before, s);
     }
 
-    fn finish(self: Box<Self>) -> CheckResult {
+    fn finish(self) -> CheckResult {
         let g_scale = scale_or(self.g_scale, 1.0);
         let h_scale = scale_or(self.h_scale, 1.0);
         let g_rel = self.g_worst.max / g_scale;

@@ -3,7 +3,7 @@
 
 use super::metrics;
 use crate::checks::questions::QuestionProbe;
-use crate::checks::{probe_for, CheckResult, Probe};
+use crate::checks::{CheckResult, CheckSet};
 use crate::level::{BodyKind, CheckKind, EventDef, Level, Profile, Scene};
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
@@ -242,8 +242,7 @@ pub fn full_run(scene: &Scene, setting: &Setting) -> FullRun {
 fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
     let mut sim = E::build(scene, &setting.options());
     let level = &scene.level;
-    let mut probes: Vec<Box<dyn Probe>> =
-        level.checks.iter().map(|c| probe_for(level, c)).collect();
+    let mut probes = CheckSet::new(level);
     let mut questions: Vec<QuestionProbe> = level
         .questions
         .iter()
@@ -251,9 +250,7 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
         .collect();
     let mut joint_drift: Option<f64> = None;
     let mut observe = |s: &Snapshot| {
-        for p in probes.iter_mut() {
-            p.observe(s);
-        }
+        probes.observe(s);
         for q in questions.iter_mut() {
             q.observe(s);
         }
@@ -280,8 +277,8 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
         };
     }
     let checks: Vec<CheckResult> = probes
+        .finish()
         .into_iter()
-        .map(|p| p.finish())
         .filter(graded)
         .collect();
     let answers: Vec<_> = questions.into_iter().map(|q| q.finish(None)).collect();
