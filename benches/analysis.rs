@@ -3,19 +3,19 @@
 //!     CARGO_TARGET_DIR=/work/target-core cargo bench --no-default-features --bench analysis
 //!
 //! The scene: 50 bars swinging on pins (joints) and 50 balls falling into a box and piling up
-//! (contacts, friction), 300 steps at 1/60 s with 4 substeps, repeated 7 times. Measured in the
-//! same run, step by step (`Instant` around `sim.step()` and around each group of analysis work,
-//! so physics and analysis interleave), summed over blocks of 10 consecutive steps; each ratio is
-//! the median over all blocks of (analysis time in the block / physics time in the block), which
-//! a burst of load from other processes on this 2-core machine moves little:
-//! - A (the goal, <= 5%): the textbook quantities of every body and of the scene each step
-//!   (`analysis::frame::FrameAnalysis`: T, G, H_G, the instantaneous center, a_G and alpha, the
-//!   free-body diagram's sums and the Newton-Euler residuals of all 100 bodies; scene T, V, G, H)
-//!   plus the scene's checks (`work_energy`, `impulse_momentum` with H about a point,
-//!   `angular_momentum_fixed_point` about that point);
-//! - B (information): A plus one probe per body and kind, `newton_euler` and
-//!   `kinetic_energy_ic` on all 100 bodies and `angular_momentum_fixed_point` on the 50 bars
-//!   (250 independent probes, each reading the whole snapshot).
+//! (contacts, friction), 300 steps at 1/60 s with rapier's default 4 substeps. Runs alternate
+//! between the two configurations below (7 runs each), each run timing every step (`Instant`
+//! around `sim.step()` and around `CheckSet::observe`, as `rigidlab check` calls them) summed over
+//! blocks of 10 consecutive steps; each ratio is the median over its blocks of (check time in the
+//! block / physics time in the block), which a burst of load on this 2-core machine moves little:
+//! - A (the goal, <= 5%): the textbook quantities of every body and of the scene each step (the
+//!   shared pass `analysis::frame::FrameAnalysis`: T, G, H_G, the instantaneous center, a_G and
+//!   alpha, the free-body diagram's sums, the Newton-Euler residuals and the non-conservative
+//!   work of all 100 bodies; scene T, V, G, H, external resultant and work) plus the scene's
+//!   checks (`work_energy`, `impulse_momentum` with H about a point, `angular_momentum_fixed_point`
+//!   about that point);
+//! - B (information): the same with 250 per-body checks as well, `newton_euler` and
+//!   `kinetic_energy_ic` on all 100 bodies and `angular_momentum_fixed_point` on the 50 bars.
 
 use rigidlab::analysis::frame::FrameAnalysis;
 use rigidlab::checks::CheckSet;
@@ -116,62 +116,71 @@ fn main() {
         scene_level.checks.len(),
     );
     let (mut ratio_a, mut ratio_b) = (Vec::new(), Vec::new());
-    let (mut step_us, mut a_us, mut b_us, mut frame_us) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut step_us, mut a_us, mut b_us) = (Vec::new(), Vec::new(), Vec::new());
     let mut contacts = 0;
     let mut rows = 0;
-    for _ in 0..REPEATS {
+    // Runs alternate: one with A's checks, one with all of B's, so each run has the cache and
+    // the analysis work of that configuration alone, and both see the same machine noise.
+    for k in 0..2 * REPEATS {
+        let with_b = k % 2 == 1;
         let mut sim = Simulation::new(&scene, &Options::default());
-        let mut a = CheckSet::new(&scene_level);
-        let mut b = CheckSet::new(level);
-        let mut frame = FrameAnalysis::new(level.world.substeps);
-        let (mut t_step, mut t_a, mut t_b, mut t_f) = (0.0, 0.0, 0.0, 0.0);
-        let mut each = |s: &rigidlab::snapshot::Snapshot, t: &mut [f64; 3]| {
-            let t0 = Instant::now();
-            a.observe(s);
-            t[0] += t0.elapsed().as_secs_f64();
-            let t0 = Instant::now();
-            b.observe(s);
-            t[1] += t0.elapsed().as_secs_f64();
-            let t0 = Instant::now();
-            rows += frame.observe(s).bodies.len();
-            t[2] += t0.elapsed().as_secs_f64();
-        };
-        let mut t = [0.0; 3];
-        each(sim.snapshot(), &mut t);
+        let mut checks = CheckSet::new(if with_b { level } else { &scene_level });
+        checks.observe(sim.snapshot());
+        let (mut t_step, mut t_checks) = (0.0, 0.0);
         for k in 0..STEPS {
             let t0 = Instant::now();
             let s = sim.step().expect("the bench scene runs");
             t_step += t0.elapsed().as_secs_f64();
             contacts = s.contacts.len();
-            each(s, &mut t);
+            let t0 = Instant::now();
+            checks.observe(s);
+            t_checks += t0.elapsed().as_secs_f64();
+            rows += s.bodies.len();
             if (k + 1) % BLOCK == 0 {
-                // Close the block (the initial snapshot's analysis counts in the first one).
-                t_a += t[0];
-                t_b += t[1];
-                t_f += t[2];
-                ratio_a.push(t_a / t_step);
-                ratio_b.push(t_b / t_step);
                 let per_step = 1e6 / BLOCK as f64;
                 step_us.push(t_step * per_step);
-                a_us.push(t_a * per_step);
-                b_us.push(t_b * per_step);
-                frame_us.push(t_f * per_step);
-                (t_step, t_a, t_b, t_f) = (0.0, 0.0, 0.0, 0.0);
-                t = [0.0; 3];
+                if with_b {
+                    ratio_b.push(t_checks / t_step);
+                    b_us.push(t_checks * per_step);
+                } else {
+                    ratio_a.push(t_checks / t_step);
+                    a_us.push(t_checks * per_step);
+                }
+                (t_step, t_checks) = (0.0, 0.0);
             }
         }
-        let (done_a, done_b) = (a.finish(), b.finish());
-        assert_eq!(done_a.len(), scene_level.checks.len());
-        assert_eq!(done_b.len(), level.checks.len());
+        let n = if with_b {
+            level.checks.len()
+        } else {
+            scene_level.checks.len()
+        };
+        assert_eq!(checks.finish().len(), n);
+    }
+    // The shared frame pass alone, on the same steps (information: how much of A it is).
+    let mut frame_us = Vec::new();
+    for _ in 0..REPEATS {
+        let mut sim = Simulation::new(&scene, &Options::default());
+        let mut frame = FrameAnalysis::new(level.world.substeps);
+        frame.observe(sim.snapshot());
+        let mut t_f = 0.0;
+        for k in 0..STEPS {
+            let s = sim.step().expect("the bench scene runs");
+            let t0 = Instant::now();
+            rows += frame.observe(s).bodies.len();
+            t_f += t0.elapsed().as_secs_f64();
+            if (k + 1) % BLOCK == 0 {
+                frame_us.push(t_f * 1e6 / BLOCK as f64);
+                t_f = 0.0;
+            }
+        }
     }
     assert!(rows > 0);
-    let blocks = ratio_a.len();
+    let blocks = ratio_a.len() + ratio_b.len();
     let (ra, rb) = (median(&mut ratio_a), median(&mut ratio_b));
     let quartiles = |v: &[f64]| (100.0 * v[v.len() / 4], 100.0 * v[3 * v.len() / 4]);
     println!("contact manifolds at the end: {contacts}; {blocks} blocks of {BLOCK} steps");
     println!(
-        "per step (block medians): physics {:.1} us; A: all-body analysis + scene checks {:.1} us (of which the shared frame pass alone {:.1} us); B: every check of the level {:.1} us",
+        "per step (block medians): physics {:.1} us; A: all-body analysis + scene checks {:.1} us (the shared frame pass alone: {:.1} us); B: every check of the level {:.1} us",
         median(&mut step_us),
         median(&mut a_us),
         median(&mut frame_us),

@@ -98,6 +98,13 @@ pub struct ContactPoint {
     pub normal_impulse: f64,
     /// Friction impulse over the step along the tangent `(-n.y, n.x)`, N s, acting on body2 (body1 gets the opposite).
     pub tangent_impulse: f64,
+    /// The lever arms (from body1's and from body2's mass center, world axes, m) at which the
+    /// solver applied this point's impulses over the step: rapier's `solver_dp1/2`, taken at the
+    /// midpoint of the two surface points and frozen at the manifold's last full narrow-phase
+    /// update while rapier recycles it. Only meaningful on a side with mass. None when not known
+    /// (a hand-built snapshot): the analysis then takes the point at the start of the step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arms: Option<(DVec2, DVec2)>,
 }
 
 impl ContactState {

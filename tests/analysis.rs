@@ -515,6 +515,7 @@ fn free_body_of_a_block_on_the_floor_balances() {
         distance: 0.0,
         normal_impulse: 2.0 * 9.81 * dt / 2.0,
         tangent_impulse: 0.0,
+        arms: None,
     };
     let c = ContactState {
         body1: 0,
@@ -558,52 +559,58 @@ fn free_body_of_a_block_on_the_floor_balances() {
 }
 
 #[test]
-fn contact_arms_stay_frozen_while_a_manifold_is_recycled() {
-    // The floor point does not change between steps (a recycled manifold) while the block moves:
-    // the solver's arm stays the one of the update step.
+fn contact_impulses_act_at_the_solver_arms_when_the_snapshot_has_them() {
+    // A block moving at 1 m/s over the floor. The engine's arms (from a manifold update two steps
+    // ago, point (0.3, 0) then, G at (0.0, 0.2)) differ from the recorded point carried back to
+    // the start of the step: the free-body diagram must use the engine's.
     let dt = 0.01;
     let floor = state("floor", DVec2::ZERO, DVec2::ZERO, 0.0, 0.0, 0.0);
-    let pt = ContactPoint {
-        point: DVec2::new(0.3, 0.0),
+    let block = |x: f64| state("block", DVec2::new(x, 0.2), DVec2::X, 0.0, 1.0, 0.1);
+    let point = ContactPoint {
+        point: DVec2::new(0.32, 0.0),
         distance: 0.0,
         normal_impulse: 0.1,
         tangent_impulse: 0.0,
+        arms: Some((DVec2::new(0.3, 0.0), DVec2::new(0.3, -0.2))),
     };
-    let c = ContactState {
+    let contact = |p: ContactPoint| ContactState {
         body1: 0,
         body2: 1,
         normal: DVec2::Y,
-        points: vec![pt.clone()],
+        points: vec![p],
     };
-    let mut arms = ContactArms::default();
-    let at = |x: f64| {
-        state(
-            "block",
-            DVec2::new(x, 0.2),
-            DVec2::new(1.0, 0.0),
-            0.0,
-            1.0,
-            0.1,
-        )
-    };
-    let s1 = snapshot(vec![floor.clone(), at(0.01)], vec![c.clone()], dt);
-    let b0: Vec<Motion> = [floor.clone(), at(0.0)].iter().map(Motion::from).collect();
-    arms.update(Before::All(&b0), &s1);
-    assert!((arms.get(0, 0).unwrap().1 - DVec2::new(0.3, -0.2)).length() < 1e-15);
-    let s2 = snapshot(vec![floor.clone(), at(0.02)], vec![c.clone()], dt);
-    let b1: Vec<Motion> = s1.bodies.iter().map(Motion::from).collect();
-    arms.update(Before::All(&b1), &s2);
-    assert!(
-        (arms.get(0, 0).unwrap().1 - DVec2::new(0.3, -0.2)).length() < 1e-15,
-        "recycled: arm kept"
+    let before: Vec<Motion> = [floor.clone(), block(0.01)]
+        .iter()
+        .map(Motion::from)
+        .collect();
+    let snap = snapshot(
+        vec![floor.clone(), block(0.02)],
+        vec![contact(point.clone())],
+        dt,
     );
-    // A refreshed manifold (the point moved on the floor): the arm is taken anew.
-    let mut c3 = c.clone();
-    c3.points[0].point = DVec2::new(0.32, 0.0);
-    let s3 = snapshot(vec![floor, at(0.03)], vec![c3], dt);
-    let b2: Vec<Motion> = s2.bodies.iter().map(Motion::from).collect();
-    arms.update(Before::All(&b2), &s3);
-    assert!((arms.get(0, 0).unwrap().1 - DVec2::new(0.30, -0.2)).length() < 1e-12);
+    let fbd = free_body(&before, &snap, 1, 1);
+    let c = fbd
+        .iter()
+        .find(|i| matches!(i.source, Source::Contact { .. }))
+        .unwrap();
+    assert!((c.arm - DVec2::new(0.3, -0.2)).length() < 1e-15);
+    // Moment about G of the normal impulse 0.1 N s at arm (0.3, -0.2): (r x J)_z = 0.3 * 0.1.
+    assert!((c.moment_about_g() - 0.03).abs() < 1e-15);
+    // Without the engine's arms: the point at the start of the step, (0.32, 0) - (0.01, 0.2).
+    let snap = snapshot(
+        vec![floor, block(0.02)],
+        vec![contact(ContactPoint {
+            arms: None,
+            ..point
+        })],
+        dt,
+    );
+    let fbd = free_body(&before, &snap, 1, 1);
+    let c = fbd
+        .iter()
+        .find(|i| matches!(i.source, Source::Contact { .. }))
+        .unwrap();
+    assert!((c.arm - DVec2::new(0.31, -0.2)).length() < 1e-15);
 }
 
 // ------------------------------------------------------------------ identities on random states

@@ -168,12 +168,15 @@ fn newton_euler_fails_without_the_contacts() {
     let sc = scene(BLOCK);
     let def = check_of(&sc.level, CheckKind::NewtonEuler);
     assert_fails(&run_check(&sc, &sc.level, &def, |s| s.contacts.clear()));
-    // A wrong moment arm: the contact points moved 5 cm.
+    // A wrong moment arm: the solver's lever arms moved 5 cm.
     assert_fails(&run_check(&sc, &sc.level, &def, |s| {
         s.contacts
             .iter_mut()
             .flat_map(|c| c.points.iter_mut())
-            .for_each(|p| p.point.x += 0.05)
+            .for_each(|p| {
+                let (a1, a2) = p.arms.expect("the engine gives its arms");
+                p.arms = Some((a1 + DVec2::X * 0.05, a2 + DVec2::X * 0.05));
+            })
     }));
 }
 

@@ -8,12 +8,12 @@
 //! two bodies of the scene are internal and cancel, 6/18) and the step's non-conservative work.
 //!
 //! The checks read this frame instead of walking the step's impulses each on its own (see
-//! `checks::CheckSet`): the walk, the contact lever arms and the start-of-step states are
-//! computed once per step. It costs O(bodies + contacts + joints + springs) per step.
+//! `checks::CheckSet`): the walk and the start-of-step states are computed once per step.
+//! It costs O(bodies + contacts + joints + springs) per step.
 
 use super::energy::{gravity_potential, kinetic_energy};
 use super::kinematics::{acceleration_fd, angular_acceleration_fd, instantaneous_center};
-use super::kinetics::{contact_arms_at_start, Before, ContactArms};
+use super::kinetics::contact_arms_at_start;
 use super::momentum::{angular_momentum_g, linear_momentum};
 use super::{cross, Motion};
 use crate::snapshot::{BodyKind, Coordinate, Snapshot};
@@ -26,10 +26,6 @@ pub struct ImpulseSums {
     pub impulse: DVec2,
     /// Sum of angular impulses about the world origin, sum (r_P x J)_z + couples (IM-7).
     pub moment_origin: f64,
-    /// The part of `impulse` from joint reactions.
-    pub joint_impulse: DVec2,
-    /// The part of `moment_origin` from joint reactions.
-    pub joint_moment_origin: f64,
 }
 
 impl ImpulseSums {
@@ -38,18 +34,9 @@ impl ImpulseSums {
         self.moment_origin - cross(o, self.impulse)
     }
 
-    /// The joint reactions' angular impulse about O.
-    pub fn joint_moment_about(&self, o: DVec2) -> f64 {
-        self.joint_moment_origin - cross(o, self.joint_impulse)
-    }
-
-    fn add(&mut self, j: DVec2, moment_origin: f64, joint: bool) {
+    fn add(&mut self, j: DVec2, moment_origin: f64) {
         self.impulse += j;
         self.moment_origin += moment_origin;
-        if joint {
-            self.joint_impulse += j;
-            self.joint_moment_origin += moment_origin;
-        }
     }
 }
 
@@ -161,7 +148,14 @@ pub struct FrameAnalysis {
     before: Vec<Motion>,
     /// ... and at its end (swapped into `before` at the next step).
     after: Vec<Motion>,
-    arms: ContactArms,
+    /// Per body: has it mass; and the bodies with mass (set at the initial snapshot: masses do not
+    /// change during a run).
+    has_mass: Vec<bool>,
+    massive: Vec<usize>,
+    /// The bodies that are not fixed.
+    moving: Vec<usize>,
+    /// Scratch for the pass, per body.
+    mids: Vec<Mid>,
     frame: Frame,
 }
 
@@ -180,11 +174,6 @@ impl FrameAnalysis {
         &self.before
     }
 
-    /// The lever arms of the last step's contact points (see [`ContactArms`]).
-    pub fn arms(&self) -> &ContactArms {
-        &self.arms
-    }
-
     /// The last frame computed.
     pub fn frame(&self) -> &Frame {
         &self.frame
@@ -195,17 +184,32 @@ impl FrameAnalysis {
     /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
     pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
         let n = snap.bodies.len();
-        std::mem::swap(&mut self.before, &mut self.after);
-        self.after.clear();
-        self.after.extend(snap.bodies.iter().map(Motion::from));
         let stepped = snap.dt > 0.0 && self.before.len() == n;
-        if !stepped {
-            self.before.clone_from(&self.after);
-        }
         let f = &mut self.frame;
-        if !stepped || f.bodies.len() != n {
+        if stepped {
+            // The end of the last step is the start of this one. Fixed bodies do not move: their
+            // entries in both buffers stay as first copied.
+            std::mem::swap(&mut self.before, &mut self.after);
+            for &i in &self.moving {
+                self.after[i] = Motion::from(&snap.bodies[i]);
+            }
+        } else {
+            // The initial state (or a new scene): everything from scratch.
+            self.after.clear();
+            self.after.extend(snap.bodies.iter().map(Motion::from));
+            self.before.clone_from(&self.after);
             f.bodies.clear();
             f.bodies.resize(n, BodyFrame::default());
+            self.has_mass.clear();
+            self.has_mass
+                .extend(snap.bodies.iter().map(|b| b.mass > 0.0));
+            self.massive.clear();
+            self.massive.extend((0..n).filter(|&i| self.has_mass[i]));
+            self.mids.clear();
+            self.mids.resize(n, Mid::default());
+            self.moving.clear();
+            self.moving
+                .extend((0..n).filter(|&i| snap.bodies[i].kind != BodyKind::Fixed));
         }
         f.time = snap.time;
         f.dt = snap.dt;
@@ -214,7 +218,6 @@ impl FrameAnalysis {
         f.work = StepWork::default();
         f.elastic_potential = snap.springs.iter().map(|s| s.energy).sum();
         if stepped {
-            self.arms.update(Before::All(&self.before), snap);
             let mut pass = Pass {
                 snap,
                 before: &self.before,
@@ -226,16 +229,17 @@ impl FrameAnalysis {
                     let s = self.substeps.max(1) as f64;
                     (s - 1.0) / (2.0 * s)
                 },
+                has_mass: &self.has_mass,
+                massive: &self.massive,
+                mids: &mut self.mids,
             };
-            pass.run(&self.arms);
+            pass.run();
         }
         f.totals_before = f.totals;
         let mut totals = Totals::default();
         let inv_dt = if stepped { 1.0 / snap.dt } else { 0.0 };
-        for (i, b) in snap.bodies.iter().enumerate() {
-            if b.mass <= 0.0 {
-                continue;
-            }
+        for &i in &self.massive {
+            let b = &snap.bodies[i];
             let bf = &mut f.bodies[i];
             let g = linear_momentum(b.mass, b.velocity);
             let h_g = angular_momentum_g(b.inertia, b.omega);
@@ -293,24 +297,40 @@ struct Pass<'a> {
     work: &'a mut StepWork,
     /// (S - 1)/(2S): where in the step gravity acts (`kinetics::gravity_point`).
     s_frac: f64,
+    /// Per body: has it mass? (Masses do not change during a run.)
+    has_mass: &'a [bool],
+    /// The bodies with mass, in order.
+    massive: &'a [usize],
+    /// Per body with mass, filled first: where gravity acts and the mean velocities.
+    mids: &'a mut [Mid],
+}
+
+/// A body's gravity point (`kinetics::gravity_point`) and mean velocities over the step
+/// (`Motion::mid`), computed once per step for all its impulses.
+#[derive(Debug, Clone, Copy, Default)]
+struct Mid {
+    g_point: DVec2,
+    velocity: DVec2,
+    omega: f64,
 }
 
 impl Pass<'_> {
     fn has_mass(&self, i: usize) -> bool {
-        self.snap.bodies[i].mass > 0.0
+        self.has_mass[i]
     }
 
     /// The mean of the substeps' start positions of G (`kinetics::gravity_point`).
     fn g_point(&self, i: usize) -> DVec2 {
-        let (g0, g1) = (self.before[i].com, self.after[i].com);
-        g0 + (g1 - g0) * self.s_frac
+        self.mids[i].g_point
     }
 
     /// U = J . v_P,mid + couple omega_mid (`energy::work_of_impulse_with_arm`).
     fn work_of(&self, i: usize, j: DVec2, arm: DVec2, couple: f64) -> f64 {
-        let (m0, m1) = (&self.before[i], &self.after[i]);
-        let v = 0.5 * (m0.velocity + m1.velocity);
-        let w = 0.5 * (m0.omega + m1.omega);
+        let Mid {
+            velocity: v,
+            omega: w,
+            ..
+        } = self.mids[i];
         j.dot(v + super::k_cross(w, arm)) + couple * w
     }
 
@@ -326,7 +346,6 @@ impl Pass<'_> {
         point: DVec2,
         arm: DVec2,
         couple: f64,
-        joint: bool,
         internal: bool,
         work: Option<(Slot, bool)>,
     ) {
@@ -334,9 +353,9 @@ impl Pass<'_> {
         let u = work.map(|_| self.work_of(i, j, arm, couple));
         let acc = &mut self.bodies[i];
         acc.moment_g += cross(arm, j) + couple;
-        acc.impulses.add(j, m_origin, joint);
+        acc.impulses.add(j, m_origin);
         if !internal {
-            self.external.add(j, m_origin, joint);
+            self.external.add(j, m_origin);
         }
         if let (Some((slot, scene)), Some(u)) = (work, u) {
             acc.work.add(slot, u);
@@ -346,27 +365,32 @@ impl Pass<'_> {
         }
     }
 
-    fn run(&mut self, arms: &ContactArms) {
+    fn run(&mut self) {
         let snap = self.snap;
         let dt = snap.dt;
         let start = |p: &Self, i: usize| p.before[i].com;
-        // Every body with mass starts from its weight, m g dt at the gravity point (external).
+        // Every body with mass starts from its weight, m g dt at the gravity point (external),
+        // and gets its gravity point and mean velocities, used by all its impulses.
         let (mut weight, mut weight_moment) = (DVec2::ZERO, 0.0);
-        for (i, b) in snap.bodies.iter().enumerate() {
-            if b.mass > 0.0 {
-                let j = b.mass * snap.gravity * dt;
-                let m_origin = cross(self.g_point(i), j);
-                let bf = &mut self.bodies[i];
-                bf.impulses = ImpulseSums {
-                    impulse: j,
-                    moment_origin: m_origin,
-                    ..ImpulseSums::default()
-                };
-                bf.moment_g = 0.0;
-                bf.work = StepWork::default();
-                weight += j;
-                weight_moment += m_origin;
-            }
+        for &i in self.massive {
+            let (m0, m1) = (&self.before[i], &self.after[i]);
+            let mid = Mid {
+                g_point: m0.com + (m1.com - m0.com) * self.s_frac,
+                velocity: 0.5 * (m0.velocity + m1.velocity),
+                omega: 0.5 * (m0.omega + m1.omega),
+            };
+            self.mids[i] = mid;
+            let j = snap.bodies[i].mass * snap.gravity * dt;
+            let m_origin = cross(mid.g_point, j);
+            let bf = &mut self.bodies[i];
+            bf.impulses = ImpulseSums {
+                impulse: j,
+                moment_origin: m_origin,
+            };
+            bf.moment_g = 0.0;
+            bf.work = StepWork::default();
+            weight += j;
+            weight_moment += m_origin;
         }
         self.external.impulse += weight;
         self.external.moment_origin += weight_moment;
@@ -378,13 +402,18 @@ impl Pass<'_> {
                 let at = self.g_point(l.body) + arm;
                 let j = l.force * dt;
                 let work = Some((Slot::Loads, true));
-                self.add(l.body, j, at, arm, l.torque * dt, false, false, work);
+                self.add(l.body, j, at, arm, l.torque * dt, false, work);
             }
         }
         for sp in &snap.springs {
             let ends = [
                 (sp.body1, sp.body2, sp.applied_at1, sp.force_on_body1),
-                (sp.body2.unwrap_or(usize::MAX), Some(sp.body1), sp.applied_at2, -sp.force_on_body1),
+                (
+                    sp.body2.unwrap_or(usize::MAX),
+                    Some(sp.body1),
+                    sp.applied_at2,
+                    -sp.force_on_body1,
+                ),
             ];
             for (i, other, p, force) in ends {
                 if i == usize::MAX || !self.has_mass(i) {
@@ -397,52 +426,63 @@ impl Pass<'_> {
                 let work = (!ground).then_some((Slot::Other, !internal));
                 let arm = p - start(self, i);
                 let at = self.g_point(i) + arm;
-                self.add(i, force * dt, at, arm, 0.0, false, internal, work);
+                self.add(i, force * dt, at, arm, 0.0, internal, work);
             }
         }
         for e in &snap.impulses {
             if self.has_mass(e.body) {
                 let arm = e.point - start(self, e.body);
                 let work = Some((Slot::Events, true));
-                self.add(e.body, e.impulse, e.point, arm, e.angular_impulse, false, false, work);
+                self.add(
+                    e.body,
+                    e.impulse,
+                    e.point,
+                    arm,
+                    e.angular_impulse,
+                    false,
+                    work,
+                );
             }
         }
-        for (k, c) in snap.contacts.iter().enumerate() {
+        for c in &snap.contacts {
             let (in1, in2) = (self.has_mass(c.body1), self.has_mass(c.body2));
             if !in1 && !in2 {
                 continue;
             }
             let internal = in1 && in2;
             let t = c.tangent();
-            for (q, p) in c.points.iter().enumerate() {
+            for p in &c.points {
                 let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
-                let (arm1, arm2) = arms
-                    .get(k, q)
+                let (arm1, arm2) = p
+                    .arms
                     .unwrap_or_else(|| contact_arms_at_start(snap, self.before, c, p));
                 let work = Some((Slot::Contacts, true));
                 if in2 {
                     let at = self.g_point(c.body2) + arm2;
-                    self.add(c.body2, j2, at, arm2, 0.0, false, internal, work);
+                    self.add(c.body2, j2, at, arm2, 0.0, internal, work);
                 }
                 if in1 {
                     let at = self.g_point(c.body1) + arm1;
-                    self.add(c.body1, -j2, at, arm1, 0.0, false, internal, work);
+                    self.add(c.body1, -j2, at, arm1, 0.0, internal, work);
                 }
             }
         }
         for j in &snap.joints {
             let (in1, in2) = (self.has_mass(j.body1), self.has_mass(j.body2));
             let internal = in1 && in2;
-            let sides = [
-                (in2, j.body2, j.impulse_on_body2, j.anchor, j.angular_impulse_on_body2),
-                (in1, j.body1, -j.impulse_on_body2, j.anchor1, j.angular_impulse_on_body1),
-            ];
-            for (inside, i, imp, at, angular) in sides {
-                if inside {
-                    // The row solver's angular impulse about G, less the moment of the linear part.
-                    let arm = at - self.after[i].com;
-                    self.add(i, imp, at, arm, angular - cross(arm, imp), true, internal, None);
-                }
+            // The reaction at the anchor; its couple is the row solver's angular impulse about G
+            // less the moment of the linear part.
+            if in2 {
+                let (i, imp, at) = (j.body2, j.impulse_on_body2, j.anchor);
+                let arm = at - self.after[i].com;
+                let couple = j.angular_impulse_on_body2 - cross(arm, imp);
+                self.add(i, imp, at, arm, couple, internal, None);
+            }
+            if in1 {
+                let (i, imp, at) = (j.body1, -j.impulse_on_body2, j.anchor1);
+                let arm = at - self.after[i].com;
+                let couple = j.angular_impulse_on_body1 - cross(arm, imp);
+                self.add(i, imp, at, arm, couple, internal, None);
             }
         }
         for c in &snap.couplings {
@@ -458,7 +498,7 @@ impl Pass<'_> {
                 };
                 let at = self.g_point(i);
                 let work = Some((Slot::Other, true));
-                self.add(i, j, at, DVec2::ZERO, couple, false, false, work);
+                self.add(i, j, at, DVec2::ZERO, couple, false, work);
             }
         }
     }

@@ -53,11 +53,11 @@ pub fn instantaneous_center(
         return None;
     }
     let d = DVec2::new(-v_a.y, v_a.x) * (1.0 / omega);
-    // Written so that a NaN or infinite distance also gives None.
-    if !(d.length_squared() <= max_distance * max_distance) {
-        None
-    } else {
+    // A NaN or infinite distance fails the comparison too: None.
+    if d.length_squared() <= max_distance * max_distance {
         Some(r_a + d)
+    } else {
+        None
     }
 }
 

@@ -123,20 +123,7 @@ pub fn for_each_external_impulse(
     in_set: impl Fn(usize) -> bool,
     visit: impl FnMut(StepImpulse),
 ) {
-    for_each_external_impulse_with(before, snap, substeps, None, in_set, visit)
-}
-
-/// [`for_each_external_impulse`] with the contact lever arms tracked across steps by
-/// [`ContactArms`] (exact when rapier recycles contact manifolds; see there).
-pub fn for_each_external_impulse_with(
-    before: Before,
-    snap: &Snapshot,
-    substeps: usize,
-    arms: Option<&ContactArms>,
-    in_set: impl Fn(usize) -> bool,
-    visit: impl FnMut(StepImpulse),
-) {
-    visit_impulses(before, snap, substeps, arms, in_set, true, visit)
+    visit_impulses(before, snap, substeps, in_set, true, visit)
 }
 
 /// Visits every impulse on every body with mass over the step that led to `snap`, both sides of
@@ -145,25 +132,15 @@ pub fn for_each_body_impulse(
     before: &[Motion],
     snap: &Snapshot,
     substeps: usize,
-    arms: Option<&ContactArms>,
     visit: impl FnMut(StepImpulse),
 ) {
-    visit_impulses(
-        Before::All(before),
-        snap,
-        substeps,
-        arms,
-        |_| true,
-        false,
-        visit,
-    )
+    visit_impulses(Before::All(before), snap, substeps, |_| true, false, visit)
 }
 
 fn visit_impulses(
     before: Before,
     snap: &Snapshot,
     substeps: usize,
-    arms: Option<&ContactArms>,
     in_set: impl Fn(usize) -> bool,
     skip_internal: bool,
     mut visit: impl FnMut(StepImpulse),
@@ -278,7 +255,7 @@ fn visit_impulses(
         }
         let t = c.tangent();
         // Carries body1's end-of-step points back to its start pose (one rotation per contact,
-        // and only when an arm is not tracked).
+        // and only for points without the solver's arms).
         let mut back: Option<StartOfStep> = None;
         for (q, p) in c.points.iter().enumerate() {
             let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
@@ -286,23 +263,20 @@ fn visit_impulses(
                 contact: k,
                 point: q,
             };
-            // The lever arms from G that rapier's solver used: frozen at the narrow phase's last
-            // full update of the manifold (tracked by `arms`), else the point as the narrow phase
-            // found it at the start of this step.
-            let (arm1, arm2) = match arms.and_then(|a| a.get(k, q)) {
-                Some(tracked) => tracked,
-                None => {
-                    let back = back.get_or_insert_with(|| {
-                        StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1))
-                    });
-                    let p1 = back.point(p.point);
-                    // The point on body2's surface: body1's point moved by the separation along n.
-                    (
-                        p1 - start(c.body1),
-                        p1 + c.normal * p.distance - start(c.body2),
-                    )
-                }
-            };
+            // The lever arms from G that rapier's solver used (frozen at the narrow phase's last
+            // full update of the manifold), else the point as the narrow phase found it at the
+            // start of this step.
+            let (arm1, arm2) = p.arms.unwrap_or_else(|| {
+                let back = back.get_or_insert_with(|| {
+                    StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1))
+                });
+                let p1 = back.point(p.point);
+                // The point on body2's surface: body1's point moved by the separation along n.
+                (
+                    p1 - start(c.body1),
+                    p1 + c.normal * p.distance - start(c.body2),
+                )
+            });
             if in2 {
                 visit(StepImpulse {
                     body: c.body2,
@@ -402,34 +376,6 @@ fn couplings(
     }
 }
 
-/// The lever arms (contact point minus G, world axes) rapier's contact solver used, tracked from
-/// step to step.
-///
-/// rapier 0.36 recycles contact manifolds: the narrow phase refreshes a pair only every few steps
-/// while the bodies move little, and in between the solver reuses the world-space lever arms
-/// frozen at the last full update (`ContactData::solver_dp1/2`), while the recorded points stay
-/// those of that update too. The arms are then (point - G) at the start of the update's step.
-/// A manifold is taken as recycled when its point is unchanged in body1's frame.
-#[derive(Debug, Clone, Default)]
-pub struct ContactArms {
-    /// Entries of the last snapshot, contact by contact.
-    entries: Vec<ArmEntry>,
-    /// Per contact of the last snapshot: (first entry, number of points), or `u32::MAX` if untracked.
-    rows: Vec<(u32, u32)>,
-    previous: Vec<ArmEntry>,
-    /// Per body: the last entry whose body1 it is (`NONE` if none), for `entries` and
-    /// `previous`. With `next` and `previous_next` (per entry: the entry before it with the
-    /// same body1) this finds an entry by key in a chain a few entries long, whatever order
-    /// the contacts come in (rapier reorders its pairs as contacts come and go).
-    head: Vec<u32>,
-    previous_head: Vec<u32>,
-    next: Vec<u32>,
-    previous_next: Vec<u32>,
-}
-
-/// No entry.
-const NONE: u32 = u32::MAX;
-
 /// Carries points read at the end of a step on a body (carried along by it) back to where they
 /// were at the start of the step: r_start = p0 + R(a0 - a1)(r_end - p1), one rotation per body.
 #[derive(Debug, Clone, Copy)]
@@ -459,99 +405,6 @@ impl StartOfStep {
     fn point(&self, p_end: DVec2) -> DVec2 {
         let r = p_end - self.from;
         self.to + self.rotation.map_or(r, |q| q.rotate(r))
-    }
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct ArmEntry {
-    /// (body1, body2, ordinal of the manifold among the pair's, point index).
-    key: (usize, usize, usize, usize),
-    local1: DVec2,
-    arm1: DVec2,
-    arm2: DVec2,
-}
-
-impl ContactArms {
-    /// Records the arms of all of `snap`'s contacts; call once per step, with the bodies' start states.
-    pub fn update(&mut self, before: Before, snap: &Snapshot) {
-        self.update_for(before, snap, |_| true)
-    }
-
-    /// Records the arms of the contacts that touch a body for which `track(i)` holds.
-    pub fn update_for(&mut self, before: Before, snap: &Snapshot, track: impl Fn(usize) -> bool) {
-        std::mem::swap(&mut self.entries, &mut self.previous);
-        std::mem::swap(&mut self.head, &mut self.previous_head);
-        std::mem::swap(&mut self.next, &mut self.previous_next);
-        self.entries.clear();
-        self.next.clear();
-        self.head.clear();
-        self.head.resize(snap.bodies.len(), NONE);
-        self.rows.clear();
-        let mut last_pair: Option<((usize, usize), usize)> = None;
-        let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
-        for c in snap.contacts.iter() {
-            if !(track(c.body1) || track(c.body2)) {
-                self.rows.push((u32::MAX, 0));
-                continue;
-            }
-            // The manifold's ordinal among the pair's manifolds (a pair can have several). rapier
-            // lists a collider pair's manifolds one after another and rigidlab gives a body one
-            // collider, so counting along a run of the same pair suffices. (Were a pair's
-            // manifolds ever apart, two would share a key; a wrong match then fails the
-            // same-point test below and the arms are taken afresh, as for a new manifold.)
-            let ordinal = match last_pair {
-                Some((pair, n)) if pair == (c.body1, c.body2) => n + 1,
-                _ => 0,
-            };
-            last_pair = Some(((c.body1, c.body2), ordinal));
-            let b1 = &snap.bodies[c.body1];
-            // Body1's frame: one rotation per contact (none for an unturned ground).
-            let to_local = (b1.angle != 0.0).then(|| DVec2::from_angle(-b1.angle));
-            let mut back: Option<StartOfStep> = None;
-            self.rows
-                .push((self.entries.len() as u32, c.points.len() as u32));
-            for (q, p) in c.points.iter().enumerate() {
-                let key = (c.body1, c.body2, ordinal, q);
-                let r = p.point - b1.position;
-                let local1 = to_local.map_or(r, |q| q.rotate(r));
-                // Same point when within 1e-6 (1 + |r|) m: squared, no square roots.
-                let tol2 = 1e-12 * (1.0 + local1.length_squared()) * 2.0;
-                // The last update's entry with this key: along the chain of body1's entries.
-                let mut e = self.previous_head.get(c.body1).copied().unwrap_or(NONE);
-                while e != NONE && self.previous[e as usize].key != key {
-                    e = self.previous_next[e as usize];
-                }
-                let prev = (e != NONE).then(|| self.previous[e as usize]);
-                let entry = match prev {
-                    Some(e) if (e.local1 - local1).length_squared() <= tol2 => e,
-                    _ => {
-                        let back = back
-                            .get_or_insert_with(|| StartOfStep::new(b1, before.get(c.body1)));
-                        let p1 = back.point(p.point);
-                        ArmEntry {
-                            key,
-                            local1,
-                            arm1: p1 - start(c.body1),
-                            arm2: p1 + c.normal * p.distance - start(c.body2),
-                        }
-                    }
-                };
-                self.next.push(self.head[c.body1]);
-                self.head[c.body1] = self.entries.len() as u32;
-                self.entries.push(entry);
-            }
-        }
-    }
-
-    /// The arms (on body1, on body2) of contact k, point q of the last snapshot recorded.
-    pub fn get(&self, k: usize, q: usize) -> Option<(DVec2, DVec2)> {
-        let &(first, n) = self.rows.get(k)?;
-        if first == u32::MAX || q as u32 >= n {
-            return None;
-        }
-        self.entries
-            .get(first as usize + q)
-            .map(|e| (e.arm1, e.arm2))
     }
 }
 

@@ -484,6 +484,7 @@ impl Simulation {
                         as f64,
                     normal_impulse: pt.data.impulse as f64,
                     tangent_impulse: pt.data.tangent_impulse[0] as f64,
+                    arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
                 }));
             }
         }

@@ -1,12 +1,10 @@
 //! Energy checks: `kinetic_energy_g`, `kinetic_energy_ic`, `work_energy`.
 
 use super::{
-    body_def, framed, FrameProbe, dynamic_body, misconfigured, result, scale_or, subject_of,
-    subject_set, substeps, textbook_mass, v2, BodySet, Summary, Worst,
+    body_def, dynamic_body, framed, misconfigured, result, scale_or, subject_of, subject_set,
+    substeps, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
 };
-use crate::analysis::energy::{
-    gravity_potential, kinetic_energy, kinetic_energy_about_ic,
-};
+use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::kinematics::{
     instantaneous_center, omega_from_angles, velocity_from_positions, wrap_angle,
@@ -176,23 +174,20 @@ pub(super) fn kinetic_energy_ic(level: &Level, def: &CheckDef) -> Box<dyn Probe>
         }
         (None, None) => Center::Kinematic,
     };
-    framed(
-        level,
-        KineticEnergyIc {
-            def: def.clone(),
-            name: b.name.clone(),
-            mass: textbook_mass(b),
-            center,
-            worst: Worst::default(),
-            max_t: 0.0,
-            skipped: 0,
-            max_slip: 0.0,
-            max_normal: 0.0,
-            at_infinity: 0,
-            index: None,
-            last: (0.0, 0.0),
-        },
-    )
+    Box::new(KineticEnergyIc {
+        def: def.clone(),
+        name: b.name.clone(),
+        mass: textbook_mass(b),
+        center,
+        worst: Worst::default(),
+        max_t: 0.0,
+        skipped: 0,
+        max_slip: 0.0,
+        max_normal: 0.0,
+        at_infinity: 0,
+        index: None,
+        last: (0.0, 0.0),
+    })
 }
 
 struct KineticEnergyIc {
@@ -211,8 +206,8 @@ struct KineticEnergyIc {
     last: (f64, f64),
 }
 
-impl FrameProbe for KineticEnergyIc {
-    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
+impl Probe for KineticEnergyIc {
+    fn observe(&mut self, s: &Snapshot) {
         let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
             return;
         };
@@ -233,18 +228,16 @@ impl FrameProbe for KineticEnergyIc {
                 let Some(k) = s.body_index(other) else {
                     return;
                 };
-                // The lever arms the solver used, tracked by the shared frame.
-                let arms = fa.frame().stepped.then(|| fa.arms());
                 // The body's own contact point(s) with `other`, weighted by normal impulse: G plus
                 // the lever arm the solver used (recorded points go stale while rapier recycles
                 // the manifold; the arm of a rolling disc stays -r n).
                 let (mut sum, mut w, mut n, mut normal) = (DVec2::ZERO, 0.0, 0, DVec2::ZERO);
-                for (ci, c) in s.contacts.iter().enumerate() {
+                for c in &s.contacts {
                     if !((c.body1 == i && c.body2 == k) || (c.body1 == k && c.body2 == i)) {
                         continue;
                     }
-                    for (q, p) in c.points.iter().enumerate() {
-                        let own = match (arms.and_then(|a| a.get(ci, q)), c.body1 == i) {
+                    for p in &c.points {
+                        let own = match (p.arms, c.body1 == i) {
                             (Some((a1, _)), true) => b.com + a1,
                             (Some((_, a2)), false) => b.com + a2,
                             (None, true) => p.point,
@@ -282,7 +275,7 @@ impl FrameProbe for KineticEnergyIc {
         self.last = (t_theory, t_engine);
     }
 
-    fn finish(self) -> CheckResult {
+    fn finish(self: Box<Self>) -> CheckResult {
         let scale = scale_or(self.max_t, 1.0);
         let how = match &self.center {
             Center::Fixed(o) => format!("1/2 I_O w^2 about the pivot ({:.3}, {:.3}) (6/8)", o.x, o.y),
@@ -527,7 +520,11 @@ impl FrameProbe for WorkEnergy {
                     )
                 }
                 None => {
-                    let t = if motions.is_some() { &f.totals_before } else { &f.totals };
+                    let t = if motions.is_some() {
+                        &f.totals_before
+                    } else {
+                        &f.totals
+                    };
                     (t.kinetic_energy, t.gravity_potential)
                 }
             }

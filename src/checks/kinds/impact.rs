@@ -7,7 +7,7 @@ use crate::analysis::energy::kinetic_energy;
 use crate::analysis::impact::{
     central_impact_energy_loss, is_eccentric, measure_impact, pair_contact, Bracket, ImpactDetector,
 };
-use crate::analysis::kinetics::{for_each_external_impulse_with, Before, ContactArms, Source};
+use crate::analysis::kinetics::{for_each_external_impulse, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -67,7 +67,6 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         index: None,
         partner: None,
         before: Vec::new(),
-        arms: ContactArms::default(),
         detector: None,
         open: None,
         impacts: Vec::new(),
@@ -113,7 +112,6 @@ struct Restitution {
     index: Option<usize>,
     partner: Option<usize>,
     before: Vec<Motion>,
-    arms: ContactArms,
     detector: Option<ImpactDetector>,
     open: Option<Open>,
     impacts: Vec<Done>,
@@ -227,10 +225,6 @@ impl Probe for Restitution {
                     .map(|c| if c.body1 == i { c.body2 } else { c.body1 }),
             };
         }
-        if let (false, Some(k)) = (self.before.is_empty(), self.partner) {
-            self.arms
-                .update_for(Before::All(&self.before), s, |x| x == i || x == k);
-        }
         if let (Some(k), false) = (self.partner, self.before.is_empty()) {
             let detector = self.detector.get_or_insert_with(|| {
                 let weight: f64 = [i, k]
@@ -271,11 +265,10 @@ impl Probe for Restitution {
                 o.points = o.points.max(c.points);
                 let point = o.point;
                 let mut other_moment = 0.0;
-                for_each_external_impulse_with(
+                for_each_external_impulse(
                     Before::All(&self.before),
                     s,
                     self.substeps,
-                    Some(&self.arms),
                     |x| x == i || x == k,
                     |imp| {
                         let between = match imp.source {

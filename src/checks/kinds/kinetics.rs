@@ -83,7 +83,13 @@ impl FrameProbe for NewtonEuler {
             let sums = f.bodies[i].impulses;
             let moment_g = f.bodies[i].moment_g * s.dt;
             let (df, dm) = newton_euler_residual(
-                b.mass, b.inertia, &before, &now, sums.impulse, moment_g, s.dt,
+                b.mass,
+                b.inertia,
+                &before,
+                &now,
+                sums.impulse,
+                moment_g,
+                s.dt,
             );
             let sum_f = sums.impulse / s.dt;
             let ma = b.mass * (now.velocity - before.velocity) / s.dt;

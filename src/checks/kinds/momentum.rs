@@ -4,6 +4,7 @@ use super::{
     dynamic_body, framed, misconfigured, result, scale_or, subject_of, subject_set, v2, BodySet,
     FrameProbe, Summary, Worst,
 };
+use crate::analysis::cross;
 use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::momentum::{angular_momentum_about, linear_momentum};
 use crate::analysis::Motion;
@@ -143,7 +144,20 @@ impl FrameProbe for AngularMomentumFixedPoint {
         };
         let theory = sums.moment_about(o) / s.dt;
         let engine = (h - h_before) / s.dt;
-        let reaction = sums.joint_moment_about(o);
+        // The joint reactions' angular impulse about O (for the note): per joint side on the set
+        // whose other side is not, H_G's share plus (r_G - r_O) x J.
+        let mut reaction = 0.0;
+        for j in &s.joints {
+            let (in1, in2) = (self.set.contains(&j.body1), self.set.contains(&j.body2));
+            if in2 && !in1 {
+                let r = s.bodies[j.body2].com - o;
+                reaction += j.angular_impulse_on_body2 + cross(r, j.impulse_on_body2);
+            }
+            if in1 && !in2 {
+                let r = s.bodies[j.body1].com - o;
+                reaction += j.angular_impulse_on_body1 - cross(r, j.impulse_on_body2);
+            }
+        }
         let weight: f64 = self
             .set
             .iter()

@@ -5,9 +5,7 @@ use super::{
     dynamic_body, misconfigured, result, scale_or, subject_of, substeps, textbook_mass, v2,
     Summary, Worst,
 };
-use crate::analysis::kinetics::{
-    for_each_external_impulse_with, gravity_point, Before, ContactArms, Source,
-};
+use crate::analysis::kinetics::{for_each_external_impulse, gravity_point, Before, Source};
 use crate::analysis::mass::{parallel_axis, MassProps};
 use crate::analysis::percussion::{center_of_percussion_distance, pivot_impulse, Blow};
 use crate::analysis::Motion;
@@ -75,7 +73,6 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         o: def.point.map(v2),
         index: None,
         before: None,
-        arms: ContactArms::default(),
         worst: Worst::default(),
         blow: 0.0,
         max_moment: 0.0,
@@ -95,7 +92,6 @@ struct CenterOfPercussion {
     o: Option<DVec2>,
     index: Option<usize>,
     before: Option<Motion>,
-    arms: ContactArms,
     worst: Worst,
     /// Largest blow |P| (strike mode).
     blow: f64,
@@ -144,7 +140,6 @@ impl Probe for CenterOfPercussion {
         let i_o = parallel_axis(m.inertia, m.mass, r_bar);
         self.q = center_of_percussion_distance(i_o, m.mass, r_bar).unwrap_or(f64::INFINITY);
         if s.dt > 0.0 {
-            self.arms.update_for(Before::One(i, &before), s, |k| k == i);
             let reaction = self.pivot_reaction(s, i);
             if self.strikes > 0 {
                 let events: Vec<Blow> = s
@@ -203,11 +198,10 @@ impl Probe for CenterOfPercussion {
                 let dir = (g_before - o).normalize_or(DVec2::ZERO);
                 let q_point = o + dir * self.q;
                 let (mut m_q, mut m_o) = (0.0, 0.0);
-                for_each_external_impulse_with(
+                for_each_external_impulse(
                     Before::One(i, &before),
                     s,
                     self.substeps,
-                    Some(&self.arms),
                     |k| k == i,
                     |imp| {
                         m_q += imp.moment_about(q_point);

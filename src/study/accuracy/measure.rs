@@ -276,11 +276,7 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
             ..FullRun::default()
         };
     }
-    let checks: Vec<CheckResult> = probes
-        .finish()
-        .into_iter()
-        .filter(graded)
-        .collect();
+    let checks: Vec<CheckResult> = probes.finish().into_iter().filter(graded).collect();
     let answers: Vec<_> = questions.into_iter().map(|q| q.finish(None)).collect();
     let max = |it: &mut dyn Iterator<Item = f64>| {
         it.fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
