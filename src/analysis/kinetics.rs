@@ -10,9 +10,10 @@
 //!   into a force at G plus the constant couple (r_{P/G} x F) computed at the start of the step,
 //!   so the line of action moves with G but does not turn with the body;
 //! - event impulses: applied at the start of the step at their point;
-//! - contacts: every point's normal and friction impulse over the step, at the point the narrow
-//!   phase found at the start of the step (rapier keeps that world-space lever arm from G for the
-//!   whole step, `solver_dp1/2` in its contact constraints);
+//! - contacts: every point's normal and friction impulse over the step, at the lever arms from G
+//!   that rapier's solver used (`ContactPoint::arms`: its `solver_dp1/2`, frozen at the manifold's
+//!   last full narrow-phase update while it recycles the manifold); for a snapshot without them,
+//!   at the point carried back to where the narrow phase found it at the start of the step;
 //! - joints: the reaction impulse at the anchor, with the row solver's angular impulse about G
 //!   (which carries any constraint couple and motor torque);
 //! - couplings (pulleys, cables, gears): `ratio * lambda` along x or y at G, or as a couple for an
