@@ -186,6 +186,7 @@ pub(super) fn kinetic_energy_ic(level: &Level, def: &CheckDef) -> Box<dyn Probe>
         max_normal: 0.0,
         at_infinity: 0,
         index: None,
+        other_index: None,
         last: (0.0, 0.0),
     })
 }
@@ -203,6 +204,8 @@ struct KineticEnergyIc {
     max_normal: f64,
     at_infinity: u64,
     index: Option<usize>,
+    /// The index of the `other` body, looked up once.
+    other_index: Option<usize>,
     last: (f64, f64),
 }
 
@@ -225,9 +228,10 @@ impl Probe for KineticEnergyIc {
         let c = match &self.center {
             Center::Fixed(o) => Some(*o),
             Center::Contact(other) => {
-                let Some(k) = s.body_index(other) else {
+                let Some(k) = self.other_index.or_else(|| s.body_index(other)) else {
                     return;
                 };
+                self.other_index = Some(k);
                 // The body's own contact point(s) with `other`, weighted by normal impulse: G plus
                 // the lever arm the solver used (recorded points go stale while rapier recycles
                 // the manifold; the arm of a rolling disc stays -r n).
