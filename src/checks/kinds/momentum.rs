@@ -67,6 +67,7 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
             o: def.point.map(v2),
             index: None,
             set: BodySet::default(),
+            set_joints: Vec::new(),
             worst: Worst::default(),
             rel: Worst::default(),
             scale_at_worst: 0.0,
@@ -85,6 +86,8 @@ struct AngularMomentumFixedPoint {
     /// The body's index (None for the scene).
     index: Option<usize>,
     set: BodySet,
+    /// The joints with exactly one side on the set: those whose reaction is external.
+    set_joints: Vec<usize>,
     worst: Worst,
     rel: Worst,
     scale_at_worst: f64,
@@ -108,6 +111,13 @@ impl FrameProbe for AngularMomentumFixedPoint {
                 None => None,
             };
             self.set = subject_set(s, self.index);
+            // The joints with a side on the set (a scene's joints do not come or go).
+            self.set_joints = (0..s.joints.len())
+                .filter(|&k| {
+                    let j = &s.joints[k];
+                    self.set.contains(&j.body1) != self.set.contains(&j.body2)
+                })
+                .collect();
             if self.o.is_none() {
                 self.o = self.index.and_then(|i| pivot_of(s, i));
                 if self.o.is_none() {
@@ -147,7 +157,8 @@ impl FrameProbe for AngularMomentumFixedPoint {
         // The joint reactions' angular impulse about O (for the note): per joint side on the set
         // whose other side is not, H_G's share plus (r_G - r_O) x J.
         let mut reaction = 0.0;
-        for j in &s.joints {
+        for &k in &self.set_joints {
+            let j = &s.joints[k];
             let (in1, in2) = (self.set.contains(&j.body1), self.set.contains(&j.body2));
             if in2 && !in1 {
                 let r = s.bodies[j.body2].com - o;

@@ -75,9 +75,42 @@ pub fn draw(path: &Path, caption: &str, panels: &[Panel]) -> Result<(), String> 
         let root = SVGBackend::new(path, (w, h)).into_drawing_area();
         draw_on(root, caption, panels)
     } else {
-        let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
-        draw_on(root, caption, panels)
+        let mut rgb = vec![0u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            draw_on(root, caption, panels)?;
+        }
+        write_palette_png(path, w, h, &rgb)
     }
+}
+
+/// Writes an RGB image as an 8-bit palette PNG: a plot has few colours (its anti-aliased edges
+/// aside), so 256 chosen by NeuQuant look the same at a quarter of the RGB file's size.
+fn write_palette_png(path: &Path, w: u32, h: u32, rgb: &[u8]) -> Result<(), String> {
+    let rgba: Vec<u8> = rgb
+        .chunks_exact(3)
+        .flat_map(|p| [p[0], p[1], p[2], 255])
+        .collect();
+    let quant = color_quant::NeuQuant::new(10, 256, &rgba);
+    let palette: Vec<u8> = quant
+        .color_map_rgba()
+        .chunks_exact(4)
+        .flat_map(|c| [c[0], c[1], c[2]])
+        .collect();
+    let indices: Vec<u8> = rgba
+        .chunks_exact(4)
+        .map(|p| quant.index_of(p) as u8)
+        .collect();
+    let file = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+    enc.set_color(png::ColorType::Indexed);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_palette(palette);
+    enc.set_compression(png::Compression::Best);
+    let mut writer = enc.write_header().map_err(|e| e.to_string())?;
+    writer
+        .write_image_data(&indices)
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn draw_on<DB: DrawingBackend>(
