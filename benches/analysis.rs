@@ -49,11 +49,11 @@ fn scene_ron() -> String {
         );
         let _ = writeln!(
             checks,
-            r#"(kind: newton_euler, body: "ball{k}", tolerance: 1.0),"#
+            r#"(kind: newton_euler, body: "ball{k}", tolerance: 1.0, why: "bench"),"#
         );
         let _ = writeln!(
             checks,
-            r#"(kind: kinetic_energy_ic, body: "ball{k}", other: "floor", tolerance: 1.0),"#
+            r#"(kind: kinetic_energy_ic, body: "ball{k}", other: "floor", tolerance: 1.0, why: "bench"),"#
         );
     }
     for k in 0..BARS {
@@ -75,18 +75,21 @@ fn scene_ron() -> String {
         );
         let _ = writeln!(
             checks,
-            r#"(kind: newton_euler, body: "bar{k}", tolerance: 1.0),"#
+            r#"(kind: newton_euler, body: "bar{k}", tolerance: 1.0, why: "bench"),"#
         );
         let _ = writeln!(
             checks,
-            r#"(kind: kinetic_energy_ic, body: "bar{k}", point: ({px}, 5.0), tolerance: 1.0),"#
+            r#"(kind: kinetic_energy_ic, body: "bar{k}", point: ({px}, 5.0), tolerance: 1.0, why: "bench"),"#
         );
         let _ = writeln!(
             checks,
-            r#"(kind: angular_momentum_fixed_point, body: "bar{k}", point: ({px}, 5.0), tolerance: 1.0),"#
+            r#"(kind: angular_momentum_fixed_point, body: "bar{k}", point: ({px}, 5.0), tolerance: 1.0, why: "bench"),"#
         );
     }
-    checks += "(kind: work_energy, tolerance: 1.0),\n(kind: impulse_momentum, point: (0.0, 0.0), tolerance: 1.0),\n(kind: angular_momentum_fixed_point, point: (0.0, 0.0), tolerance: 1.0),\n";
+    checks += r#"(kind: work_energy, tolerance: 1.0, why: "bench"),
+(kind: impulse_momentum, point: (0.0, 0.0), tolerance: 1.0, why: "bench"),
+(kind: angular_momentum_fixed_point, point: (0.0, 0.0), tolerance: 1.0, why: "bench"),
+"#;
     format!(
         r#"Level(title: "bench: 100 bodies", effects: [gravity, contacts, friction, joints],
         world: (dt: 0.016666666666666666, substeps: 4, duration: 5.0),

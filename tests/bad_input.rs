@@ -399,3 +399,62 @@ fn a_check_that_would_compare_a_number_with_itself_is_rejected() {
     assert_eq!(line, line_of(&text, "kinetic_energy_ic"));
     assert!(msg.contains("point") && msg.contains("other"), "{msg}");
 }
+
+#[test]
+fn a_check_without_why_is_rejected() {
+    // Every tolerance is stated and justified: a check with no `why` is an error at its line.
+    let text = level(
+        BALL,
+        "  checks: [\n    (kind: impulse_momentum, body: \"ball\", tolerance: 1e-3),\n  ],",
+        "gravity",
+        "dt: 0.01",
+    );
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "impulse_momentum"));
+    assert!(msg.contains("why"), "{msg}");
+}
+
+#[test]
+fn a_bad_check_window_is_rejected() {
+    let with = |check: &str| {
+        level(
+            BALL,
+            &format!("  checks: [\n    {check},\n  ],"),
+            "gravity",
+            "dt: 0.01, duration: 1.0",
+        )
+    };
+    for (check, needle) in [
+        // Only impulse_momentum takes a window.
+        (
+            "(kind: work_energy, window: (0.0, 0.5), tolerance: 1e-3, why: \"w\")",
+            "only impulse_momentum",
+        ),
+        // Ends before it starts.
+        (
+            "(kind: impulse_momentum, body: \"ball\", window: (0.5, 0.2), tolerance: 1e-3, why: \"w\")",
+            "ends before it starts",
+        ),
+        // Past the end of the run.
+        (
+            "(kind: impulse_momentum, body: \"ball\", window: (0.0, 2.0), tolerance: 1e-3, why: \"w\")",
+            "ends after the run",
+        ),
+        // Negative start.
+        (
+            "(kind: impulse_momentum, body: \"ball\", window: (-1.0, 0.5), tolerance: 1e-3, why: \"w\")",
+            "window start",
+        ),
+    ] {
+        let text = with(check);
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, "window:"), "{msg}");
+        assert!(msg.contains(needle), "{needle:?} not in {msg}");
+    }
+    // A window inside the run is accepted.
+    parse(
+        Path::new("ok.ron"),
+        &with("(kind: impulse_momentum, body: \"ball\", window: (0.2, 0.5), tolerance: 1e-3, why: \"w\")"),
+    )
+    .unwrap();
+}

@@ -264,6 +264,7 @@ fn a_check_that_cannot_run_fails_with_a_reason_and_never_panics() {
                 body,
                 other: None,
                 point: None,
+                window: None,
                 tolerance: 1.0,
                 why: String::new(),
             };
@@ -278,6 +279,7 @@ fn a_check_that_cannot_run_fails_with_a_reason_and_never_panics() {
         body: None,
         other: None,
         point: None,
+        window: None,
         tolerance: 1.0,
         why: String::new(),
     };

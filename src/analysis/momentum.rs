@@ -59,3 +59,211 @@ pub fn system_angular_momentum(bodies: impl IntoIterator<Item = BodyMomentum>, o
         .map(|b| angular_momentum_about(b.m, b.i_g, b.r_g, b.v_g, b.omega, o))
         .sum()
 }
+
+// ---------------------------------------------------------------------------------------------
+// Impulse-momentum over a window [t1, t2].
+
+/// The linear impulse-momentum residual over a window [t1, t2] (IM-2, 6/12 integrated):
+/// `G(t2) - G(t1) - integral of sum F dt`. Zero when the ledger closes.
+pub fn linear_impulse_momentum_residual(g1: DVec2, g2: DVec2, linear_impulse: DVec2) -> DVec2 {
+    g2 - g1 - linear_impulse
+}
+
+/// The angular impulse-momentum residual about a fixed point O over a window [t1, t2]
+/// (IM-7, 6/17 integrated): `H_O(t2) - H_O(t1) - integral of sum M_O dt`.
+pub fn angular_impulse_momentum_residual(h1: f64, h2: f64, angular_impulse: f64) -> f64 {
+    h2 - h1 - angular_impulse
+}
+
+/// The impulse-momentum balance over one window [t1, t2] (IM-2 and IM-7 about O).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WindowBalance {
+    pub t1: f64,
+    pub t2: f64,
+    /// integral of sum F dt over the window, N s.
+    pub linear_impulse: DVec2,
+    /// G(t2) - G(t1), N s.
+    pub delta_g: DVec2,
+    /// integral of sum M_O dt over the window, N m s.
+    pub angular_impulse: f64,
+    /// H_O(t2) - H_O(t1), N m s.
+    pub delta_h: f64,
+}
+
+impl WindowBalance {
+    /// `G(t2) - G(t1) - integral of sum F dt` (IM-2).
+    pub fn linear_residual(&self) -> DVec2 {
+        self.delta_g - self.linear_impulse
+    }
+
+    /// `H_O(t2) - H_O(t1) - integral of sum M_O dt` (IM-7).
+    pub fn angular_residual(&self) -> f64 {
+        self.delta_h - self.angular_impulse
+    }
+}
+
+/// One instant of an [`ImpulseMomentumLedger`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LedgerEntry {
+    t: f64,
+    g: DVec2,
+    h: f64,
+    /// integral of sum F dt from the first instant to t.
+    j: DVec2,
+    /// integral of sum M_O dt from the first instant to t.
+    m: f64,
+}
+
+/// A running impulse-momentum ledger about a fixed point O (IM-2, IM-7, 6/12 and 6/17
+/// integrated): the momentum at each recorded instant and the running sums of the impulses,
+/// so the balance over any window [t1, t2] is a difference of two entries
+/// (integral from t1 to t2 = S(t2) - S(t1)).
+///
+/// The residual over [t1, t2] is r(t2) - r(t1), with r(t) the residual over [first, t]: the
+/// worst window of a run is the widest spread of r, found in [`Self::worst_windows`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImpulseMomentumLedger {
+    o: DVec2,
+    entries: Vec<LedgerEntry>,
+}
+
+/// The worst windows of a ledger: the linear one (largest |G(t2) - G(t1) - integral of F dt|) and the
+/// angular one about O (largest |H_O(t2) - H_O(t1) - integral of M_O dt|).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WorstWindows {
+    pub linear: WindowBalance,
+    pub angular: WindowBalance,
+}
+
+impl ImpulseMomentumLedger {
+    /// A ledger about the fixed point `o` starting at time `t0` with momenta `g0` and `h0` (about O).
+    pub fn new(o: DVec2, t0: f64, g0: DVec2, h0: f64) -> Self {
+        Self {
+            o,
+            entries: vec![LedgerEntry {
+                t: t0,
+                g: g0,
+                h: h0,
+                j: DVec2::ZERO,
+                m: 0.0,
+            }],
+        }
+    }
+
+    /// The fixed point O angular quantities are taken about.
+    pub fn point(&self) -> DVec2 {
+        self.o
+    }
+
+    /// Number of recorded instants (the first included).
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether only the first instant is recorded (no window has any length yet).
+    pub fn is_empty(&self) -> bool {
+        self.entries.len() < 2
+    }
+
+    /// Records the end of a step at time `t`: the step's external impulse and its moment about O,
+    /// and the momenta G and H_O at t.
+    pub fn record(&mut self, t: f64, impulse: DVec2, moment_o: f64, g: DVec2, h_o: f64) {
+        let last = *self.entries.last().expect("a ledger starts with one entry");
+        self.entries.push(LedgerEntry {
+            t,
+            g,
+            h: h_o,
+            j: last.j + impulse,
+            m: last.m + moment_o,
+        });
+    }
+
+    /// The recorded instant nearest to t (ties go to the earlier).
+    fn index_at(&self, t: f64) -> usize {
+        let k = self.entries.partition_point(|e| e.t < t);
+        if k == 0 {
+            0
+        } else if k == self.entries.len() {
+            k - 1
+        } else if (self.entries[k].t - t).abs() < (t - self.entries[k - 1].t).abs() {
+            k
+        } else {
+            k - 1
+        }
+    }
+
+    fn between(&self, a: usize, b: usize) -> WindowBalance {
+        let (e1, e2) = (&self.entries[a], &self.entries[b]);
+        WindowBalance {
+            t1: e1.t,
+            t2: e2.t,
+            linear_impulse: e2.j - e1.j,
+            delta_g: e2.g - e1.g,
+            angular_impulse: e2.m - e1.m,
+            delta_h: e2.h - e1.h,
+        }
+    }
+
+    /// The balance over [t1, t2], each end taken at the nearest recorded instant. `None` when
+    /// nothing is recorded or t2 < t1.
+    pub fn window(&self, t1: f64, t2: f64) -> Option<WindowBalance> {
+        if self.entries.is_empty() || !(t2 >= t1) {
+            return None;
+        }
+        Some(self.between(self.index_at(t1), self.index_at(t2)))
+    }
+
+    /// The balance over [first, last recorded instant].
+    pub fn since_start(&self) -> WindowBalance {
+        self.between(0, self.entries.len().saturating_sub(1))
+    }
+
+    /// The balance over every window [first, t]: one per recorded instant after the first.
+    pub fn from_start(&self) -> impl Iterator<Item = WindowBalance> + '_ {
+        (1..self.entries.len()).map(|k| self.between(0, k))
+    }
+
+    /// The worst windows over all pairs of recorded instants. The window residual is
+    /// r(t2) - r(t1), so the worst angular window spans the smallest and largest r, and the worst
+    /// linear window the diameter of the points r(t) (found on their convex hull).
+    pub fn worst_windows(&self) -> WorstWindows {
+        let n = self.entries.len();
+        if n < 2 {
+            return WorstWindows::default();
+        }
+        let r = |k: usize| self.between(0, k);
+        // Angular: the extremes of a scalar.
+        let (mut lo, mut hi) = (0usize, 0usize);
+        for k in 1..n {
+            let a = r(k).angular_residual();
+            if a < r(lo).angular_residual() {
+                lo = k;
+            }
+            if a > r(hi).angular_residual() {
+                hi = k;
+            }
+        }
+        // Linear: the farthest pair among the hull's vertices of the residual points.
+        let points: Vec<DVec2> = (0..n).map(|k| r(k).linear_residual()).collect();
+        let hull = super::mass::convex_hull(&points);
+        let (mut a, mut b, mut best) = (points[0], points[0], 0.0);
+        for (i, p) in hull.iter().enumerate() {
+            for q in &hull[i + 1..] {
+                let d = p.distance_squared(*q);
+                if d > best {
+                    (a, b, best) = (*p, *q, d);
+                }
+            }
+        }
+        // Back from hull vertices to the instants that produced them (the first match).
+        let find = |p: DVec2| points.iter().position(|q| *q == p).unwrap_or(0);
+        let (ia, ib) = (find(a), find(b));
+        let order = |x: usize, y: usize| if x <= y { (x, y) } else { (y, x) };
+        let (l1, l2) = order(ia, ib);
+        let (a1, a2) = order(lo, hi);
+        WorstWindows {
+            linear: self.between(l1, l2),
+            angular: self.between(a1, a2),
+        }
+    }
+}

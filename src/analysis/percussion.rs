@@ -22,7 +22,20 @@ pub fn center_of_percussion(o: DVec2, r_g: DVec2, i_g: f64, m: f64) -> Option<DV
     center_of_percussion_distance(i_o, m, r_bar).map(|q| o + d / r_bar * q)
 }
 
-/// One impulse acting on the pinned body during a window: J at world point p, plus a couple.
+/// The moment about the center of percussion Q of the forces on a body in rotation about a
+/// fixed pivot (CP-2): sum M_Q = sum (r_{P/Q} x F)_z + couples. The resultant of all the forces,
+/// the pin reaction included, passes through Q, so this is zero at every instant: about O it is
+/// I_O alpha (6/4), and the resultant m a_G has its tangential part m r_bar alpha acting at
+/// q = I_O/(m r_bar) along OG and its normal part along OG itself. Works for impulses as well
+/// (the angular impulse about Q).
+pub fn moment_about_center_of_percussion(q: DVec2, forces: impl IntoIterator<Item = Blow>) -> f64 {
+    forces
+        .into_iter()
+        .map(|f| cross(f.point - q, f.impulse) + f.couple)
+        .sum()
+}
+
+/// One impulse (or force) acting on the pinned body during a window: J at world point p, plus a couple.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Blow {
     pub impulse: DVec2,

@@ -423,6 +423,10 @@ pub struct CheckDef {
     /// A point, world frame, where the check needs one (fixed point O), m.
     #[serde(default)]
     pub point: Option<V2>,
+    /// A time window [t1, t2], s: `impulse_momentum` checks every window inside it
+    /// (default: the whole run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub window: Option<(f64, f64)>,
     /// Relative tolerance on the maximum error (of the scale the check reports).
     pub tolerance: f64,
     /// Why this tolerance: the engine limitation or the discretization error it covers.

@@ -772,7 +772,44 @@ fn check(v: &V, i: usize, c: &CheckDef) -> R {
             "give `point: (x, y)` for a body turning about a fixed pivot, or `other: \"ground\"` for a body rolling on it",
         ));
     }
-    v.positive(c.tolerance, "check tolerance", "", pos)
+    if let Some((t1, t2)) = c.window {
+        if c.kind != CheckKind::ImpulseMomentum {
+            return Err(v.err(
+                pos,
+                format!(
+                    "check {} has a `window`; only impulse_momentum takes one",
+                    ron::to_string(&c.kind).unwrap_or_default()
+                ),
+                "remove `window`, or make the check `kind: impulse_momentum`",
+            ));
+        }
+        v.non_negative(t1, "check window start", "s", pos)?;
+        v.finite(t2, "check window end", pos)?;
+        if t2 <= t1 {
+            return Err(v.err(
+                pos,
+                format!("check window ({t1}, {t2}) ends before it starts"),
+                "write `window: (t1, t2)` with t1 < t2, in seconds",
+            ));
+        }
+        let d = v.level.world.duration;
+        if t2 > d * (1.0 + 1e-12) {
+            return Err(v.err(
+                pos,
+                format!("check window ({t1}, {t2}) ends after the run (world.duration = {d} s)"),
+                "end the window at or before world.duration, or lengthen the run",
+            ));
+        }
+    }
+    v.positive(c.tolerance, "check tolerance", "", pos)?;
+    if c.why.trim().is_empty() {
+        return Err(v.err(
+            pos,
+            format!("check {} gives no `why` for its tolerance {}", ron::to_string(&c.kind).unwrap_or_default(), c.tolerance),
+            "add `why: \"...\"`: the engine limitation or the discretization error the tolerance covers, with its size",
+        ));
+    }
+    Ok(())
 }
 
 fn question(v: &V, q: &QuestionDef) -> R {

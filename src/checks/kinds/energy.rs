@@ -6,9 +6,7 @@ use super::{
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::FrameAnalysis;
-use crate::analysis::kinematics::{
-    instantaneous_center, omega_from_angles, velocity_from_positions, wrap_angle,
-};
+use crate::analysis::kinematics::{omega_from_angles, velocity_from_positions, wrap_angle};
 use crate::analysis::mass::MassProps;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -141,8 +139,9 @@ enum Center {
     Fixed(DVec2),
     /// Rolling without slipping on `other` (a fixed body): C is the contact point (RK-8).
     Contact(String),
-    /// The kinematic center r_C = r_G + (k x v_G)/omega (RK-11); at infinity T = 1/2 m v^2 (6/7).
-    Kinematic,
+    // No third way: the kinematic center r_C = r_G + (k x v_G)/omega (RK-11) of the engine's own
+    // velocities makes 1/2 I_C w^2 equal 1/2 m v^2 + 1/2 I_G w^2 identically (a number compared
+    // with itself), so a check without `point` or `other` is refused here and in validation.
 }
 
 /// `kinetic_energy_ic`: T = 1/2 I_C omega^2 about the instantaneous center C (6/10), against
@@ -172,7 +171,13 @@ pub(super) fn kinetic_energy_ic(level: &Level, def: &CheckDef) -> Box<dyn Probe>
             }
             Center::Contact(o.clone())
         }
-        (None, None) => Center::Kinematic,
+        (None, None) => {
+            return misconfigured(
+                def,
+                "kinetic_energy_ic needs `point` (a fixed pivot) or `other` (the body it rolls on): \
+                 an instantaneous center from the engine's own velocities would compare its kinetic energy with itself",
+            )
+        }
     };
     Box::new(KineticEnergyIc {
         def: def.clone(),
@@ -265,7 +270,6 @@ impl Probe for KineticEnergyIc {
                 self.max_normal = self.max_normal.max(v_rel.dot(normal).abs());
                 Some(c)
             }
-            Center::Kinematic => instantaneous_center(g, b.velocity, b.omega, 1e9),
         };
         let t_theory = match c {
             Some(c) => kinetic_energy_about_ic(m, i_g, g, c, b.omega),
@@ -287,7 +291,6 @@ impl Probe for KineticEnergyIc {
                 "1/2 I_C w^2 about the contact with \"{o}\" (rolling, 6/10); largest slip {:.2e} m/s, largest normal velocity at C {:.2e} m/s",
                 self.max_slip, self.max_normal
             ),
-            Center::Kinematic => "1/2 I_C w^2 about the kinematic center (6/10)".to_string(),
         };
         let mut note = format!(
             "{how}; worst {:.2e} J at t = {:.3} s; max T {:.4} J",

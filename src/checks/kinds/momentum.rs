@@ -6,7 +6,9 @@ use super::{
 };
 use crate::analysis::cross;
 use crate::analysis::frame::FrameAnalysis;
-use crate::analysis::momentum::{angular_momentum_about, linear_momentum};
+use crate::analysis::momentum::{
+    angular_momentum_about, linear_momentum, ImpulseMomentumLedger, WindowBalance,
+};
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, Level};
@@ -221,16 +223,18 @@ impl FrameProbe for AngularMomentumFixedPoint {
 
 // ---------------------------------------------------------------------------------------------
 
-/// `impulse_momentum`: G(t) = G(0) + integral of sum F dt (6/12, IM-2, IM-3), and with `point`
-/// also H_O(t) = H_O(0) + integral of sum M_O dt about that fixed point (6/17, IM-7), over every
-/// window [0, t] of the run.
+/// `impulse_momentum`: G(t2) - G(t1) = integral of sum F dt (6/12, IM-2, IM-3), and with `point`
+/// also H_O(t2) - H_O(t1) = integral of sum M_O dt about that fixed point (6/17, IM-7), over every
+/// window [t1, t2] of the run (or of the level's `window`), by the running ledger of
+/// `analysis::momentum::ImpulseMomentumLedger`.
 ///
-/// Theory: the initial momentum plus the running sum of every external impulse of the free-body
-/// diagram (for the scene: forces between its bodies are internal and cancel, 6/18).
-/// Engine: G and H_O of rapier's state at t. A system with no external impulse shows the
-/// conservation laws (IM-4, IM-8).
-/// Scale: the largest |G| (and |H_O|) of the run, theory or engine; the reported relative error
-/// is the larger of the two.
+/// Theory: the sum of every external impulse of the free-body diagram over the window (for the
+/// scene: forces between its bodies are internal and cancel, 6/18). Engine: G and H_O of rapier's
+/// state at both ends. A system with no external impulse shows the conservation laws (IM-4, IM-8).
+/// The error is the worst window: the residual over [t1, t2] is r(t2) - r(t1), r the residual
+/// from the start, so it is at most twice the worst [start, t] residual, and the ledger finds it
+/// exactly. Scale: the largest |G| (and |H_O|) of the window, theory or engine; the reported
+/// relative error is the larger of the two.
 pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let body = match resolve(level, def) {
         Ok(b) => b,
@@ -242,11 +246,10 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
             def: def.clone(),
             body,
             o: def.point.map(v2),
+            window: def.window.unwrap_or((0.0, f64::INFINITY)),
             index: None,
             resolved: false,
-            started: false,
-            g_theory: DVec2::ZERO,
-            h_theory: 0.0,
+            ledger: None,
             g_worst: Worst::default(),
             h_worst: Worst::default(),
             g_scale: 0.0,
@@ -260,16 +263,18 @@ struct ImpulseMomentum {
     def: CheckDef,
     body: Option<String>,
     o: Option<DVec2>,
+    /// [t1, t2]: the steps that start at or after t1 and end at or before t2 (within half a step).
+    window: (f64, f64),
     /// The body's index (None for the scene).
     index: Option<usize>,
     resolved: bool,
-    started: bool,
-    g_theory: DVec2,
-    h_theory: f64,
+    ledger: Option<ImpulseMomentumLedger>,
+    /// Residuals over [t1, t], step by step (these also catch a non-finite state).
     g_worst: Worst,
     h_worst: Worst,
     g_scale: f64,
     h_scale: f64,
+    /// Theory (momentum at t1 plus the impulses since) and engine (momentum now), last step.
     last: (f64, f64),
 }
 
@@ -288,6 +293,12 @@ impl FrameProbe for ImpulseMomentum {
         }
         let f = fa.frame();
         if !f.stepped {
+            return;
+        }
+        // Only steps inside the window (half a step of slack for the float times).
+        let (t1, t2) = self.window;
+        let start = s.time - s.dt;
+        if start < t1 - 0.5 * s.dt || s.time > t2 + 0.5 * s.dt {
             return;
         }
         // G and H_O of the set from rapier's state, at the start of the step or at its end.
@@ -311,56 +322,74 @@ impl FrameProbe for ImpulseMomentum {
                 }
             }
         };
-        if !self.started {
-            // G(0), H_O(0).
-            (self.g_theory, self.h_theory) = momenta(true);
-            self.started = true;
-        }
+        let ledger = self.ledger.get_or_insert_with(|| {
+            let (g0, h0) = momenta(true);
+            ImpulseMomentumLedger::new(o, start, g0, h0)
+        });
         let sums = match self.index {
             Some(i) => f.bodies[i].impulses,
             None => f.external,
         };
-        self.g_theory += sums.impulse;
-        self.h_theory += sums.moment_about(o);
         let (g, h) = momenta(false);
-        self.g_worst.add((g - self.g_theory).length(), s.time);
-        self.g_scale = self.g_scale.max(g.length()).max(self.g_theory.length());
+        ledger.record(s.time, sums.impulse, sums.moment_about(o), g, h);
+        let from_t1 = ledger.since_start();
+        let theory_g = g - from_t1.delta_g + from_t1.linear_impulse;
+        self.g_worst.add(from_t1.linear_residual().length(), s.time);
+        self.g_scale = self.g_scale.max(g.length()).max(theory_g.length());
         if self.o.is_some() {
-            self.h_worst.add(h - self.h_theory, s.time);
-            self.h_scale = self.h_scale.max(h.abs()).max(self.h_theory.abs());
-            self.last = (self.h_theory, h);
+            let theory_h = h - from_t1.delta_h + from_t1.angular_impulse;
+            self.h_worst.add(from_t1.angular_residual(), s.time);
+            self.h_scale = self.h_scale.max(h.abs()).max(theory_h.abs());
+            self.last = (theory_h, h);
         } else {
-            self.last = (self.g_theory.length(), g.length());
+            self.last = (theory_g.length(), g.length());
         }
     }
 
     fn finish(self) -> CheckResult {
         let g_scale = scale_or(self.g_scale, 1.0);
         let h_scale = scale_or(self.h_scale, 1.0);
-        let g_rel = self.g_worst.max / g_scale;
+        let (worst, last) = match &self.ledger {
+            Some(l) => (l.worst_windows(), l.since_start()),
+            None => (Default::default(), WindowBalance::default()),
+        };
+        // The worst window, or the worst [t1, t] residual if that is larger (never smaller, but a
+        // non-finite residual only shows there).
+        let g_abs = worst
+            .linear
+            .linear_residual()
+            .length()
+            .max(self.g_worst.max);
         let mut note = format!(
-            "G: worst |G - G(0) - sum J| {:.2e} N s at t = {:.3} s (scale {:.4} N s)",
-            self.g_worst.max, self.g_worst.at_time, g_scale
+            "window [{:.3}, {:.3}] s; G: worst window [{:.3}, {:.3}] s, |dG - integral of F dt| {:.2e} N s; from the start {:.2e} N s at t = {:.3} s (scale {:.4} N s)",
+            last.t1,
+            last.t2,
+            worst.linear.t1,
+            worst.linear.t2,
+            g_abs,
+            self.g_worst.max,
+            self.g_worst.at_time,
+            g_scale
         );
         let (mut max_rel, mut final_rel, mut max_abs, mut final_abs, mut scale) = (
-            g_rel,
+            g_abs / g_scale,
             self.g_worst.last / g_scale,
-            self.g_worst.max,
+            g_abs,
             self.g_worst.last,
             g_scale,
         );
         if let Some(o) = self.o {
-            let h_rel = self.h_worst.max / h_scale;
+            let h_abs = worst.angular.angular_residual().abs().max(self.h_worst.max);
             note += &format!(
-                "; H about ({:.4}, {:.4}): worst {:.2e} N m s at t = {:.3} s (scale {:.4} N m s)",
-                o.x, o.y, self.h_worst.max, self.h_worst.at_time, h_scale
+                "; H about ({:.4}, {:.4}): worst window [{:.3}, {:.3}] s, |dH_O - integral of M_O dt| {:.2e} N m s; from the start {:.2e} N m s at t = {:.3} s (scale {:.4} N m s)",
+                o.x, o.y, worst.angular.t1, worst.angular.t2, h_abs, self.h_worst.max, self.h_worst.at_time, h_scale
             );
             // The headline is H_O (theory/engine report it); the error is the worse of the two.
-            max_abs = self.h_worst.max;
+            max_abs = h_abs;
             final_abs = self.h_worst.last;
             scale = h_scale;
             final_rel = final_rel.max(self.h_worst.last / h_scale);
-            max_rel = max_rel.max(h_rel);
+            max_rel = max_rel.max(h_abs / h_scale);
         }
         result(
             &self.def,

@@ -7,7 +7,9 @@ use super::{
 };
 use crate::analysis::kinetics::{for_each_external_impulse, gravity_point, Before, Source};
 use crate::analysis::mass::{parallel_axis, MassProps};
-use crate::analysis::percussion::{center_of_percussion_distance, pivot_impulse, Blow};
+use crate::analysis::percussion::{
+    center_of_percussion_distance, moment_about_center_of_percussion, pivot_impulse, Blow,
+};
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, EventDef, Level};
@@ -79,6 +81,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         q: 0.0,
         strike_notes: Vec::new(),
         last: (0.0, 0.0),
+        diagram: Vec::new(),
     })
 }
 
@@ -100,6 +103,8 @@ struct CenterOfPercussion {
     q: f64,
     strike_notes: Vec<String>,
     last: (f64, f64),
+    /// The step's free-body diagram (reused buffer), for the moment about Q (CP-2).
+    diagram: Vec<Blow>,
 }
 
 impl CenterOfPercussion {
@@ -197,19 +202,27 @@ impl Probe for CenterOfPercussion {
                 // CP-2: the resultant of all forces passes through Q, so sum M_Q = 0.
                 let dir = (g_before - o).normalize_or(DVec2::ZERO);
                 let q_point = o + dir * self.q;
-                let (mut m_q, mut m_o) = (0.0, 0.0);
+                let mut m_o = 0.0;
+                let mut diagram = std::mem::take(&mut self.diagram);
+                diagram.clear();
                 for_each_external_impulse(
                     Before::One(i, &before),
                     s,
                     self.substeps,
                     |k| k == i,
                     |imp| {
-                        m_q += imp.moment_about(q_point);
+                        diagram.push(Blow {
+                            impulse: imp.impulse,
+                            point: imp.point,
+                            couple: imp.couple,
+                        });
                         if !matches!(imp.source, Source::Joint(_)) {
                             m_o += imp.moment_about(o);
                         }
                     },
                 );
+                let m_q = moment_about_center_of_percussion(q_point, diagram.iter().copied());
+                self.diagram = diagram;
                 let engine = m_q / s.dt;
                 self.max_moment = self
                     .max_moment
