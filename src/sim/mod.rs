@@ -16,6 +16,6 @@ pub mod joints;
 pub mod options;
 mod world;
 
-pub use build::{mass_properties, shared_shape, DEFAULT_DENSITY};
+pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
 pub use world::{sample1, sample2, Simulation};
