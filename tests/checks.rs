@@ -311,3 +311,51 @@ fn the_issue_3_levels_pass() {
         assert!(r.passed, "{path}: a question failed");
     }
 }
+
+#[test]
+fn newton_euler_about_the_pin_drops_the_reaction_and_fails_on_a_wrong_inertia() {
+    // 6/2 and 6/4 about the pin of the physical pendulum.
+    let sc = scene(PENDULUM);
+    let def = sc
+        .level
+        .checks
+        .iter()
+        .find(|c| c.kind == CheckKind::NewtonEuler && c.point.is_some())
+        .expect("the pendulum checks its moments about the pin")
+        .clone();
+    let r = run_check(&sc, &sc.level, &def, |_| {});
+    assert_passes(&r);
+    assert!(
+        r.note.contains("(6/4)"),
+        "the pin is recognized as the pivot: {}",
+        r.note
+    );
+    // The pin's reaction has no moment about the pin: a snapshot without it still passes.
+    assert_passes(&run_check(&sc, &sc.level, &def, |s| {
+        for j in &mut s.joints {
+            j.impulse_on_body2 = DVec2::ZERO;
+            j.angular_impulse_on_body2 = 0.0;
+            j.angular_impulse_on_body1 = 0.0;
+        }
+    }));
+    // About G (6/1) the same snapshot fails: there the reaction is most of the diagram.
+    let about_g = sc
+        .level
+        .checks
+        .iter()
+        .find(|c| c.kind == CheckKind::NewtonEuler && c.point.is_none())
+        .unwrap()
+        .clone();
+    assert_fails(&run_check(&sc, &sc.level, &about_g, |s| {
+        for j in &mut s.joints {
+            j.impulse_on_body2 = DVec2::ZERO;
+            j.angular_impulse_on_body2 = 0.0;
+            j.angular_impulse_on_body1 = 0.0;
+        }
+    }));
+    // A level that states k_G 5% high (I_G +10%, I_O +2.5%) while rapier swings the true bar:
+    // I_O alpha misses gravity's moment by ~2.5% of m g r_bar, above the 1% tolerance.
+    let mut wrong = sc.level.clone();
+    wrong.bodies[1].radius_of_gyration = Some(1.05 * (0.1669333f64 / 2.0).sqrt());
+    assert_fails(&run_check(&sc, &wrong, &def, |_| {}));
+}

@@ -1,34 +1,49 @@
 //! `newton_euler`: the free-body diagram against the kinetic diagram, every step (6/1, 6/2).
 
+use super::momentum::pivot_of;
 use super::{
-    dynamic_body, framed, misconfigured, result, scale_or, subject_of, v2, FrameProbe, Summary,
-    Worst,
+    dynamic_body, framed, misconfigured, result, scale_or, subject_of, substeps, textbook_mass, v2,
+    FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::FrameAnalysis;
-use crate::analysis::kinetics::newton_euler_residual;
-use crate::analysis::momentum::angular_momentum_about;
+use crate::analysis::kinematics::{acceleration_fd, angular_acceleration_fd};
+use crate::analysis::kinetics::{
+    gravity_point, kinetic_moment_about, kinetic_moment_fixed_axis, newton_euler_residual,
+};
+use crate::analysis::mass::{parallel_axis, MassProps};
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
-/// `newton_euler`: sum F = m a_G and sum M_G = I_G alpha (6/1) for one body, every step; with
-/// `point` also the moment equation about that fixed point P (6/2 in its momentum form,
-/// sum M_P = dH_P/dt with H_P by 6/15).
+/// `newton_euler`: the free-body diagram against the kinetic diagram, one body, every step.
 ///
-/// Theory: the free-body diagram of the step read from the snapshot (`analysis::kinetics`):
-/// gravity, loads, springs, event impulses, every contact point's normal and friction impulse,
-/// joint reactions, couplings; forces as impulse / dt. Engine: m a_G and I_G alpha with a_G and
-/// alpha by finite differences of rapier's velocities over the step (`FD`), rapier's m and I_G.
+/// Without `point`: sum F = m a_G and sum M_G = I_G alpha (6/1). Theory: the free-body diagram of
+/// the step read from the snapshot (`analysis::kinetics`): gravity, loads, springs, event
+/// impulses, every contact point's normal and friction impulse, joint reactions, couplings;
+/// forces as impulse / dt. Engine: m a_G and I_G alpha with a_G and alpha by finite differences of
+/// rapier's velocities over the step (`FD`), rapier's m and I_G.
 /// Error, step by step: the force residual |sum F - m a_G| relative to the step's force level
 /// F_s = max(|sum F|, m |a_G|, m |g|) (so one impulsive step does not hide the others); the moment
-/// residual relative to F_s k_G (F_s L_P about P, L_P the larger of k_G and |r_G - r_P|); the
-/// largest of these over the run. The reported scale is F_s at the worst step.
+/// residual relative to F_s k_G; the largest of these over the run. The reported scale is F_s at
+/// the worst step.
+///
+/// With `point` P: the moment equation about P instead, as the textbook takes it to eliminate a
+/// reaction: sum M_P = I_G alpha + (r_{G/P} x m a_G)_z (6/2), and when P is the body's fixed pivot
+/// also sum M_O = I_O alpha (6/4) with I_O = I_G + m r_bar^2 (MP-2). Theory: the moments about P
+/// of the free-body diagram (a pin at P has none). Engine: the kinetic moments with the level's
+/// textbook m and I_G (shape formula) and rapier's a_G and alpha (`FD`). r_{G/P} is taken at the
+/// mean of the substeps' start positions of G: with v' = v + J/m and then r' = r + v' h per
+/// substep (symplectic Euler), each substep's m dv acts at its start position, so for a constant
+/// a_G over the step this makes 6/2 the exact discrete moment of momentum about a fixed P (and it
+/// is where the diagram puts gravity). Error relative to F_s L_P, L_P the larger of k_G and
+/// |r_G - r_P|.
 ///
 /// Known engine limitation: a joint's reaction is read from its last substep (`sim::joints`),
 /// so when the reaction changes within the step the diagram is off by O(h) dJ/dt; an impulsive
 /// reaction in the first substep (a strike on a pinned body with substeps > 1) is missed entirely.
+/// About the pin (`point`) the reaction drops out, and with it this limitation.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     match dynamic_body(level, def) {
         Ok(b) => framed(
@@ -37,6 +52,9 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
                 def: def.clone(),
                 name: b.name.clone(),
                 p: def.point.map(v2),
+                textbook: textbook_mass(b),
+                substeps: substeps(level),
+                pivot: None,
                 index: None,
                 f: Worst::default(),
                 m: Worst::default(),
@@ -55,6 +73,11 @@ struct NewtonEuler {
     def: CheckDef,
     name: String,
     p: Option<DVec2>,
+    /// The level's m, G and I_G (shape formula): the kinetic side of 6/2 and 6/4.
+    textbook: MassProps,
+    substeps: usize,
+    /// With `point`: whether P is the body's fixed pivot, and r_bar = |r_G - r_O| there.
+    pivot: Option<Option<f64>>,
     index: Option<usize>,
     f: Worst,
     m: Worst,
@@ -77,68 +100,119 @@ impl FrameProbe for NewtonEuler {
         let now = Motion::from(b);
         self.k_g = crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
         let f = fa.frame();
-        if f.stepped {
-            let before = fa.start_of_step()[i];
-            // The body's free-body diagram over the step, from the shared frame.
-            let sums = f.bodies[i].impulses;
-            let moment_g = f.bodies[i].moment_g * s.dt;
-            let (df, dm) = newton_euler_residual(
-                b.mass,
-                b.inertia,
-                &before,
-                &now,
-                sums.impulse,
-                moment_g,
-                s.dt,
-            );
-            let sum_f = sums.impulse / s.dt;
-            let ma = b.mass * (now.velocity - before.velocity) / s.dt;
-            let fs = sum_f
-                .length()
-                .max(ma.length())
-                .max(b.mass * s.gravity.length())
-                .max(1e-12);
-            let k = self.k_g.max(1e-9);
-            let mut rel = (df.length() / fs).max(dm.abs() / (fs * k));
-            self.f.add(df.length(), s.time);
-            self.m.add(dm, s.time);
-            if let Some(p) = self.p {
-                let h = |m: &Motion| {
-                    angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, p)
-                };
-                let dmp = sums.moment_about(p) / s.dt - (h(&now) - h(&before)) / s.dt;
-                self.mp.add(dmp, s.time);
-                rel = rel.max(dmp.abs() / (fs * k.max((b.com - p).length())));
-            }
-            if rel > self.rel.max || self.rel.samples == 0 {
-                self.f_scale = fs;
-            }
-            self.rel.add(rel, s.time);
-            self.last = (sum_f.length(), ma.length());
+        if !f.stepped {
+            return;
         }
+        let before = fa.start_of_step()[i];
+        if let (Some(p), None) = (self.p, self.pivot) {
+            // A pivot at P: the body's joint to a fixed body, anchored at P (to 1e-4 of the
+            // textbook k_G: the anchor comes through rapier's f32 pose). Joints are reported from
+            // the first step on; r_bar is G's distance from O at the step's start (the level's).
+            let tol = 1e-4 * self.textbook.radius_of_gyration().max(1e-3);
+            self.pivot = Some(
+                pivot_of(s, i)
+                    .filter(|o| o.distance(p) <= tol)
+                    .map(|o| before.com.distance(o)),
+            );
+        }
+        let sums = f.bodies[i].impulses;
+        let sum_f = sums.impulse / s.dt;
+        let a_g = acceleration_fd(before.velocity, now.velocity, s.dt);
+        let ma = b.mass * a_g;
+        let fs = sum_f
+            .length()
+            .max(ma.length())
+            .max(b.mass * s.gravity.length())
+            .max(1e-12);
+        let k = self.k_g.max(1e-9);
+        let rel = match self.p {
+            None => {
+                // 6/1: the body's free-body diagram over the step, from the shared frame.
+                let moment_g = f.bodies[i].moment_g * s.dt;
+                let (df, dm) = newton_euler_residual(
+                    b.mass,
+                    b.inertia,
+                    &before,
+                    &now,
+                    sums.impulse,
+                    moment_g,
+                    s.dt,
+                );
+                self.f.add(df.length(), s.time);
+                self.m.add(dm, s.time);
+                self.last = (sum_f.length(), ma.length());
+                (df.length() / fs).max(dm.abs() / (fs * k))
+            }
+            Some(p) => {
+                // 6/2 about P (and 6/4 about the pivot) with the textbook m and I_G.
+                let t = self.textbook;
+                let alpha = angular_acceleration_fd(before.omega, now.omega, s.dt);
+                let sum_m = sums.moment_about(p) / s.dt;
+                // G where the step's impulses act on average: the mean of the substeps' start
+                // positions, as for gravity in the diagram (each substep's m dv acts there).
+                let r_g = gravity_point(before.com, now.com, self.substeps);
+                let kinetic = kinetic_moment_about(t.mass, t.inertia, alpha, r_g, a_g, p);
+                let mut worst = sum_m - kinetic;
+                if let Some(Some(r_bar)) = self.pivot {
+                    let i_o = parallel_axis(t.inertia, t.mass, r_bar);
+                    let d4 = sum_m - kinetic_moment_fixed_axis(i_o, alpha);
+                    self.m.add(d4, s.time);
+                    if d4.abs() > worst.abs() {
+                        worst = d4;
+                    }
+                }
+                self.mp.add(sum_m - kinetic, s.time);
+                self.f.add(0.0, s.time);
+                self.last = (sum_m, kinetic);
+                worst.abs() / (fs * k.max((b.com - p).length()))
+            }
+        };
+        if rel > self.rel.max || self.rel.samples == 0 {
+            self.f_scale = fs;
+        }
+        self.rel.add(rel, s.time);
     }
 
     fn finish(self) -> CheckResult {
         let fs = scale_or(self.f_scale, 1.0);
-        let mut note = format!(
-            "worst step at t = {:.3} s (F_s {:.4} N there); largest residuals: force {:.2e} N at t = {:.3} s, moment about G {:.2e} N m at t = {:.3} s (k_G {:.4} m)",
-            self.rel.at_time, fs, self.f.max, self.f.at_time, self.m.max, self.m.at_time, self.k_g
-        );
-        if let Some(p) = self.p {
-            note += &format!(
-                ", moment about ({:.3}, {:.3}) {:.2e} N m at t = {:.3} s",
-                p.x, p.y, self.mp.max, self.mp.at_time
-            );
-        }
+        let (note, max_abs, final_abs) = match self.p {
+            None => (
+                format!(
+                    "worst step at t = {:.3} s (F_s {:.4} N there); largest residuals: force {:.2e} N at t = {:.3} s, moment about G {:.2e} N m at t = {:.3} s (k_G {:.4} m)",
+                    self.rel.at_time, fs, self.f.max, self.f.at_time, self.m.max, self.m.at_time, self.k_g
+                ),
+                self.f.max,
+                self.f.last,
+            ),
+            Some(p) => {
+                let mut note = format!(
+                    "moments about P = ({:.4}, {:.4}), textbook m {:.6} kg, I_G {:.6e} kg m^2; worst step at t = {:.3} s (F_s {:.4} N there); sum M_P - (I_G alpha + r_G/P x m a_G) (6/2) largest {:.2e} N m at t = {:.3} s",
+                    p.x, p.y, self.textbook.mass, self.textbook.inertia, self.rel.at_time, fs, self.mp.max, self.mp.at_time
+                );
+                match self.pivot {
+                    Some(Some(r_bar)) => {
+                        note += &format!(
+                            "; P is the pivot (r_bar {:.4} m, I_O {:.6e} kg m^2): sum M_O - I_O alpha (6/4) largest {:.2e} N m at t = {:.3} s",
+                            r_bar,
+                            parallel_axis(self.textbook.inertia, self.textbook.mass, r_bar),
+                            self.m.max,
+                            self.m.at_time
+                        );
+                    }
+                    _ => note += "; P is not a fixed pivot of the body (6/4 not applied)",
+                }
+                (note, self.mp.max.max(self.m.max), self.mp.last)
+            }
+        };
         result(
             &self.def,
             subject_of(&self.def),
             Summary {
                 theory: self.last.0,
                 engine: self.last.1,
-                max_abs: self.f.max,
+                max_abs,
                 max_rel: self.rel.max,
-                final_abs: self.f.last,
+                final_abs,
                 final_rel: self.rel.last,
                 samples: self.rel.samples,
                 scale: fs,

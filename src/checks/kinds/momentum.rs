@@ -17,7 +17,7 @@ use glam::DVec2;
 
 /// The body's pivot: the anchor of its first joint to a body that does not move (fixed or
 /// kinematic at rest), at the first snapshot.
-fn pivot_of(s: &Snapshot, i: usize) -> Option<DVec2> {
+pub(super) fn pivot_of(s: &Snapshot, i: usize) -> Option<DVec2> {
     s.joints.iter().find_map(|j| {
         if j.body2 == i && s.bodies[j.body1].mass == 0.0 {
             Some(j.anchor1)
