@@ -123,7 +123,7 @@ struct LedgerEntry {
 /// worst window of a run is the widest spread of r, found in [`Self::worst_windows`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImpulseMomentumLedger {
-    o: DVec2,
+    /// Never empty: the first instant is recorded at creation.
     entries: Vec<LedgerEntry>,
 }
 
@@ -136,10 +136,10 @@ pub struct WorstWindows {
 }
 
 impl ImpulseMomentumLedger {
-    /// A ledger about the fixed point `o` starting at time `t0` with momenta `g0` and `h0` (about O).
-    pub fn new(o: DVec2, t0: f64, g0: DVec2, h0: f64) -> Self {
+    /// A ledger starting at time `t0` with momenta `g0` and `h0` (about the fixed point O that
+    /// the caller takes every moment about).
+    pub fn new(t0: f64, g0: DVec2, h0: f64) -> Self {
         Self {
-            o,
             entries: vec![LedgerEntry {
                 t: t0,
                 g: g0,
@@ -150,19 +150,9 @@ impl ImpulseMomentumLedger {
         }
     }
 
-    /// The fixed point O angular quantities are taken about.
-    pub fn point(&self) -> DVec2 {
-        self.o
-    }
-
     /// Number of recorded instants (the first included).
-    pub fn len(&self) -> usize {
+    pub fn instants(&self) -> usize {
         self.entries.len()
-    }
-
-    /// Whether only the first instant is recorded (no window has any length yet).
-    pub fn is_empty(&self) -> bool {
-        self.entries.len() < 2
     }
 
     /// Records the end of a step at time `t`: the step's external impulse and its moment about O,
@@ -205,9 +195,9 @@ impl ImpulseMomentumLedger {
     }
 
     /// The balance over [t1, t2], each end taken at the nearest recorded instant. `None` when
-    /// nothing is recorded or t2 < t1.
+    /// t2 < t1 (or either is NaN).
     pub fn window(&self, t1: f64, t2: f64) -> Option<WindowBalance> {
-        if self.entries.is_empty() || !(t2 >= t1) {
+        if !(t2 >= t1) {
             return None;
         }
         Some(self.between(self.index_at(t1), self.index_at(t2)))
@@ -215,7 +205,7 @@ impl ImpulseMomentumLedger {
 
     /// The balance over [first, last recorded instant].
     pub fn since_start(&self) -> WindowBalance {
-        self.between(0, self.entries.len().saturating_sub(1))
+        self.between(0, self.entries.len() - 1)
     }
 
     /// The balance over every window [first, t]: one per recorded instant after the first.
@@ -231,22 +221,26 @@ impl ImpulseMomentumLedger {
         if n < 2 {
             return WorstWindows::default();
         }
-        let r = |k: usize| self.between(0, k);
+        // The residuals from the first instant, r(t_k), linear and angular.
+        let (linear, angular): (Vec<DVec2>, Vec<f64>) = (0..n)
+            .map(|k| {
+                let w = self.between(0, k);
+                (w.linear_residual(), w.angular_residual())
+            })
+            .unzip();
         // Angular: the extremes of a scalar.
         let (mut lo, mut hi) = (0usize, 0usize);
-        for k in 1..n {
-            let a = r(k).angular_residual();
-            if a < r(lo).angular_residual() {
+        for (k, &a) in angular.iter().enumerate() {
+            if a < angular[lo] {
                 lo = k;
             }
-            if a > r(hi).angular_residual() {
+            if a > angular[hi] {
                 hi = k;
             }
         }
         // Linear: the farthest pair among the hull's vertices of the residual points.
-        let points: Vec<DVec2> = (0..n).map(|k| r(k).linear_residual()).collect();
-        let hull = super::mass::convex_hull(&points);
-        let (mut a, mut b, mut best) = (points[0], points[0], 0.0);
+        let hull = super::mass::convex_hull(&linear);
+        let (mut a, mut b, mut best) = (linear[0], linear[0], 0.0);
         for (i, p) in hull.iter().enumerate() {
             for q in &hull[i + 1..] {
                 let d = p.distance_squared(*q);
@@ -256,7 +250,7 @@ impl ImpulseMomentumLedger {
             }
         }
         // Back from hull vertices to the instants that produced them (the first match).
-        let find = |p: DVec2| points.iter().position(|q| *q == p).unwrap_or(0);
+        let find = |p: DVec2| linear.iter().position(|q| *q == p).unwrap_or(0);
         let (ia, ib) = (find(a), find(b));
         let order = |x: usize, y: usize| if x <= y { (x, y) } else { (y, x) };
         let (l1, l2) = order(ia, ib);

@@ -159,18 +159,7 @@ impl ErrorTrack {
 
 /// The name a check kind has in reports.
 pub fn kind_name(k: CheckKind) -> &'static str {
-    match k {
-        CheckKind::MassProperties => "mass_properties",
-        CheckKind::ConstantAcceleration => "constant_acceleration",
-        CheckKind::KineticEnergyG => "kinetic_energy_g",
-        CheckKind::KineticEnergyIc => "kinetic_energy_ic",
-        CheckKind::AngularMomentumFixedPoint => "angular_momentum_fixed_point",
-        CheckKind::CenterOfPercussion => "center_of_percussion",
-        CheckKind::NewtonEuler => "newton_euler",
-        CheckKind::WorkEnergy => "work_energy",
-        CheckKind::ImpulseMomentum => "impulse_momentum",
-        CheckKind::Restitution => "restitution",
-    }
+    k.name()
 }
 
 /// Builds the probe for a check of a level.

@@ -452,6 +452,24 @@ pub enum CheckKind {
     Restitution,
 }
 
+impl CheckKind {
+    /// The kind's name as a level file and the report write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            CheckKind::MassProperties => "mass_properties",
+            CheckKind::ConstantAcceleration => "constant_acceleration",
+            CheckKind::KineticEnergyG => "kinetic_energy_g",
+            CheckKind::KineticEnergyIc => "kinetic_energy_ic",
+            CheckKind::AngularMomentumFixedPoint => "angular_momentum_fixed_point",
+            CheckKind::CenterOfPercussion => "center_of_percussion",
+            CheckKind::NewtonEuler => "newton_euler",
+            CheckKind::WorkEnergy => "work_energy",
+            CheckKind::ImpulseMomentum => "impulse_momentum",
+            CheckKind::Restitution => "restitution",
+        }
+    }
+}
+
 /// A question of the exercise, with its expected answer.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -778,7 +778,7 @@ fn check(v: &V, i: usize, c: &CheckDef) -> R {
                 pos,
                 format!(
                     "check {} has a `window`; only impulse_momentum takes one",
-                    ron::to_string(&c.kind).unwrap_or_default()
+                    c.kind.name()
                 ),
                 "remove `window`, or make the check `kind: impulse_momentum`",
             ));
@@ -805,7 +805,7 @@ fn check(v: &V, i: usize, c: &CheckDef) -> R {
     if c.why.trim().is_empty() {
         return Err(v.err(
             pos,
-            format!("check {} gives no `why` for its tolerance {}", ron::to_string(&c.kind).unwrap_or_default(), c.tolerance),
+            format!("check {} gives no `why` for its tolerance {}", c.kind.name(), c.tolerance),
             "add `why: \"...\"`: the engine limitation or the discretization error the tolerance covers, with its size",
         ));
     }

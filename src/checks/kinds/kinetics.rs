@@ -79,8 +79,11 @@ struct NewtonEuler {
     /// With `point`: whether P is the body's fixed pivot, and r_bar = |r_G - r_O| there.
     pivot: Option<Option<f64>>,
     index: Option<usize>,
+    /// Force residual (6/1; without `point` only).
     f: Worst,
+    /// Moment residual about G (6/1), or with `point` about the pivot (6/4).
     m: Worst,
+    /// Moment residual about P (6/2; with `point` only).
     mp: Worst,
     /// F_s at the worst step.
     f_scale: f64,
@@ -152,19 +155,16 @@ impl FrameProbe for NewtonEuler {
                 // positions, as for gravity in the diagram (each substep's m dv acts there).
                 let r_g = gravity_point(before.com, now.com, self.substeps);
                 let kinetic = kinetic_moment_about(t.mass, t.inertia, alpha, r_g, a_g, p);
-                let mut worst = sum_m - kinetic;
+                let mut worst = (sum_m - kinetic).abs();
                 if let Some(Some(r_bar)) = self.pivot {
                     let i_o = parallel_axis(t.inertia, t.mass, r_bar);
                     let d4 = sum_m - kinetic_moment_fixed_axis(i_o, alpha);
                     self.m.add(d4, s.time);
-                    if d4.abs() > worst.abs() {
-                        worst = d4;
-                    }
+                    worst = worst.max(d4.abs());
                 }
                 self.mp.add(sum_m - kinetic, s.time);
-                self.f.add(0.0, s.time);
                 self.last = (sum_m, kinetic);
-                worst.abs() / (fs * k.max((b.com - p).length()))
+                worst / (fs * k.max((b.com - p).length()))
             }
         };
         if rel > self.rel.max || self.rel.samples == 0 {

@@ -324,7 +324,7 @@ impl FrameProbe for ImpulseMomentum {
         };
         let ledger = self.ledger.get_or_insert_with(|| {
             let (g0, h0) = momenta(true);
-            ImpulseMomentumLedger::new(o, start, g0, h0)
+            ImpulseMomentumLedger::new(start, g0, h0)
         });
         let sums = match self.index {
             Some(i) => f.bodies[i].impulses,

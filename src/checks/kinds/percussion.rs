@@ -81,7 +81,6 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         q: 0.0,
         strike_notes: Vec::new(),
         last: (0.0, 0.0),
-        diagram: Vec::new(),
     })
 }
 
@@ -103,8 +102,6 @@ struct CenterOfPercussion {
     q: f64,
     strike_notes: Vec<String>,
     last: (f64, f64),
-    /// The step's free-body diagram (reused buffer), for the moment about Q (CP-2).
-    diagram: Vec<Blow>,
 }
 
 impl CenterOfPercussion {
@@ -202,27 +199,26 @@ impl Probe for CenterOfPercussion {
                 // CP-2: the resultant of all forces passes through Q, so sum M_Q = 0.
                 let dir = (g_before - o).normalize_or(DVec2::ZERO);
                 let q_point = o + dir * self.q;
-                let mut m_o = 0.0;
-                let mut diagram = std::mem::take(&mut self.diagram);
-                diagram.clear();
+                let (mut m_q, mut m_o) = (0.0, 0.0);
                 for_each_external_impulse(
                     Before::One(i, &before),
                     s,
                     self.substeps,
                     |k| k == i,
                     |imp| {
-                        diagram.push(Blow {
-                            impulse: imp.impulse,
-                            point: imp.point,
-                            couple: imp.couple,
-                        });
+                        m_q += moment_about_center_of_percussion(
+                            q_point,
+                            [Blow {
+                                impulse: imp.impulse,
+                                point: imp.point,
+                                couple: imp.couple,
+                            }],
+                        );
                         if !matches!(imp.source, Source::Joint(_)) {
                             m_o += imp.moment_about(o);
                         }
                     },
                 );
-                let m_q = moment_about_center_of_percussion(q_point, diagram.iter().copied());
-                self.diagram = diagram;
                 let engine = m_q / s.dt;
                 self.max_moment = self
                     .max_moment
