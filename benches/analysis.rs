@@ -163,7 +163,7 @@ fn main() {
     let mut frame_us = Vec::new();
     for _ in 0..REPEATS {
         let mut sim = Simulation::new(&scene, &Options::default());
-        let mut frame = FrameAnalysis::new(level.world.substeps);
+        let mut frame = FrameAnalysis::new();
         frame.observe(sim.snapshot());
         let mut t_f = 0.0;
         for k in 0..STEPS {

@@ -100,6 +100,7 @@ impl SolverArgs {
             substeps: self.substeps,
             solver_iterations: self.iterations,
             all_effects: self.all_effects,
+            substepping: None,
         })
     }
 }
@@ -219,6 +220,7 @@ fn failed(file: &std::path::Path, error: &str) -> LevelReport {
         sim_time: 0.0,
         wall_ms: 0.0,
         effects: Vec::new(),
+        settings: None,
         checks: Vec::new(),
         questions: Vec::new(),
         error: Some(error.to_string()),

@@ -21,6 +21,7 @@ pub mod study;
 #[path = "sim"]
 pub mod sim64 {
     pub(crate) use rapier2d_f64 as rapier;
+    pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod build;
     pub mod joints;
     mod world;

@@ -1,8 +1,12 @@
-//! Runs a level headless from start to end: simulation, checks and questions in one pass.
+//! One run loop: a level's checks and questions observe every snapshot of a run once.
+//!
+//! [`Observers`] owns a run's checks and questions; the CLI ([`run_scene`]), the window
+//! (`app::physics::LiveChecks`), the accuracy study and the tests all feed it, so every consumer
+//! grades a run the same way. [`run_scene`] drives a level headless from start to end.
 
-use crate::checks::questions::QuestionProbe;
-use crate::checks::CheckSet;
-use crate::level::{self, LevelError, Scene};
+use crate::checks::questions::{QuestionProbe, QuestionResult};
+use crate::checks::{CheckResult, CheckSet};
+use crate::level::{self, Level, LevelError, Scene};
 use crate::report::LevelReport;
 use crate::sim::{Options, SimError, Simulation};
 use crate::snapshot::Snapshot;
@@ -31,6 +35,46 @@ pub fn run_file(
     run_scene(&scene, opts, answers, |_| {})
 }
 
+/// The checks and questions of one run, fed every snapshot in order (the initial one first).
+pub struct Observers {
+    checks: CheckSet,
+    questions: Vec<QuestionProbe>,
+}
+
+impl Observers {
+    pub fn new(level: &Level) -> Self {
+        Observers {
+            checks: CheckSet::new(level),
+            questions: level
+                .questions
+                .iter()
+                .map(|q| QuestionProbe::for_level(level, q))
+                .collect(),
+        }
+    }
+
+    pub fn observe(&mut self, s: &Snapshot) {
+        self.checks.observe(s);
+        for q in self.questions.iter_mut() {
+            q.observe(s);
+        }
+    }
+
+    /// The results, grading the students' answers given by question id.
+    pub fn finish(self, answers: &HashMap<String, f64>) -> (Vec<CheckResult>, Vec<QuestionResult>) {
+        let checks = self.checks.finish();
+        let questions = self
+            .questions
+            .into_iter()
+            .map(|q| {
+                let answer = answers.get(q.id()).copied();
+                q.finish(answer)
+            })
+            .collect();
+        (checks, questions)
+    }
+}
+
 /// Runs a scene, calling `each` with every snapshot (initial state first).
 pub fn run_scene(
     scene: &Scene,
@@ -39,21 +83,12 @@ pub fn run_scene(
     mut each: impl FnMut(&Snapshot),
 ) -> Result<LevelReport, RunError> {
     let mut sim = Simulation::new(scene, opts);
-    let level = &sim.level;
-    let mut checks = CheckSet::new(level);
-    let mut questions: Vec<QuestionProbe> = level
-        .questions
-        .iter()
-        .map(|q| QuestionProbe::for_level(level, q))
-        .collect();
+    let mut observers = Observers::new(&sim.level);
     let start = Instant::now();
     let mut steps = 0;
     let result = sim.run(|s| {
         steps = s.step;
-        checks.observe(s);
-        for q in questions.iter_mut() {
-            q.observe(s);
-        }
+        observers.observe(s);
         each(s);
     });
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -61,14 +96,7 @@ pub fn run_scene(
         file: scene.file.display().to_string(),
         source,
     })?;
-    let checks = checks.finish();
-    let questions: Vec<_> = questions
-        .into_iter()
-        .map(|q| {
-            let answer = answers.get(q.id()).copied();
-            q.finish(answer)
-        })
-        .collect();
+    let (checks, questions) = observers.finish(answers);
     let passed = checks.iter().all(|c| c.passed) && questions.iter().all(|q| q.passed);
     Ok(LevelReport {
         file: scene.file.display().to_string(),
@@ -77,7 +105,8 @@ pub fn run_scene(
         steps,
         sim_time: sim.snapshot().time,
         wall_ms,
-        effects: sim.effects.names(),
+        effects: sim.settings.effects.names(),
+        settings: Some(sim.settings.clone()),
         checks,
         questions,
         error: None,

@@ -23,6 +23,10 @@ pub struct Snapshot {
     pub time: f64,
     /// Length of the step that led here, s (0 for the initial state).
     pub dt: f64,
+    /// Substeps of that step (the run's resolved `Settings::substeps`, also on the initial
+    /// state): where gravity acts within a step and how positions map to velocities depend on it.
+    #[serde(default = "one")]
+    pub substeps: usize,
     /// World gravity acceleration in effect, m/s^2 (zero if not declared).
     pub gravity: DVec2,
     pub bodies: Vec<BodyState>,
@@ -37,14 +41,11 @@ pub struct Snapshot {
     pub impulses: Vec<ImpulseState>,
 }
 
-/// Body kind, as in the level file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum BodyKind {
-    Fixed,
-    Dynamic,
-    Kinematic,
+fn one() -> usize {
+    1
 }
+
+pub use crate::level::{BodyKind, Coordinate};
 
 /// One rigid body.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -148,18 +149,6 @@ pub struct JointState {
     pub limit_impulse: f64,
     /// Joint coordinate: relative angle (pin) or slide distance (slider).
     pub coordinate: f64,
-}
-
-/// A body coordinate a coupling acts on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Coordinate {
-    /// x of the mass center, m.
-    X,
-    /// y of the mass center, m.
-    Y,
-    /// The body's angle, rad.
-    Angle,
 }
 
 /// A ratio constraint `sum(ratio_i * q_i) = const` and its reaction over the step.

@@ -493,6 +493,7 @@ fn snapshot(bodies: Vec<BodyState>, contacts: Vec<ContactState>, dt: f64) -> Sna
         step: 1,
         time: dt,
         dt,
+        substeps: 1,
         gravity: DVec2::new(0.0, -9.81),
         bodies,
         contacts,

@@ -200,6 +200,7 @@ fn pair_contact_orients_the_normal_and_weights_the_point_by_impulse() {
         step: 1,
         time: 0.1,
         dt: 0.1,
+        substeps: 1,
         gravity: DVec2::ZERO,
         bodies: Vec::new(),
         contacts: vec![ContactState {

@@ -90,7 +90,7 @@ fn as_array(w: &StepWork) -> [f64; 4] {
 fn compare_run(name: &str, scene: &level::Scene) -> usize {
     let substeps = scene.level.world.substeps.max(1);
     let mut sim = Simulation::new(scene, &Options::default());
-    let mut fa = FrameAnalysis::new(substeps);
+    let mut fa = FrameAnalysis::new();
     fa.observe(sim.snapshot());
     let mut before: Vec<Motion> = sim.snapshot().bodies.iter().map(Motion::from).collect();
     let mut compared = 0;

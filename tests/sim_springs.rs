@@ -2,7 +2,7 @@
 //! as symplectic Euler at h = dt / n (energy bounded, period 2 pi sqrt(m/k) to O(h)).
 
 use rigidlab::level::parse;
-use rigidlab::sim::{Options, Simulation};
+use rigidlab::sim::{Options, Simulation, Substepping};
 use std::path::Path;
 
 fn block(k: f64, dt: f64, substeps: usize, duration: f64) -> Simulation {
@@ -105,8 +105,15 @@ fn per_substep_springs_cost() {
         ..Options::default()
     };
     let time = |per_substep: bool| {
+        let opts = Options {
+            substepping: Some(if per_substep {
+                Substepping::Split
+            } else {
+                Substepping::Internal
+            }),
+            ..opts.clone()
+        };
         let mut sim = Simulation::new(&scene, &opts);
-        sim.springs_per_substep = per_substep;
         let t = std::time::Instant::now();
         for _ in 0..600 {
             let _ = sim.step();

@@ -19,6 +19,11 @@ pub fn kinetic_energy(m: f64, v_g: DVec2, i_g: f64, omega: f64) -> f64 {
     0.5 * m * v_g.length_squared() + 0.5 * i_g * omega * omega
 }
 
+/// 6/9 for a body of a snapshot (its mass properties as the engine holds them).
+pub fn body_kinetic_energy(b: &crate::snapshot::BodyState) -> f64 {
+    kinetic_energy(b.mass, b.velocity, b.inertia, b.omega)
+}
+
 /// Kinetic energy about the instantaneous center C: T = 1/2 I_C omega^2 with
 /// I_C = I_G + m |r_G - r_C|^2 (6/10 with MP-2).
 pub fn kinetic_energy_about_ic(m: f64, i_g: f64, r_g: DVec2, r_c: DVec2, omega: f64) -> f64 {

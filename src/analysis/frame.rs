@@ -143,7 +143,6 @@ pub struct Frame {
 /// Computes a [`Frame`] per snapshot, keeping what it needs from the previous one.
 #[derive(Debug, Clone, Default)]
 pub struct FrameAnalysis {
-    substeps: usize,
     /// Every body's state at the start of the last step observed.
     before: Vec<Motion>,
     /// ... and at its end (swapped into `before` at the next step).
@@ -160,12 +159,10 @@ pub struct FrameAnalysis {
 }
 
 impl FrameAnalysis {
-    /// `substeps`: the solver's substeps per step (where gravity acts within the step).
-    pub fn new(substeps: usize) -> Self {
-        FrameAnalysis {
-            substeps,
-            ..Default::default()
-        }
+    /// An analysis with no step seen yet. Where gravity acts within a step depends on the
+    /// step's substeps, which each snapshot carries (`Snapshot::substeps`).
+    pub fn new() -> Self {
+        FrameAnalysis::default()
     }
 
     /// The bodies' states at the start of the step of the last frame (at its end for the initial
@@ -226,7 +223,7 @@ impl FrameAnalysis {
                 external: &mut f.external,
                 work: &mut f.work,
                 s_frac: {
-                    let s = self.substeps.max(1) as f64;
+                    let s = snap.substeps.max(1) as f64;
                     (s - 1.0) / (2.0 * s)
                 },
                 has_mass: &self.has_mass,
@@ -471,17 +468,20 @@ impl Pass<'_> {
             let (in1, in2) = (self.has_mass(j.body1), self.has_mass(j.body2));
             let internal = in1 && in2;
             // The reaction at the anchor; its couple is the row solver's angular impulse about G
-            // less the moment of the linear part.
+            // less the moment of the linear part. The angular impulse is about G where each
+            // substep's rows acted, so, like a contact's, the arm is placed at the gravity point.
             if in2 {
-                let (i, imp, at) = (j.body2, j.impulse_on_body2, j.anchor);
-                let arm = at - self.after[i].com;
+                let (i, imp) = (j.body2, j.impulse_on_body2);
+                let arm = j.anchor - self.after[i].com;
                 let couple = j.angular_impulse_on_body2 - cross(arm, imp);
+                let at = self.g_point(i) + arm;
                 self.add(i, imp, at, arm, couple, internal, None);
             }
             if in1 {
-                let (i, imp, at) = (j.body1, -j.impulse_on_body2, j.anchor1);
-                let arm = at - self.after[i].com;
+                let (i, imp) = (j.body1, -j.impulse_on_body2);
+                let arm = j.anchor1 - self.after[i].com;
                 let couple = j.angular_impulse_on_body1 - cross(arm, imp);
+                let at = self.g_point(i) + arm;
                 self.add(i, imp, at, arm, couple, internal, None);
             }
         }

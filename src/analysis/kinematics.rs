@@ -9,6 +9,11 @@ pub fn point_velocity(v_g: DVec2, omega: f64, r: DVec2) -> DVec2 {
     v_g + k_cross(omega, r)
 }
 
+/// RK-6 for the material point of a snapshot's body now at world `p`: v_P = v_G + omega k x r_P/G.
+pub fn body_point_velocity(b: &crate::snapshot::BodyState, p: DVec2) -> DVec2 {
+    point_velocity(b.velocity, b.omega, p - b.com)
+}
+
 /// Acceleration of a body point: a_P = a_G + alpha k x r_{P/G} - omega^2 r_{P/G} (RK-10).
 pub fn point_acceleration(a_g: DVec2, alpha: f64, omega: f64, r: DVec2) -> DVec2 {
     a_g + k_cross(alpha, r) - omega * omega * r

@@ -14,8 +14,9 @@
 //!   that rapier's solver used (`ContactPoint::arms`: its `solver_dp1/2`, frozen at the manifold's
 //!   last full narrow-phase update while it recycles the manifold); for a snapshot without them,
 //!   at the point carried back to where the narrow phase found it at the start of the step;
-//! - joints: the reaction impulse at the anchor, with the row solver's angular impulse about G
-//!   (which carries any constraint couple and motor torque);
+//! - joints: the reaction impulse summed over the substeps, at the anchor's arm from the gravity
+//!   point, with the row solver's angular impulse about G (which carries any constraint couple and
+//!   motor torque), each substep's about G where it began (`sim::Settings`, split substeps);
 //! - couplings (pulleys, cables, gears): `ratio * lambda` along x or y at G, or as a couple for an
 //!   angle term. A coupling is never internal to a set: its ground (the pulley's axle) takes load.
 
@@ -334,7 +335,9 @@ fn visit_impulses(
                 body,
                 source: Source::Joint(k),
                 impulse: imp,
-                point: at,
+                // Its angular impulse is about G where each substep's rows acted: placed, like a
+                // contact's, at the arm from the gravity point.
+                point: g_point(body) + arm,
                 arm,
                 // The row solver's angular impulse about G minus the moment of the linear part.
                 couple: angular - cross(arm, imp),

@@ -104,35 +104,8 @@ fn arc(c: DVec2, r: f64, a0: f64, a1: f64, n: usize) -> impl Iterator<Item = DVe
     (0..count).map(move |k| c + DVec2::from_angle(a0 + (a1 - a0) * k as f64 / n as f64) * r)
 }
 
-/// Convex hull, counter-clockwise (Andrew's monotone chain).
-pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
-    let mut p: Vec<DVec2> = points.to_vec();
-    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    p.dedup();
-    if p.len() < 3 {
-        return p;
-    }
-    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
-    let mut hull: Vec<DVec2> = Vec::with_capacity(2 * p.len());
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
-            Box::new(p.iter())
-        } else {
-            Box::new(p.iter().rev())
-        };
-        for &q in iter {
-            while hull.len() >= start + 2
-                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(q);
-        }
-        hull.pop();
-    }
-    hull
-}
+/// The analysis layer's hull (the one the level format's polygons use).
+pub use crate::analysis::mass::convex_hull;
 
 fn convex_contains(poly: &[DVec2], p: DVec2, tol: f64) -> bool {
     if poly.len() < 3 {

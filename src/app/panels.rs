@@ -885,11 +885,7 @@ fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
     let dt = phys.sim.dt();
     let mut new_dt = dt;
     let mut substeps = phys.sim.substeps();
-    let mut iterations = phys
-        .sim
-        .world
-        .integration_parameters
-        .num_internal_pgs_iterations;
+    let mut iterations = phys.sim.settings().solver_iterations;
     let mut changed = false;
     egui::Grid::new("solver").num_columns(3).show(ui, |ui| {
         ui.label("dt");

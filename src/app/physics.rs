@@ -7,9 +7,10 @@
 //! not depend on the frame rate.
 
 use super::quantities;
-use crate::checks::questions::{QuestionProbe, QuestionResult};
-use crate::checks::{CheckResult, CheckSet};
+use crate::checks::questions::QuestionResult;
+use crate::checks::CheckResult;
 use crate::level::Scene;
+use crate::runner::Observers;
 use crate::sim::{Options, Simulation};
 use crate::snapshot::Snapshot;
 use bevy::prelude::*;
@@ -336,8 +337,7 @@ pub struct LiveChecks {
     generation: u64,
     last_step: Option<u64>,
     /// None once finished.
-    probes: Option<CheckSet>,
-    questions: Vec<QuestionProbe>,
+    observers: Option<Observers>,
     /// Set at the level's end: the same results `rigidlab check` prints.
     pub checks: Option<Vec<CheckResult>>,
     pub answers: Option<Vec<QuestionResult>>,
@@ -349,20 +349,12 @@ impl LiveChecks {
         let mut live = LiveChecks {
             generation: phys.generation,
             last_step: Some(0),
-            probes: Some(CheckSet::new(level)),
-            questions: level
-                .questions
-                .iter()
-                .map(|q| QuestionProbe::for_level(level, q))
-                .collect(),
+            observers: Some(Observers::new(level)),
             checks: None,
             answers: None,
         };
-        if let Some(p) = live.probes.as_mut() {
-            p.observe(&phys.initial);
-        }
-        for q in live.questions.iter_mut() {
-            q.observe(&phys.initial);
+        if let Some(o) = live.observers.as_mut() {
+            o.observe(&phys.initial);
         }
         live
     }
@@ -377,20 +369,15 @@ impl LiveChecks {
             return;
         }
         self.last_step = Some(s.step);
-        if let Some(p) = self.probes.as_mut() {
-            p.observe(s);
-        }
-        for q in self.questions.iter_mut() {
-            q.observe(s);
+        if let Some(o) = self.observers.as_mut() {
+            o.observe(s);
         }
         if phys.at_end() {
-            self.checks = self.probes.take().map(CheckSet::finish);
-            self.answers = Some(
-                std::mem::take(&mut self.questions)
-                    .into_iter()
-                    .map(|q| q.finish(None))
-                    .collect(),
-            );
+            if let Some(o) = self.observers.take() {
+                let (checks, answers) = o.finish(&Default::default());
+                self.checks = Some(checks);
+                self.answers = Some(answers);
+            }
         }
     }
 }

@@ -1,40 +1,32 @@
-//! Small textbook helpers the overlays and plots need, over the plain snapshot.
-//!
-//! Kept local to the sandbox (the analysis layer is written separately); each one is the textbook
-//! formula named in its doc comment (MK = Meriam & Kraige, Engineering Mechanics: Dynamics).
+//! What the overlays and plots show, over the plain snapshot. The formulas are the analysis
+//! layer's (`crate::analysis`); this file sums them over a scene and shapes them for the eye.
 
+use crate::analysis::{energy, momentum};
 use crate::snapshot::{BodyKind, BodyState, Coordinate, Snapshot};
 use glam::DVec2;
 
-/// Kinetic energy of a rigid body in plane motion, T = 1/2 m v_G^2 + 1/2 I_G omega^2 (MK eq. 6/7).
-pub fn body_kinetic_energy(b: &BodyState) -> f64 {
-    0.5 * b.mass * b.velocity.length_squared() + 0.5 * b.inertia * b.omega * b.omega
-}
+pub use crate::analysis::energy::body_kinetic_energy;
+pub use crate::analysis::kinematics::body_point_velocity as point_velocity;
 
 /// Total kinetic energy of the scene, J.
 pub fn kinetic_energy(s: &Snapshot) -> f64 {
     s.bodies.iter().map(body_kinetic_energy).sum()
 }
 
-/// Gravitational potential energy V_g = -m g . r_G, zero at the origin (MK eq. 3/19 with g along -y: m g h).
+/// Gravitational potential energy of the scene, sum of V_g = -m g . r_G (WE-13), datum at the origin.
 pub fn gravity_potential(s: &Snapshot) -> f64 {
     s.bodies
         .iter()
-        .map(|b| -b.mass * s.gravity.dot(b.com))
+        .map(|b| energy::gravity_potential(b.mass, s.gravity, b.com))
         .sum()
 }
 
-/// Angular momentum about a fixed point O, H_O = I_G omega + r_OG x m v_G (MK eq. 6/3 / 4/7), N m s, CCW.
+/// Angular momentum of the scene about a fixed point O, sum of H_O (6/15), N m s, CCW.
 pub fn angular_momentum_about(s: &Snapshot, o: DVec2) -> f64 {
     s.bodies
         .iter()
-        .map(|b| b.inertia * b.omega + (b.com - o).perp_dot(b.velocity) * b.mass)
+        .map(|b| momentum::angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, o))
         .sum()
-}
-
-/// Velocity of a body point P, v_P = v_G + omega k x r_{P/G} (MK eq. 5/6).
-pub fn point_velocity(b: &BodyState, p: DVec2) -> DVec2 {
-    b.velocity + b.omega * (p - b.com).perp()
 }
 
 /// Instantaneous center of zero velocity C: v_C = 0 gives r_{C/G} = (k x v_G) / omega (MK art. 5/5).

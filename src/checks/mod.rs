@@ -71,7 +71,7 @@ impl CheckSet {
         let frame = probes
             .iter()
             .any(|p| p.wants_frame())
-            .then(|| FrameAnalysis::new(level.world.substeps.max(1)));
+            .then(FrameAnalysis::new);
         CheckSet { probes, frame }
     }
 
@@ -91,14 +91,6 @@ impl CheckSet {
     /// The results, in the level's order.
     pub fn finish(self) -> Vec<CheckResult> {
         self.probes.into_iter().map(|p| p.finish()).collect()
-    }
-
-    pub fn len(&self) -> usize {
-        self.probes.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.probes.is_empty()
     }
 }
 

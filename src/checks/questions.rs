@@ -91,7 +91,6 @@ struct Ctx {
     known: bool,
     bodies: Vec<BodyInfo>,
     joints: Vec<JointInfo>,
-    substeps: usize,
 }
 
 impl Ctx {
@@ -136,7 +135,6 @@ impl Ctx {
             } else {
                 Vec::new()
             },
-            substeps: level.world.substeps.max(1),
         }
     }
 
@@ -185,18 +183,12 @@ fn perp(v: DVec2) -> DVec2 {
     DVec2::new(-v.y, v.x)
 }
 
-/// Velocity of the body point now at world `p` (RK-6).
-fn point_velocity(b: &BodyState, p: DVec2) -> DVec2 {
-    b.velocity + perp(p - b.com) * b.omega
-}
+use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
+use crate::analysis::kinematics::body_point_velocity as point_velocity;
 
 /// Body-frame coordinates of a world point.
 fn to_local(b: &BodyState, p: DVec2) -> DVec2 {
     DVec2::from_angle(-b.angle).rotate(p - b.position)
-}
-
-fn kinetic_energy(b: &BodyState) -> f64 {
-    0.5 * b.mass * b.velocity.length_squared() + 0.5 * b.inertia * b.omega * b.omega
 }
 
 /// Height above the origin against gravity (y when g points down), m.
@@ -559,6 +551,9 @@ struct Impact {
     free: Vec<bool>,
 }
 
+/// Why a contact event's question has no impulse-momentum analysis.
+const NO_IMPACT: &str = "no impact analysis: the bodies did not approach each other when the contact began (a contact from the start or one slid into, such as a ladder on its wall), so the answer is graded on the engine alone";
+
 impl Impact {
     fn find(
         ctx: &Ctx,
@@ -650,8 +645,10 @@ impl Impact {
                 let gap = (q2 - q1).dot(n);
                 let v_n = (point_velocity(b2, q2) - point_velocity(b1, q1)).dot(n);
                 let a_n = (acc(i2) - acc(i1)).dot(n);
-                if v_n >= 0.0 {
-                    // Not approaching: bodies that start in contact (a ladder on its wall), no impact.
+                // Not approaching faster than gravity can close a gap in a step or two: a contact
+                // that was there from the start or that the bodies slid into (a ladder on its wall,
+                // a block set down), not an impact.
+                if v_n >= -(2.0 * pre.gravity.length() * hit.dt + 1e-9) {
                     return None;
                 }
                 // gap + v_n tau + a_n tau^2 / 2 = 0 while approaching: the root nearest the last free
@@ -1552,7 +1549,6 @@ impl Meter {
     /// Newton-Euler from the engine's free-body diagram, centered on the sample:
     /// (sum F / m, sum M_G / I_G) over the two steps around it (6/1).
     fn newton(&self, f: &Frame, i: usize) -> Option<(DVec2, f64)> {
-        let substeps = if self.ctx.known { self.ctx.substeps } else { 4 };
         let mut pairs = Vec::new();
         if let Some(p) = f.prev {
             pairs.push((p, f.cur));
@@ -1565,7 +1561,6 @@ impl Meter {
             if b.dt <= 0.0 {
                 continue;
             }
-            let _ = substeps;
             let (jj, mm) = external_impulse(a, b, i);
             j += jj;
             m += mm;
@@ -2270,7 +2265,10 @@ impl QuestionProbe {
                         let imp = self.pair.as_ref().and_then(|p| p.impact.clone());
                         let occ = match &imp {
                             Some(i) => Occasion::PostImpact(i),
-                            None => Occasion::Plain,
+                            None => {
+                                self.note = NO_IMPACT.into();
+                                Occasion::Plain
+                            }
                         };
                         self.pending = Some(self.meter.read(&frame, occ));
                     }

@@ -5,7 +5,17 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::snapshot::BodyKind;
+/// Body kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BodyKind {
+    Fixed,
+    Dynamic,
+    Kinematic,
+}
+
+/// Default area density when a level gives neither mass nor density, kg/m^2.
+pub const DEFAULT_DENSITY: f64 = 1000.0;
 
 /// A 2D vector in a level file: `(x, y)`.
 pub type V2 = (f64, f64);
@@ -256,6 +266,10 @@ pub struct JointDef {
     /// A motor on the joint coordinate (needs `motors`).
     #[serde(default)]
     pub motor: Option<Motor>,
+    /// The anchors may start apart, for a scene that tests how the engine snaps a stretched
+    /// joint shut; otherwise they must meet at t = 0 (within 0.1 mm) or the level is rejected.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub starts_apart: bool,
 }
 
 fn default_axis() -> V2 {
@@ -319,7 +333,17 @@ pub struct CouplingTerm {
     pub ratio: f64,
 }
 
-pub use crate::snapshot::Coordinate;
+/// A body coordinate a coupling acts on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Coordinate {
+    /// x of the mass center, m.
+    X,
+    /// y of the mass center, m.
+    Y,
+    /// The body's angle, rad.
+    Angle,
+}
 
 /// A linear spring-damper applied as forces by rigidlab (exact Hooke law).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

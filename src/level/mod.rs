@@ -20,12 +20,6 @@ pub struct Scene {
     pub level: Level,
 }
 
-impl Scene {
-    pub fn has(&self, effect: Effect) -> bool {
-        self.level.effects.contains(&effect)
-    }
-}
-
 /// The RON options every level is read and written with.
 pub fn ron_options() -> ron::Options {
     ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)

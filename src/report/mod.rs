@@ -24,6 +24,10 @@ pub struct LevelReport {
     pub sim_time: f64,
     pub wall_ms: f64,
     pub effects: Vec<String>,
+    /// The settings the run used, resolved from the level and the command line (None when the
+    /// level could not be loaded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settings: Option<crate::sim::Settings>,
     pub checks: Vec<CheckResult>,
     pub questions: Vec<QuestionResult>,
     /// Set when the run stopped early (explosion, non-finite state).
@@ -88,6 +92,9 @@ pub fn table(report: &Report) -> String {
                 q.rel_error,
                 q.tolerance
             );
+            if !q.note.is_empty() {
+                out += &format!("      note: {}\n", q.note);
+            }
             if let Some(s) = &q.student {
                 out += &format!(
                     "      student answer {} -> {} (rel err {:.2e})\n",

@@ -4,7 +4,8 @@ use super::rapier::prelude::*;
 use crate::level::{
     BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part, Shape as LevelShape, V2,
 };
-use crate::sim::options::{Effects, Options};
+use crate::sim::options::Effects;
+use crate::sim::settings::Settings;
 
 pub(crate) fn v(p: V2) -> Vector {
     Vector::new(p.0 as Real, p.1 as Real)
@@ -44,8 +45,7 @@ fn flatten(parts: &[Part], base: Pose, out: &mut Vec<(Pose, SharedShape)>) {
     }
 }
 
-/// Default area density when a level gives neither mass nor density, kg/m^2.
-pub const DEFAULT_DENSITY: f64 = 1000.0;
+pub use crate::level::DEFAULT_DENSITY;
 
 /// What parry2d 0.31.1 leaves out of a 2D capsule's centroidal moment of inertia, at unit
 /// density, summed over every capsule of the shape (compound parts included).
@@ -220,19 +220,16 @@ pub(crate) fn joint(j: &JointDef, b1: &BodyDef, b2: &BodyDef) -> GenericJoint {
     g.build()
 }
 
-pub(crate) fn integration_parameters(
-    level: &Level,
-    opts: &Options,
-    fx: &Effects,
-) -> IntegrationParameters {
+/// rapier's parameters for one step of the resolved settings (split substeps change `dt` and
+/// `num_solver_iterations` around each call, see `world::Simulation::step`).
+pub(crate) fn integration_parameters(s: &Settings) -> IntegrationParameters {
     let mut p = IntegrationParameters::default();
-    p.dt = opts.dt.unwrap_or(level.world.dt) as Real;
-    p.num_solver_iterations = opts.substeps.unwrap_or(level.world.substeps);
-    p.num_internal_pgs_iterations = opts
-        .solver_iterations
-        .unwrap_or(level.world.solver_iterations);
-    p.max_ccd_substeps = if fx.has(Effect::Ccd) { 1 } else { 0 };
-    if let Some(hz) = level.world.contact_hz {
+    p.dt = s.dt as Real;
+    p.num_solver_iterations = s.substeps;
+    p.num_internal_pgs_iterations = s.solver_iterations;
+    p.max_ccd_substeps = if s.effects.has(Effect::Ccd) { 1 } else { 0 };
+    p.contact_recycling = s.contact_recycling;
+    if let Some(hz) = s.contact_hz {
         // Contacts with fixed bodies stay twice as stiff, as in rapier's defaults (30/60 Hz).
         p.contact_softness.natural_frequency = hz as Real;
         p.static_contact_softness.natural_frequency = (2.0 * hz) as Real;

@@ -9,13 +9,17 @@
 //! and as `crate::sim64` against rapier2d-f64, through the `rapier` alias.
 
 pub(crate) use rapier2d as rapier;
+/// The precision this copy of the stage is compiled for.
+pub(crate) const PRECISION: settings::Precision = settings::Precision::F32;
 
 mod build;
 pub mod energy;
 pub mod joints;
 pub mod options;
+pub mod settings;
 mod world;
 
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
+pub use settings::{Precision, Settings, Substepping};
 pub use world::{sample1, sample2, Simulation};

@@ -11,10 +11,12 @@ pub struct Options {
     pub solver_iterations: Option<usize>,
     /// Run every stage (colliders in collision detection, CCD, sleeping, ...) for comparison.
     pub all_effects: bool,
+    /// How substeps are taken (None: split where springs or joints need it, see `Settings`).
+    pub substepping: Option<crate::sim::Substepping>,
 }
 
 /// The set of effects a world was built with.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Effects(Vec<Effect>);
 
 impl Effects {

@@ -4,7 +4,8 @@ use super::rapier::prelude::*;
 use super::{build, joints};
 use crate::level::*;
 use crate::sim::energy::{EnergyGuard, FACTOR, SUSTAIN};
-use crate::sim::options::{Effects, Options, SimError};
+use crate::sim::options::{Options, SimError};
+use crate::sim::settings::{Settings, Substepping};
 use crate::snapshot::*;
 use glam::DVec2;
 use std::collections::HashMap;
@@ -12,7 +13,8 @@ use std::collections::HashMap;
 /// A running simulation of one level.
 pub struct Simulation {
     pub level: Level,
-    pub effects: Effects,
+    /// The run's settings, resolved once from the level and the overrides.
+    pub settings: Settings,
     pub world: PhysicsWorld,
     bodies: Vec<RigidBodyHandle>,
     joints: Vec<ImpulseJointHandle>,
@@ -26,22 +28,18 @@ pub struct Simulation {
     pending_welds: Vec<(String, usize, usize)>,
     /// Bodies that loads or springs act on (their forces are reset every step).
     forced_bodies: Vec<usize>,
-    /// Speed limit beyond which the run is declared exploded, m/s.
-    pub max_speed: f64,
     /// Energy-explosion guard (see `sim::energy`).
     pub energy: EnergyGuard,
-    /// Evaluate springs before every substep (true; false holds them over the step, the old,
-    /// energy-gaining scheme, kept only to measure against).
-    pub springs_per_substep: bool,
 }
 
 impl Simulation {
     pub fn new(scene: &Scene, opts: &Options) -> Self {
         let level = scene.level.clone();
-        let effects = Effects::of(&level, opts.all_effects);
+        let settings = Settings::resolve(&level, opts, super::PRECISION);
+        let effects = &settings.effects;
         let mut world = PhysicsWorld::new();
         world.gravity = build::gravity(&level);
-        world.integration_parameters = build::integration_parameters(&level, opts, &effects);
+        world.integration_parameters = build::integration_parameters(&settings);
         let contacts = effects.has(Effect::Contacts);
 
         let mut bodies = Vec::new();
@@ -49,11 +47,11 @@ impl Simulation {
         for (i, b) in level.bodies.iter().enumerate() {
             let h = world.insert_body(build::body_builder(
                 b,
-                &effects,
-                level.world.allow_fast_rotation,
+                effects,
+                settings.allow_fast_rotation,
             ));
             if contacts {
-                for c in build::colliders(b, &effects) {
+                for c in build::colliders(b, effects) {
                     // user_data carries the body's index for reading contacts back.
                     world.insert_collider(c.user_data(i as u128), Some(h));
                 }
@@ -78,6 +76,7 @@ impl Simulation {
                 step: 0,
                 time: 0.0,
                 dt: 0.0,
+                substeps: settings.substeps,
                 gravity: DVec2::new(world.gravity.x as f64, world.gravity.y as f64),
                 bodies: Vec::new(),
                 contacts: Vec::new(),
@@ -88,7 +87,7 @@ impl Simulation {
                 impulses: Vec::new(),
             },
             level,
-            effects,
+            settings,
             world,
             bodies,
             joints,
@@ -97,11 +96,9 @@ impl Simulation {
             coupling_rest: Vec::new(),
             pending_welds: Vec::new(),
             forced_bodies: Vec::new(),
-            max_speed: 1e4,
             energy: EnergyGuard::default(),
-            springs_per_substep: true,
         };
-        sim.joint_defs = if sim.effects.has(Effect::Joints) {
+        sim.joint_defs = if sim.settings.effects.has(Effect::Joints) {
             sim.level.joints.clone()
         } else {
             Vec::new()
@@ -143,13 +140,18 @@ impl Simulation {
         sim
     }
 
+    /// The run's resolved settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
     /// The physics step, s.
     pub fn dt(&self) -> f64 {
-        self.world.integration_parameters.dt as f64
+        self.settings.dt
     }
 
     pub fn substeps(&self) -> usize {
-        self.world.integration_parameters.num_solver_iterations
+        self.settings.substeps
     }
 
     /// Number of steps the level's duration takes at the current dt.
@@ -234,30 +236,28 @@ impl Simulation {
             });
         }
 
-        // Springs are evaluated before every substep. rapier's substeps see only the forces
-        // set before its step, so a spring held over n > 1 substeps is not symplectic and
-        // gains energy every step (x2.5e4 in 10 s at omega dt = 0.5, 4 substeps). With springs
-        // and n > 1, rapier is advanced n times at dt/n with one substep each (a spring scene
-        // then integrates exactly like rapier's own substeps would with fresh forces); contact
-        // and joint impulses are summed over the n calls into the step's snapshot.
+        // Split substeps (see `Substepping::Split`): rapier is advanced n times at dt/n with one
+        // substep each. Springs are then evaluated before every substep (rapier's own substeps
+        // see only the forces set before its step: a spring held over n > 1 substeps is not
+        // symplectic and gains energy, x2.5e4 in 10 s at omega dt = 0.5 with 4 substeps), and
+        // contact and joint impulses are summed over the n calls into the step's snapshot.
+
         let n = self.substeps().max(1);
-        let split = self.springs_per_substep
-            && n > 1
-            && !self.level.springs.is_empty()
-            && self.effects.has(Effect::Springs);
+        let split = self.settings.substepping == Substepping::Split;
         let calls = if split { n } else { 1 };
-        if split {
-            let p = &mut self.world.integration_parameters;
-            p.dt = (dt / n as f64) as Real;
-            p.num_solver_iterations = 1;
-        }
+        let h = dt / calls as f64;
         let mut lambdas = vec![0.0; self.level.couplings.len()];
         let mut springs: Vec<SpringState> = Vec::new();
         let mut joint_sum: Vec<JointState> = Vec::new();
         let mut contact_sum: Vec<ContactState> = Vec::new();
+        {
+            let p = &mut self.world.integration_parameters;
+            p.dt = h as Real;
+            p.num_solver_iterations = if split { 1 } else { n };
+        }
         for call in 0..calls {
             self.apply_forces(&loads);
-            let now = self.spring_states(true);
+            let mut now = self.spring_states(true);
             for s in &now {
                 let rb1 = &mut self.world.bodies[self.bodies[s.body1]];
                 rb1.add_force_at_point(vd(s.force_on_body1), vd(s.applied_at1), true);
@@ -267,6 +267,10 @@ impl Simulation {
                 }
             }
             // The snapshot reports the mean force over the step (its impulse / dt).
+            for sp in now.iter_mut() {
+                sp.force_on_body1 /= calls as f64;
+                sp.tension /= calls as f64;
+            }
             if call == 0 {
                 springs = now;
             } else {
@@ -275,40 +279,62 @@ impl Simulation {
                     a.tension += b.tension;
                 }
             }
+            // rapier builds a substep's joint rows from the poses it starts from: keep them,
+            // so the call's impulses (all of one substep) are read along the very rows they
+            // acted on.
+            let rows_from = split.then(|| self.joint_poses());
             self.world.step();
             for (l, x) in lambdas.iter_mut().zip(self.solve_couplings()) {
                 *l += x;
             }
-            if split {
+            if let Some(mut poses) = rows_from {
+                // Mass properties do not change, but rapier refreshes a body's effective inverse
+                // mass and inertia only inside a step (before the first step they are stale).
+                for (p, h) in poses.iter_mut().zip(&self.joints) {
+                    let j = self
+                        .world
+                        .impulse_joints
+                        .get(*h)
+                        .expect("joint handles stay valid");
+                    let now1 = joints::BodyMetric::of(&self.world.bodies[j.body1()]);
+                    let now2 = joints::BodyMetric::of(&self.world.bodies[j.body2()]);
+                    p.metric1 = joints::BodyMetric {
+                        com: p.metric1.com,
+                        ..now1
+                    };
+                    p.metric2 = joints::BodyMetric {
+                        com: p.metric2.com,
+                        ..now2
+                    };
+                }
                 self.read_contacts();
                 merge_contacts(&mut contact_sum, &self.snapshot.contacts);
-                self.read_joints_scaled(1.0);
+                self.read_joints_scaled(1.0, Some(&poses));
                 merge_joints(&mut joint_sum, &self.snapshot.joints);
             }
         }
-        if split {
+        {
             let p = &mut self.world.integration_parameters;
             p.dt = dt as Real;
             p.num_solver_iterations = n;
-            for s in springs.iter_mut() {
-                s.force_on_body1 /= n as f64;
-                s.tension /= n as f64;
-            }
         }
 
         self.snapshot.step = step;
         self.snapshot.time = step as f64 * dt;
         self.snapshot.dt = dt;
+        self.snapshot.substeps = n;
         self.read_bodies();
         self.guard()?;
         if split {
             self.snapshot.contacts = contact_sum;
-            self.weld_on_contact();
-            // Welds created now get their first impulses next step, like the unsplit path.
-            self.snapshot.joints = joint_sum;
         } else {
             self.read_contacts();
-            self.weld_on_contact();
+        }
+        self.weld_on_contact();
+        // Welds created now get their first impulses next step.
+        if split {
+            self.snapshot.joints = joint_sum;
+        } else {
             self.read_joints();
         }
         self.snapshot.couplings = self.coupling_states(&lambdas);
@@ -388,13 +414,6 @@ impl Simulation {
                 return Err(bad(
                     "velocity became non-finite (NaN or inf): the scene exploded",
                 ));
-            }
-            if b.velocity.length() > self.max_speed {
-                return Err(bad(&format!(
-                    "speed {:.3e} m/s exceeds {:.0e} m/s: the scene exploded",
-                    b.velocity.length(),
-                    self.max_speed
-                )));
             }
         }
         Ok(())
@@ -492,11 +511,34 @@ impl Simulation {
     }
 
     fn read_joints(&mut self) {
-        self.read_joints_scaled(self.substeps() as f64);
+        self.read_joints_scaled(self.substeps() as f64, None);
     }
 
-    /// Joint states with the last substep's impulses times `n` (the substeps of one rapier call).
-    fn read_joints_scaled(&mut self, n: f64) {
+    /// Each joint's two bodies' poses and metrics now, before a rapier call builds its rows.
+    fn joint_poses(&self) -> Vec<JointPoses> {
+        self.joints
+            .iter()
+            .map(|h| {
+                let j = self
+                    .world
+                    .impulse_joints
+                    .get(*h)
+                    .expect("joint handles stay valid");
+                let (rb1, rb2) = (&self.world.bodies[j.body1()], &self.world.bodies[j.body2()]);
+                JointPoses {
+                    pose1: *rb1.position(),
+                    pose2: *rb2.position(),
+                    metric1: joints::BodyMetric::of(rb1),
+                    metric2: joints::BodyMetric::of(rb2),
+                }
+            })
+            .collect()
+    }
+
+    /// Joint states with the last substep's impulses times `n` (the substeps of one rapier call),
+    /// read along rows rebuilt from `rows_from` (the poses the call started from) when given,
+    /// else from the poses now (one substep of motion off: O(h) in the rows' direction).
+    fn read_joints_scaled(&mut self, n: f64, rows_from: Option<&[JointPoses]>) {
         self.snapshot.joints.clear();
         for (k, h) in self.joints.iter().enumerate() {
             let j = &self
@@ -510,8 +552,15 @@ impl Simulation {
                 &self.world.bodies[self.bodies[i1]],
                 &self.world.bodies[self.bodies[i2]],
             );
-            let (m1, m2) = (joints::BodyMetric::of(rb1), joints::BodyMetric::of(rb2));
-            let r = joints::last_substep_reaction(j, rb1.position(), rb2.position(), &m1, &m2);
+            let r = match rows_from.and_then(|p| p.get(k)) {
+                Some(p) => {
+                    joints::last_substep_reaction(j, &p.pose1, &p.pose2, &p.metric1, &p.metric2)
+                }
+                None => {
+                    let (m1, m2) = (joints::BodyMetric::of(rb1), joints::BodyMetric::of(rb2));
+                    joints::last_substep_reaction(j, rb1.position(), rb2.position(), &m1, &m2)
+                }
+            };
             let frame1 = *rb1.position() * j.data.local_frame1;
             let frame2 = *rb2.position() * j.data.local_frame2;
             let coordinate = match def.kind {
@@ -564,7 +613,7 @@ impl Simulation {
     /// Spring states from the current body poses and velocities.
     fn spring_states(&self, with_force: bool) -> Vec<SpringState> {
         let mut out = Vec::with_capacity(self.level.springs.len());
-        if !self.effects.has(Effect::Springs) {
+        if !self.settings.effects.has(Effect::Springs) {
             return out;
         }
         for s in &self.level.springs {
@@ -591,7 +640,7 @@ impl Simulation {
                 DVec2::ZERO
             };
             // Tension T = k x + c dx/dt pulls body1 toward body2 (Hooke's law, eq. 3/23 of MK).
-            let c = if self.effects.has(Effect::Damping) {
+            let c = if self.settings.effects.has(Effect::Damping) {
                 s.damping
             } else {
                 0.0
@@ -614,6 +663,14 @@ impl Simulation {
         }
         out
     }
+}
+
+/// The poses and metrics a rapier call built one joint's rows from.
+struct JointPoses {
+    pose1: Pose,
+    pose2: Pose,
+    metric1: joints::BodyMetric,
+    metric2: joints::BodyMetric,
 }
 
 /// Wraps an angle difference to (-pi, pi].
@@ -678,7 +735,7 @@ impl Simulation {
     fn solve_couplings(&mut self) -> Vec<f64> {
         let n = self.level.couplings.len();
         let mut lambdas = vec![0.0; n];
-        if n == 0 || !self.effects.has(Effect::Joints) {
+        if n == 0 || !self.settings.effects.has(Effect::Joints) {
             return lambdas;
         }
         let terms: Vec<Vec<(usize, Coordinate, f64)>> = self
@@ -827,6 +884,7 @@ impl Simulation {
                 axis: (1.0, 0.0),
                 limits: None,
                 motor: None,
+                starts_apart: false,
             });
             self.pending_welds.remove(k);
         }
@@ -903,18 +961,19 @@ fn vd(v: DVec2) -> Vector {
     Vector::new(v.x as Real, v.y as Real)
 }
 
-/// Linear interpolation in a time table, held constant beyond its ends.
+/// Linear interpolation in a time table, held constant beyond its ends. Times increase
+/// (validated), so the row is found by bisection: O(log n) a step for a table of any length.
 fn interp<T: Copy>(rows: &[(f64, T)], t: f64, lerp: impl Fn(T, T, f64) -> T) -> T {
     if t <= rows[0].0 {
         return rows[0].1;
     }
-    for w in rows.windows(2) {
-        if t <= w[1].0 {
-            let s = (t - w[0].0) / (w[1].0 - w[0].0);
-            return lerp(w[0].1, w[1].1, s);
-        }
+    // The first row at or after t; rows[k - 1].0 < t <= rows[k].0.
+    let k = rows.partition_point(|r| r.0 < t);
+    if k >= rows.len() {
+        return rows[rows.len() - 1].1;
     }
-    rows[rows.len() - 1].1
+    let (a, b) = (rows[k - 1], rows[k]);
+    lerp(a.1, b.1, (t - a.0) / (b.0 - a.0))
 }
 
 pub fn sample2(p: &Profile<V2>, t: f64) -> V2 {

@@ -2,7 +2,7 @@
 
 use super::{
     body_def, dynamic_body, framed, misconfigured, result, scale_or, subject_of, subject_set,
-    substeps, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
+    textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::FrameAnalysis;
@@ -39,7 +39,7 @@ pub(super) fn kinetic_energy_g(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
             def: def.clone(),
             name: b.name.clone(),
             mass: textbook_mass(b),
-            substeps: substeps(level),
+            substeps: 1,
             index: None,
             history: Vec::with_capacity(2),
             worst: Worst::default(),
@@ -67,6 +67,8 @@ struct KineticEnergyG {
 
 impl Probe for KineticEnergyG {
     fn observe(&mut self, s: &Snapshot) {
+        // The step's substeps as the engine ran them (overrides included).
+        self.substeps = s.substeps.max(1);
         let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
             return;
         };
@@ -348,33 +350,30 @@ pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         },
         None => None,
     };
-    framed(
-        level,
-        WorkEnergy {
-            def: def.clone(),
-            level_joints: level
-                .joints
-                .iter()
-                .map(|j| (j.name.clone(), j.kind, v2(j.axis)))
-                .collect(),
-            stiffness: level.springs.iter().map(|s| s.stiffness).collect(),
-            body,
-            index: None,
-            set: BodySet::default(),
-            springs_before: Vec::new(),
-            e0: None,
-            u_nc: 0.0,
-            by_source: [0.0; 6],
-            worst: Worst::default(),
-            scale: 0.0,
-            v_g0: 0.0,
-            v_e0: 0.0,
-            last: (0.0, 0.0),
-            residual: Vec::new(),
-            crossings: Vec::new(),
-            last_omega: 0.0,
-        },
-    )
+    framed(WorkEnergy {
+        def: def.clone(),
+        level_joints: level
+            .joints
+            .iter()
+            .map(|j| (j.name.clone(), j.kind, v2(j.axis)))
+            .collect(),
+        stiffness: level.springs.iter().map(|s| s.stiffness).collect(),
+        body,
+        index: None,
+        set: BodySet::default(),
+        springs_before: Vec::new(),
+        e0: None,
+        u_nc: 0.0,
+        by_source: [0.0; 6],
+        worst: Worst::default(),
+        scale: 0.0,
+        v_g0: 0.0,
+        v_e0: 0.0,
+        last: (0.0, 0.0),
+        residual: Vec::new(),
+        crossings: Vec::new(),
+        last_omega: 0.0,
+    })
 }
 
 /// Indices into `WorkEnergy::by_source`.

@@ -2,7 +2,7 @@
 
 use super::momentum::pivot_of;
 use super::{
-    dynamic_body, framed, misconfigured, result, scale_or, subject_of, substeps, textbook_mass, v2,
+    dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass, v2,
     FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::FrameAnalysis;
@@ -40,31 +40,27 @@ use glam::DVec2;
 /// is where the diagram puts gravity). Error relative to F_s L_P, L_P the larger of k_G and
 /// |r_G - r_P|.
 ///
-/// Known engine limitation: a joint's reaction is read from its last substep (`sim::joints`),
-/// so when the reaction changes within the step the diagram is off by O(h) dJ/dt; an impulsive
-/// reaction in the first substep (a strike on a pinned body with substeps > 1) is missed entirely.
-/// About the pin (`point`) the reaction drops out, and with it this limitation.
+/// A joint's reaction is summed over every substep (split substeps, `sim::Settings`), so an
+/// impulsive reaction in the first substep (a strike on a pinned body) is in the diagram.
+/// About the pin (`point`) the reaction drops out altogether.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     match dynamic_body(level, def) {
-        Ok(b) => framed(
-            level,
-            NewtonEuler {
-                def: def.clone(),
-                name: b.name.clone(),
-                p: def.point.map(v2),
-                textbook: textbook_mass(b),
-                substeps: substeps(level),
-                pivot: None,
-                index: None,
-                f: Worst::default(),
-                m: Worst::default(),
-                mp: Worst::default(),
-                f_scale: 0.0,
-                rel: Worst::default(),
-                k_g: 0.0,
-                last: (0.0, 0.0),
-            },
-        ),
+        Ok(b) => framed(NewtonEuler {
+            def: def.clone(),
+            name: b.name.clone(),
+            p: def.point.map(v2),
+            textbook: textbook_mass(b),
+            substeps: 1,
+            pivot: None,
+            index: None,
+            f: Worst::default(),
+            m: Worst::default(),
+            mp: Worst::default(),
+            f_scale: 0.0,
+            rel: Worst::default(),
+            k_g: 0.0,
+            last: (0.0, 0.0),
+        }),
         Err(e) => misconfigured(def, e),
     }
 }
@@ -95,6 +91,8 @@ struct NewtonEuler {
 
 impl FrameProbe for NewtonEuler {
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
+        // The step's substeps as the engine ran them (overrides included).
+        self.substeps = s.substeps.max(1);
         let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
             return;
         };

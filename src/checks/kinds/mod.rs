@@ -44,23 +44,16 @@ pub(super) trait FrameProbe {
 /// alone (tests, tools) it runs its own frame pass.
 pub(super) struct Framed<P> {
     inner: P,
-    substeps: usize,
     own: Option<FrameAnalysis>,
 }
 
-pub(super) fn framed<P: FrameProbe + 'static>(level: &Level, inner: P) -> Box<dyn Probe> {
-    Box::new(Framed {
-        inner,
-        substeps: substeps(level),
-        own: None,
-    })
+pub(super) fn framed<P: FrameProbe + 'static>(inner: P) -> Box<dyn Probe> {
+    Box::new(Framed { inner, own: None })
 }
 
 impl<P: FrameProbe> Probe for Framed<P> {
     fn observe(&mut self, snap: &Snapshot) {
-        let fa = self
-            .own
-            .get_or_insert_with(|| FrameAnalysis::new(self.substeps));
+        let fa = self.own.get_or_insert_with(FrameAnalysis::new);
         fa.observe(snap);
         self.inner.observe_frame(snap, fa);
     }
@@ -92,21 +85,13 @@ pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     }
 }
 
-/// Substeps per physics step as the level sets them (rapier's `num_solver_iterations`).
-/// Needed where the integrator's substep structure enters a formula (gravity's point of
-/// action, velocities from positions). A `--substeps` override on the command line is not
-/// visible here (the snapshot does not carry it), which makes those O(h^2) corrections O(h).
-pub(super) fn substeps(level: &Level) -> usize {
-    level.world.substeps.max(1)
-}
-
 pub(super) fn body_def<'a>(level: &'a Level, name: &str) -> Option<&'a BodyDef> {
     level.bodies.iter().find(|b| b.name == name)
 }
 
 /// The textbook mass properties of a body (shape formula, level's mass/density/overrides).
 pub(super) fn textbook_mass(def: &BodyDef) -> MassProps {
-    crate::analysis::mass::of_body(def, crate::sim::DEFAULT_DENSITY)
+    crate::analysis::mass::of_body(def, crate::level::DEFAULT_DENSITY)
 }
 
 /// Everything a result needs beyond the level's check definition.

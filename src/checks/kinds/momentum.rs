@@ -61,24 +61,21 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
             "a scene-wide angular_momentum_fixed_point check needs `point: (x, y)`",
         );
     }
-    framed(
-        level,
-        AngularMomentumFixedPoint {
-            def: def.clone(),
-            body,
-            o: def.point.map(v2),
-            index: None,
-            set: BodySet::default(),
-            set_joints: Vec::new(),
-            worst: Worst::default(),
-            rel: Worst::default(),
-            scale_at_worst: 0.0,
-            max_moment: 0.0,
-            max_reaction_moment: 0.0,
-            last: (0.0, 0.0),
-            unresolved: None,
-        },
-    )
+    framed(AngularMomentumFixedPoint {
+        def: def.clone(),
+        body,
+        o: def.point.map(v2),
+        index: None,
+        set: BodySet::default(),
+        set_joints: Vec::new(),
+        worst: Worst::default(),
+        rel: Worst::default(),
+        scale_at_worst: 0.0,
+        max_moment: 0.0,
+        max_reaction_moment: 0.0,
+        last: (0.0, 0.0),
+        unresolved: None,
+    })
 }
 
 struct AngularMomentumFixedPoint {
@@ -240,23 +237,20 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         Ok(b) => b,
         Err(e) => return misconfigured(def, e),
     };
-    framed(
-        level,
-        ImpulseMomentum {
-            def: def.clone(),
-            body,
-            o: def.point.map(v2),
-            window: def.window.unwrap_or((0.0, f64::INFINITY)),
-            index: None,
-            resolved: false,
-            ledger: None,
-            g_worst: Worst::default(),
-            h_worst: Worst::default(),
-            g_scale: 0.0,
-            h_scale: 0.0,
-            last: (0.0, 0.0),
-        },
-    )
+    framed(ImpulseMomentum {
+        def: def.clone(),
+        body,
+        o: def.point.map(v2),
+        window: def.window.unwrap_or((0.0, f64::INFINITY)),
+        index: None,
+        resolved: false,
+        ledger: None,
+        g_worst: Worst::default(),
+        h_worst: Worst::default(),
+        g_scale: 0.0,
+        h_scale: 0.0,
+        last: (0.0, 0.0),
+    })
 }
 
 struct ImpulseMomentum {

@@ -2,8 +2,7 @@
 //! through the center of percussion (CP-2).
 
 use super::{
-    dynamic_body, misconfigured, result, scale_or, subject_of, substeps, textbook_mass, v2,
-    Summary, Worst,
+    dynamic_body, misconfigured, result, scale_or, subject_of, textbook_mass, v2, Summary, Worst,
 };
 use crate::analysis::kinetics::{for_each_external_impulse, gravity_point, Before, Source};
 use crate::analysis::mass::{parallel_axis, MassProps};
@@ -32,9 +31,9 @@ use glam::DVec2;
 /// sum M_Q from the free-body diagram; scale: the largest |sum M_O| of the run and m g q.
 ///
 /// The pin is the joint named by `other` (a joint, or the joint to the body `other`), else the
-/// body's first joint. O is `point` or that joint's anchor. Known engine limitation: joint
-/// impulses are read from the last substep, so with substeps > 1 the impulsive reaction (all in
-/// the first substep) is not seen; strike levels run with one substep.
+/// body's first joint. O is `point` or that joint's anchor. The joint's impulse is summed over
+/// every substep (split substeps, `sim::Settings`), so the impulsive reaction, which falls in the
+/// first substep, is seen at any number of substeps.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let b = match dynamic_body(level, def) {
         Ok(b) => b,
@@ -70,7 +69,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         name: b.name.clone(),
         joint: joint.name.clone(),
         mass: textbook_mass(b),
-        substeps: substeps(level),
+        substeps: 1,
         strikes,
         o: def.point.map(v2),
         index: None,
@@ -117,6 +116,8 @@ impl CenterOfPercussion {
 
 impl Probe for CenterOfPercussion {
     fn observe(&mut self, s: &Snapshot) {
+        // The step's substeps as the engine ran them (overrides included).
+        self.substeps = s.substeps.max(1);
         let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
             return;
         };
@@ -258,12 +259,6 @@ impl Probe for CenterOfPercussion {
         }
         if self.strikes > 0 && self.worst.samples == 0 {
             note += "; no strike step was seen";
-        }
-        if self.strikes > 0 && self.substeps > 1 {
-            note += &format!(
-                "; with {} substeps the joint reads only its last substep and misses the impulsive reaction",
-                self.substeps
-            );
         }
         result(
             &self.def,

@@ -2,9 +2,9 @@
 //! self-consistency pieces against a reference) and cost (timed stepping).
 
 use super::metrics;
-use crate::checks::questions::QuestionProbe;
-use crate::checks::{CheckResult, CheckSet};
+use crate::checks::CheckResult;
 use crate::level::{BodyKind, CheckKind, EventDef, Level, Profile, Scene};
+use crate::runner::Observers;
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
 use serde::Serialize;
@@ -70,6 +70,7 @@ impl Setting {
             substeps: Some(self.substeps),
             solver_iterations: Some(self.iterations),
             all_effects: self.all_effects,
+            substepping: None,
         }
     }
 
@@ -242,18 +243,10 @@ pub fn full_run(scene: &Scene, setting: &Setting) -> FullRun {
 fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
     let mut sim = E::build(scene, &setting.options());
     let level = &scene.level;
-    let mut probes = CheckSet::new(level);
-    let mut questions: Vec<QuestionProbe> = level
-        .questions
-        .iter()
-        .map(|q| QuestionProbe::for_level(level, q))
-        .collect();
+    let mut observers = Observers::new(level);
     let mut joint_drift: Option<f64> = None;
     let mut observe = |s: &Snapshot| {
-        probes.observe(s);
-        for q in questions.iter_mut() {
-            q.observe(s);
-        }
+        observers.observe(s);
         if let Some(d) = metrics::max_joint_separation(s, level) {
             joint_drift = Some(joint_drift.map_or(d, |m: f64| m.max(d)));
         }
@@ -276,8 +269,8 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
             ..FullRun::default()
         };
     }
-    let checks: Vec<CheckResult> = probes.finish().into_iter().filter(graded).collect();
-    let answers: Vec<_> = questions.into_iter().map(|q| q.finish(None)).collect();
+    let (checks, answers) = observers.finish(&Default::default());
+    let checks: Vec<CheckResult> = checks.into_iter().filter(graded).collect();
     let max = |it: &mut dyn Iterator<Item = f64>| {
         it.fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
     };

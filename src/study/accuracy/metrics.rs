@@ -59,7 +59,7 @@ fn massive<'a>(
 pub fn kinetic_energy(s: &Snapshot, m: &[MassProps]) -> f64 {
     massive(&s.bodies, m)
         .map(|(b, m, _)| {
-            0.5 * m.mass * b.velocity.length_squared() + 0.5 * m.inertia * b.omega * b.omega
+            crate::analysis::energy::kinetic_energy(m.mass, b.velocity, m.inertia, b.omega)
         })
         .sum()
 }

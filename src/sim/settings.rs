@@ -1,0 +1,120 @@
+//! The step's settings, resolved once.
+//!
+//! A level states its solver settings in `world`; the command line, the window's solver panel
+//! and the studies override some of them ([`Options`]). [`Settings::resolve`] folds the two into
+//! one record, in f64, when a [`Simulation`](crate::sim::Simulation) is built. From then on every
+//! consumer reads that record (through `Simulation::settings`) or the copy of the per-step
+//! values each [`Snapshot`](crate::snapshot::Snapshot) carries (`dt`, `substeps`): the engine,
+//! the checks and questions, the window's panels and both studies see the same numbers. Before
+//! this record existed, checks read the level's own `world.substeps` while the engine ran the
+//! override, so more accuracy could turn a pass into a failure.
+//!
+//! Like rapier's `IntegrationParameters`, it is one plain record of what a step does; unlike it,
+//! it is engine-independent (no rapier type) and names what the textbook analysis needs.
+
+use crate::level::{Effect, Level};
+use crate::sim::options::{Effects, Options};
+use serde::{Deserialize, Serialize};
+
+/// Floating-point precision of the engine (rapier2d or rapier2d-f64).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Precision {
+    F32,
+    F64,
+}
+
+impl Precision {
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+}
+
+/// How a step's substeps are taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Substepping {
+    /// One rapier call per step with `substeps` internal substeps (rapier's own TGS-soft loop).
+    Internal,
+    /// One rapier call per substep, each at dt/substeps with one internal substep. rigidlab then
+    /// sees every substep: springs are evaluated before each (so they integrate symplectically),
+    /// and joint impulses are summed over all of them (rapier keeps only the last substep's, so a
+    /// blow through a pin, whose reaction falls in the first substep, would be lost), with each
+    /// substep's joint rows rebuilt from the poses rapier built them from.
+    Split,
+}
+
+/// Every solver setting of a run, resolved from the level and the overrides.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Settings {
+    /// The physics step, s.
+    pub dt: f64,
+    /// Substeps per step (rapier's `num_solver_iterations`); h = dt / substeps.
+    pub substeps: usize,
+    /// Solver sweeps per substep (rapier's `num_internal_pgs_iterations`).
+    pub solver_iterations: usize,
+    pub precision: Precision,
+    pub substepping: Substepping,
+    /// The effects the world was built with (the level's, or all with `--all-effects`).
+    pub effects: Effects,
+    /// Contact stiffness, Hz (None: rapier's default).
+    pub contact_hz: Option<f64>,
+    pub allow_fast_rotation: bool,
+    /// rapier's `contact_recycling`: keep a pair's contact points and normal while the pair has
+    /// moved less than 5 cm since its last full narrow-phase update. Off: two bodies approaching
+    /// each other get the manifold rapier first computed within its prediction distance, whose
+    /// normal and lever arms are those of the approach, not of the impact (a wheel meeting a
+    /// curb 6.7 mm after the pair was first seen pivoted 1.5% too slowly).
+    pub contact_recycling: bool,
+}
+
+impl Settings {
+    /// Folds the overrides into the level's settings.
+    pub fn resolve(level: &Level, opts: &Options, precision: Precision) -> Settings {
+        let effects = Effects::of(level, opts.all_effects);
+        let substeps = opts.substeps.unwrap_or(level.world.substeps).max(1);
+        Settings {
+            dt: opts.dt.unwrap_or(level.world.dt),
+            substeps,
+            solver_iterations: opts
+                .solver_iterations
+                .unwrap_or(level.world.solver_iterations)
+                .max(1),
+            precision,
+            substepping: opts
+                .substepping
+                .unwrap_or_else(|| Self::substepping_for(level, &effects, substeps)),
+            effects,
+            contact_hz: level.world.contact_hz,
+            allow_fast_rotation: level.world.allow_fast_rotation,
+            contact_recycling: false,
+        }
+    }
+
+    /// Split substeps where rigidlab must see inside the step: springs (forces refreshed before
+    /// every substep) and joints or welds (their impulses summed over every substep). Scenes
+    /// with neither keep rapier's internal substeps, which cost less (one narrow phase a step).
+    fn substepping_for(level: &Level, effects: &Effects, substeps: usize) -> Substepping {
+        let springs = effects.has(Effect::Springs) && !level.springs.is_empty();
+        let welds = level
+            .events
+            .iter()
+            .any(|e| matches!(e, crate::level::EventDef::WeldOnContact { .. }));
+        let joints = effects.has(Effect::Joints) && (!level.joints.is_empty() || welds);
+        // With one substep a joint scene still takes this path: its rows are then rebuilt from the
+        // poses the step began with (from the poses at its end they are a step of motion off).
+        if (substeps > 1 && springs) || joints {
+            Substepping::Split
+        } else {
+            Substepping::Internal
+        }
+    }
+
+    /// The substep, s.
+    pub fn h(&self) -> f64 {
+        self.dt / self.substeps as f64
+    }
+}
