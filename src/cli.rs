@@ -196,18 +196,19 @@ fn check(
         passed: levels.iter().all(|l| l.passed),
         levels,
     };
-    if json {
-        report::print_json(&report);
-    } else {
-        print!("{}", report::table(&report));
-    }
-    if bad_input {
+    let code = if bad_input {
         ExitCode::from(BAD_INPUT)
     } else if report.passed {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
-    }
+    };
+    let text = if json {
+        report::json(&report)
+    } else {
+        report::table(&report)
+    };
+    report::print(&text, code)
 }
 
 fn failed(file: &std::path::Path, error: &str) -> LevelReport {
@@ -256,18 +257,18 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
     }
     match result {
         Ok(r) => {
-            print!(
-                "{}",
-                report::table(&Report {
-                    passed: r.passed,
-                    levels: vec![r.clone()]
-                })
-            );
-            if r.passed {
+            let code = if r.passed {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(1)
-            }
+            };
+            report::print(
+                &report::table(&Report {
+                    passed: r.passed,
+                    levels: vec![r],
+                }),
+                code,
+            )
         }
         Err(RunError::Level(e)) => bad(e),
         Err(e) => {

@@ -586,24 +586,22 @@ pub fn main(args: Args) -> ExitCode {
         passed: cases_out.iter().all(|c| c.passed),
         cases: cases_out,
     };
-    if args.json {
-        match serde_json::to_string_pretty(&report) {
-            Ok(s) => println!("{s}"),
-            Err(e) => eprintln!("cannot write the JSON report: {e}"),
-        }
-    } else {
-        print!("{}", table(&report));
-    }
     for u in &unjudged {
         eprintln!("note: {u} has no criteria in src/study/stability/cases.rs and was not run");
     }
-    if bad_input {
+    let code = if bad_input {
         ExitCode::from(2)
     } else if report.passed {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
-    }
+    };
+    let text = if args.json {
+        crate::report::json(&report)
+    } else {
+        table(&report)
+    };
+    crate::report::print(&text, code)
 }
 
 fn missing(spec: &cases::Spec, error: &str) -> CaseResult {
