@@ -1,5 +1,8 @@
-//! The command line's output: a closed pipe ends quietly, a full disk is an error.
+//! The command line's input and output: closed pipes and full disks, files that are not level
+//! files (FIFOs, devices, link loops, huge or non-UTF-8 files).
 
+use rigidlab::level::{self, MAX_LEVEL_BYTES};
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 fn rigidlab() -> Command {
@@ -20,6 +23,19 @@ fn run_to(args: &[&str], stdout: Stdio) -> (i32, String) {
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into(),
     )
+}
+
+/// A fresh folder for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rigidlab-io-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn mkfifo(path: &Path) {
+    let ok = Command::new("mkfifo").arg(path).status().unwrap().success();
+    assert!(ok, "mkfifo {}", path.display());
 }
 
 const FREE_FALL: &str = "levels/kinematics/free_fall.ron";
@@ -61,4 +77,92 @@ fn a_full_disk_is_an_error() {
         );
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn a_fifo_or_device_given_directly_is_refused() {
+    let fifo = temp_dir("fifo").join("level.ron");
+    mkfifo(&fifo);
+    for path in [fifo.to_str().unwrap(), "/dev/zero"] {
+        // Opening the FIFO or reading /dev/zero would never end; the refusal comes first.
+        let (code, err) = run_to(&["check", path], Stdio::null());
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("not a regular file"), "{err}");
+        let (code, err) = run_to(&["run", path], Stdio::null());
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("not a regular file"), "{err}");
+    }
+}
+
+#[test]
+fn a_folder_search_skips_fifos_and_follows_a_link_loop_once() {
+    let dir = temp_dir("search");
+    std::fs::copy(FREE_FALL, dir.join("free_fall.ron")).unwrap();
+    mkfifo(&dir.join("pipe.ron"));
+    std::os::unix::fs::symlink(&dir, dir.join("loop")).unwrap();
+    let found = level::find_files(std::slice::from_ref(&dir)).unwrap();
+    assert_eq!(found.files, vec![dir.join("free_fall.ron")]);
+    assert_eq!(found.skipped.len(), 2, "{:?}", found.skipped);
+    assert!(found
+        .skipped
+        .iter()
+        .any(|w| w.contains("pipe.ron") && w.contains("FIFO")));
+    assert!(found
+        .skipped
+        .iter()
+        .any(|w| w.contains("loop") && w.contains("already searched")));
+
+    let out = rigidlab()
+        .args(["check", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let (stdout, err) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert_eq!(out.status.code(), Some(0), "{stdout}{err}");
+    assert!(stdout.contains("1/1 levels passed"), "{stdout}");
+    assert!(err.contains("warning:") && err.contains("FIFO"), "{err}");
+}
+
+#[test]
+fn a_file_past_the_size_limit_is_refused() {
+    let path = temp_dir("size").join("huge.ron");
+    let f = std::fs::File::create(&path).unwrap();
+    f.set_len(MAX_LEVEL_BYTES + 1).unwrap();
+    let e = level::load(&path).unwrap_err();
+    assert!(e.to_string().contains("larger than 4 MiB"), "{e}");
+    assert!(!e.help.is_empty());
+    // At the limit it is read (and fails as RON, not as too big).
+    f.set_len(MAX_LEVEL_BYTES).unwrap();
+    let e = level::load(&path).unwrap_err();
+    assert!(!e.to_string().contains("larger than"), "{e}");
+}
+
+#[test]
+fn invalid_utf8_is_located_at_the_first_bad_byte() {
+    let mut bytes = std::fs::read(FREE_FALL).unwrap();
+    // Line 3, after two characters (one of them multi-byte, counted once).
+    let line3 = bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, &b)| b == b'\n')
+        .nth(1)
+        .unwrap()
+        .0
+        + 1;
+    bytes.splice(line3..line3, "é".bytes().chain([b'x', 0xff]));
+    let e = level::parse_bytes(Path::new("bad.ron"), &bytes).unwrap_err();
+    assert_eq!((e.line, e.col), (3, 3), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("bad.ron:3:3: error: invalid UTF-8 (byte 0xff)"),
+        "{e}"
+    );
+    // The same through a file and the binary.
+    let path = temp_dir("utf8").join("bad.ron");
+    std::fs::write(&path, &bytes).unwrap();
+    let (code, err) = run_to(&["check", path.to_str().unwrap()], Stdio::null());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("bad.ron:3:3: error: invalid UTF-8"), "{err}");
 }
