@@ -78,9 +78,21 @@ pub struct SolverArgs {
     /// Turn every effect stage on (colliders, CCD, sleeping, ...) to compare the cost.
     #[arg(long)]
     pub all_effects: bool,
+    /// Run even when steps x substeps x iterations x bodies is past the cost budget
+    /// (runner::COST_BUDGET), which otherwise refuses the run.
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 impl SolverArgs {
+    /// Refuses a run past the cost budget, unless `--allow-long`.
+    pub fn budget(&self, scene: &level::Scene, opts: &Options) -> Result<(), LevelError> {
+        if self.allow_long {
+            return Ok(());
+        }
+        runner::Cost::of(&scene.level, opts).within_budget(&scene.file)
+    }
+
     pub fn options(&self) -> Result<Options, String> {
         if let Some(dt) = self.dt {
             if !(dt.is_finite() && dt > 0.0 && dt <= 0.1) {
@@ -160,7 +172,11 @@ fn check(
     let mut bad_input = false;
     let mut levels = Vec::new();
     for f in &files {
-        match runner::run_file(f, &opts, &answers) {
+        let run = level::load(f)
+            .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
+            .map_err(RunError::Level)
+            .and_then(|scene| runner::run_scene(&scene, &opts, &answers, |_| {}));
+        match run {
             Ok(r) => levels.push(r),
             Err(RunError::Level(e)) => {
                 eprintln!("{e}");
@@ -231,7 +247,7 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let scene = match level::load(path) {
+    let scene = match level::load(path).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
         Ok(s) => s,
         Err(e) => return bad(e),
     };

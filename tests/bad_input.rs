@@ -383,6 +383,54 @@ mod cli {
         let (code, _, _) = rigidlab(&["check", "levels", "--answer", "v=abc"]);
         assert_eq!(code, 2);
     }
+
+    #[test]
+    fn a_tiny_step_is_refused_with_the_estimate() {
+        for cmd in ["check", "run"] {
+            let (code, _, err) =
+                rigidlab(&[cmd, "levels/kinematics/free_fall.ron", "--dt", "1e-300"]);
+            assert_eq!(code, 2, "{err}");
+            assert!(
+                err.contains("would cost 4.00e300")
+                    && err.contains("1.000e300 steps x 4 substeps")
+                    && err.contains("--allow-long"),
+                "{err}"
+            );
+        }
+        let (code, _, err) = rigidlab(&["study", "stability", "spinning_disc", "--dt", "1e-300"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--allow-long"), "{err}");
+    }
+}
+
+#[test]
+fn the_library_is_well_within_the_cost_budget() {
+    use rigidlab::runner::{Cost, COST_BUDGET};
+    let mut worst = (0.0, String::new());
+    for f in rigidlab::level::collect_files(&["levels".into()]).unwrap() {
+        let scene = rigidlab::level::load(&f).unwrap();
+        let cost = Cost::of(&scene.level, &Default::default());
+        if cost.total() > worst.0 {
+            worst = (cost.total(), f.display().to_string());
+        }
+    }
+    // stress/joint_grid_30: 600 steps x 16 substeps x 1 iteration x 900 bodies.
+    assert_eq!(worst, (8.64e6, "levels/stress/joint_grid_30.ron".into()));
+    assert!(worst.0 * 100.0 < COST_BUDGET);
+}
+
+#[test]
+fn allow_long_lifts_the_budget() {
+    let scene = rigidlab::level::load(Path::new("levels/kinematics/free_fall.ron")).unwrap();
+    let mut args = rigidlab::cli::SolverArgs {
+        dt: Some(1e-9),
+        ..Default::default()
+    };
+    let opts = args.options().unwrap();
+    let e = args.budget(&scene, &opts).unwrap_err();
+    assert!(e.to_string().contains("past the budget of 1e9"), "{e}");
+    args.allow_long = true;
+    args.budget(&scene, &opts).unwrap();
 }
 
 #[test]

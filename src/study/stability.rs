@@ -49,9 +49,13 @@ pub struct Args {
     /// Print the JSON report instead of the table.
     #[arg(long)]
     pub json: bool,
-    /// Run every case for 1e5 steps (recorded settings only).
+    /// Run every case for 1e5 steps (recorded settings only; implies --allow-long).
     #[arg(long)]
     pub long: bool,
+    /// Run even when a case's steps x substeps x iterations x bodies is past the cost budget
+    /// (runner::COST_BUDGET).
+    #[arg(long)]
+    pub allow_long: bool,
     /// Recorded settings only: skip the comparison runs at rapier's defaults.
     #[arg(long)]
     pub quick: bool,
@@ -541,6 +545,25 @@ pub fn main(args: Args) -> ExitCode {
         .iter()
         .map(|s| args.dir.join(format!("{}.ron", s.name)))
         .collect();
+    // The budget `check` and `run` apply, to the settings each case will run at.
+    if !(args.allow_long || args.long) {
+        for (s, p) in chosen.iter().zip(&paths) {
+            let Ok(scene) = level::load(p) else {
+                continue; // reported when the case runs
+            };
+            let set = plan.overrides.apply(&Settings::recorded(&scene, s));
+            let cost = crate::runner::Cost {
+                steps: (scene.level.world.duration / set.dt).round().max(1.0),
+                substeps: set.substeps,
+                iterations: set.iterations,
+                bodies: scene.level.bodies.len().max(1),
+            };
+            if let Err(e) = cost.within_budget(p) {
+                eprintln!("{e}");
+                return ExitCode::from(2);
+            }
+        }
+    }
     // Level files without a spec are reported, not silently skipped.
     let mut unjudged = Vec::new();
     if let Ok(files) = level::collect_files(std::slice::from_ref(&args.dir)) {
