@@ -67,7 +67,7 @@ pub enum Command {
 #[derive(Args, Debug, Clone, Default)]
 pub struct SolverArgs {
     /// Physics step, s.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Substeps per step (rapier's num_solver_iterations).
     #[arg(long)]
@@ -96,7 +96,9 @@ impl SolverArgs {
     pub fn options(&self) -> Result<Options, String> {
         if let Some(dt) = self.dt {
             if !(dt.is_finite() && dt > 0.0 && dt <= 0.1) {
-                return Err(format!("--dt {dt}: give a step between 0 and 0.1 s"));
+                return Err(format!(
+                    "error: --dt {dt}: the step must be greater than 0 and at most 0.1 s\n  help: e.g. --dt 0.004166 (1/240 s)"
+                ));
             }
         }
         for (flag, n) in [
@@ -104,7 +106,10 @@ impl SolverArgs {
             ("--iterations", self.iterations),
         ] {
             if n.is_some_and(|n| n == 0 || n > 1000) {
-                return Err(format!("{flag}: give a number from 1 to 1000"));
+                return Err(format!(
+                    "error: {flag} {}: out of range\n  help: give a number from 1 to 1000",
+                    n.unwrap_or(0)
+                ));
             }
         }
         Ok(Options {
@@ -139,7 +144,7 @@ pub fn main() -> ExitCode {
             json,
             answers,
             solver,
-        }) => check(&paths, json, answers.into_iter().collect(), &solver),
+        }) => check(&paths, json, answers, &solver),
         Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
         Some(Command::Play { level }) => play(level),
         Some(Command::Study { study }) => crate::study::main(study),
@@ -155,13 +160,21 @@ fn bad(e: impl std::fmt::Display) -> ExitCode {
 fn check(
     paths: &[PathBuf],
     json: bool,
-    answers: HashMap<String, f64>,
+    answer_list: Vec<(String, f64)>,
     solver: &SolverArgs,
 ) -> ExitCode {
     let opts = match solver.options() {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
+    let mut answers = HashMap::new();
+    for (id, v) in answer_list {
+        if let Some(first) = answers.insert(id.clone(), v) {
+            return bad(format!(
+                "error: --answer {id} is given twice ({first} and {v})\n  help: give one answer per question"
+            ));
+        }
+    }
     let files = match level::collect_files(paths) {
         Ok(f) => f,
         Err(e) => return bad(e),

@@ -124,7 +124,11 @@ pub fn run_scene(
             q.finish(answer)
         })
         .collect();
-    let passed = checks.iter().all(|c| c.passed) && questions.iter().all(|q| q.passed);
+    // A student's wrong answer fails the level as a wrong engine value would: graders read the exit code.
+    let passed = checks.iter().all(|c| c.passed)
+        && questions
+            .iter()
+            .all(|q| q.passed && q.student.as_ref().is_none_or(|s| s.passed));
     Ok(LevelReport {
         file: scene.file.display().to_string(),
         title: sim.level.title.clone(),

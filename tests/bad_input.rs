@@ -378,8 +378,15 @@ mod cli {
 
     #[test]
     fn bad_flag_values_exit_2() {
-        let (code, _, err) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--dt", "-1"]);
-        assert_eq!(code, 2, "{err}");
+        for cmd in ["check", "run"] {
+            let (code, _, err) = rigidlab(&[cmd, "levels/kinematics/free_fall.ron", "--dt", "-1"]);
+            assert_eq!(code, 2, "{err}");
+            // Read as a step, not as an unknown flag `-1`.
+            assert!(
+                err.contains("--dt -1: the step must be greater than 0"),
+                "{err}"
+            );
+        }
         let (code, _, _) = rigidlab(&["check", "levels", "--answer", "v=abc"]);
         assert_eq!(code, 2);
     }
@@ -400,6 +407,54 @@ mod cli {
         let (code, _, err) = rigidlab(&["study", "stability", "spinning_disc", "--dt", "1e-300"]);
         assert_eq!(code, 2, "{err}");
         assert!(err.contains("--allow-long"), "{err}");
+    }
+
+    #[test]
+    fn a_wrong_student_answer_fails_the_level() {
+        let (code, out, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--json",
+            "--answer",
+            "speed=4.0",
+        ]);
+        assert_eq!(code, 1, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["passed"], false);
+        let l = &v["levels"][0];
+        assert_eq!(l["passed"], false);
+        let q = l["questions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|q| q["id"] == "speed")
+            .unwrap();
+        // The engine's value still passes; the student's answer does not.
+        assert_eq!(q["passed"], true);
+        assert_eq!(q["student"]["answer"], 4.0);
+        assert_eq!(q["student"]["passed"], false);
+        // A right answer keeps exit 0.
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=9.81",
+        ]);
+        assert_eq!(code, 0, "{err}");
+    }
+
+    #[test]
+    fn an_answer_given_twice_is_bad_input() {
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=1",
+            "--answer",
+            "speed=9.81",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--answer speed is given twice"), "{err}");
     }
 }
 

@@ -65,7 +65,7 @@ pub struct Args {
     /// Only these cases (level file names without `.ron`).
     pub cases: Vec<String>,
     /// Try another step instead of the recorded one, s (to look for cheaper settings).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Try another number of substeps.
     #[arg(long)]
