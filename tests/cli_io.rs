@@ -1,5 +1,5 @@
 //! The command line's input and output: closed pipes and full disks, files that are not level
-//! files (FIFOs, devices, link loops, huge or non-UTF-8 files).
+//! files (FIFOs, devices, link loops, huge or non-UTF-8 files), an --out that cannot take files.
 
 use rigidlab::level::{self, MAX_LEVEL_BYTES};
 use std::path::{Path, PathBuf};
@@ -165,4 +165,30 @@ fn invalid_utf8_is_located_at_the_first_bad_byte() {
     let (code, err) = run_to(&["check", path.to_str().unwrap()], Stdio::null());
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("bad.ron:3:3: error: invalid UTF-8"), "{err}");
+}
+
+#[test]
+fn study_accuracy_checks_its_out_folder_before_the_sweep() {
+    // An existing regular file, and a folder that cannot be created under it. Either is refused
+    // at once (the sweep over every library level would take minutes).
+    for (out, needle) in [
+        ("README.md", "is a file, not a folder"),
+        ("README.md/plots", "cannot create the folder"),
+    ] {
+        let start = std::time::Instant::now();
+        let (code, err) = run_to(
+            &["study", "accuracy", "levels", "--out", out],
+            Stdio::null(),
+        );
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains(needle), "{err}");
+        assert!(
+            start.elapsed().as_secs() < 10,
+            "refused only after the sweep"
+        );
+    }
+    // A writable folder passes the check and is left without the probe file.
+    let dir = temp_dir("out").join("new");
+    rigidlab::study::accuracy::writable_folder(&dir).unwrap();
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
 }
