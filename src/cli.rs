@@ -67,7 +67,7 @@ pub enum Command {
 #[derive(Args, Debug, Clone, Default)]
 pub struct SolverArgs {
     /// Physics step, s.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Substeps per step (rapier's num_solver_iterations).
     #[arg(long)]
@@ -78,13 +78,27 @@ pub struct SolverArgs {
     /// Turn every effect stage on (colliders, CCD, sleeping, ...) to compare the cost.
     #[arg(long)]
     pub all_effects: bool,
+    /// Run even when steps x substeps x iterations x bodies is past the cost budget
+    /// (runner::COST_BUDGET), which otherwise refuses the run.
+    #[arg(long)]
+    pub allow_long: bool,
 }
 
 impl SolverArgs {
+    /// Refuses a run past the cost budget, unless `--allow-long`.
+    pub fn budget(&self, scene: &level::Scene, opts: &Options) -> Result<(), LevelError> {
+        if self.allow_long {
+            return Ok(());
+        }
+        runner::Cost::of(&scene.level, opts).within_budget(&scene.file)
+    }
+
     pub fn options(&self) -> Result<Options, String> {
         if let Some(dt) = self.dt {
             if !(dt.is_finite() && dt > 0.0 && dt <= 0.1) {
-                return Err(format!("--dt {dt}: give a step between 0 and 0.1 s"));
+                return Err(format!(
+                    "error: --dt {dt}: the step must be greater than 0 and at most 0.1 s\n  help: e.g. --dt 0.004166 (1/240 s)"
+                ));
             }
         }
         for (flag, n) in [
@@ -92,7 +106,10 @@ impl SolverArgs {
             ("--iterations", self.iterations),
         ] {
             if n.is_some_and(|n| n == 0 || n > 1000) {
-                return Err(format!("{flag}: give a number from 1 to 1000"));
+                return Err(format!(
+                    "error: {flag} {}: out of range\n  help: give a number from 1 to 1000",
+                    n.unwrap_or(0)
+                ));
             }
         }
         Ok(Options {
@@ -128,7 +145,7 @@ pub fn main() -> ExitCode {
             json,
             answers,
             solver,
-        }) => check(&paths, json, answers.into_iter().collect(), &solver),
+        }) => check(&paths, json, answers, &solver),
         Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
         Some(Command::Play { level }) => play(level),
         Some(Command::Study { study }) => crate::study::main(study),
@@ -144,13 +161,21 @@ fn bad(e: impl std::fmt::Display) -> ExitCode {
 fn check(
     paths: &[PathBuf],
     json: bool,
-    answers: HashMap<String, f64>,
+    answer_list: Vec<(String, f64)>,
     solver: &SolverArgs,
 ) -> ExitCode {
     let opts = match solver.options() {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
+    let mut answers = HashMap::new();
+    for (id, v) in answer_list {
+        if let Some(first) = answers.insert(id.clone(), v) {
+            return bad(format!(
+                "error: --answer {id} is given twice ({first} and {v})\n  help: give one answer per question"
+            ));
+        }
+    }
     let files = match level::collect_files(paths) {
         Ok(f) => f,
         Err(e) => return bad(e),
@@ -161,7 +186,11 @@ fn check(
     let mut bad_input = false;
     let mut levels = Vec::new();
     for f in &files {
-        match runner::run_file(f, &opts, &answers) {
+        let run = level::load(f)
+            .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
+            .map_err(RunError::Level)
+            .and_then(|scene| runner::run_scene(&scene, &opts, &answers, |_| {}));
+        match run {
             Ok(r) => levels.push(r),
             Err(RunError::Level(e)) => {
                 eprintln!("{e}");
@@ -197,18 +226,19 @@ fn check(
         passed: levels.iter().all(|l| l.passed),
         levels,
     };
-    if json {
-        report::print_json(&report);
-    } else {
-        print!("{}", report::table(&report));
-    }
-    if bad_input {
+    let code = if bad_input {
         ExitCode::from(BAD_INPUT)
     } else if report.passed {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
-    }
+    };
+    let text = if json {
+        report::json(&report)
+    } else {
+        report::table(&report)
+    };
+    report::print(&text, code)
 }
 
 fn failed(file: &std::path::Path, error: &str) -> LevelReport {
@@ -232,7 +262,7 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let scene = match level::load(path) {
+    let scene = match level::load(path).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
@@ -258,18 +288,18 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
     }
     match result {
         Ok(r) => {
-            print!(
-                "{}",
-                report::table(&Report {
-                    passed: r.passed,
-                    levels: vec![r.clone()]
-                })
-            );
-            if r.passed {
+            let code = if r.passed {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(1)
-            }
+            };
+            report::print(
+                &report::table(&Report {
+                    passed: r.passed,
+                    levels: vec![r],
+                }),
+                code,
+            )
         }
         Err(RunError::Level(e)) => bad(e),
         Err(e) => {

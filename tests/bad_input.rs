@@ -378,11 +378,114 @@ mod cli {
 
     #[test]
     fn bad_flag_values_exit_2() {
-        let (code, _, err) = rigidlab(&["check", "levels/kinematics/free_fall.ron", "--dt", "-1"]);
-        assert_eq!(code, 2, "{err}");
+        for cmd in ["check", "run"] {
+            let (code, _, err) = rigidlab(&[cmd, "levels/kinematics/free_fall.ron", "--dt", "-1"]);
+            assert_eq!(code, 2, "{err}");
+            // Read as a step, not as an unknown flag `-1`.
+            assert!(
+                err.contains("--dt -1: the step must be greater than 0"),
+                "{err}"
+            );
+        }
         let (code, _, _) = rigidlab(&["check", "levels", "--answer", "v=abc"]);
         assert_eq!(code, 2);
     }
+
+    #[test]
+    fn a_tiny_step_is_refused_with_the_estimate() {
+        for cmd in ["check", "run"] {
+            let (code, _, err) =
+                rigidlab(&[cmd, "levels/kinematics/free_fall.ron", "--dt", "1e-300"]);
+            assert_eq!(code, 2, "{err}");
+            assert!(
+                err.contains("would cost 4.00e300")
+                    && err.contains("1.000e300 steps x 4 substeps")
+                    && err.contains("--allow-long"),
+                "{err}"
+            );
+        }
+        let (code, _, err) = rigidlab(&["study", "stability", "spinning_disc", "--dt", "1e-300"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--allow-long"), "{err}");
+    }
+
+    #[test]
+    fn a_wrong_student_answer_fails_the_level() {
+        let (code, out, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--json",
+            "--answer",
+            "speed=4.0",
+        ]);
+        assert_eq!(code, 1, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["passed"], false);
+        let l = &v["levels"][0];
+        assert_eq!(l["passed"], false);
+        let q = l["questions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|q| q["id"] == "speed")
+            .unwrap();
+        // The engine's value still passes; the student's answer does not.
+        assert_eq!(q["passed"], true);
+        assert_eq!(q["student"]["answer"], 4.0);
+        assert_eq!(q["student"]["passed"], false);
+        // A right answer keeps exit 0.
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=9.81",
+        ]);
+        assert_eq!(code, 0, "{err}");
+    }
+
+    #[test]
+    fn an_answer_given_twice_is_bad_input() {
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=1",
+            "--answer",
+            "speed=9.81",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--answer speed is given twice"), "{err}");
+    }
+}
+
+#[test]
+fn the_library_is_well_within_the_cost_budget() {
+    use rigidlab::runner::{Cost, COST_BUDGET};
+    let mut worst = (0.0, String::new());
+    for f in rigidlab::level::collect_files(&["levels".into()]).unwrap() {
+        let scene = rigidlab::level::load(&f).unwrap();
+        let cost = Cost::of(&scene.level, &Default::default());
+        if cost.total() > worst.0 {
+            worst = (cost.total(), f.display().to_string());
+        }
+    }
+    // stress/joint_grid_30: 600 steps x 16 substeps x 1 iteration x 900 bodies.
+    assert_eq!(worst, (8.64e6, "levels/stress/joint_grid_30.ron".into()));
+    assert!(worst.0 * 100.0 < COST_BUDGET);
+}
+
+#[test]
+fn allow_long_lifts_the_budget() {
+    let scene = rigidlab::level::load(Path::new("levels/kinematics/free_fall.ron")).unwrap();
+    let mut args = rigidlab::cli::SolverArgs {
+        dt: Some(1e-9),
+        ..Default::default()
+    };
+    let opts = args.options().unwrap();
+    let e = args.budget(&scene, &opts).unwrap_err();
+    assert!(e.to_string().contains("past the budget of 1e9"), "{e}");
+    args.allow_long = true;
+    args.budget(&scene, &opts).unwrap();
 }
 
 #[test]

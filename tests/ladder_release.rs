@@ -8,7 +8,12 @@
 //!   t1 = integral from 0 to sqrt(sin(theta0)/3) of 2 du / (cos(theta) sqrt(3g/L)) (Simpson's rule).
 //!
 //! The run prints, for 60, 70 and 80 degrees and a series of dt, the engine's release height and
-//! time against these, and the test asserts what the numbers show (see the asserts' comments).
+//! time against these. A known gap, measured and not hidden: rapier's soft wall contact pushes in
+//! bursts as the wall force fades and stops early or late by a few percent, and the error does
+//! NOT fall with dt, nor with a 1000 Hz contact (60 degrees: -1.2e-2, +1.6e-4, +2.3e-3, +3.1e-2
+//! in height at dt = 1, 0.5, 0.25, 0.1 ms; 70 degrees: -1.7e-3, +1.7e-2, -6.9e-3, +2.9e-2;
+//! 80 degrees: +4.4e-3, -9.1e-4, +1.5e-2, +2.8e-2). The test holds the band the engine stays in
+//! (height within 3.5%, time within 2.5%), so a change that makes it worse is seen, and says so.
 
 use rigidlab::level;
 use rigidlab::runner;
@@ -65,7 +70,7 @@ fn engine(theta0: f64, dt: f64, contact_hz: Option<f64>) -> (f64, f64) {
 }
 
 #[test]
-fn the_ladder_leaves_its_wall_where_the_textbook_says() {
+fn the_ladder_leaves_its_wall_within_the_measured_band_of_the_textbook() {
     for deg in [60.0f64, 70.0, 80.0] {
         let th = deg.to_radians();
         let (h1, t1) = theory(th);
@@ -73,6 +78,14 @@ fn the_ladder_leaves_its_wall_where_the_textbook_says() {
         for hz in [None, Some(1000.0)] {
             for dt in [1e-3, 5e-4, 2.5e-4, 1e-4] {
                 let (h, t) = engine(th, dt, hz);
+                assert!(
+                    (h / h1 - 1.0).abs() < 3.5e-2,
+                    "{deg} deg, dt {dt}: height {h}"
+                );
+                assert!(
+                    (t / t1 - 1.0).abs() < 2.5e-2,
+                    "{deg} deg, dt {dt}: time {t}"
+                );
                 println!(
                     "  dt {dt:.1e} s, contact_hz {hz:?}: h = {h:.5} m ({:+.2e}), t = {t:.5} s ({:+.2e})",
                     h / h1 - 1.0,

@@ -75,6 +75,28 @@ fn twins(scene: &Scene) -> Vec<(String, Options)> {
     v
 }
 
+/// Pass-to-fail cases found by this test and not fixed yet, each with its numbers (open issues,
+/// named in the README's known gaps); the test fails on any other.
+const LISTED: &[(&str, &str)] = &[
+    // The block's G balance over a window: 8.5e-6 at 4 substeps, 1.36e-4 at 16 or at dt/4 against
+    // 1e-4 (1.1e-3 N s of 8 N s over [0.06, 0.82] s, while the block slides to rest).
+    (
+        "levels/energy/block_friction_work.ron",
+        "check impulse_momentum",
+    ),
+    // newton_euler's per-step scale F_s falls to 1e-4 N once body B coasts after the impact, and
+    // a 8e-5 N residual then reads as 1.0 relative: the scale is wrong for force-free steps.
+    ("levels/impact/central_impact.ron", "check newton_euler"),
+    // The pulley's alpha from its free-body diagram (sum M_G / I_G): 3.5e-4 from the answer at the
+    // level's settings, 2.2e-3 at 8 substeps or dt/2, while the engine's alpha stays at 1.3e-5:
+    // the coupling's impulses on the pulley are summed per substep and the pulley's axle does
+    // not feel the cable (issue: axle loads).
+    (
+        "levels/kinetics/classic_atwood_massive_pulley.ron",
+        "question alpha",
+    ),
+];
+
 #[test]
 fn more_accuracy_never_turns_a_pass_into_a_failure() {
     let scenes = library();

@@ -11,6 +11,7 @@ mod validate;
 pub use error::{LevelError, Locator};
 pub use format::*;
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// A level that parsed and validated, with the file it came from.
@@ -25,17 +26,100 @@ pub fn ron_options() -> ron::Options {
     ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
 }
 
-/// Reads, parses and validates a level file.
+/// The largest level file read, bytes: 15 times the library's largest (stress/joint_grid_30,
+/// 900 bodies and their joints in 273 KiB); it keeps a wrong path (a log, an image) from being
+/// read whole.
+pub const MAX_LEVEL_BYTES: u64 = 4 << 20;
+
+/// Reads, parses and validates a level file. Only regular files are read (a FIFO or a device
+/// would block or never end), and at most [`MAX_LEVEL_BYTES`] of them.
 pub fn load(path: &Path) -> Result<Scene, LevelError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let cannot = |e: std::io::Error| {
         LevelError::new(
             path,
             (0, 0),
             format!("cannot read the level file: {e}"),
-            "check the path and that the file is UTF-8 text",
+            "check the path and the file's permissions",
         )
-    })?;
-    parse(path, &text)
+    };
+    // stat before open: opening a FIFO would wait for a writer.
+    let meta = std::fs::metadata(path).map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(LevelError::new(
+            path,
+            (0, 0),
+            format!("not a regular file: {}", file_kind(&meta)),
+            "give a level file (.ron) or a folder of them",
+        ));
+    }
+    let too_big = || {
+        LevelError::new(
+            path,
+            (0, 0),
+            format!(
+                "the file is larger than {} MiB, the limit for a level",
+                MAX_LEVEL_BYTES >> 20
+            ),
+            "check that this is a level file (the library's largest, 900 bodies, is 273 KiB)",
+        )
+    };
+    if meta.len() > MAX_LEVEL_BYTES {
+        return Err(too_big());
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_LEVEL_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(cannot)?;
+    if bytes.len() as u64 > MAX_LEVEL_BYTES {
+        // It grew after the stat.
+        return Err(too_big());
+    }
+    parse_bytes(path, &bytes)
+}
+
+/// What a path that is not a regular file is, for messages.
+pub fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    let t = meta.file_type();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
+        } else if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        } else if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a folder"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// Parses and validates a level file's bytes: text that is not UTF-8 is an error at the line and
+/// column of the first bad byte.
+pub fn parse_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LevelError> {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => parse(path, text),
+        Err(e) => {
+            let valid = &bytes[..e.valid_up_to()];
+            // The valid prefix is UTF-8, so lines and columns count characters as elsewhere.
+            let valid = std::str::from_utf8(valid).expect("valid up to here");
+            let line = valid.matches('\n').count() + 1;
+            let col = valid[valid.rfind('\n').map_or(0, |i| i + 1)..]
+                .chars()
+                .count()
+                + 1;
+            Err(LevelError::new(
+                path,
+                (line, col),
+                format!("invalid UTF-8 (byte 0x{:02x})", bytes[e.valid_up_to()]),
+                "save the level as UTF-8 text",
+            ))
+        }
+    }
 }
 
 /// Parses and validates level text; `path` is only used in messages.
@@ -82,12 +166,33 @@ fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
     }
 }
 
-/// Every `*.ron` file under the given files and folders (recursively), sorted.
+/// Every `*.ron` file under the given files and folders (recursively), sorted. Warnings about
+/// what the search skipped go to stderr (see [`find_files`]).
 pub fn collect_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, LevelError> {
-    let mut out = Vec::new();
+    let found = find_files(paths)?;
+    for w in &found.skipped {
+        eprintln!("warning: {w}");
+    }
+    Ok(found.files)
+}
+
+/// The level files a search found, and what it skipped (with why).
+#[derive(Debug, Default)]
+pub struct Found {
+    pub files: Vec<PathBuf>,
+    pub skipped: Vec<String>,
+}
+
+/// Every `*.ron` file under the given files and folders (recursively), sorted. Paths given
+/// directly are kept as they are (`load` refuses what is not a regular file); inside folders, a
+/// `*.ron` that is not a regular file (a FIFO, a device, a broken link) is skipped, and a folder
+/// reached twice (a symlink loop, or given twice) is searched once.
+pub fn find_files(paths: &[PathBuf]) -> Result<Found, LevelError> {
+    let mut found = Found::default();
+    let mut seen = std::collections::HashSet::new();
     for p in paths {
         if p.is_dir() {
-            walk(p, &mut out).map_err(|e| {
+            walk(p, &mut seen, &mut found).map_err(|e| {
                 LevelError::new(
                     p,
                     (0, 0),
@@ -96,7 +201,7 @@ pub fn collect_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, LevelError> {
                 )
             })?;
         } else if p.exists() {
-            out.push(p.clone());
+            found.files.push(p.clone());
         } else {
             return Err(LevelError::new(
                 p,
@@ -106,18 +211,39 @@ pub fn collect_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, LevelError> {
             ));
         }
     }
-    Ok(out)
+    Ok(found)
 }
 
-fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+fn walk(
+    dir: &Path,
+    seen: &mut std::collections::HashSet<PathBuf>,
+    found: &mut Found,
+) -> std::io::Result<()> {
+    if !seen.insert(dir.canonicalize()?) {
+        found.skipped.push(format!(
+            "{}: a folder already searched (a link back up, or given twice), skipped",
+            dir.display()
+        ));
+        return Ok(());
+    }
     let mut entries: Vec<_> = std::fs::read_dir(dir)?.collect::<Result<_, _>>()?;
     entries.sort_by_key(|e| e.path());
     for e in entries {
         let p = e.path();
         if p.is_dir() {
-            walk(&p, out)?;
+            walk(&p, seen, found)?;
         } else if p.extension().is_some_and(|x| x == "ron") {
-            out.push(p);
+            match std::fs::metadata(&p) {
+                Ok(m) if m.is_file() => found.files.push(p),
+                Ok(m) => found.skipped.push(format!(
+                    "{}: {}, not a level file, skipped",
+                    p.display(),
+                    file_kind(&m)
+                )),
+                Err(e) => found
+                    .skipped
+                    .push(format!("{}: cannot read it ({e}), skipped", p.display())),
+            }
         }
     }
     Ok(())

@@ -6,6 +6,7 @@ use crate::snapshot::Snapshot;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
 /// `rigidlab check --json`: `{"passed", "levels": [...]}`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -299,8 +300,42 @@ impl CsvWriter {
     }
 }
 
-/// Writes JSON to stdout (a broken pipe is not an error worth a panic).
-pub fn print_json<T: Serialize>(value: &T) {
-    let text = serde_json::to_string_pretty(value).expect("reports serialize");
-    let _ = writeln!(std::io::stdout(), "{text}");
+/// A report as pretty JSON.
+pub fn json<T: Serialize>(value: &T) -> String {
+    serde_json::to_string_pretty(value).expect("reports serialize") + "\n"
+}
+
+/// Exit code of a command whose reader closed the pipe (`rigidlab check levels | head`): what a
+/// process killed by SIGPIPE reports in the shell (128 + 13), without a message.
+pub const CLOSED_PIPE: u8 = 141;
+
+/// Exit code of a command that could not write its output (a full disk, a closed file).
+pub const CANNOT_WRITE: u8 = 2;
+
+/// The one way commands print their output: writes `text` to stdout and flushes it, then ends with
+/// `code`. A closed pipe ends quietly with [`CLOSED_PIPE`]; any other write or flush error (e.g.
+/// `> /dev/full`) is reported on stderr and ends with [`CANNOT_WRITE`].
+pub fn print(text: &str, code: ExitCode) -> ExitCode {
+    match write_all_and_flush(&mut std::io::stdout().lock(), text) {
+        Ok(()) => code,
+        Err(e) => output_failed(&e),
+    }
+}
+
+fn write_all_and_flush(out: &mut impl Write, text: &str) -> std::io::Result<()> {
+    out.write_all(text.as_bytes())?;
+    out.flush()
+}
+
+/// The exit code for output that could not be written (see [`print`]).
+pub fn output_failed(e: &std::io::Error) -> ExitCode {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        return ExitCode::from(CLOSED_PIPE);
+    }
+    // stderr may be gone too; there is nowhere left to say so.
+    let _ = writeln!(
+        std::io::stderr(),
+        "error: cannot write the output: {e}\n  help: check that the disk is not full and the file or pipe is writable"
+    );
+    ExitCode::from(CANNOT_WRITE)
 }

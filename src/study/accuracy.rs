@@ -703,6 +703,11 @@ fn plot_file(name: &str, format: &str) -> String {
 }
 
 pub fn main(args: Args) -> ExitCode {
+    // Before the sweep, which takes minutes: an --out that cannot take the files.
+    if let Err(e) = writable_folder(&args.out) {
+        eprintln!("{e}");
+        return ExitCode::from(2);
+    }
     let paths = if args.levels.is_empty() {
         vec![PathBuf::from("levels")]
     } else {
@@ -717,10 +722,6 @@ pub fn main(args: Args) -> ExitCode {
     };
     if files.is_empty() {
         eprintln!("no level files (*.ron) found in the given paths");
-        return ExitCode::from(2);
-    }
-    if let Err(e) = std::fs::create_dir_all(&args.out) {
-        eprintln!("cannot create {}: {e}", args.out.display());
         return ExitCode::from(2);
     }
     let plan = if args.quick {
@@ -774,6 +775,25 @@ pub fn main(args: Args) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// Creates `dir` if missing and checks that a file can be written in it.
+pub fn writable_folder(dir: &Path) -> Result<(), String> {
+    let d = dir.display();
+    if dir.exists() && !dir.is_dir() {
+        return Err(format!(
+            "error: --out {d} is a file, not a folder\n  help: give a folder for accuracy.csv, the plots and summary.md (created if missing)"
+        ));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| {
+        format!("error: cannot create the folder {d}: {e}\n  help: give a folder you can write to")
+    })?;
+    let probe = dir.join(".rigidlab-write-test");
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(|e| {
+            format!("error: cannot write in {d}: {e}\n  help: give a folder you can write to")
+        })
 }
 
 fn write_csv(path: &Path, studies: &[LevelStudy]) -> Result<(), String> {

@@ -49,9 +49,13 @@ pub struct Args {
     /// Print the JSON report instead of the table.
     #[arg(long)]
     pub json: bool,
-    /// Run every case for 1e5 steps (recorded settings only).
+    /// Run every case for 1e5 steps (recorded settings only; implies --allow-long).
     #[arg(long)]
     pub long: bool,
+    /// Run even when a case's steps x substeps x iterations x bodies is past the cost budget
+    /// (runner::COST_BUDGET).
+    #[arg(long)]
+    pub allow_long: bool,
     /// Recorded settings only: skip the comparison runs at rapier's defaults.
     #[arg(long)]
     pub quick: bool,
@@ -61,7 +65,7 @@ pub struct Args {
     /// Only these cases (level file names without `.ron`).
     pub cases: Vec<String>,
     /// Try another step instead of the recorded one, s (to look for cheaper settings).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub dt: Option<f64>,
     /// Try another number of substeps.
     #[arg(long)]
@@ -541,6 +545,25 @@ pub fn main(args: Args) -> ExitCode {
         .iter()
         .map(|s| args.dir.join(format!("{}.ron", s.name)))
         .collect();
+    // The budget `check` and `run` apply, to the settings each case will run at.
+    if !(args.allow_long || args.long) {
+        for (s, p) in chosen.iter().zip(&paths) {
+            let Ok(scene) = level::load(p) else {
+                continue; // reported when the case runs
+            };
+            let set = plan.overrides.apply(&Settings::recorded(&scene, s));
+            let cost = crate::runner::Cost {
+                steps: (scene.level.world.duration / set.dt).round().max(1.0),
+                substeps: set.substeps,
+                iterations: set.iterations,
+                bodies: scene.level.bodies.len().max(1),
+            };
+            if let Err(e) = cost.within_budget(p) {
+                eprintln!("{e}");
+                return ExitCode::from(2);
+            }
+        }
+    }
     // Level files without a spec are reported, not silently skipped.
     let mut unjudged = Vec::new();
     if let Ok(files) = level::collect_files(std::slice::from_ref(&args.dir)) {
@@ -586,24 +609,22 @@ pub fn main(args: Args) -> ExitCode {
         passed: cases_out.iter().all(|c| c.passed),
         cases: cases_out,
     };
-    if args.json {
-        match serde_json::to_string_pretty(&report) {
-            Ok(s) => println!("{s}"),
-            Err(e) => eprintln!("cannot write the JSON report: {e}"),
-        }
-    } else {
-        print!("{}", table(&report));
-    }
     for u in &unjudged {
         eprintln!("note: {u} has no criteria in src/study/stability/cases.rs and was not run");
     }
-    if bad_input {
+    let code = if bad_input {
         ExitCode::from(2)
     } else if report.passed {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
-    }
+    };
+    let text = if args.json {
+        crate::report::json(&report)
+    } else {
+        table(&report)
+    };
+    crate::report::print(&text, code)
 }
 
 fn missing(spec: &cases::Spec, error: &str) -> CaseResult {

@@ -1,0 +1,194 @@
+//! The command line's input and output: closed pipes and full disks, files that are not level
+//! files (FIFOs, devices, link loops, huge or non-UTF-8 files), an --out that cannot take files.
+
+use rigidlab::level::{self, MAX_LEVEL_BYTES};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+fn rigidlab() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_rigidlab"));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+/// Runs with stdout sent to `stdout`; returns (exit code, stderr).
+fn run_to(args: &[&str], stdout: Stdio) -> (i32, String) {
+    let out = rigidlab()
+        .args(args)
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+/// A fresh folder for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rigidlab-io-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn mkfifo(path: &Path) {
+    let ok = Command::new("mkfifo").arg(path).status().unwrap().success();
+    assert!(ok, "mkfifo {}", path.display());
+}
+
+const FREE_FALL: &str = "levels/kinematics/free_fall.ron";
+
+/// Every command that prints, with output cheap enough to produce in a test.
+const PRINTING: &[&[&str]] = &[
+    &["check", FREE_FALL],
+    &["check", FREE_FALL, "--json"],
+    &["run", FREE_FALL],
+    &["study", "stability", "spinning_disc", "--quick"],
+    &["study", "stability", "spinning_disc", "--quick", "--json"],
+];
+
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    // `rigidlab check levels | head -1`: the reader is gone before rigidlab writes (closed before
+    // the start, so that the test does not race the child).
+    for args in PRINTING {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let (code, err) = run_to(args, Stdio::from(writer));
+        assert_eq!(code, 141, "{args:?}: {err}");
+        assert!(
+            err.is_empty(),
+            "{args:?}: a closed pipe is not worth a message: {err}"
+        );
+    }
+}
+
+#[test]
+fn a_full_disk_is_an_error() {
+    for args in PRINTING {
+        let full = std::fs::File::create("/dev/full").unwrap();
+        let (code, err) = run_to(args, Stdio::from(full));
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(
+            err.contains("cannot write the output") && err.contains("No space left"),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn a_fifo_or_device_given_directly_is_refused() {
+    let fifo = temp_dir("fifo").join("level.ron");
+    mkfifo(&fifo);
+    for path in [fifo.to_str().unwrap(), "/dev/zero"] {
+        // Opening the FIFO or reading /dev/zero would never end; the refusal comes first.
+        let (code, err) = run_to(&["check", path], Stdio::null());
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("not a regular file"), "{err}");
+        let (code, err) = run_to(&["run", path], Stdio::null());
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("not a regular file"), "{err}");
+    }
+}
+
+#[test]
+fn a_folder_search_skips_fifos_and_follows_a_link_loop_once() {
+    let dir = temp_dir("search");
+    std::fs::copy(FREE_FALL, dir.join("free_fall.ron")).unwrap();
+    mkfifo(&dir.join("pipe.ron"));
+    std::os::unix::fs::symlink(&dir, dir.join("loop")).unwrap();
+    let found = level::find_files(std::slice::from_ref(&dir)).unwrap();
+    assert_eq!(found.files, vec![dir.join("free_fall.ron")]);
+    assert_eq!(found.skipped.len(), 2, "{:?}", found.skipped);
+    assert!(found
+        .skipped
+        .iter()
+        .any(|w| w.contains("pipe.ron") && w.contains("FIFO")));
+    assert!(found
+        .skipped
+        .iter()
+        .any(|w| w.contains("loop") && w.contains("already searched")));
+
+    let out = rigidlab()
+        .args(["check", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let (stdout, err) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    assert_eq!(out.status.code(), Some(0), "{stdout}{err}");
+    assert!(stdout.contains("1/1 levels passed"), "{stdout}");
+    assert!(err.contains("warning:") && err.contains("FIFO"), "{err}");
+}
+
+#[test]
+fn a_file_past_the_size_limit_is_refused() {
+    let path = temp_dir("size").join("huge.ron");
+    let f = std::fs::File::create(&path).unwrap();
+    f.set_len(MAX_LEVEL_BYTES + 1).unwrap();
+    let e = level::load(&path).unwrap_err();
+    assert!(e.to_string().contains("larger than 4 MiB"), "{e}");
+    assert!(!e.help.is_empty());
+    // At the limit it is read (and fails as RON, not as too big).
+    f.set_len(MAX_LEVEL_BYTES).unwrap();
+    let e = level::load(&path).unwrap_err();
+    assert!(!e.to_string().contains("larger than"), "{e}");
+}
+
+#[test]
+fn invalid_utf8_is_located_at_the_first_bad_byte() {
+    let mut bytes = std::fs::read(FREE_FALL).unwrap();
+    // Line 3, after two characters (one of them multi-byte, counted once).
+    let line3 = bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, &b)| b == b'\n')
+        .nth(1)
+        .unwrap()
+        .0
+        + 1;
+    bytes.splice(line3..line3, "é".bytes().chain([b'x', 0xff]));
+    let e = level::parse_bytes(Path::new("bad.ron"), &bytes).unwrap_err();
+    assert_eq!((e.line, e.col), (3, 3), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("bad.ron:3:3: error: invalid UTF-8 (byte 0xff)"),
+        "{e}"
+    );
+    // The same through a file and the binary.
+    let path = temp_dir("utf8").join("bad.ron");
+    std::fs::write(&path, &bytes).unwrap();
+    let (code, err) = run_to(&["check", path.to_str().unwrap()], Stdio::null());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("bad.ron:3:3: error: invalid UTF-8"), "{err}");
+}
+
+#[test]
+fn study_accuracy_checks_its_out_folder_before_the_sweep() {
+    // An existing regular file, and a folder that cannot be created under it. Either is refused
+    // at once (the sweep over every library level would take minutes).
+    for (out, needle) in [
+        ("README.md", "is a file, not a folder"),
+        ("README.md/plots", "cannot create the folder"),
+    ] {
+        let start = std::time::Instant::now();
+        let (code, err) = run_to(
+            &["study", "accuracy", "levels", "--out", out],
+            Stdio::null(),
+        );
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains(needle), "{err}");
+        assert!(
+            start.elapsed().as_secs() < 10,
+            "refused only after the sweep"
+        );
+    }
+    // A writable folder passes the check and is left without the probe file.
+    let dir = temp_dir("out").join("new");
+    rigidlab::study::accuracy::writable_folder(&dir).unwrap();
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+}
