@@ -37,8 +37,9 @@ const MIXED: &str = r#"Level(title: "every source", effects: [gravity, contacts,
     (name: "bar2", shape: Box(width: 0.05, height: 0.8), mass: 0.5, position: (2.3, 1.9), angle: 1.2),
   ],
   joints: [
-    (name: "j1", kind: revolute, body1: "pin", body2: "bar", anchor2: (0.0, 0.4)),
-    (name: "j2", kind: revolute, body1: "bar", body2: "bar2", anchor1: (0.0, -0.4), anchor2: (0.0, 0.4)),
+    // The pins start a few cm open (the scene tests the pass, whatever the joints do).
+    (name: "j1", kind: revolute, body1: "pin", body2: "bar", anchor2: (0.0, 0.4), starts_apart: true),
+    (name: "j2", kind: revolute, body1: "bar", body2: "bar2", anchor1: (0.0, -0.4), anchor2: (0.0, 0.4), starts_apart: true),
   ],
   springs: [
     (name: "ab", body1: "a", point1: (0.2, 0.1), body2: "b", stiffness: 80.0, rest_length: 0.6),
