@@ -106,7 +106,9 @@ impl Settings {
         let joints = effects.has(Effect::Joints) && (!level.joints.is_empty() || welds);
         // With one substep a joint scene still takes this path: its rows are then rebuilt from the
         // poses the step began with (from the poses at its end they are a step of motion off).
-        if (substeps > 1 && springs) || joints {
+        // It costs 3.6x to 6.3x rapier's internal substeps (one pipeline call per substep:
+        // tests/substepping_cost.rs), so a joint scene pays it only when it reads joint impulses.
+        if (substeps > 1 && springs) || (joints && reads_joint_impulses(level)) {
             Substepping::Split
         } else {
             Substepping::Internal
@@ -117,4 +119,34 @@ impl Settings {
     pub fn h(&self) -> f64 {
         self.dt / self.substeps as f64
     }
+}
+
+/// Whether a level's checks or questions read joint impulses: the checks built on the free-body
+/// diagram, and the quantities that are a joint's reaction, a motor's torque, or an acceleration
+/// whose analysis is the free-body diagram's sum.
+fn reads_joint_impulses(level: &Level) -> bool {
+    use crate::level::{CheckKind as K, Quantity as Q};
+    level.checks.iter().any(|c| {
+        matches!(
+            c.kind,
+            K::NewtonEuler
+                | K::ImpulseMomentum
+                | K::AngularMomentumFixedPoint
+                | K::CenterOfPercussion
+                | K::WorkEnergy
+        )
+    }) || level.questions.iter().any(|q| {
+        matches!(
+            q.quantity,
+            Q::JointForce(_)
+                | Q::JointReaction { .. }
+                | Q::JointImpulse { .. }
+                | Q::MotorTorque { .. }
+                | Q::Ax(_)
+                | Q::Ay(_)
+                | Q::Accel(_)
+                | Q::Alpha(_)
+                | Q::PointAccel { .. }
+        )
+    })
 }
