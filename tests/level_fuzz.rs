@@ -148,7 +148,12 @@ fn apply(bytes: &mut Vec<u8>, e: &Edit) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 1500, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        // RIGIDLAB_FUZZ_CASES=340000 runs the three mutation properties 1e6 times in all.
+        cases: std::env::var("RIGIDLAB_FUZZ_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(1500),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn edited_levels_never_panic(level in any::<prop::sample::Index>(),
