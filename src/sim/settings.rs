@@ -95,8 +95,8 @@ impl Settings {
     }
 
     /// Split substeps where rigidlab must see inside the step: springs (forces refreshed before
-    /// every substep) and joints or welds (their impulses summed over every substep). Scenes
-    /// with neither keep rapier's internal substeps, which cost less (one narrow phase a step).
+    /// every substep) and joints or welds whose impulses a check or question reads (summed over
+    /// every substep). Other scenes keep rapier's internal substeps, which cost less.
     fn substepping_for(level: &Level, effects: &Effects, substeps: usize) -> Substepping {
         let springs = effects.has(Effect::Springs) && !level.springs.is_empty();
         let welds = level

@@ -241,7 +241,6 @@ impl Simulation {
         // see only the forces set before its step: a spring held over n > 1 substeps is not
         // symplectic and gains energy, x2.5e4 in 10 s at omega dt = 0.5 with 4 substeps), and
         // contact and joint impulses are summed over the n calls into the step's snapshot.
-
         let n = self.substeps().max(1);
         let split = self.settings.substepping == Substepping::Split;
         let calls = if split { n } else { 1 };
