@@ -17,7 +17,7 @@ use crate::sim::options::{Effects, Options};
 use serde::{Deserialize, Serialize};
 
 /// Floating-point precision of the engine (rapier2d or rapier2d-f64).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
     F32,

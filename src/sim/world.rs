@@ -286,26 +286,7 @@ impl Simulation {
             for (l, x) in lambdas.iter_mut().zip(self.solve_couplings()) {
                 *l += x;
             }
-            if let Some(mut poses) = rows_from {
-                // Mass properties do not change, but rapier refreshes a body's effective inverse
-                // mass and inertia only inside a step (before the first step they are stale).
-                for (p, h) in poses.iter_mut().zip(&self.joints) {
-                    let j = self
-                        .world
-                        .impulse_joints
-                        .get(*h)
-                        .expect("joint handles stay valid");
-                    let now1 = joints::BodyMetric::of(&self.world.bodies[j.body1()]);
-                    let now2 = joints::BodyMetric::of(&self.world.bodies[j.body2()]);
-                    p.metric1 = joints::BodyMetric {
-                        com: p.metric1.com,
-                        ..now1
-                    };
-                    p.metric2 = joints::BodyMetric {
-                        com: p.metric2.com,
-                        ..now2
-                    };
-                }
+            if let Some(poses) = rows_from {
                 self.read_contacts();
                 merge_contacts(&mut contact_sum, &self.snapshot.contacts);
                 self.read_joints_scaled(1.0, Some(&poses));
@@ -513,7 +494,7 @@ impl Simulation {
         self.read_joints_scaled(self.substeps() as f64, None);
     }
 
-    /// Each joint's two bodies' poses and metrics now, before a rapier call builds its rows.
+    /// Each joint's two bodies' poses and mass centers now, before a rapier call builds its rows.
     fn joint_poses(&self) -> Vec<JointPoses> {
         self.joints
             .iter()
@@ -527,8 +508,8 @@ impl Simulation {
                 JointPoses {
                     pose1: *rb1.position(),
                     pose2: *rb2.position(),
-                    metric1: joints::BodyMetric::of(rb1),
-                    metric2: joints::BodyMetric::of(rb2),
+                    com1: to_d(rb1.center_of_mass()),
+                    com2: to_d(rb2.center_of_mass()),
                 }
             })
             .collect()
@@ -551,14 +532,16 @@ impl Simulation {
                 &self.world.bodies[self.bodies[i1]],
                 &self.world.bodies[self.bodies[i2]],
             );
+            // Mass properties do not change within a call (rapier refreshes a body's effective
+            // inverse mass and inertia inside its step), so they are read now; only the poses and
+            // G are the call's start.
+            let (mut m1, mut m2) = (joints::BodyMetric::of(rb1), joints::BodyMetric::of(rb2));
             let r = match rows_from.and_then(|p| p.get(k)) {
                 Some(p) => {
-                    joints::last_substep_reaction(j, &p.pose1, &p.pose2, &p.metric1, &p.metric2)
+                    (m1.com, m2.com) = (p.com1, p.com2);
+                    joints::last_substep_reaction(j, &p.pose1, &p.pose2, &m1, &m2)
                 }
-                None => {
-                    let (m1, m2) = (joints::BodyMetric::of(rb1), joints::BodyMetric::of(rb2));
-                    joints::last_substep_reaction(j, rb1.position(), rb2.position(), &m1, &m2)
-                }
+                None => joints::last_substep_reaction(j, rb1.position(), rb2.position(), &m1, &m2),
             };
             let frame1 = *rb1.position() * j.data.local_frame1;
             let frame2 = *rb2.position() * j.data.local_frame2;
@@ -664,12 +647,13 @@ impl Simulation {
     }
 }
 
-/// The poses and metrics a rapier call built one joint's rows from.
+/// The poses a rapier call built one joint's rows from.
 struct JointPoses {
     pose1: Pose,
     pose2: Pose,
-    metric1: joints::BodyMetric,
-    metric2: joints::BodyMetric,
+    /// The two bodies' mass centers (world), from which rapier measured the rows' lever arms.
+    com1: DVec2,
+    com2: DVec2,
 }
 
 /// Wraps an angle difference to (-pi, pi].

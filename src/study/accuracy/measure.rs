@@ -7,25 +7,10 @@ use crate::level::{BodyKind, CheckKind, EventDef, Level, Profile, Scene};
 use crate::runner::Observers;
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
-use serde::Serialize;
 use std::time::{Duration, Instant};
 
-/// Floating-point precision of the engine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Precision {
-    F32,
-    F64,
-}
-
-impl Precision {
-    pub fn name(self) -> &'static str {
-        match self {
-            Precision::F32 => "f32",
-            Precision::F64 => "f64",
-        }
-    }
-}
+/// The engine precision the sweep varies: the simulation stage's own.
+pub use crate::sim::Precision;
 
 /// One point of the sweep: the solver knobs.
 #[derive(Debug, Clone, Copy, PartialEq)]
