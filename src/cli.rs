@@ -5,7 +5,9 @@ use crate::report::{self, CsvWriter, LevelReport, Report};
 use crate::runner::{self, RunError};
 use crate::sim::Options;
 use clap::{Args, Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::HashMap;
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -154,7 +156,7 @@ pub fn main() -> ExitCode {
 }
 
 fn bad(e: impl std::fmt::Display) -> ExitCode {
-    eprintln!("{e}");
+    stderr!("{e}");
     ExitCode::from(BAD_INPUT)
 }
 
@@ -186,19 +188,26 @@ fn check(
     let mut bad_input = false;
     let mut levels = Vec::new();
     for f in &files {
-        let run = level::load(f)
+        let run = load_warned(f)
             .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
             .map_err(RunError::Level)
-            .and_then(|scene| runner::run_scene(&scene, &opts, &answers, |_| {}));
+            .and_then(|scene| {
+                let bar = progress_bar(&scene, &opts);
+                let r = runner::run_scene(&scene, &opts, &answers, |s| tick(&bar, s.step));
+                if let Some(b) = bar {
+                    b.finish_and_clear();
+                }
+                r
+            });
         match run {
             Ok(r) => levels.push(r),
             Err(RunError::Level(e)) => {
-                eprintln!("{e}");
+                stderr!("{e}");
                 bad_input = true;
                 levels.push(failed(f, &e.to_string()));
             }
             Err(e @ RunError::Sim { .. }) => {
-                eprintln!("{e}");
+                stderr!("{e}");
                 levels.push(failed(f, &e.to_string()));
             }
         }
@@ -215,7 +224,7 @@ fn check(
         .collect();
     if !unknown.is_empty() {
         unknown.sort_unstable();
-        eprintln!(
+        stderr!(
             "error: --answer names no question in the levels run: {}\n  help: the questions are: {}",
             unknown.join(", "),
             if asked.is_empty() { "(none)".to_string() } else { asked.join(", ") }
@@ -241,6 +250,41 @@ fn check(
     report::print(&text, code)
 }
 
+/// Loads a level and prints its warnings (legal but probably not meant) to stderr.
+fn load_warned(path: &std::path::Path) -> Result<level::Scene, LevelError> {
+    let (scene, warnings) = level::load_with_warnings(path)?;
+    for w in warnings {
+        stderr!("{w}");
+    }
+    Ok(scene)
+}
+
+/// Runs estimated to take longer than this many body-iterations (about 5 s at the 0.25 us per
+/// body-iteration measured for runner::COST_BUDGET) show a progress bar.
+const PROGRESS_FROM: f64 = 2e7;
+
+/// A progress bar with the steps and the estimated time for a long run, drawn only when stderr is
+/// a terminal: a pipe or a CI log stays silent.
+fn progress_bar(scene: &level::Scene, opts: &Options) -> Option<ProgressBar> {
+    let cost = runner::Cost::of(&scene.level, opts);
+    if cost.total() < PROGRESS_FROM || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::with_draw_target(Some(cost.steps as u64), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} steps  {elapsed} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message(scene.file.display().to_string());
+    Some(bar)
+}
+
+fn tick(bar: &Option<ProgressBar>, step: u64) {
+    if let Some(b) = bar {
+        b.set_position(step);
+    }
+}
+
 fn failed(file: &std::path::Path, error: &str) -> LevelReport {
     LevelReport {
         file: file.display().to_string(),
@@ -262,7 +306,7 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let scene = match level::load(path).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
+    let scene = match load_warned(path).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
@@ -271,13 +315,18 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
         Err(e) => return bad(format!("cannot write the CSV file: {e}")),
     };
     let mut io_error = None;
+    let bar = progress_bar(&scene, &opts);
     let result = runner::run_scene(&scene, &opts, &HashMap::new(), |s| {
+        tick(&bar, s.step);
         if let Some(w) = writer.as_mut() {
             if let Err(e) = w.write(s) {
                 io_error.get_or_insert(e);
             }
         }
     });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
     if let Some(w) = writer {
         if let Err(e) = w.finish() {
             io_error.get_or_insert(e);
@@ -303,7 +352,7 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
         }
         Err(RunError::Level(e)) => bad(e),
         Err(e) => {
-            eprintln!("{e}");
+            stderr!("{e}");
             ExitCode::from(1)
         }
     }
@@ -325,7 +374,7 @@ fn has_display() -> bool {
 #[cfg(feature = "app")]
 fn sandbox() -> ExitCode {
     if !has_display() {
-        eprintln!("{}", no_display_message());
+        stderr!("{}", no_display_message());
         return ExitCode::from(BAD_INPUT);
     }
     match crate::app::sandbox(PathBuf::from("levels"), None) {
@@ -340,7 +389,7 @@ fn play(level: PathBuf) -> ExitCode {
         return bad(e);
     }
     if !has_display() {
-        eprintln!("{}", no_display_message());
+        stderr!("{}", no_display_message());
         return ExitCode::from(BAD_INPUT);
     }
     match crate::app::sandbox(PathBuf::from("levels"), Some(level)) {

@@ -7,6 +7,15 @@
 //! `runner` drives one level through all stages headless; the Bevy sandbox (`app`,
 //! behind the `app` feature) is a thin shell over the same core.
 
+/// `eprintln!` that cannot panic: where stderr cannot take a message (`2>/dev/full`) it is
+/// dropped, and the exit code still says what happened (`eprintln!` would exit 101).
+macro_rules! stderr {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 pub mod analysis;
 pub mod checks;
 pub mod cli;

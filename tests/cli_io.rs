@@ -192,3 +192,73 @@ fn study_accuracy_checks_its_out_folder_before_the_sweep() {
     rigidlab::study::accuracy::writable_folder(&dir).unwrap();
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
 }
+
+/// A pile of bodies at one point with contacts on is legal but costs k(k-1)/2 contact pairs and
+/// blows apart: the command line warns at the first body's line, and still runs the level.
+#[test]
+fn coincident_bodies_are_warned_about_and_the_library_has_none() {
+    let discs: String = (0..12)
+        .map(|i| {
+            format!("    (name: \"d{i}\", shape: Circle(radius: 0.1), position: (0.0, 1.0)),\n")
+        })
+        .collect();
+    let text = format!(
+        "Level(\n  title: \"pile\",\n  effects: [gravity, contacts],\n  world: (dt: 0.01, substeps: 1, solver_iterations: 1, duration: 0.1),\n  bodies: [\n    (name: \"ground\", kind: fixed, shape: Box(width: 10.0, height: 0.2), position: (0.0, 0.0)),\n{discs}  ],\n)\n"
+    );
+    let path = temp_dir("pile").join("pile.ron");
+    std::fs::write(&path, &text).unwrap();
+    let (code, err) = run_to(&["check", path.to_str().unwrap()], Stdio::null());
+    assert_eq!(code, 0, "a warning does not fail the level: {err}");
+    assert!(
+        err.contains("pile.ron:7:12: warning: 12 bodies start at the same point (0, 1)")
+            && err.contains("66 contact pairs"),
+        "{err}"
+    );
+    // Joined by a pin, two coincident bodies do not collide: no warning.
+    let pinned = "Level(\n  title: \"pinned\",\n  effects: [gravity, contacts, joints],\n  world: (dt: 0.01, substeps: 1, solver_iterations: 1, duration: 0.1),\n  bodies: [\n    (name: \"d0\", kind: fixed, shape: Circle(radius: 0.1), position: (0.0, 1.0)),\n    (name: \"d1\", shape: Circle(radius: 0.1), position: (0.0, 1.0)),\n  ],\n  joints: [(name: \"pin\", kind: revolute, body1: \"d0\", body2: \"d1\")],\n)\n";
+    let (_, warnings) = level::load_with_warnings(&write(pinned, "pinned")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // Not pinned, the same two are warned about.
+    let loose = pinned
+        .replace(
+            "  joints: [(name: \"pin\", kind: revolute, body1: \"d0\", body2: \"d1\")],\n",
+            "",
+        )
+        .replace(", joints]", "]");
+    let (_, warnings) = level::load_with_warnings(&write(&loose, "loose")).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    // Without contacts nothing collides: no warning either.
+    let ghosts = text.replace("[gravity, contacts]", "[gravity]");
+    let (_, warnings) = level::load_with_warnings(&write(&ghosts, "ghosts")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // The library's levels (polygons written in world coordinates on bodies at the origin
+    // included) start apart.
+    let found = level::find_files(&[PathBuf::from("levels")]).unwrap();
+    for f in found.files {
+        let (_, warnings) = level::load_with_warnings(&f).unwrap();
+        assert!(warnings.is_empty(), "{}: {warnings:?}", f.display());
+    }
+}
+
+fn write(text: &str, name: &str) -> PathBuf {
+    let path = temp_dir(name).join(format!("{name}.ron"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A stderr that cannot take the message (a full disk) does not turn an error into a panic: the
+/// exit code still tells (2: bad input).
+#[test]
+fn a_full_stderr_keeps_the_exit_code() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = rigidlab()
+        .args(["check", "no/such/level.ron"])
+        .stdout(Stdio::null())
+        .stderr(full)
+        .status()
+        .unwrap();
+    assert_eq!(out.code(), Some(2));
+}

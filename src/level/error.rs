@@ -18,17 +18,34 @@ pub struct LevelError {
 
 impl fmt::Display for LevelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write(f, "error")
+    }
+}
+
+/// Something legal in a level but probably not meant: located and explained like an error, but
+/// the level still runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelWarning(pub LevelError);
+
+impl fmt::Display for LevelWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.write(f, "warning")
+    }
+}
+
+impl LevelError {
+    fn write(&self, f: &mut fmt::Formatter<'_>, severity: &str) -> fmt::Result {
         if self.line > 0 {
             write!(
                 f,
-                "{}:{}:{}: error: {}",
+                "{}:{}:{}: {severity}: {}",
                 self.file.display(),
                 self.line,
                 self.col,
                 self.message
             )?;
         } else {
-            write!(f, "{}: error: {}", self.file.display(), self.message)?;
+            write!(f, "{}: {severity}: {}", self.file.display(), self.message)?;
         }
         if !self.help.is_empty() {
             write!(f, "\n  help: {}", self.help)?;

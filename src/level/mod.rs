@@ -7,8 +7,9 @@
 mod error;
 pub mod format;
 mod validate;
+mod warnings;
 
-pub use error::{LevelError, Locator};
+pub use error::{LevelError, LevelWarning, Locator};
 pub use format::*;
 
 use std::io::Read;
@@ -34,6 +35,21 @@ pub const MAX_LEVEL_BYTES: u64 = 4 << 20;
 /// Reads, parses and validates a level file. Only regular files are read (a FIFO or a device
 /// would block or never end), and at most [`MAX_LEVEL_BYTES`] of them.
 pub fn load(path: &Path) -> Result<Scene, LevelError> {
+    parse_bytes(path, &read(path)?)
+}
+
+/// [`load`], with the warnings of a valid level (legal but probably not meant; see
+/// `level/warnings.rs`). The command line prints them before it runs the level.
+pub fn load_with_warnings(path: &Path) -> Result<(Scene, Vec<LevelWarning>), LevelError> {
+    let bytes = read(path)?;
+    let scene = parse_bytes(path, &bytes)?;
+    let text = std::str::from_utf8(&bytes).unwrap_or_default();
+    let warnings = warnings::find(path, text, &scene.level);
+    Ok((scene, warnings))
+}
+
+/// A level file's bytes: a regular file of at most [`MAX_LEVEL_BYTES`].
+fn read(path: &Path) -> Result<Vec<u8>, LevelError> {
     let cannot = |e: std::io::Error| {
         LevelError::new(
             path,
@@ -74,7 +90,7 @@ pub fn load(path: &Path) -> Result<Scene, LevelError> {
         // It grew after the stat.
         return Err(too_big());
     }
-    parse_bytes(path, &bytes)
+    Ok(bytes)
 }
 
 /// What a path that is not a regular file is, for messages.
@@ -171,7 +187,7 @@ fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
 pub fn collect_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, LevelError> {
     let found = find_files(paths)?;
     for w in &found.skipped {
-        eprintln!("warning: {w}");
+        stderr!("warning: {w}");
     }
     Ok(found.files)
 }

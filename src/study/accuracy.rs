@@ -658,7 +658,7 @@ pub fn run_study(
                 None => scenes.push(s),
             },
             Err(e) => {
-                progress.suspend(|| eprintln!("{e}"));
+                progress.suspend(|| stderr!("{e}"));
                 skipped.push((level_name(f), format!("does not load: {}", e.message)));
             }
         }
@@ -705,7 +705,7 @@ fn plot_file(name: &str, format: &str) -> String {
 pub fn main(args: Args) -> ExitCode {
     // Before the sweep, which takes minutes: an --out that cannot take the files.
     if let Err(e) = writable_folder(&args.out) {
-        eprintln!("{e}");
+        stderr!("{e}");
         return ExitCode::from(2);
     }
     let paths = if args.levels.is_empty() {
@@ -716,12 +716,12 @@ pub fn main(args: Args) -> ExitCode {
     let files = match level::collect_files(&paths) {
         Ok(f) => f,
         Err(e) => {
-            eprintln!("{e}");
+            stderr!("{e}");
             return ExitCode::from(2);
         }
     };
     if files.is_empty() {
-        eprintln!("no level files (*.ron) found in the given paths");
+        stderr!("no level files (*.ron) found in the given paths");
         return ExitCode::from(2);
     }
     let plan = if args.quick {
@@ -740,7 +740,7 @@ pub fn main(args: Args) -> ExitCode {
 
     let csv_path = args.out.join("accuracy.csv");
     if let Err(e) = write_csv(&csv_path, &studies) {
-        eprintln!("cannot write {}: {e}", csv_path.display());
+        stderr!("cannot write {}: {e}", csv_path.display());
         return ExitCode::from(2);
     }
     let mut plots = Vec::new();
@@ -748,16 +748,16 @@ pub fn main(args: Args) -> ExitCode {
         let file = plot_file(&st.name, &args.format);
         match summary::plot_level(st, &args.out.join(&file)) {
             Ok(()) => plots.push((st.name.clone(), file)),
-            Err(e) => eprintln!("{}: cannot draw the plot: {e}", st.name),
+            Err(e) => stderr!("{}: cannot draw the plot: {e}", st.name),
         }
     }
     let md = summary::markdown(&studies, &skipped, &plan, &plots);
     let md_path = args.out.join("summary.md");
     if let Err(e) = std::fs::write(&md_path, md) {
-        eprintln!("cannot write {}: {e}", md_path.display());
+        stderr!("cannot write {}: {e}", md_path.display());
         return ExitCode::from(2);
     }
-    eprintln!(
+    stderr!(
         "wrote {}, {} and {} plot(s) in {}",
         csv_path.display(),
         md_path.display(),
@@ -765,7 +765,7 @@ pub fn main(args: Args) -> ExitCode {
         args.out.display()
     );
     for (name, why) in &skipped {
-        eprintln!("skipped {name}: {why}");
+        stderr!("skipped {name}: {why}");
     }
     if skipped
         .iter()

@@ -486,7 +486,7 @@ fn planned_steps(path: &Path, spec: &cases::Spec, plan: &Plan) -> u64 {
 pub fn main(args: Args) -> ExitCode {
     let specs = cases::all();
     if !args.dir.is_dir() {
-        eprintln!(
+        stderr!(
             "{}: no such folder\n  help: run from the repository root, or give --dir levels/stress",
             args.dir.display()
         );
@@ -495,7 +495,7 @@ pub fn main(args: Args) -> ExitCode {
     for c in &args.cases {
         if !specs.iter().any(|s| s.name == c) {
             let names: Vec<_> = specs.iter().map(|s| s.name).collect();
-            eprintln!(
+            stderr!(
                 "unknown case \"{c}\"\n  help: use one of: {}",
                 names.join(", ")
             );
@@ -508,13 +508,13 @@ pub fn main(args: Args) -> ExitCode {
         .collect();
     if let Some(dt) = args.dt {
         if !(dt.is_finite() && dt > 0.0 && dt <= 0.1) {
-            eprintln!("--dt {dt}: give a step between 0 and 0.1 s");
+            stderr!("--dt {dt}: give a step between 0 and 0.1 s");
             return ExitCode::from(2);
         }
     }
     for hz in [args.contact_hz, args.joint_hz].into_iter().flatten() {
         if !(hz.is_finite() && hz > 0.0) {
-            eprintln!("--contact-hz/--joint-hz {hz}: give a positive frequency in Hz");
+            stderr!("--contact-hz/--joint-hz {hz}: give a positive frequency in Hz");
             return ExitCode::from(2);
         }
     }
@@ -523,7 +523,7 @@ pub fn main(args: Args) -> ExitCode {
         ("--iterations", args.iterations),
     ] {
         if n.is_some_and(|n| n == 0 || n > 1000) {
-            eprintln!("{flag}: give a number from 1 to 1000");
+            stderr!("{flag}: give a number from 1 to 1000");
             return ExitCode::from(2);
         }
     }
@@ -559,7 +559,7 @@ pub fn main(args: Args) -> ExitCode {
                 bodies: scene.level.bodies.len().max(1),
             };
             if let Err(e) = cost.within_budget(p) {
-                eprintln!("{e}");
+                stderr!("{e}");
                 return ExitCode::from(2);
             }
         }
@@ -599,7 +599,7 @@ pub fn main(args: Args) -> ExitCode {
         match r {
             Ok(c) => cases_out.push(c),
             Err(e) => {
-                eprintln!("{e}");
+                stderr!("{e}");
                 bad_input = true;
                 cases_out.push(missing(s, &e));
             }
@@ -610,7 +610,7 @@ pub fn main(args: Args) -> ExitCode {
         cases: cases_out,
     };
     for u in &unjudged {
-        eprintln!("note: {u} has no criteria in src/study/stability/cases.rs and was not run");
+        stderr!("note: {u} has no criteria in src/study/stability/cases.rs and was not run");
     }
     let code = if bad_input {
         ExitCode::from(2)

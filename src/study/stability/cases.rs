@@ -342,9 +342,11 @@ pub fn all() -> Vec<Spec> {
             not_default: &[],
             gaps: &[],
             settings_why: "at 4 substeps the links open by 62 cm under the ball (16 substeps: \
-                4.9 cm, 24: 2.2 cm, 32: 1.6 cm in 10 s; iterations help less per cost). The \
-                undamped swing is chaotic and rare whips open the joints further in long runs: \
-                over 1e5 steps 32 substeps reach 9.5 cm, 48: 6.1 cm, 64: 1.6 cm",
+                4.9 cm, 24: 2.2 cm, 32: 1.6 cm, 64: 4.5 mm, 96: 2.4 mm in 10 s). The undamped \
+                swing is chaotic and rare whips open the joints further in long runs: over 1e5 \
+                steps 64 substeps reach 3.9 cm, 96: 1.7 cm, 128: 1.1 cm; iterations help less per \
+                cost (64 substeps x 2 iterations: 2.9 cm, x 4: 1.6 cm at 1.14x the time of 96 \
+                substeps)",
         },
         Spec {
             name: "stretched_chain",
