@@ -494,6 +494,7 @@ fn snapshot(bodies: Vec<BodyState>, contacts: Vec<ContactState>, dt: f64) -> Sna
         time: dt,
         dt,
         substeps: 1,
+        precision: rigidlab::snapshot::Precision::F32,
         gravity: DVec2::new(0.0, -9.81),
         bodies,
         contacts,

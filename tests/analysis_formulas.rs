@@ -201,6 +201,7 @@ fn pair_contact_orients_the_normal_and_weights_the_point_by_impulse() {
         time: 0.1,
         dt: 0.1,
         substeps: 1,
+        precision: rigidlab::snapshot::Precision::F32,
         gravity: DVec2::ZERO,
         bodies: Vec::new(),
         contacts: vec![ContactState {

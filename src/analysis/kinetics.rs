@@ -501,6 +501,28 @@ pub fn newton_euler_residual(
     (sum_impulse / dt - m * a_g, sum_moment_g / dt - i_g * alpha)
 }
 
+/// What a step's finite differences can resolve in the engine's precision: rapier rounds a
+/// velocity v to about |v| eps at every update, a few updates per substep, so m dv over a step
+/// carries rounding of up to m (|v0| + |v1|) eps n and I dw up to I (|w0| + |w1|) eps n (n
+/// substeps). Divided by dt, these are the force and the moment about G that a free-body
+/// diagram cannot be held to: a body coasting force-free after an impact reads m a_G of that
+/// size against a diagram of zero. Returns (force, moment about G).
+pub fn finite_difference_resolution(
+    m: f64,
+    i_g: f64,
+    before: &Motion,
+    after: &Motion,
+    eps: f64,
+    substeps: usize,
+    dt: f64,
+) -> (f64, f64) {
+    let per = eps * substeps.max(1) as f64 / dt;
+    (
+        m * (before.velocity.length() + after.velocity.length()) * per,
+        i_g * (before.omega.abs() + after.omega.abs()) * per,
+    )
+}
+
 /// The kinetic-diagram moment about an arbitrary point P: I_G alpha + (rho x m a_G)_z with
 /// rho = r_G - r_P (6/2). Equal to sum M_P.
 pub fn kinetic_moment_about(m: f64, i_g: f64, alpha: f64, r_g: DVec2, a_g: DVec2, p: DVec2) -> f64 {

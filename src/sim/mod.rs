@@ -10,7 +10,7 @@
 
 pub(crate) use rapier2d as rapier;
 /// The precision this copy of the stage is compiled for.
-pub(crate) const PRECISION: settings::Precision = settings::Precision::F32;
+pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precision::F32;
 
 mod build;
 pub mod energy;
@@ -21,5 +21,6 @@ mod world;
 
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
-pub use settings::{Precision, Settings, Substepping};
+pub use crate::snapshot::Precision;
+pub use settings::{Settings, Substepping};
 pub use world::{sample1, sample2, Simulation};

@@ -13,25 +13,9 @@
 //! it is engine-independent (no rapier type) and names what the textbook analysis needs.
 
 use crate::level::{Effect, Level};
+use crate::snapshot::Precision;
 use crate::sim::options::{Effects, Options};
 use serde::{Deserialize, Serialize};
-
-/// Floating-point precision of the engine (rapier2d or rapier2d-f64).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Precision {
-    F32,
-    F64,
-}
-
-impl Precision {
-    pub fn name(self) -> &'static str {
-        match self {
-            Precision::F32 => "f32",
-            Precision::F64 => "f64",
-        }
-    }
-}
 
 /// How a step's substeps are taken.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

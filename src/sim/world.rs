@@ -77,6 +77,7 @@ impl Simulation {
                 time: 0.0,
                 dt: 0.0,
                 substeps: settings.substeps,
+                precision: settings.precision,
                 gravity: DVec2::new(world.gravity.x as f64, world.gravity.y as f64),
                 bodies: Vec::new(),
                 contacts: Vec::new(),
