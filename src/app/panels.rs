@@ -7,7 +7,6 @@ use super::overlays::Overlays;
 use super::physics::{LiveChecks, Physics, SeriesPoint};
 use super::tools::{Tool, ToolState};
 use super::view::{palette, View, WorldCamera};
-use crate::checks::questions::QuestionProbe;
 use crate::level::{self, BodyDef, BodyKind, Effect, Level, Scene, Shape};
 use crate::snapshot::Snapshot;
 use bevy::camera::visibility::RenderLayers;
@@ -544,7 +543,7 @@ fn fmt(x: f64) -> String {
     super::draw::si(x, "")
 }
 
-/// Grades a typed answer with the level's own rule (the core's QuestionProbe grading).
+/// Grades a typed answer with the level's own rule (the core's [`crate::questions::grade_answer`]).
 pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Result<(f64, f64, bool), String> {
     let v: f64 = text
         .trim()
@@ -554,10 +553,7 @@ pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Result<(f64, f64, boo
     if !v.is_finite() {
         return Err("give a finite number".into());
     }
-    let g = QuestionProbe::new(q)
-        .finish(Some(v))
-        .student
-        .expect("a student answer was given");
+    let g = crate::questions::grade_answer(q, v);
     Ok((g.answer, g.rel_error, g.passed))
 }
 
@@ -987,7 +983,7 @@ fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
 /// questions.
 pub fn study_error(
     checks: &[crate::checks::CheckResult],
-    answers: &[crate::checks::questions::QuestionResult],
+    answers: &[crate::questions::QuestionResult],
 ) -> (Option<f64>, Option<f64>) {
     let closed_form = crate::checks::kind_name(crate::level::CheckKind::ConstantAcceleration);
     // As the study: kinds that observed nothing are not graded.
