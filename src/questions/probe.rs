@@ -83,15 +83,14 @@ impl QuestionProbe {
     }
 
     pub fn observe(&mut self, s: &Snapshot) {
-        // The initial snapshot reports mass 0 and local_com 0 (rapier computes mass properties
-        // in the first step): take them from the first step, which leaves them unchanged.
         if s.step == 1 {
+            // The initial snapshot has its mass properties (the simulation sets them at build),
+            // but its mass centers are rapier's pose times local_com in f32, where every later
+            // snapshot's are computed in f64: recompute them in f64, so that the changes since
+            // the start (gravity's work, the pendulum's amplitude) carry no f32 round-off.
             if let Some(first) = self.hist.back_mut().filter(|f| f.step == 0) {
-                for (b0, b1) in first.bodies.iter_mut().zip(&s.bodies) {
-                    b0.mass = b1.mass;
-                    b0.inertia = b1.inertia;
-                    b0.local_com = b1.local_com;
-                    b0.com = b0.world_point(b1.local_com);
+                for b0 in first.bodies.iter_mut() {
+                    b0.com = b0.world_point(b0.local_com);
                 }
             }
             // The averaging window in steps, each side.
