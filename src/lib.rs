@@ -3,7 +3,8 @@
 //! Data flows one way, a module per stage:
 //! `level` (file -> validated scene) -> `sim` (rapier world with only the declared
 //! effects -> per-step [`snapshot::Snapshot`]) -> `analysis` (textbook quantities,
-//! pure functions) -> `checks` (theory against engine) -> `report` (table, JSON, CSV).
+//! pure functions) -> `checks` (theory against engine, every step) and `questions` (the
+//! exercise's answers, read at their moment) -> `report` (table, JSON, CSV).
 //! `runner` drives one level through all stages headless; the Bevy sandbox (`app`,
 //! behind the `app` feature) is a thin shell over the same core.
 
@@ -20,6 +21,7 @@ pub mod analysis;
 pub mod checks;
 pub mod cli;
 pub mod level;
+pub mod questions;
 pub mod report;
 pub mod runner;
 pub mod sim;

@@ -4,8 +4,8 @@
 //! Run with `cargo test --test analysis_gaps -- --nocapture` to see the figures the README quotes.
 
 use rigidlab::analysis::energy::{gravity_potential, kinetic_energy};
-use rigidlab::checks::questions::QuestionProbe;
 use rigidlab::level::{self, Scene};
+use rigidlab::questions::QuestionProbe;
 use rigidlab::sim::{Options, Simulation};
 use std::path::Path;
 

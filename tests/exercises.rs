@@ -9,8 +9,8 @@
 //! `cargo test --test exercises -- --nocapture` prints every question's expected, engine and
 //! analysis values.
 
-use rigidlab::checks::questions::{QuestionProbe, QuestionResult};
 use rigidlab::level::{self, Scene};
+use rigidlab::questions::{QuestionProbe, QuestionResult};
 use rigidlab::sim::{Options, Simulation};
 use std::path::{Path, PathBuf};
 

@@ -1,5 +1,5 @@
 //! Rigid-body kinematics (concepts.md section 5): body points, finite differences, the
-//! instantaneous center of zero velocity.
+//! instantaneous center of zero velocity (from omega, or from two points' velocity directions).
 
 use super::{cross, k_cross};
 use glam::DVec2;
@@ -66,6 +66,43 @@ pub fn instantaneous_center(
     }
 }
 
+/// The instantaneous center of zero velocity C from the velocity directions of two points of a
+/// body (RK-11, the graphical construction): the intersection of the normal to v_P at P with
+/// the normal to v_Q at Q. A point with (near) zero velocity is itself the center. `None` when
+/// the normals are parallel (the body translates) or both points are at rest.
+pub fn instantaneous_center_from_two_points(
+    p: DVec2,
+    v_p: DVec2,
+    q: DVec2,
+    v_q: DVec2,
+) -> Option<DVec2> {
+    let scale = v_p.length().max(v_q.length());
+    if scale == 0.0 {
+        return None;
+    }
+    if v_q.length() < 1e-9 * scale {
+        return Some(q);
+    }
+    if v_p.length() < 1e-9 * scale {
+        return Some(p);
+    }
+    // P + s perp(v_p) = Q + u perp(v_q).
+    let (a, b) = (v_p.perp(), v_q.perp());
+    let det = cross(a, b);
+    if det.abs() < 1e-12 * a.length() * b.length() {
+        return None;
+    }
+    let s = cross(q - p, b) / det;
+    Some(p + a * s)
+}
+
+/// Omega of a body from the velocity of one point P and the instantaneous center C (RK-11):
+/// v_P = omega k x (P - C), so omega = (k x (P - C)) . v_P / |P - C|^2.
+pub fn omega_about_center(p: DVec2, v_p: DVec2, c: DVec2) -> f64 {
+    let r = p - c;
+    r.perp().dot(v_p) / r.length_squared()
+}
+
 /// The velocity of the body's pose origin or mass center implied by the **positions** the
 /// engine drew, for symplectic Euler over `substeps` substeps per step.
 ///
@@ -108,4 +145,32 @@ pub fn slip_velocity(a: &super::Motion, b: &super::Motion, p: DVec2, normal: DVe
 pub fn omega_from_two_points(r_a: DVec2, v_a: DVec2, r_b: DVec2, v_b: DVec2) -> f64 {
     let r = r_b - r_a;
     cross(r, v_b - v_a) / r.length_squared()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn instant_center_from_two_velocity_directions() {
+        // P = (0, 0) moving up and Q = (1, 1) moving right: the normals are y = 0 and x = 1, so C = (1, 0),
+        // and v_P = omega k x (P - C) = omega (0, -1) gives omega = -1 (clockwise).
+        let (p, vp) = (DVec2::ZERO, DVec2::Y);
+        let c =
+            instantaneous_center_from_two_points(p, vp, DVec2::new(1.0, 1.0), DVec2::X).unwrap();
+        assert!((c - DVec2::new(1.0, 0.0)).length() < 1e-12, "{c}");
+        assert!((omega_about_center(p, vp, c) + 1.0).abs() < 1e-12);
+        // A point at rest is its own center.
+        let c =
+            instantaneous_center_from_two_points(p, vp, DVec2::new(2.0, 0.0), DVec2::ZERO).unwrap();
+        assert_eq!(c, DVec2::new(2.0, 0.0));
+        // Parallel normals: the link translates (no center).
+        assert!(instantaneous_center_from_two_points(
+            p,
+            vp,
+            DVec2::new(1.0, 0.0),
+            DVec2::new(0.0, -1.0)
+        )
+        .is_none());
+    }
 }

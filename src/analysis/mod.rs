@@ -13,16 +13,20 @@
 //! Topics, one module each:
 //! - [`mass`]: mass, mass center and I_G from the shape formulas, parallel axis, radius of gyration;
 //! - [`kinematics`]: point velocity and acceleration, finite differences, the instantaneous center;
+//! - [`closed_forms`]: exercise answers in closed form: pendulum and spring periods, rolling on a slope;
 //! - [`energy`]: kinetic energy in its three forms, potentials, power, the work-energy ledger;
 //! - [`momentum`]: linear momentum, angular momentum about G, about any point, about a fixed axis;
 //! - [`kinetics`]: the free-body diagram of a body over a step and the Newton-Euler residuals;
 //! - [`impact`]: impact detection from contact impulses, restitution, energy lost, H about the contact;
 //! - [`percussion`]: the center of percussion and the pivot reaction of a struck pinned body;
+//! - [`impulse_solver`]: impulse-momentum for a whole mechanism hit by a blow or an impact;
 //! - [`frame`]: all of the above for every body and the scene in one pass per step.
 
+pub mod closed_forms;
 pub mod energy;
 pub mod frame;
 pub mod impact;
+pub mod impulse_solver;
 pub mod kinematics;
 pub mod kinetics;
 pub mod mass;

@@ -7,9 +7,9 @@
 //! not depend on the frame rate.
 
 use super::quantities;
-use crate::checks::questions::QuestionResult;
 use crate::checks::CheckResult;
 use crate::level::Scene;
+use crate::questions::QuestionResult;
 use crate::runner::Observers;
 use crate::sim::{Options, Simulation};
 use crate::snapshot::Snapshot;

@@ -525,7 +525,7 @@ fn default_student_tolerance() -> f64 {
 
 /// A measurable quantity of one body, joint, spring, load or contact pair.
 ///
-/// Every question is read twice (see `checks::questions`): `engine` is what the engine did
+/// Every question is read twice (see `questions`): `engine` is what the engine did
 /// (read from its motion and reactions), `analysis` is the textbook formula named below applied
 /// to the engine's state (its mass properties, pose and pre-event velocities), or none where the
 /// quantity has no independent formula. "Centered" forces are the mean of the two steps around
@@ -691,6 +691,88 @@ pub enum Quantity {
     /// Mechanical energy (T + V_g) the pair loses across its first contact, J. Analysis: the
     /// kinetic-energy loss of the impulse-momentum solution (IM-14).
     EnergyLost { body: String, other: String },
+}
+
+/// The family a quantity belongs to: the file of `src/questions/` that reads it, so that adding
+/// a quantity touches this file (the variant, its doc and its family), `validate.rs` and one
+/// family file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QuantityFamily {
+    /// Positions, velocities and accelerations of bodies and body points, distance, time.
+    Motion,
+    /// Joint, contact, coupling and motor forces and impulses.
+    Forces,
+    /// Kinetic energy, works, power, and the springs' extension.
+    WorkAndPower,
+    /// Periods of pendulums and of masses on springs.
+    Periods,
+    /// A round body rolling on the ground.
+    Rolling,
+    /// What happens across a pair's first contact: rebound, restitution, energy lost.
+    Impacts,
+    /// Linkages read through the instantaneous center.
+    Linkages,
+}
+
+impl Quantity {
+    /// The family that reads this quantity (see [`QuantityFamily`]).
+    pub fn family(&self) -> QuantityFamily {
+        use Quantity as Q;
+        use QuantityFamily as F;
+        match self {
+            Q::X(_)
+            | Q::Y(_)
+            | Q::Angle(_)
+            | Q::Vx(_)
+            | Q::Vy(_)
+            | Q::Speed(_)
+            | Q::Omega(_)
+            | Q::Direction(_)
+            | Q::Distance(_)
+            | Q::Time
+            | Q::Ax(_)
+            | Q::Ay(_)
+            | Q::Accel(_)
+            | Q::Alpha(_)
+            | Q::PointX { .. }
+            | Q::PointY { .. }
+            | Q::PointSpeed { .. }
+            | Q::PointAccel { .. }
+            | Q::RelativeDistance(..)
+            | Q::RelativeSpeed(..)
+            | Q::RelativeAngle(..) => F::Motion,
+            Q::JointForce(_)
+            | Q::ContactForce(_)
+            | Q::ContactNormalForce { .. }
+            | Q::CouplingForce(_)
+            | Q::JointReaction { .. }
+            | Q::JointImpulse { .. }
+            | Q::MotorTorque { .. } => F::Forces,
+            Q::KineticEnergy(_)
+            | Q::GravityWork(_)
+            | Q::SpringWork(_)
+            | Q::SpringExtension(_)
+            | Q::LoadWork(_)
+            | Q::LoadPower(_)
+            | Q::FrictionWork { .. } => F::WorkAndPower,
+            Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => F::Periods,
+            Q::RollingAcceleration { .. }
+            | Q::RollingFriction { .. }
+            | Q::RollingFrictionNeeded { .. } => F::Rolling,
+            Q::ReboundHeight { .. } | Q::Restitution { .. } | Q::EnergyLost { .. } => F::Impacts,
+            Q::LinkOmega { .. } | Q::PinSpeed { .. } => F::Linkages,
+        }
+    }
+
+    /// The time window the quantity is averaged over, s (0: the two steps around the sample).
+    pub fn averaging_window(&self) -> f64 {
+        match self {
+            Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
+                *window
+            }
+            _ => 0.0,
+        }
+    }
 }
 
 /// A component of a vector quantity.

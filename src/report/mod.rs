@@ -1,7 +1,7 @@
 //! Stage 5: reports. The JSON contract, the terminal table and the per-step CSV.
 
-use crate::checks::questions::QuestionResult;
 use crate::checks::CheckResult;
+use crate::questions::QuestionResult;
 use crate::snapshot::Snapshot;
 use serde::{Deserialize, Serialize};
 use std::io::Write;

@@ -15,8 +15,8 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// Mass m and centroidal inertia I_G of every body as the level defines them (0 for fixed and
-/// kinematic bodies). Taken from the level, not the engine: rapier fills in mass properties
-/// only inside its first step, so the initial snapshot reports zero masses.
+/// kinematic bodies): the textbook's values, computed once from the level (the same mass
+/// properties the simulation hands rapier at build).
 pub fn body_masses(level: &Level) -> Vec<(f64, f64)> {
     level
         .bodies
@@ -53,10 +53,9 @@ pub fn local_coms(level: &Level) -> Vec<DVec2> {
         .collect()
 }
 
-/// The snapshot with mass centers from the level. rapier computes a body's mass properties
-/// inside its first step, so a snapshot read before it (the initial one, or one whose mass
-/// properties were cached at construction) has `com` at the body origin: wrong for shapes whose
-/// centroid is off the origin, e.g. polygons given in world coordinates.
+/// The snapshot with mass centers from the level's mass properties, for a snapshot whose `com`
+/// disagrees with them (`Monitor::observe`); it matters for shapes whose centroid is off the
+/// body origin, e.g. polygons given in world coordinates.
 pub fn with_level_coms(s: &Snapshot, local: &[DVec2]) -> Snapshot {
     let mut s = s.clone();
     for (b, c) in s.bodies.iter_mut().zip(local) {

@@ -1,0 +1,123 @@
+//! The exercise panel (left panel, under the browser): the level's source, statement and
+//! effects, and its questions with an answer box each. A typed answer is graded with the
+//! level's own rule; the value rigidlab measured is shown only once the answer is right.
+
+use super::super::physics::{LiveChecks, Physics};
+use super::super::view::palette;
+use super::{fmt, rich, UiState};
+use bevy_egui::egui;
+
+/// Draws the panel and grades the answers the student submits.
+pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st: &mut UiState) {
+    let level = &phys.sim.level;
+    ui.heading(&level.title);
+    if !level.source.book.is_empty() || !level.source.problem.is_empty() {
+        ui.label(
+            rich(
+                format!("{} {}", level.source.book, level.source.problem),
+                palette::OUTLINE,
+            )
+            .italics(),
+        );
+    }
+    if !level.statement.is_empty() {
+        ui.label(&level.statement);
+    }
+    let effects: Vec<&str> = level.effects.iter().map(|e| e.name()).collect();
+    ui.label(rich(format!("effects: {}", effects.join(", ")), palette::OUTLINE).small());
+    if level.questions.is_empty() {
+        return;
+    }
+    ui.add_space(6.0);
+    ui.strong("Questions");
+    for (k, q) in level.questions.iter().enumerate() {
+        ui.group(|ui| {
+            ui.label(format!("{}. {}", k + 1, q.ask));
+            ui.horizontal(|ui| {
+                let edit = ui.add(
+                    egui::TextEdit::singleline(&mut st.answers[k])
+                        .desired_width(90.0)
+                        .hint_text("your answer"),
+                );
+                ui.label(&q.unit);
+                let submit = ui.button("Check").clicked()
+                    || (edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)));
+                if submit {
+                    st.grades[k] = Some(grade(q, &st.answers[k]));
+                }
+            });
+            match &st.grades[k] {
+                Some(Ok((_, err, true))) => {
+                    ui.label(rich(
+                        format!(
+                            "✔ correct: off by {:.2}% (tolerance {:.2}%)",
+                            err * 100.0,
+                            q.tolerance * 100.0
+                        ),
+                        palette::GRAVITY,
+                    ));
+                }
+                Some(Ok((_, err, false))) => {
+                    // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
+                    let sign = if (err - 2.0).abs() <= q.tolerance {
+                        "; the magnitude is right: check the sign"
+                    } else {
+                        ""
+                    };
+                    ui.label(rich(
+                        format!(
+                            "✘ not yet: off by {:.2}% (tolerance {:.2}%){sign}",
+                            err * 100.0,
+                            q.tolerance * 100.0
+                        ),
+                        palette::NORMAL,
+                    ));
+                }
+                Some(Err(e)) => {
+                    ui.label(rich(e.clone(), palette::NORMAL));
+                }
+                None => {}
+            }
+            if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {
+                let show = st.grades[k]
+                    .as_ref()
+                    .is_some_and(|g| matches!(g, Ok((_, _, true))));
+                if show {
+                    ui.label(rich(
+                        format!(
+                            "textbook {} {} · rigidlab measured {} {} at t = {:.3} s",
+                            fmt(a.expected),
+                            q.unit,
+                            fmt(a.engine),
+                            q.unit,
+                            a.time
+                        ),
+                        palette::OUTLINE,
+                    ));
+                } else {
+                    ui.label(
+                        rich(
+                            format!("rigidlab measured this run; answer first to see it"),
+                            palette::OUTLINE,
+                        )
+                        .small(),
+                    );
+                }
+            }
+        });
+    }
+}
+
+/// Grades a typed answer with the level's own rule (the core's [`crate::questions::grade_answer`]).
+pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Result<(f64, f64, bool), String> {
+    let v: f64 = text
+        .trim()
+        .replace(',', ".")
+        .parse()
+        .map_err(|_| format!("`{}` is not a number", text.trim()))?;
+    if !v.is_finite() {
+        return Err("give a finite number".into());
+    }
+    let g = crate::questions::grade_answer(q, v);
+    Ok((g.answer, g.rel_error, g.passed))
+}

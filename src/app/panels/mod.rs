@@ -1,0 +1,238 @@
+//! The sandbox's egui panels, one file per panel: the level browser and the exercise with its
+//! graded questions on the left; playback, overlays, tools, solver settings, energy and momentum
+//! plots and the checks on the right; the status bar with the keyboard shortcuts at the bottom.
+//!
+//! This file lays the panels out (the [`PanelsPlugin`]'s one egui system) and holds the state
+//! they share ([`UiState`]); each panel's file says what it shows.
+
+mod capture;
+mod checks;
+mod exercise;
+mod level_browser;
+mod overlay_controls;
+mod playback;
+mod plots;
+mod shortcuts;
+mod solver;
+mod tool_controls;
+
+pub use capture::{capture, save};
+pub use exercise::grade;
+pub use level_browser::{Browser, Entry};
+pub use overlay_controls::legend_entries;
+pub use solver::study_error;
+
+use super::color32;
+use super::overlays::Overlays;
+use super::physics::{LiveChecks, Physics};
+use super::tools::ToolState;
+use super::view::{palette, View, WorldCamera};
+use crate::level::{BodyKind, Level, Scene};
+use bevy::camera::visibility::RenderLayers;
+use bevy::camera::CameraOutputMode;
+use bevy::prelude::*;
+use bevy::render::render_resource::BlendState;
+use bevy_egui::{
+    egui, EguiContexts, EguiGlobalSettings, EguiPrimaryContextPass, PrimaryEguiContext,
+};
+use capture::default_save_path;
+use checks::checks;
+use exercise::exercise;
+use level_browser::level_browser;
+use overlay_controls::overlay_controls;
+use playback::playback;
+use plots::plots;
+use shortcuts::keys;
+use solver::solver;
+use tool_controls::tool_controls;
+
+/// Panel state that is not the simulation's.
+#[derive(Resource, Debug, Clone)]
+pub struct UiState {
+    pub answers: Vec<String>,
+    /// A student's grade per question: (answer, relative error, passed).
+    pub grades: Vec<Option<Result<(f64, f64, bool), String>>>,
+    pub time_scale: f64,
+    pub save_path: String,
+    pub message: Option<(String, bool)>,
+    pub generation: Option<u64>,
+    pub spawned: usize,
+}
+
+impl Default for UiState {
+    fn default() -> Self {
+        UiState {
+            answers: Vec::new(),
+            grades: Vec::new(),
+            time_scale: 1.0,
+            save_path: String::new(),
+            message: None,
+            generation: None,
+            spawned: 0,
+        }
+    }
+}
+
+pub struct PanelsPlugin;
+
+impl Plugin for PanelsPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<UiState>()
+            .add_systems(
+                Update,
+                (keys, super::view::pan_zoom, super::overlays::overlay_keys),
+            )
+            .add_systems(EguiPrimaryContextPass, panels);
+    }
+}
+
+/// The world camera and, over it, the egui camera (full window, draws only the UI).
+pub fn spawn_cameras(mut commands: Commands, mut settings: ResMut<EguiGlobalSettings>) {
+    settings.auto_create_primary_context = false;
+    commands.spawn((Camera2d, WorldCamera, Msaa::Sample4));
+    commands.spawn((
+        PrimaryEguiContext,
+        Camera2d,
+        RenderLayers::none(),
+        Camera {
+            order: 1,
+            output_mode: CameraOutputMode::Write {
+                blend_state: Some(BlendState::ALPHA_BLENDING),
+                clear_color: ClearColorConfig::None,
+            },
+            clear_color: ClearColorConfig::Custom(Color::NONE),
+            ..default()
+        },
+    ));
+}
+
+/// Text in one of the palette's colors.
+pub(super) fn rich(text: impl Into<String>, c: Color) -> egui::RichText {
+    egui::RichText::new(text.into()).color(color32(c))
+}
+
+/// A number with an SI prefix, as the overlays write magnitudes.
+pub(super) fn fmt(x: f64) -> String {
+    super::draw::si(x, "")
+}
+
+/// The egui system: lays out the side panels and the status bar, and leaves the rest of the
+/// window to the scene; opens the level the browser asked for.
+#[allow(clippy::too_many_arguments)]
+fn panels(
+    mut contexts: EguiContexts,
+    mut phys: ResMut<Physics>,
+    live: NonSend<LiveChecks>,
+    mut view: ResMut<View>,
+    mut ov: ResMut<Overlays>,
+    mut tools: ResMut<ToolState>,
+    mut ui_state: ResMut<UiState>,
+    mut browser: ResMut<Browser>,
+    mut time: ResMut<Time<Virtual>>,
+    windows: Query<&Window>,
+) -> Result {
+    let ctx = contexts.ctx_mut()?.clone();
+    let st = &mut *ui_state;
+    if st.generation.is_none() {
+        // The textbook look: dark ink on paper.
+        ctx.set_visuals(egui::Visuals::light());
+    }
+    if st.generation != Some(phys.generation) {
+        st.generation = Some(phys.generation);
+        let n = phys.sim.level.questions.len();
+        if st.answers.len() != n {
+            st.answers = vec![String::new(); n];
+        }
+        st.grades = vec![None; n];
+        if st.save_path.is_empty() {
+            st.save_path = default_save_path(&phys.scene);
+        }
+    }
+    if (time.relative_speed_f64() - st.time_scale).abs() > 1e-12 {
+        time.set_relative_speed_f64(st.time_scale);
+    }
+
+    let mut root = egui::Ui::new(
+        ctx.clone(),
+        "rigidlab-root".into(),
+        egui::UiBuilder::new()
+            .layer_id(egui::LayerId::background())
+            .max_rect(ctx.viewport_rect()),
+    );
+
+    let mut load: Option<Scene> = None;
+    egui::Panel::left("levels")
+        .resizable(true)
+        .default_size(300.0)
+        .size_range(200.0..=520.0)
+        .show(&mut root, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                level_browser(ui, &mut browser, &phys, &mut load);
+                ui.separator();
+                exercise(ui, &phys, &live, st);
+            });
+        });
+
+    egui::Panel::right("controls")
+        .resizable(true)
+        .default_size(330.0)
+        .size_range(260.0..=520.0)
+        .show(&mut root, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                playback(ui, &mut phys, st, &mut view);
+                ui.separator();
+                overlay_controls(ui, &mut ov, &phys);
+                ui.separator();
+                tool_controls(ui, &mut tools, &mut phys, &view, st);
+                ui.separator();
+                solver(ui, &mut phys, &live);
+                ui.separator();
+                plots(ui, &phys);
+                ui.separator();
+                checks(ui, &phys, &live);
+            });
+        });
+
+    egui::Panel::bottom("status").show(&mut root, |ui| {
+        ui.horizontal_wrapped(|ui| {
+            if let Some((m, ok)) = &st.message {
+                ui.label(rich(m.clone(), if *ok { palette::GRAVITY } else { palette::NORMAL }));
+                ui.separator();
+            }
+            ui.label(
+                "Space play/pause · S step · R reset · −/= time scale · wheel zoom · right-drag pan · Home fit · \
+                 1 select/drag · 2 impulse · 3 set O · V A C F K H T L overlays · F12 screenshot",
+            );
+        });
+    });
+
+    // What is left is the scene's viewport.
+    let free = root.available_rect_before_wrap();
+    let _ = windows;
+    view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
+
+    if let Some(scene) = load {
+        st.save_path = default_save_path(&scene);
+        st.message = Some((format!("opened {}", scene.file.display()), true));
+        ov.selected = None;
+        ov.point = None;
+        ov.origin = default_origin(&scene.level);
+        tools.last_impulse = None;
+        phys.options = Default::default();
+        phys.stop_at_end = true;
+        phys.paused = true;
+        phys.load(scene);
+    }
+    Ok(())
+}
+
+/// O defaults to the first fixed pivot (a point body), else the world origin.
+pub fn default_origin(level: &Level) -> glam::DVec2 {
+    level
+        .bodies
+        .iter()
+        .find(|b| b.kind == BodyKind::Fixed && b.shape.is_none())
+        .map_or(glam::DVec2::ZERO, |b| {
+            glam::DVec2::new(b.position.0, b.position.1)
+        })
+}

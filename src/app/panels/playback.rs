@@ -1,0 +1,72 @@
+//! The playback panel: time and progress, play/pause, single step, reset, fit the view, the
+//! time scale, whether to stop at the level's end, and why a run is slowed or no longer the
+//! exercise's.
+
+use super::super::physics::Physics;
+use super::super::view::{palette, View};
+use super::shortcuts::toggle_play;
+use super::{rich, UiState};
+use bevy_egui::egui;
+
+/// Draws the panel.
+pub(super) fn playback(ui: &mut egui::Ui, phys: &mut Physics, st: &mut UiState, view: &mut View) {
+    let s = phys.snapshot();
+    let duration = phys.sim.level.world.duration;
+    ui.heading("Playback");
+    ui.label(format!(
+        "t = {:.3} s of {:.3} s   (step {})",
+        s.time, duration, s.step
+    ));
+    ui.add(egui::ProgressBar::new((s.time / duration).clamp(0.0, 1.0) as f32).desired_height(6.0));
+    ui.horizontal(|ui| {
+        let label = if phys.paused { "▶ Play" } else { "⏸ Pause" };
+        if ui.button(label).clicked() {
+            toggle_play(phys);
+        }
+        if ui
+            .button("⏭ Step")
+            .on_hover_text("one physics step (dt)")
+            .clicked()
+        {
+            phys.paused = true;
+            phys.steps_requested += 1;
+        }
+        if ui.button("⟲ Reset").clicked() {
+            phys.reset();
+        }
+        if ui
+            .button("Fit")
+            .on_hover_text("fit the view to the scene (Home)")
+            .clicked()
+        {
+            view.fit = true;
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("time scale");
+        ui.add(
+            egui::Slider::new(&mut st.time_scale, 1.0 / 64.0..=8.0)
+                .logarithmic(true)
+                .max_decimals(3),
+        );
+    });
+    ui.checkbox(
+        &mut phys.stop_at_end,
+        "stop at the level's end (where `rigidlab check` stops)",
+    );
+    if let Some(e) = &phys.error {
+        ui.label(rich(e.clone(), palette::NORMAL));
+    }
+    if phys.behind && !phys.paused {
+        ui.label(rich(
+            "The physics takes longer than real time here: it runs slowed down.",
+            palette::FRICTION,
+        ));
+    }
+    if phys.interfered {
+        ui.label(rich(
+            "You pushed the scene: this run is no longer the exercise's (Reset to start over).",
+            palette::FRICTION,
+        ));
+    }
+}

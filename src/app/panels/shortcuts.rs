@@ -1,0 +1,75 @@
+//! The keyboard shortcuts (listed in the status bar): play/pause, step, reset, time scale, fit,
+//! the mouse tools, clearing the selection, and screenshots.
+
+use super::super::overlays::Overlays;
+use super::super::physics::Physics;
+use super::super::tools::{Tool, ToolState};
+use super::super::view::View;
+use super::UiState;
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{save_to_disk, Screenshot};
+
+/// The shortcuts, as a Bevy system (ignored while egui has the keyboard, e.g. in an answer box).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn keys(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut phys: ResMut<Physics>,
+    mut view: ResMut<View>,
+    mut ui: ResMut<UiState>,
+    mut tools: ResMut<ToolState>,
+    mut ov: ResMut<Overlays>,
+    mut commands: Commands,
+    egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+) {
+    if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
+        return;
+    }
+    if keys.just_pressed(KeyCode::Space) {
+        toggle_play(&mut phys);
+    }
+    if keys.just_pressed(KeyCode::KeyS) || keys.just_pressed(KeyCode::ArrowRight) {
+        phys.paused = true;
+        phys.steps_requested += 1;
+    }
+    if keys.just_pressed(KeyCode::KeyR) {
+        phys.reset();
+    }
+    if keys.just_pressed(KeyCode::Home) {
+        view.fit = true;
+    }
+    if keys.just_pressed(KeyCode::Minus) {
+        ui.time_scale = (ui.time_scale / 2.0).max(1.0 / 64.0);
+    }
+    if keys.just_pressed(KeyCode::Equal) {
+        ui.time_scale = (ui.time_scale * 2.0).min(8.0);
+    }
+    if keys.just_pressed(KeyCode::Digit1) {
+        tools.tool = Tool::Select;
+    }
+    if keys.just_pressed(KeyCode::Digit2) {
+        tools.tool = Tool::Impulse;
+    }
+    if keys.just_pressed(KeyCode::Digit3) {
+        tools.tool = Tool::SetOrigin;
+    }
+    if keys.just_pressed(KeyCode::Escape) {
+        ov.selected = None;
+        ov.point = None;
+    }
+    if keys.just_pressed(KeyCode::F12) {
+        let name = format!("rigidlab-{:.3}s.png", phys.snapshot().time);
+        ui.message = Some((format!("screenshot saved to {name}"), true));
+        commands
+            .spawn(Screenshot::primary_window())
+            .observe(save_to_disk(name));
+    }
+}
+
+/// Play or pause; playing past the exercise's end turns the run into a free sandbox.
+pub(super) fn toggle_play(phys: &mut Physics) {
+    if phys.paused && phys.at_end() && phys.stop_at_end {
+        // Past the exercise's end: keep going as a free sandbox.
+        phys.stop_at_end = false;
+    }
+    phys.paused = !phys.paused;
+}

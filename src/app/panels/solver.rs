@@ -1,0 +1,148 @@
+//! The solver panel: dt, substeps and iterations (changing them restarts the run), the measured
+//! step time, the energy change since t = 0, and the error against the textbook answers as the
+//! accuracy study measures it ([`study_error`]).
+
+use super::super::physics::{LiveChecks, Physics};
+use super::super::view::palette;
+use super::rich;
+use bevy_egui::egui;
+
+/// Draws the panel; a changed setting overrides the level's and restarts the run.
+pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
+    ui.heading("Solver");
+    let dt = phys.sim.dt();
+    let mut new_dt = dt;
+    let mut substeps = phys.sim.substeps();
+    let mut iterations = phys.sim.settings().solver_iterations;
+    let mut changed = false;
+    egui::Grid::new("solver").num_columns(3).show(ui, |ui| {
+        ui.label("dt");
+        ui.horizontal(|ui| {
+            if ui.small_button("÷2").clicked() {
+                new_dt = dt / 2.0;
+                changed = true;
+            }
+            ui.label(format!("{:.5} s ({:.0} Hz)", dt, 1.0 / dt));
+            if ui.small_button("×2").clicked() {
+                new_dt = (dt * 2.0).min(0.1);
+                changed = true;
+            }
+        });
+        ui.end_row();
+        ui.label("substeps");
+        changed |= ui
+            .add(egui::DragValue::new(&mut substeps).range(1..=200))
+            .changed();
+        ui.end_row();
+        ui.label("iterations");
+        changed |= ui
+            .add(egui::DragValue::new(&mut iterations).range(1..=200))
+            .changed();
+        ui.end_row();
+    });
+    if changed {
+        phys.options.dt = Some(new_dt);
+        phys.options.substeps = Some(substeps);
+        phys.options.solver_iterations = Some(iterations);
+        phys.reset();
+    }
+    match phys.step_times.median_ms() {
+        Some(ms) => {
+            // The cost as `rigidlab study accuracy` reports it: wall µs per simulated second.
+            ui.label(format!(
+                "step time {:.3} ms (median of the last steps) = {:.0} µs per simulated s, {:.0}× real time",
+                ms,
+                ms * 1e3 / dt,
+                dt * 1e3 / ms.max(1e-9)
+            ));
+        }
+        None => {
+            ui.label("step time: play to measure");
+        }
+    }
+    // The current error: energy drift where energy should be conserved, else the checks' errors.
+    if let (Some(first), Some(last)) = (phys.series.first(), phys.series.last()) {
+        let e0 = first.total();
+        let scale = first
+            .kinetic
+            .abs()
+            .max(first.gravity.abs())
+            .max(first.elastic.abs())
+            .max(1e-12);
+        ui.label(format!(
+            "energy change since t = 0: {:+.3e} J ({:+.3}% of the largest energy term)",
+            last.total() - e0,
+            (last.total() - e0) / scale * 100.0
+        ));
+    }
+    match (&live.checks, &live.answers) {
+        (Some(checks), Some(answers)) => {
+            let (error, ratio) = study_error(checks, answers);
+            if let Some(e) = error {
+                ui.label(format!(
+                    "error against the textbook answers {e:.3e} (relative, as `rigidlab study accuracy` measures it)"
+                ));
+            }
+            if let Some(r) = ratio {
+                ui.label(format!(
+                    "worst error / tolerance {r:.3} (checks and questions)"
+                ));
+            }
+            if phys.interfered {
+                ui.label(rich(
+                    "(you pushed the scene: not the exercise's error)",
+                    palette::FRICTION,
+                ));
+            }
+        }
+        _ if !phys.sim.level.checks.is_empty() || !phys.sim.level.questions.is_empty() => {
+            ui.label(format!(
+                "error against the textbook answers: at t = {:.3} s (the level's end)",
+                phys.sim.level.world.duration
+            ));
+        }
+        _ => {}
+    }
+    if phys.options != Default::default() && ui.small_button("level's settings").clicked() {
+        phys.options = Default::default();
+        phys.reset();
+    }
+}
+
+/// The error the accuracy study plots for a level with exact answers (src/study/accuracy.rs,
+/// `measure::full_run`): the worst relative error of the questions and of the closed-form
+/// (constant-acceleration) checks; and the worst error-to-tolerance ratio of all checks and
+/// questions.
+pub fn study_error(
+    checks: &[crate::checks::CheckResult],
+    answers: &[crate::questions::QuestionResult],
+) -> (Option<f64>, Option<f64>) {
+    let closed_form = crate::checks::kind_name(crate::level::CheckKind::ConstantAcceleration);
+    // As the study: kinds that observed nothing are not graded.
+    let checks: Vec<_> = checks.iter().filter(|c| c.samples > 0).collect();
+    let error = answers
+        .iter()
+        .map(|q| q.rel_error)
+        .chain(
+            checks
+                .iter()
+                .filter(|c| c.kind == closed_form)
+                .map(|c| c.max_rel_error),
+        )
+        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+    let ratio = |e: f64, tol: f64| {
+        if tol > 0.0 {
+            e / tol
+        } else if e == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
+    };
+    let worst = checks
+        .iter()
+        .map(|c| ratio(c.max_rel_error, c.tolerance))
+        .chain(answers.iter().map(|q| ratio(q.rel_error, q.tolerance)))
+        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+    (error, worst)
+}

@@ -1,0 +1,152 @@
+//! The first contact of a pair of bodies, followed from touch to release: when it begins (and
+//! the impact it begins with), when it goes quiet, and when it has stayed quiet long enough to
+//! count as ended. Questions asked at `FirstContact`/`ContactEnds`, and the impact quantities
+//! (rebound, restitution, energy lost), read these events.
+
+use super::impact_solution::Impact;
+use super::level_facts::LevelFacts;
+use super::sample::Sample;
+use super::snapshot_reading::pair_normal_impulse;
+use crate::snapshot::Snapshot;
+
+/// The moments of a pair's first contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum PairEvent {
+    /// This sample is the first with a contact force; the previous one is the pre-impact state.
+    Touch,
+    /// This sample is the first without a contact force after the first contact (not yet confirmed).
+    Quiet,
+    /// The contact force came back within the confirmation window: the last `Quiet` was a flicker.
+    Resumed,
+    /// The pair stayed without force for `QUIET_STEPS` samples: the contact ended at the `Quiet` sample.
+    Released,
+    /// This sample is the first of a second contact.
+    Again,
+}
+
+/// Where the pair is in its first contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum ContactPhase {
+    /// Not touched yet.
+    Before,
+    /// Pushing on each other.
+    Touching,
+    /// Without force since the last `Quiet` event, not yet long enough to count as ended.
+    Quiet,
+    /// The first contact has ended.
+    Released,
+    /// Touching again: a second contact began.
+    Again,
+}
+
+/// How long a contact must stay without force before it counts as ended (at least `QUIET_STEPS`
+/// samples and `QUIET_TIME` seconds): rapier's soft, speculative contact delivers a light contact
+/// force in bursts, with quiet steps between them (a ladder sliding on a wall: gaps of up to 19 ms).
+const QUIET_STEPS: u32 = 10;
+const QUIET_TIME: f64 = 0.05;
+
+/// Follows the contacts of one body with another (or with anything).
+#[derive(Debug, Clone)]
+pub(super) struct PairTracker {
+    body: String,
+    other: Option<String>,
+    /// The body indices, once found in a snapshot.
+    indices: Option<(usize, Option<usize>)>,
+    pub phase: ContactPhase,
+    /// Samples without force since the last `Quiet` event.
+    quiet_samples: u32,
+    /// The largest normal impulse of the contact so far, N s.
+    peak: f64,
+    /// The snapshot before the first touch (the pre-impact state).
+    pub pre: Option<Snapshot>,
+    /// The impact the first touch was (None when the bodies were not approaching).
+    pub impact: Option<Impact>,
+    /// The first snapshot without force (the post-impact state), while quiet or released.
+    pub release: Option<Snapshot>,
+}
+
+impl PairTracker {
+    pub fn new(body: &str, other: Option<&str>) -> Self {
+        PairTracker {
+            body: body.to_string(),
+            other: other.map(str::to_string),
+            indices: None,
+            phase: ContactPhase::Before,
+            quiet_samples: 0,
+            peak: 0.0,
+            pre: None,
+            impact: None,
+            release: None,
+        }
+    }
+
+    /// Follows the pair to the sample `f`; the event the sample is, if any.
+    pub fn update(&mut self, f: &Sample, facts: &LevelFacts) -> Option<PairEvent> {
+        if self.indices.is_none() {
+            let b = f.cur.body_index(&self.body)?;
+            let o = match &self.other {
+                Some(o) => Some(f.cur.body_index(o)?),
+                None => None,
+            };
+            self.indices = Some((b, o));
+        }
+        let (b, o) = self.indices?;
+        let j = pair_normal_impulse(f.cur, b, o);
+        // "Pushing": a normal impulse above a millionth of the largest one of this contact, so that
+        // round-off and position correction between bodies left resting together do not count.
+        let touching = j > 1e-6 * self.peak.max(f64::MIN_POSITIVE) && j > 0.0;
+        match self.phase {
+            ContactPhase::Before if touching => {
+                self.phase = ContactPhase::Touching;
+                self.peak = j;
+                self.pre = f.prev.cloned();
+                if let Some(pre) = f.prev {
+                    self.impact = Impact::find(facts, pre, f.cur, b, o);
+                }
+                Some(PairEvent::Touch)
+            }
+            ContactPhase::Touching => {
+                self.peak = self.peak.max(j);
+                if touching {
+                    None
+                } else {
+                    self.phase = ContactPhase::Quiet;
+                    self.quiet_samples = 1;
+                    self.release = Some(f.cur.clone());
+                    Some(PairEvent::Quiet)
+                }
+            }
+            ContactPhase::Quiet => {
+                if touching {
+                    self.phase = ContactPhase::Touching;
+                    self.peak = self.peak.max(j);
+                    self.release = None;
+                    Some(PairEvent::Resumed)
+                } else {
+                    self.quiet_samples += 1;
+                    let quiet_for =
+                        f.cur.time - self.release.as_ref().map_or(f.cur.time, |r| r.time);
+                    if self.quiet_samples >= QUIET_STEPS && quiet_for >= QUIET_TIME {
+                        self.phase = ContactPhase::Released;
+                        Some(PairEvent::Released)
+                    } else {
+                        None
+                    }
+                }
+            }
+            ContactPhase::Released if touching => {
+                self.phase = ContactPhase::Again;
+                Some(PairEvent::Again)
+            }
+            _ => None,
+        }
+    }
+
+    /// The contact has ended (or is quiet and may be ending at the end of the run).
+    pub fn ended(&self) -> bool {
+        matches!(
+            self.phase,
+            ContactPhase::Quiet | ContactPhase::Released | ContactPhase::Again
+        )
+    }
+}

@@ -1,0 +1,321 @@
+//! Force quantities: joint reactions and impulses, contact and coupling forces, motor torques.
+//!
+//! The engine's values are the impulses rapier reports divided by dt, centered on the sample
+//! (or averaged over the quantity's window). Analyses: fixed-axis rotation for a pinned body's
+//! reaction (PL-8, PL-12), the blow's impulse-momentum solution for a pin impulse (RM-10), and
+//! the one-degree-of-freedom power balance for a motor (RE-11).
+
+use super::free_body::side_impulse;
+use super::meter::{EngineAndAnalysis, Meter};
+use super::sample::{Occasion, Sample};
+use super::snapshot_reading::{is_massive, joint_index, pair_normal_impulse, to_local};
+use super::work_and_power::path_work;
+use crate::analysis::cross;
+use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::level::{Component, JointKind, Quantity};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// Accumulates, for a joint reaction, the path work of loads and springs on the moving body
+/// over the step from `prev` to `s` (for the pivot reaction's omega from work-energy).
+pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+    if let Quantity::JointReaction { joint: j, .. } = &m.q {
+        if let Some(k) = joint_index(s, j) {
+            let jj = &s.joints[k];
+            let i = if is_massive(&s.bodies[jj.body2]) {
+                jj.body2
+            } else {
+                jj.body1
+            };
+            m.analysis_sum += path_work(prev, s, i, true);
+        }
+    }
+}
+
+/// The quantity at the sample.
+pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
+    let s = f.cur;
+    Some(match &m.q {
+        Quantity::JointForce(j) => {
+            let k = joint_index(s, j)?;
+            if s.dt <= 0.0 {
+                return None;
+            }
+            (s.joints[k].impulse_on_body2.length() / s.dt, None)
+        }
+        Quantity::JointReaction {
+            joint, component, ..
+        } => {
+            // The initial snapshot has no joint states yet: take the joint from the first step.
+            let js = if s.joints.is_empty() {
+                f.next.unwrap_or(s)
+            } else {
+                s
+            };
+            let k = joint_index(js, joint)?;
+            let j = &js.joints[k];
+            let moving_is_2 = is_massive(&s.bodies[j.body2]);
+            let on_moving = f.windowed(|x| {
+                let jj = x.joints.get(k)?;
+                Some(if moving_is_2 {
+                    jj.impulse_on_body2
+                } else {
+                    -jj.impulse_on_body2
+                })
+            })?;
+            let (mb, anchor) = if moving_is_2 {
+                (j.body2, j.anchor1)
+            } else {
+                (j.body1, j.anchor)
+            };
+            let comp = |r: DVec2| component_of(*component, r, s.bodies[mb].com, anchor);
+            (comp(on_moving), pivot_reaction(m, f, k).map(comp))
+        }
+        Quantity::JointImpulse { joint, component } => {
+            let k = joint_index(s, joint)?;
+            let j = &s.joints[k];
+            let moving_is_2 = is_massive(&s.bodies[j.body2]);
+            let sign = if moving_is_2 { 1.0 } else { -1.0 };
+            let (mb, anchor) = if moving_is_2 {
+                (j.body2, j.anchor1)
+            } else {
+                (j.body1, j.anchor)
+            };
+            let comp = |r: DVec2| component_of(*component, r, s.bodies[mb].com, anchor);
+            let analysis = match occ {
+                Occasion::AfterBlow(b) => {
+                    // The level's joints are in level order, as the snapshot's are.
+                    b.joint_impulse.get(k).map(|x| comp(*x * sign))
+                }
+                _ => None,
+            };
+            // rapier reports a joint's reaction as its last substep's impulse times the substep
+            // count, which misses a blow the joint absorbs in the first substep: the engine's value
+            // is the impulse-momentum balance of the bodies on the joint's moving side instead.
+            let engine = match f.prev {
+                Some(prev) => side_impulse(prev, s, k, mb),
+                None => j.impulse_on_body2 * sign,
+            };
+            (comp(engine), analysis)
+        }
+        Quantity::ContactForce(b) => {
+            let i = s.body_index(b)?;
+            if s.dt <= 0.0 {
+                return None;
+            }
+            let total: DVec2 = s
+                .contacts
+                .iter()
+                .map(|c| {
+                    if c.body2 == i {
+                        c.impulse_on_body2()
+                    } else if c.body1 == i {
+                        -c.impulse_on_body2()
+                    } else {
+                        DVec2::ZERO
+                    }
+                })
+                .sum();
+            (total.length() / s.dt, None)
+        }
+        Quantity::ContactNormalForce { body: b, other } => {
+            let (i, o) = (s.body_index(b)?, s.body_index(other)?);
+            let n = f.centered(|x| Some(DVec2::new(pair_normal_impulse(x, i, Some(o)), 0.0)))?;
+            (n.x, None)
+        }
+        Quantity::CouplingForce(name) => {
+            let k = s
+                .couplings
+                .iter()
+                .position(|c| &c.name == name)
+                .or_else(|| {
+                    f.next
+                        .and_then(|n| n.couplings.iter().position(|c| &c.name == name))
+                })?;
+            let force = f.centered(|y| Some(DVec2::new(y.couplings.get(k)?.impulse, 0.0)))?;
+            (force.x, None)
+        }
+        Quantity::MotorTorque { joint: j, .. } => {
+            let k = joint_index(s, j)?;
+            let torque = f.windowed(|x| Some(DVec2::new(x.joints.get(k)?.motor_impulse, 0.0)))?;
+            // Over a window, the power balance is averaged over the same samples.
+            let analysis = if f.window.len() > 2 {
+                let w = f.window;
+                let vals: Vec<f64> = (1..w.len() - 1)
+                    .filter_map(|i| {
+                        let g = Sample {
+                            prev: Some(&w[i - 1]),
+                            cur: &w[i],
+                            next: Some(&w[i + 1]),
+                            window: std::slice::from_ref(&w[i]),
+                        };
+                        power_balance(m, &g, k)
+                    })
+                    .collect();
+                (!vals.is_empty()).then(|| vals.iter().sum::<f64>() / vals.len() as f64)
+            } else {
+                power_balance(m, f, k)
+            };
+            (torque.x, analysis)
+        }
+        q => unreachable!("{q:?} is not a force quantity"),
+    })
+}
+
+/// A vector's component as `Component` names it, with G the moving body's mass center and O the anchor.
+fn component_of(c: Component, v: DVec2, g: DVec2, o: DVec2) -> f64 {
+    let toward = (o - g).normalize_or(DVec2::X);
+    match c {
+        Component::Magnitude => v.length(),
+        Component::X => v.x,
+        Component::Y => v.y,
+        Component::Normal => v.dot(toward),
+        Component::Tangential => v.dot((g - o).perp().normalize_or(DVec2::Y)),
+    }
+}
+
+/// Fixed-axis rotation (PL-8, PL-12): the pivot reaction on the moving body, R = m a_G - sum F,
+/// with alpha = sum M_O / I_O and a_G = alpha k x r - omega^2 r; omega from work-energy
+/// (omega^2 = omega0^2 + 2 U / I_O with the work of gravity, loads and springs), its sign the
+/// engine's. Applies when one side of a revolute joint is fixed and the moving body has no
+/// other joint or contact.
+fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
+    let s = f.cur;
+    let js = if s.joints.is_empty() {
+        f.next.unwrap_or(s)
+    } else {
+        s
+    };
+    let j = js.joints.get(k)?;
+    if m.facts
+        .joints
+        .get(k)
+        .is_some_and(|x| x.kind != JointKind::Revolute)
+    {
+        return None;
+    }
+    let (mb, o) = if is_massive(&s.bodies[j.body2]) && !is_massive(&s.bodies[j.body1]) {
+        (j.body2, j.anchor1)
+    } else if is_massive(&s.bodies[j.body1]) && !is_massive(&s.bodies[j.body2]) {
+        (j.body1, j.anchor)
+    } else {
+        return None;
+    };
+    let alone = js
+        .joints
+        .iter()
+        .filter(|x| x.body1 == mb || x.body2 == mb)
+        .count()
+        == 1
+        && !s.contacts.iter().any(|c| c.body1 == mb || c.body2 == mb)
+        && !s
+            .couplings
+            .iter()
+            .any(|c| c.terms.iter().any(|t| t.0 == mb));
+    if !alone {
+        return None;
+    }
+    let b = &s.bodies[mb];
+    let r = b.com - o;
+    let i_o = b.inertia + b.mass * r.length_squared();
+    if i_o <= 0.0 {
+        return None;
+    }
+    // Applied forces held around the sample (centered), their moments about O.
+    let (mut force, mut moment) = (b.mass * s.gravity, cross(r, b.mass * s.gravity));
+    let mut count = 0.0;
+    let (mut fl, mut ml) = (DVec2::ZERO, 0.0);
+    for x in f.steps() {
+        for l in x.loads.iter().filter(|l| l.body == mb) {
+            fl += l.force;
+            ml += cross(l.point - o, l.force) + l.torque;
+        }
+        for sp in &x.springs {
+            if sp.body1 == mb {
+                fl += sp.force_on_body1;
+                ml += cross(sp.applied_at1 - o, sp.force_on_body1);
+            } else if sp.body2 == Some(mb) {
+                fl -= sp.force_on_body1;
+                ml += cross(sp.applied_at2 - o, -sp.force_on_body1);
+            }
+        }
+        count += 1.0;
+    }
+    if count > 0.0 {
+        force += fl / count;
+        moment += ml / count;
+    }
+    let alpha = moment / i_o;
+    // omega from work-energy: gravity's work is m g . (G - G0); loads' and springs' along the path.
+    let init = m.init.as_ref()?;
+    let b0 = &init.bodies[mb];
+    let work = b.mass * s.gravity.dot(b.com - b0.com) + m.analysis_sum;
+    let w2 = b0.omega * b0.omega + 2.0 * work / i_o;
+    let omega = w2.max(0.0).sqrt() * if b.omega < 0.0 { -1.0 } else { 1.0 };
+    let a_g = r.perp() * alpha - r * omega * omega;
+    Some(b.mass * a_g - force)
+}
+
+/// The one-degree-of-freedom power balance (RE-11): the motor's torque (force) times the
+/// joint rate equals the rate of change of kinetic energy of every dynamic body minus the
+/// power of gravity, loads and springs, all from the engine's state at the sample.
+fn power_balance(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
+    let s = f.cur;
+    let j = &s.joints[k];
+    let (b1, b2) = (&s.bodies[j.body1], &s.bodies[j.body2]);
+    let kind = m
+        .facts
+        .joints
+        .get(k)
+        .map_or(JointKind::Revolute, |x| x.kind);
+    let rate = match kind {
+        JointKind::Prismatic => {
+            let axis = m
+                .facts
+                .joints
+                .get(k)
+                .map_or(DVec2::X, |x| DVec2::from_angle(b1.angle).rotate(x.axis));
+            (point_velocity(b2, j.anchor) - point_velocity(b1, j.anchor)).dot(axis)
+        }
+        _ => b2.omega - b1.omega,
+    };
+    if rate.abs() < 1e-9 {
+        return None;
+    }
+    let mut dtdt = 0.0;
+    let mut applied = 0.0;
+    for (i, b) in s.bodies.iter().enumerate() {
+        if !is_massive(b) {
+            continue;
+        }
+        let ax = f.rate(|x| Some(x.bodies[i].velocity.x))?;
+        let ay = f.rate(|x| Some(x.bodies[i].velocity.y))?;
+        let alpha = f.rate(|x| Some(x.bodies[i].omega))?;
+        dtdt += b.mass * DVec2::new(ax, ay).dot(b.velocity) + b.inertia * alpha * b.omega;
+        applied += b.mass * s.gravity.dot(b.velocity);
+    }
+    let mut n = 0.0;
+    let mut p_held = 0.0;
+    for x in f.steps() {
+        for l in &x.loads {
+            let b = &s.bodies[l.body];
+            let p = b.world_point(to_local(&x.bodies[l.body], l.point));
+            p_held += l.force.dot(point_velocity(b, p)) + l.torque * b.omega;
+        }
+        for sp in &x.springs {
+            p_held += sp
+                .force_on_body1
+                .dot(point_velocity(&s.bodies[sp.body1], sp.point1));
+            if let Some(b2) = sp.body2 {
+                p_held -= sp
+                    .force_on_body1
+                    .dot(point_velocity(&s.bodies[b2], sp.point2));
+            }
+        }
+        n += 1.0;
+    }
+    if n > 0.0 {
+        applied += p_held / n;
+    }
+    Some((dtdt - applied) / rate)
+}

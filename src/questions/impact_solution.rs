@@ -1,0 +1,258 @@
+//! The textbook's solution of an impact or a blow, from the engine's state just before it and
+//! the level's declared coefficients and joints: the touching instant and the states right
+//! after ([`Impact`], IM-9 to IM-14, RM-10), and the states and pin impulses after an impulse
+//! event ([`Blow`], RM-10, CP-3). The questions' velocity, energy and impulse analyses at those
+//! events read them (see `sample::Occasion`).
+
+use super::level_facts::LevelFacts;
+use super::snapshot_reading::{carried_forward, is_free, to_local};
+use crate::analysis::cross;
+use crate::analysis::impulse_solver::{
+    coupling_row, joint_impulse, joint_rows, point_row, row_velocity, solve_impulses, ConstraintRow,
+};
+use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::snapshot::{BodyState, ContactState, Snapshot};
+use glam::DVec2;
+
+/// The constraint rows of the level's joints (target: no relative velocity) and of the
+/// snapshot's couplings, for the bodies in state `s`. Returns the rows and, per joint, the range
+/// of its rows (to rebuild its impulse).
+fn constraint_rows(
+    facts: &LevelFacts,
+    snap: &Snapshot,
+    s: &[BodyState],
+) -> (Vec<ConstraintRow>, Vec<(usize, usize)>) {
+    let mut rows = Vec::new();
+    let mut ranges = Vec::new();
+    for j in &facts.joints {
+        let start = rows.len();
+        rows.extend(joint_rows(s, j.kind, j.body1, j.body2, j.anchor2, j.axis));
+        ranges.push((start, rows.len()));
+    }
+    for c in &snap.couplings {
+        rows.push(coupling_row(&c.terms));
+    }
+    (rows, ranges)
+}
+
+/// The first contact of a pair, carried back to the instant of touching, and the
+/// impulse-momentum solution of the impact.
+#[derive(Debug, Clone)]
+pub(super) struct Impact {
+    /// Time of touching, s.
+    pub t_c: f64,
+    /// Every body's state at the touching instant (free bodies carried ballistically from the
+    /// last step before contact; others at that step's state).
+    pub pre: Vec<BodyState>,
+    /// States right after the impact (the impulse-momentum solution with the level's e and mu).
+    pub post: Vec<BodyState>,
+    /// Contact normal from body1 to body2 of the contact, the contact point, and the two bodies.
+    pub normal: DVec2,
+    pub point: DVec2,
+    pub i1: usize,
+    pub i2: usize,
+    /// Which bodies were free (carried ballistically).
+    pub free: Vec<bool>,
+}
+
+/// Why a contact event's question has no impulse-momentum analysis.
+pub(super) const NO_IMPACT: &str = "no impact analysis: the bodies did not approach each other when the contact began (a contact from the start or one slid into, such as a ladder on its wall), so the answer is graded on the engine alone";
+
+impl Impact {
+    /// The impact of `body` with `other` (any body when None) that the snapshot `hit` shows
+    /// first, `pre` being the snapshot before it; None when the bodies were not approaching.
+    pub fn find(
+        facts: &LevelFacts,
+        pre: &Snapshot,
+        hit: &Snapshot,
+        body: usize,
+        other: Option<usize>,
+    ) -> Option<Impact> {
+        let c = hit
+            .contacts
+            .iter()
+            .filter(|c| {
+                (c.body1 == body && other.is_none_or(|o| c.body2 == o))
+                    || (c.body2 == body && other.is_none_or(|o| c.body1 == o))
+            })
+            .max_by(|a, b| {
+                let s = |c: &ContactState| c.points.iter().map(|p| p.normal_impulse).sum::<f64>();
+                s(a).total_cmp(&s(b))
+            })?;
+        let (i1, i2, n) = (c.body1, c.body2, c.normal);
+        let w: f64 = c.points.iter().map(|p| p.normal_impulse.max(0.0)).sum();
+        let count = c.points.len().max(1) as f64;
+        let (p, d) = if w > 0.0 {
+            (
+                c.points
+                    .iter()
+                    .map(|q| q.point * q.normal_impulse.max(0.0))
+                    .sum::<DVec2>()
+                    / w,
+                c.points
+                    .iter()
+                    .map(|q| q.distance * q.normal_impulse.max(0.0))
+                    .sum::<f64>()
+                    / w,
+            )
+        } else {
+            (
+                c.points.iter().map(|q| q.point).sum::<DVec2>() / count,
+                c.points.iter().map(|q| q.distance).sum::<f64>() / count,
+            )
+        };
+        // The material points that touch, found at the contact step and taken back to the step before.
+        let l1 = to_local(&hit.bodies[i1], p);
+        let l2 = to_local(&hit.bodies[i2], p + n * d);
+        let (b1, b2) = (&pre.bodies[i1], &pre.bodies[i2]);
+        let (q1, q2) = (b1.world_point(l1), b2.world_point(l2));
+        let free: Vec<bool> = (0..pre.bodies.len()).map(|i| is_free(hit, i)).collect();
+        let acc = |i: usize| if free[i] { pre.gravity } else { DVec2::ZERO };
+        let discs = (
+            facts.bodies.get(i1).and_then(|x| x.disc),
+            facts.bodies.get(i2).and_then(|x| x.disc),
+        );
+        let (n, tau, disc_point) = match discs {
+            // Two discs: the line of centers at touching, |d + w tau + a tau^2/2| = r1 + r2, instead of
+            // the engine's speculative normal (taken up to a step before they touch).
+            (Some(r1), Some(r2)) => {
+                let (d0, w, a) = (
+                    b2.com - b1.com,
+                    b2.velocity - b1.velocity,
+                    acc(i2) - acc(i1),
+                );
+                let mut t = 0.0;
+                for _ in 0..30 {
+                    let d = d0 + w * t + 0.5 * a * t * t;
+                    let f = d.length() - (r1 + r2);
+                    let df = d.normalize_or(DVec2::X).dot(w + a * t);
+                    if df.abs() < 1e-15 {
+                        break;
+                    }
+                    let step = f / df;
+                    t -= step;
+                    if step.abs() < 1e-15 {
+                        break;
+                    }
+                }
+                if !(t.is_finite() && t.abs() <= 2.0 * hit.dt) {
+                    t = 0.0;
+                }
+                let nn = (d0 + w * t + 0.5 * a * t * t).normalize_or(n);
+                if (w + a * t).dot(nn) >= 0.0 {
+                    return None; // not approaching: no impact
+                }
+                let g1 = b1.com + b1.velocity * t + 0.5 * acc(i1) * t * t;
+                (nn, t, Some(g1 + nn * r1))
+            }
+            _ => {
+                let gap = (q2 - q1).dot(n);
+                let v_n = (point_velocity(b2, q2) - point_velocity(b1, q1)).dot(n);
+                let a_n = (acc(i2) - acc(i1)).dot(n);
+                // Not approaching faster than gravity can close a gap in a step or two: a contact
+                // that was there from the start or that the bodies slid into (a ladder on its wall,
+                // a block set down), not an impact.
+                if v_n >= -(2.0 * pre.gravity.length() * hit.dt + 1e-9) {
+                    return None;
+                }
+                // gap + v_n tau + a_n tau^2 / 2 = 0 while approaching: the root nearest the last free
+                // step, within three steps either way (negative when the engine let the bodies overlap
+                // before the contact acted: the textbook impact is at the touching instant).
+                let roots: Vec<f64> = if a_n.abs() < 1e-12 {
+                    vec![-gap / v_n]
+                } else {
+                    let disc = v_n * v_n - 2.0 * a_n * gap;
+                    if disc < 0.0 {
+                        vec![]
+                    } else {
+                        let r = disc.sqrt();
+                        vec![(-v_n - r) / a_n, (-v_n + r) / a_n]
+                    }
+                };
+                let tau = roots
+                    .into_iter()
+                    .filter(|t| v_n + a_n * t < 0.0 && t.abs() <= 3.0 * hit.dt)
+                    .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+                    .unwrap_or(0.0);
+                (n, tau, None)
+            }
+        };
+        let states: Vec<BodyState> = pre
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| carried_forward(b, tau, acc(i)))
+            .collect();
+        let point = disc_point.unwrap_or_else(|| states[i1].world_point(l1));
+        let e = facts.restitution(i1, i2);
+        let mu = facts.friction(i1, i2);
+        let (mut rows, _) = constraint_rows(facts, hit, &states);
+        let mut normal = point_row(&states, i1, i2, point, n, 0.0);
+        let approach = row_velocity(&normal, &states);
+        normal.target = -e * approach;
+        rows.push(normal);
+        if mu > 0.0 {
+            // A rough contact: the impact leaves no slip (RM-10: the plate pivots on the ledge).
+            rows.push(point_row(&states, i1, i2, point, n.perp(), 0.0));
+        }
+        let post = solve_impulses(&states, &rows, &[]).0;
+        Some(Impact {
+            t_c: pre.time + tau,
+            pre: states,
+            post,
+            normal: n,
+            point,
+            i1,
+            i2,
+            free,
+        })
+    }
+}
+
+/// An impulse event and the impulse-momentum solution of the blow (RM-10).
+#[derive(Debug, Clone)]
+pub(super) struct Blow {
+    t0: f64,
+    post: Vec<BodyState>,
+    /// Linear impulse each level joint gave its body2 during the blow, N s.
+    pub joint_impulse: Vec<DVec2>,
+    free: Vec<bool>,
+}
+
+impl Blow {
+    /// The blow of the impulse events in `hit`, on the state of `pre`.
+    pub fn solve(facts: &LevelFacts, pre: &Snapshot, hit: &Snapshot) -> Blow {
+        let s = &pre.bodies;
+        let ext: Vec<(usize, DVec2, f64)> = hit
+            .impulses
+            .iter()
+            .map(|e| {
+                (
+                    e.body,
+                    e.impulse,
+                    cross(e.point - s[e.body].com, e.impulse) + e.angular_impulse,
+                )
+            })
+            .collect();
+        let (rows, ranges) = constraint_rows(facts, hit, s);
+        let (post, lambda) = solve_impulses(s, &rows, &ext);
+        let joint_impulse = facts
+            .joints
+            .iter()
+            .zip(&ranges)
+            .map(|(j, r)| joint_impulse(j.kind, s[j.body1].angle, j.axis, &lambda[r.0..r.1]))
+            .collect();
+        Blow {
+            t0: pre.time,
+            post,
+            joint_impulse,
+            free: (0..s.len()).map(|i| is_free(hit, i)).collect(),
+        }
+    }
+
+    /// Body i's state at time t after the blow (carried ballistically when free).
+    pub fn post_at(&self, i: usize, t: f64, g: DVec2) -> BodyState {
+        let a = if self.free[i] { g } else { DVec2::ZERO };
+        carried_forward(&self.post[i], (t - self.t0).max(0.0), a)
+    }
+}

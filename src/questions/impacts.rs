@@ -1,0 +1,108 @@
+//! Impact quantities, about the first contact of a pair: the rebound height after it, the
+//! coefficient of restitution across it, and the mechanical energy it takes.
+//!
+//! The engine's values are measured across the contact as `contact_events` delimits it (the
+//! snapshot before the touch and the first one without force after it); the analyses are the
+//! impulse-momentum solution of the impact (`impact_solution`, IM-9 to IM-14) and the
+//! level's declared restitution.
+
+use super::contact_events::{ContactPhase, PairEvent, PairTracker};
+use super::meter::{EngineAndAnalysis, Meter};
+use super::sample::Sample;
+use super::snapshot_reading::{carried_forward, height, is_massive, mechanical_energy};
+use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
+use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::level::Quantity;
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// The tracker of the pair an impact quantity is about (None for other quantities).
+pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
+    match q {
+        Quantity::ReboundHeight { body, other }
+        | Quantity::Restitution { body, other }
+        | Quantity::EnergyLost { body, other } => Some(PairTracker::new(body, Some(other))),
+        _ => None,
+    }
+}
+
+/// Follows the rebound's apex over the step that led to `s` (`event`: what the pair did then).
+pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
+    if let Quantity::ReboundHeight { body, .. } = &m.q {
+        if let Some(i) = s.body_index(body) {
+            let phase = m.pair.as_ref().map_or(ContactPhase::Before, |p| p.phase);
+            // A flicker of the contact: the flight has not begun yet.
+            if event == Some(PairEvent::Resumed) {
+                m.rebound_apex = f64::NEG_INFINITY;
+            }
+            if matches!(phase, ContactPhase::Quiet | ContactPhase::Released) {
+                m.rebound_apex = m.rebound_apex.max(height(s.gravity, s.bodies[i].com));
+            }
+        }
+    }
+}
+
+/// The quantity at the sample.
+pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
+    let s = f.cur;
+    let p = m.pair.as_ref();
+    Some(match &m.q {
+        Quantity::ReboundHeight { body: b, .. } => {
+            let i = s.body_index(b)?;
+            let p = p?;
+            let engine = if p.ended() { m.rebound_apex } else { f64::NAN };
+            // The apex of free flight from the state right after the impact (IM-13).
+            let analysis = p.impact.as_ref().map(|imp| {
+                let post = &imp.post[i];
+                let g = s.gravity.length();
+                let up = if g > 0.0 {
+                    -post.velocity.dot(s.gravity / g)
+                } else {
+                    0.0
+                };
+                height(s.gravity, post.com) + up.max(0.0).powi(2) / (2.0 * g)
+            });
+            (engine, analysis)
+        }
+        Quantity::Restitution { .. } => {
+            let p = p?;
+            let imp = p.impact.as_ref()?;
+            let (pre, post) = (p.pre.as_ref()?, p.release.as_ref()?);
+            // The engine's states before and after, brought to the touching instant.
+            let at = |snap: &Snapshot, i: usize| {
+                let a = if imp.free[i] {
+                    snap.gravity
+                } else {
+                    DVec2::ZERO
+                };
+                carried_forward(&snap.bodies[i], imp.t_c - snap.time, a)
+            };
+            let rel = |snap: &Snapshot| {
+                let (b1, b2) = (at(snap, imp.i1), at(snap, imp.i2));
+                (point_velocity(&b2, imp.point) - point_velocity(&b1, imp.point)).dot(imp.normal)
+            };
+            let e = -rel(post) / rel(pre);
+            (e, Some(m.facts.restitution(imp.i1, imp.i2)))
+        }
+        Quantity::EnergyLost { body: b, other } => {
+            let (i, o) = (s.body_index(b)?, s.body_index(other)?);
+            let p = p?;
+            let (pre, post) = (p.pre.as_ref()?, p.release.as_ref()?);
+            let e = |snap: &Snapshot| {
+                [i, o]
+                    .iter()
+                    .filter(|&&k| is_massive(&snap.bodies[k]))
+                    .map(|&k| mechanical_energy(snap.gravity, &snap.bodies[k]))
+                    .sum::<f64>()
+            };
+            let analysis = p.impact.as_ref().map(|imp| {
+                [i, o]
+                    .iter()
+                    .map(|&k| kinetic_energy(&imp.pre[k]) - kinetic_energy(&imp.post[k]))
+                    .sum::<f64>()
+            });
+            (e(pre) - e(post), analysis)
+        }
+        q => unreachable!("{q:?} is not an impact quantity"),
+    })
+}

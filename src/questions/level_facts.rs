@@ -1,0 +1,95 @@
+//! What the questions need to know about the level beyond the snapshots: the restitution and
+//! friction each body declares (under the level's effects), disc radii, and the joints' kinds
+//! and geometry. The impact and blow solutions, friction's work and the joint analyses read
+//! them; the engine's state comes from the snapshots.
+
+use crate::level::{Effect, JointKind, Level, Shape};
+use glam::DVec2;
+
+/// A body's declared contact coefficients and shape, as far as the questions use them.
+#[derive(Debug, Clone)]
+pub(super) struct BodyInfo {
+    /// Restitution e (0 unless the level has the `restitution` effect).
+    pub restitution: f64,
+    /// Friction coefficient mu (0 unless the level has the `friction` effect).
+    pub friction: f64,
+    /// Radius of a disc centered on the body origin (for the exact line of centers of an impact).
+    pub disc: Option<f64>,
+}
+
+/// A joint's kind, bodies and geometry, in the level's order (the snapshots' order too).
+#[derive(Debug, Clone)]
+pub(super) struct JointInfo {
+    pub kind: JointKind,
+    pub body1: usize,
+    pub body2: usize,
+    /// The anchor in body2's frame, m.
+    pub anchor2: DVec2,
+    /// The slide axis in body1's frame (unit).
+    pub axis: DVec2,
+}
+
+/// Level data some analyses need beyond the snapshot (declared coefficients, joint geometry).
+#[derive(Debug, Clone)]
+pub(super) struct LevelFacts {
+    pub bodies: Vec<BodyInfo>,
+    /// The level's joints (empty without the `joints` effect).
+    pub joints: Vec<JointInfo>,
+}
+
+impl LevelFacts {
+    pub fn of(level: &Level) -> LevelFacts {
+        let has = |e: Effect| level.effects.contains(&e);
+        let index = |n: &str| level.bodies.iter().position(|b| b.name == n).unwrap_or(0);
+        let v = |p: (f64, f64)| DVec2::new(p.0, p.1);
+        LevelFacts {
+            bodies: level
+                .bodies
+                .iter()
+                .map(|b| BodyInfo {
+                    restitution: if has(Effect::Restitution) {
+                        b.restitution.unwrap_or(0.0)
+                    } else {
+                        0.0
+                    },
+                    friction: if has(Effect::Friction) {
+                        b.friction.unwrap_or(0.0)
+                    } else {
+                        0.0
+                    },
+                    disc: match &b.shape {
+                        Some(Shape::Circle { radius }) => Some(*radius),
+                        _ => None,
+                    },
+                })
+                .collect(),
+            joints: if has(Effect::Joints) {
+                level
+                    .joints
+                    .iter()
+                    .map(|j| JointInfo {
+                        kind: j.kind,
+                        body1: index(&j.body1),
+                        body2: index(&j.body2),
+                        anchor2: v(j.anchor2),
+                        axis: v(j.axis).normalize_or(DVec2::X),
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            },
+        }
+    }
+
+    /// The pair's restitution as rapier combines it (the larger of the two, see `sim::build`).
+    pub fn restitution(&self, a: usize, b: usize) -> f64 {
+        let e = |i: usize| self.bodies.get(i).map_or(0.0, |x| x.restitution);
+        e(a).max(e(b))
+    }
+
+    /// The pair's friction coefficient as rapier combines it (the larger of the two).
+    pub fn friction(&self, a: usize, b: usize) -> f64 {
+        let m = |i: usize| self.bodies.get(i).map_or(0.0, |x| x.friction);
+        m(a).max(m(b))
+    }
+}

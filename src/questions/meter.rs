@@ -1,0 +1,104 @@
+//! One quantity followed over a run: what it accumulates from step to step, and its reading at
+//! a sample. The meter holds the state; the quantity's family (see
+//! [`QuantityFamily`]) owns how that state is advanced and how the quantity is read.
+
+use super::contact_events::PairTracker;
+use super::level_facts::LevelFacts;
+use super::periods::Crossings;
+use super::sample::{Occasion, Reading, Sample};
+use super::{forces, impacts, linkages, motion, periods, rolling, work_and_power};
+use crate::level::{Quantity, QuantityFamily};
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+use std::sync::Arc;
+
+/// A quantity's value at a sample: the engine's, and the textbook analysis when one applies.
+pub(super) type EngineAndAnalysis = (f64, Option<f64>);
+
+/// Evaluates one quantity at every sample, keeping whatever it accumulates over the run.
+#[derive(Clone)]
+pub(super) struct Meter {
+    pub q: Quantity,
+    pub facts: Arc<LevelFacts>,
+    /// The first snapshot the meter saw (the initial state).
+    pub init: Option<Snapshot>,
+    /// Running sum of the engine's value (works, distance).
+    pub engine_sum: f64,
+    /// Running sum for the analysis: path work of springs, loads and events on the body
+    /// (work-energy analyses), or friction's Coulomb work.
+    pub analysis_sum: f64,
+    /// Zero crossings of an oscillating velocity (periods).
+    pub crossings: Crossings,
+    /// Direction of the spring a `SpringPeriod` body oscillates along.
+    pub spring_axis: Option<DVec2>,
+    /// The pair an impact quantity is about.
+    pub pair: Option<PairTracker>,
+    /// Highest mass center since the contact went quiet (rebound height), m.
+    pub rebound_apex: f64,
+    /// `LoadWork`: the first load seen (force, couple, point, body angle) and whether it stayed equal.
+    pub first_load: Option<(DVec2, f64, DVec2, f64)>,
+    pub load_constant: bool,
+    /// Read at a configuration event (not a fixed time): see `Quantity::KineticEnergy`.
+    pub configuration_event: bool,
+}
+
+impl Meter {
+    pub fn new(q: &Quantity, facts: Arc<LevelFacts>) -> Self {
+        Meter {
+            q: q.clone(),
+            facts,
+            init: None,
+            engine_sum: 0.0,
+            analysis_sum: 0.0,
+            crossings: Crossings::default(),
+            spring_axis: None,
+            pair: impacts::pair_tracker(q),
+            rebound_apex: f64::NEG_INFINITY,
+            first_load: None,
+            load_constant: true,
+            configuration_event: true,
+        }
+    }
+
+    /// Accumulates what the quantity needs from the step that led to the sample.
+    pub fn advance(&mut self, f: &Sample) {
+        let s = f.cur;
+        if self.init.is_none() {
+            self.init = Some(s.clone());
+        }
+        let pair_event = match &mut self.pair {
+            Some(p) => p.update(f, &self.facts),
+            None => None,
+        };
+        let Some(prev) = f.prev else {
+            return;
+        };
+        match self.q.family() {
+            QuantityFamily::Motion => motion::advance(self, prev, s),
+            QuantityFamily::Forces => forces::advance(self, prev, s),
+            QuantityFamily::WorkAndPower => work_and_power::advance(self, prev, s),
+            QuantityFamily::Periods => periods::advance(self, prev, s),
+            QuantityFamily::Impacts => impacts::advance(self, s, pair_event),
+            QuantityFamily::Rolling | QuantityFamily::Linkages => {}
+        }
+    }
+
+    /// The quantity at the sample (NaN when it cannot be read there).
+    pub fn read(&self, f: &Sample, occ: Occasion) -> Reading {
+        let value = match self.q.family() {
+            QuantityFamily::Motion => motion::read(self, f, occ),
+            QuantityFamily::Forces => forces::read(self, f, occ),
+            QuantityFamily::WorkAndPower => work_and_power::read(self, f, occ),
+            QuantityFamily::Periods => periods::read(self, f),
+            QuantityFamily::Rolling => rolling::read(self, f),
+            QuantityFamily::Impacts => impacts::read(self, f),
+            QuantityFamily::Linkages => linkages::read(self, f),
+        };
+        let (engine, analysis) = value.unwrap_or((f64::NAN, None));
+        Reading {
+            t: f.cur.time,
+            engine,
+            analysis: analysis.filter(|a| a.is_finite()),
+        }
+    }
+}

@@ -1,0 +1,52 @@
+//! Stage 4b: questions, an exercise's asked quantity read from the run and compared with the
+//! expected answer.
+//!
+//! Each question is read twice at the moment its `at` names:
+//! - `engine`: the engine's own motion and reactions (positions, velocities, finite
+//!   differences, the impulses rapier applied);
+//! - `analysis`: the textbook formula for the quantity (documented on each
+//!   [`Quantity`](crate::level::Quantity) variant) applied to the engine's state: its mass
+//!   properties, pose and, for impacts and blows, its velocities just before. Where a quantity
+//!   has no independent formula the analysis is `None`.
+//!
+//! A question passes on the engine value (the exercise grades the engine against the textbook);
+//! the analysis value shows whether a miss is the engine's or the exercise's.
+//!
+//! Where things are:
+//! - `probe`: [`QuestionProbe`], which watches the run and decides *when* to read (a time, an
+//!   extreme, a crossing, a contact event, a blow);
+//! - `meter`: one quantity's state over the run, handing the reading to its family;
+//! - the families, each owning how its quantities are accumulated and read: `motion`,
+//!   `forces` (with the engine's free-body diagram in `free_body`), `work_and_power`,
+//!   `periods`, `rolling`, `impacts` (with the impulse-momentum solutions in
+//!   `impact_solution`) and `linkages`;
+//! - `contact_events`: the first contact of a pair, from touch to release;
+//! - `level_facts`: what a question needs from the level beyond the snapshots;
+//! - `sample`: the snapshots around a sample, and what a reading is;
+//! - `snapshot_reading`: small readings of a snapshot the families share;
+//! - `result`: the result a question reports, and grading a student's answer.
+//!
+//! Adding a quantity: its variant in `level/format.rs` (with its [`QuantityFamily`]), its
+//! references in `level/validate.rs`, and its reading in its family's file.
+//!
+//! [`QuantityFamily`]: crate::level::QuantityFamily
+
+mod contact_events;
+mod forces;
+mod free_body;
+mod impact_solution;
+mod impacts;
+mod level_facts;
+mod linkages;
+mod meter;
+mod motion;
+mod periods;
+mod probe;
+mod result;
+mod rolling;
+mod sample;
+mod snapshot_reading;
+mod work_and_power;
+
+pub use probe::QuestionProbe;
+pub use result::{grade_answer, QuestionResult, StudentGrade};

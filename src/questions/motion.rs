@@ -1,0 +1,111 @@
+//! Motion quantities: where bodies and body points are, how fast they move and accelerate,
+//! how far they travel, and the time of an event.
+//!
+//! Positions and velocities are the engine's state. At an impact or a blow, velocity analyses
+//! are the impulse-momentum solution's (`sample::Occasion`); accelerations' analyses are
+//! Newton-Euler on the engine's free-body diagram (6/1, see `free_body`).
+
+use super::free_body::newton_euler;
+use super::meter::{EngineAndAnalysis, Meter};
+use super::sample::{Occasion, Sample};
+use super::snapshot_reading::named_body;
+use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::level::Quantity;
+use crate::snapshot::{BodyState, Snapshot};
+use glam::DVec2;
+
+/// Accumulates the distance travelled over the step from `prev` to `s`.
+pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+    if let Quantity::Distance(b) = &m.q {
+        if let Some(i) = s.body_index(b) {
+            m.engine_sum += (s.bodies[i].com - prev.bodies[i].com).length();
+        }
+    }
+}
+
+/// The quantity at the sample.
+pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
+    let s = f.cur;
+    let body = |name: &str| named_body(s, name);
+    let solved = |i: usize| occ.solved_state(i, s);
+    Some(match &m.q {
+        Quantity::X(b) => (body(b)?.1.com.x, None),
+        Quantity::Y(b) => (body(b)?.1.com.y, None),
+        Quantity::Angle(b) => (body(b)?.1.angle, None),
+        Quantity::Vx(b) => {
+            let (i, x) = body(b)?;
+            (x.velocity.x, solved(i).map(|y| y.velocity.x))
+        }
+        Quantity::Vy(b) => {
+            let (i, x) = body(b)?;
+            (x.velocity.y, solved(i).map(|y| y.velocity.y))
+        }
+        Quantity::Speed(b) => {
+            let (i, x) = body(b)?;
+            (x.velocity.length(), solved(i).map(|y| y.velocity.length()))
+        }
+        Quantity::Omega(b) => {
+            let (i, x) = body(b)?;
+            (x.omega, solved(i).map(|y| y.omega))
+        }
+        Quantity::Direction(b) => {
+            let (i, x) = body(b)?;
+            let dir = |v: DVec2| v.y.atan2(v.x);
+            (dir(x.velocity), solved(i).map(|y| dir(y.velocity)))
+        }
+        Quantity::Distance(_) => (m.engine_sum, None),
+        Quantity::Time => (s.time, None),
+        Quantity::Ax(b) | Quantity::Ay(b) | Quantity::Accel(b) => {
+            let i = s.body_index(b)?;
+            let ax = f.rate(|x| Some(x.bodies[i].velocity.x))?;
+            let ay = f.rate(|x| Some(x.bodies[i].velocity.y))?;
+            let newton = newton_euler(f, i).map(|(a, _)| a);
+            let pick = |a: DVec2| match &m.q {
+                Quantity::Ax(_) => a.x,
+                Quantity::Ay(_) => a.y,
+                _ => a.length(),
+            };
+            (pick(DVec2::new(ax, ay)), newton.map(pick))
+        }
+        Quantity::Alpha(b) => {
+            let i = s.body_index(b)?;
+            let alpha = f.rate(|x| Some(x.bodies[i].omega))?;
+            (alpha, newton_euler(f, i).map(|(_, al)| al))
+        }
+        Quantity::PointX { body: b, point } => {
+            (body(b)?.1.world_point(DVec2::new(point.0, point.1)).x, None)
+        }
+        Quantity::PointY { body: b, point } => {
+            (body(b)?.1.world_point(DVec2::new(point.0, point.1)).y, None)
+        }
+        Quantity::PointSpeed { body: b, point } => {
+            let (i, x) = body(b)?;
+            let local = DVec2::new(point.0, point.1);
+            let speed = |y: &BodyState| point_velocity(y, y.world_point(local)).length();
+            (speed(x), solved(i).map(|y| speed(&y)))
+        }
+        Quantity::PointAccel { body: b, point } => {
+            let (i, x) = body(b)?;
+            let local = DVec2::new(point.0, point.1);
+            // The material point's velocity in each snapshot, differenced.
+            let vp = |y: &Snapshot| {
+                let b = &y.bodies[i];
+                point_velocity(b, b.world_point(local))
+            };
+            let ax = f.rate(|y| Some(vp(y).x))?;
+            let ay = f.rate(|y| Some(vp(y).y))?;
+            // RK-10 written out: a_P = a_G + alpha k x r - omega^2 r.
+            let analysis = newton_euler(f, i).map(|(a_g, alpha)| {
+                let r = x.world_point(local) - x.com;
+                (a_g + r.perp() * alpha - r * x.omega * x.omega).length()
+            });
+            (DVec2::new(ax, ay).length(), analysis)
+        }
+        Quantity::RelativeDistance(a, b) => ((body(b)?.1.com - body(a)?.1.com).length(), None),
+        Quantity::RelativeSpeed(a, b) => {
+            ((body(b)?.1.velocity - body(a)?.1.velocity).length(), None)
+        }
+        Quantity::RelativeAngle(a, b) => (body(b)?.1.angle - body(a)?.1.angle, None),
+        q => unreachable!("{q:?} is not a motion quantity"),
+    })
+}

@@ -1,0 +1,141 @@
+//! Periods of oscillation: a body swinging on a pivot, a body on springs.
+//!
+//! The engine's period is the mean time between successive zero crossings of the same
+//! direction of the body's velocity (angular for a pendulum, along the spring for a spring
+//! mass), i.e. between its extremes; the analyses are the exact large-amplitude pendulum period
+//! (PL-5 with the elliptic integral) and 2 pi sqrt(m / k).
+
+use super::meter::{EngineAndAnalysis, Meter};
+use super::sample::Sample;
+use super::snapshot_reading::joint_index;
+use crate::analysis::closed_forms::{pendulum_period, spring_mass_period};
+use crate::level::Quantity;
+use crate::snapshot::Snapshot;
+use glam::DVec2;
+
+/// Crossings of a signal through zero, by direction, at interpolated times.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Crossings {
+    last: Option<(f64, f64)>,
+    down: Vec<f64>,
+    up: Vec<f64>,
+}
+
+impl Crossings {
+    fn add(&mut self, t: f64, x: f64) {
+        if let Some((t0, x0)) = self.last {
+            if x0 > 0.0 && x <= 0.0 && x0 != x {
+                self.down.push(t0 + (t - t0) * x0 / (x0 - x));
+            } else if x0 < 0.0 && x >= 0.0 && x0 != x {
+                self.up.push(t0 + (t - t0) * x0 / (x0 - x));
+            }
+        }
+        self.last = Some((t, x));
+    }
+
+    /// Mean interval between successive crossings of the same direction: the period.
+    fn period(&self) -> f64 {
+        let diffs: Vec<f64> = [&self.down, &self.up]
+            .iter()
+            .flat_map(|v| v.windows(2).map(|w| w[1] - w[0]))
+            .collect();
+        if diffs.is_empty() {
+            f64::NAN
+        } else {
+            diffs.iter().sum::<f64>() / diffs.len() as f64
+        }
+    }
+}
+
+/// Follows the oscillating velocity over the step from `prev` to `s`.
+pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+    match &m.q {
+        Quantity::PendulumPeriod { body, .. } => {
+            if let Some(i) = s.body_index(body) {
+                if m.crossings.last.is_none() {
+                    m.crossings.add(prev.time, prev.bodies[i].omega);
+                }
+                m.crossings.add(s.time, s.bodies[i].omega);
+            }
+        }
+        Quantity::SpringPeriod(body) => {
+            if let Some(i) = s.body_index(body) {
+                if m.spring_axis.is_none() {
+                    let init = m.init.as_ref().unwrap_or(prev);
+                    let sp = init
+                        .springs
+                        .iter()
+                        .find(|x| x.body1 == i || x.body2 == Some(i));
+                    m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
+                    if let Some(a) = m.spring_axis {
+                        m.crossings.add(prev.time, prev.bodies[i].velocity.dot(a));
+                    }
+                }
+                if let Some(a) = m.spring_axis {
+                    m.crossings.add(s.time, s.bodies[i].velocity.dot(a));
+                }
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The quantity at the sample.
+pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
+    let s = f.cur;
+    Some(match &m.q {
+        Quantity::PendulumPeriod { body: b, joint } => {
+            (m.crossings.period(), pendulum_theory(m, s, b, joint))
+        }
+        Quantity::SpringPeriod(b) => {
+            let i = s.body_index(b)?;
+            // Each spring's k = 2 V_e / x^2, from the first snapshot where it is stretched.
+            let k: f64 = m
+                .init
+                .as_ref()?
+                .springs
+                .iter()
+                .chain(&s.springs)
+                .filter(|x| (x.body1 == i || x.body2 == Some(i)) && x.extension.abs() > 1e-9)
+                .map(|x| (x.name.clone(), 2.0 * x.energy / (x.extension * x.extension)))
+                .fold(Vec::<(String, f64)>::new(), |mut v, (n, k)| {
+                    if !v.iter().any(|(m, _)| *m == n) {
+                        v.push((n, k));
+                    }
+                    v
+                })
+                .iter()
+                .map(|(_, k)| k)
+                .sum();
+            let mass = s.bodies[i].mass;
+            (
+                m.crossings.period(),
+                (k > 0.0).then(|| spring_mass_period(mass, k)),
+            )
+        }
+        q => unreachable!("{q:?} is not a period"),
+    })
+}
+
+/// The exact large-amplitude period of a body swinging about the joint's fixed anchor,
+/// from the engine's initial state.
+fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f64> {
+    let i = s.body_index(body)?;
+    let j = &s.joints[joint_index(s, joint)?];
+    let o = if j.body2 == i { j.anchor1 } else { j.anchor };
+    let b0 = &m.init.as_ref()?.bodies[i];
+    let g = s.gravity.length();
+    let r = b0.com - o;
+    let d = r.length();
+    if g <= 0.0 || d <= 0.0 {
+        return None;
+    }
+    let i_o = b0.inertia + b0.mass * d * d;
+    let cos_phi = r.dot(s.gravity / g) / d;
+    let one_minus_cos = (1.0 - cos_phi) + i_o * b0.omega * b0.omega / (2.0 * b0.mass * g * d);
+    if one_minus_cos >= 2.0 {
+        return None;
+    }
+    let theta0 = (1.0 - one_minus_cos).clamp(-1.0, 1.0).acos();
+    Some(pendulum_period(i_o, b0.mass, g, d, theta0))
+}

@@ -1,0 +1,324 @@
+//! [`QuestionProbe`]: one question watching a run, deciding when its quantity is read (the
+//! question's `at`: a time, the end, an extreme, a crossing, a contact event, a blow) and
+//! turning the reading into a [`QuestionResult`].
+
+use super::contact_events::{PairEvent, PairTracker};
+use super::impact_solution::{Blow, NO_IMPACT};
+use super::level_facts::LevelFacts;
+use super::meter::Meter;
+use super::result::QuestionResult;
+use super::sample::{Occasion, Reading, Sample};
+use crate::level::{Level, Quantity, QuestionDef, When};
+use crate::snapshot::Snapshot;
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+/// Reads one question's quantity from every snapshot.
+#[derive(Clone)]
+pub struct QuestionProbe {
+    def: QuestionDef,
+    facts: Arc<LevelFacts>,
+    meter: Meter,
+    /// The signal a crossing waits for.
+    trigger: Option<Meter>,
+    /// The pair whose contact the question waits for.
+    pair: Option<PairTracker>,
+    /// The snapshots the next samples still need (their averaging windows).
+    hist: VecDeque<Snapshot>,
+    last: Option<Reading>,
+    last_signal: Option<f64>,
+    value: Option<Reading>,
+    /// A contact-end reading waiting for the contact to stay quiet.
+    pending: Option<Reading>,
+    done: bool,
+    note: String,
+    /// Averaging window of the quantity, s, and its half-width in steps.
+    window: f64,
+    lag: usize,
+    /// Step number of the next sample to process.
+    next_step: u64,
+}
+
+impl QuestionProbe {
+    /// A probe for one of the level's questions (it reads the level's declared restitution,
+    /// friction and joints for its analyses).
+    pub fn for_level(level: &Level, def: &QuestionDef) -> Self {
+        let facts = Arc::new(LevelFacts::of(level));
+        let trigger = match &def.at {
+            When::Angle { body, .. } => {
+                Some(Meter::new(&Quantity::Angle(body.clone()), facts.clone()))
+            }
+            When::Crossing { of, .. } => Some(Meter::new(of, facts.clone())),
+            _ => None,
+        };
+        let pair = match &def.at {
+            When::FirstContact { body, other } | When::ContactEnds { body, other } => {
+                Some(PairTracker::new(body, other.as_deref()))
+            }
+            _ => None,
+        };
+        let mut meter = Meter::new(&def.quantity, facts.clone());
+        meter.configuration_event = !matches!(def.at, When::Time(_) | When::End);
+        QuestionProbe {
+            def: def.clone(),
+            meter,
+            facts,
+            trigger,
+            pair,
+            hist: VecDeque::new(),
+            last: None,
+            last_signal: None,
+            value: None,
+            pending: None,
+            done: false,
+            note: String::new(),
+            window: def.quantity.averaging_window(),
+            lag: 1,
+            next_step: 0,
+        }
+    }
+
+    pub fn id(&self) -> &str {
+        &self.def.id
+    }
+
+    pub fn observe(&mut self, s: &Snapshot) {
+        if s.step == 1 {
+            // The initial snapshot has its mass properties (the simulation sets them at build),
+            // but its mass centers are rapier's pose times local_com in f32, where every later
+            // snapshot's are computed in f64: recompute them in f64, so that the changes since
+            // the start (gravity's work, the pendulum's amplitude) carry no f32 round-off.
+            if let Some(first) = self.hist.back_mut().filter(|f| f.step == 0) {
+                for b0 in first.bodies.iter_mut() {
+                    b0.com = b0.world_point(b0.local_com);
+                }
+            }
+            // The averaging window in steps, each side.
+            if s.dt > 0.0 {
+                self.lag = ((0.5 * self.window / s.dt).round() as usize).max(1);
+            }
+        }
+        self.hist.push_back(s.clone());
+        while self.ready() {
+            self.process_next();
+        }
+    }
+
+    /// Whether the next sample has its window's snapshots.
+    fn ready(&self) -> bool {
+        self.hist
+            .back()
+            .is_some_and(|b| b.step >= self.next_step + self.lag as u64 && b.step > self.next_step)
+    }
+
+    /// Processes the next unprocessed sample and drops the history it no longer needs.
+    fn process_next(&mut self) {
+        let Some(k) = self.hist.iter().position(|h| h.step == self.next_step) else {
+            return;
+        };
+        self.process(k);
+        self.next_step += 1;
+        let keep = self.lag.max(2);
+        while self.hist.len() > keep + 1
+            && self
+                .hist
+                .front()
+                .is_some_and(|f| f.step + (keep as u64) < self.next_step)
+        {
+            self.hist.pop_front();
+        }
+    }
+
+    /// Processes the sample at `hist[k]`.
+    fn process(&mut self, k: usize) {
+        let mut hist = std::mem::take(&mut self.hist);
+        hist.make_contiguous();
+        let all = hist.as_slices().0;
+        let lo = k.saturating_sub(self.lag);
+        let hi = (k + self.lag).min(all.len() - 1);
+        let sample = Sample {
+            prev: k.checked_sub(1).map(|p| &all[p]),
+            cur: &all[k],
+            next: all.get(k + 1),
+            window: if self.lag > 1 {
+                &all[lo..=hi]
+            } else {
+                &all[k..=k]
+            },
+        };
+        self.meter.advance(&sample);
+        if let Some(t) = &mut self.trigger {
+            t.advance(&sample);
+        }
+        let event = match &mut self.pair {
+            Some(p) => p.update(&sample, &self.facts),
+            None => None,
+        };
+        if !self.done {
+            self.read_if_due(&sample, event, all, k);
+        }
+        self.hist = hist;
+    }
+
+    /// Reads the quantity when the sample is the moment the question's `at` names (`all[k]` is
+    /// the sample, `event` what the question's pair did at it).
+    fn read_if_due(
+        &mut self,
+        sample: &Sample,
+        event: Option<PairEvent>,
+        all: &[Snapshot],
+        k: usize,
+    ) {
+        let t = sample.cur.time;
+        match self.def.at.clone() {
+            When::End => self.value = Some(self.meter.read(sample, Occasion::Plain)),
+            When::Time(at) => {
+                let r = self.meter.read(sample, Occasion::Plain);
+                if t >= at {
+                    self.value = Some(match self.last {
+                        Some(l) if l.t < at && t > l.t => {
+                            Reading::lerp(l, r, (at - l.t) / (t - l.t))
+                        }
+                        _ => r,
+                    });
+                    self.done = true;
+                } else {
+                    self.value = Some(r);
+                }
+                self.last = Some(r);
+            }
+            When::Max(from) | When::Min(from) => {
+                let r = self.meter.read(sample, Occasion::Plain);
+                let max = matches!(self.def.at, When::Max(_));
+                let better = self.value.is_none_or(|v| {
+                    if max {
+                        r.engine > v.engine
+                    } else {
+                        r.engine < v.engine
+                    }
+                });
+                if t >= from && better && r.engine.is_finite() {
+                    self.value = Some(r);
+                }
+            }
+            When::Angle { angle: value, .. } | When::Crossing { value, .. } => {
+                let after = match &self.def.at {
+                    When::Crossing { after, .. } => *after,
+                    _ => 0.0,
+                };
+                let r = self.meter.read(sample, Occasion::Plain);
+                let sig = self
+                    .trigger
+                    .as_ref()
+                    .map_or(f64::NAN, |m| m.read(sample, Occasion::Plain).engine - value);
+                if let (Some(l), Some(s0)) = (self.last, self.last_signal) {
+                    let crossed = l.t >= after
+                        && s0.is_finite()
+                        && sig.is_finite()
+                        && s0 != 0.0
+                        && (sig == 0.0 || (s0 > 0.0) != (sig > 0.0));
+                    if crossed {
+                        let f = s0 / (s0 - sig);
+                        self.value = Some(Reading::lerp(l, r, f));
+                        self.done = true;
+                    }
+                }
+                self.last = Some(r);
+                self.last_signal = Some(sig);
+            }
+            When::FirstContact { .. } => {
+                let r = self.meter.read(sample, Occasion::Plain);
+                if event == Some(PairEvent::Touch) {
+                    if let Some(l) = self.last {
+                        // The engine's value the step before the touch; the analysis is the
+                        // impact solution's state at the touching instant.
+                        let imp = self.pair.as_ref().and_then(|p| p.impact.clone());
+                        let analysis = match (&imp, sample.prev) {
+                            (Some(imp), Some(prev)) => {
+                                let before = Sample {
+                                    prev: k.checked_sub(2).map(|p| &all[p]),
+                                    cur: prev,
+                                    next: Some(sample.cur),
+                                    window: std::slice::from_ref(prev),
+                                };
+                                self.meter.read(&before, Occasion::PreImpact(imp)).analysis
+                            }
+                            _ => None,
+                        };
+                        self.value = Some(Reading { analysis, ..l });
+                    } else {
+                        self.note =
+                            "the body touches at the start: there is no pre-contact state".into();
+                    }
+                    self.done = true;
+                }
+                self.last = Some(r);
+            }
+            When::ContactEnds { .. } => match event {
+                Some(PairEvent::Quiet) => {
+                    let imp = self.pair.as_ref().and_then(|p| p.impact.clone());
+                    let occ = match &imp {
+                        Some(i) => Occasion::PostImpact(i),
+                        None => {
+                            self.note = NO_IMPACT.into();
+                            Occasion::Plain
+                        }
+                    };
+                    self.pending = Some(self.meter.read(sample, occ));
+                }
+                Some(PairEvent::Resumed) => self.pending = None,
+                Some(PairEvent::Released) => {
+                    self.value = self.pending.take();
+                    self.done = true;
+                }
+                _ => {}
+            },
+            When::FirstStep => {
+                if sample.cur.step == 1 {
+                    self.read_after_blow(sample);
+                }
+            }
+            When::AfterEvent(name) => {
+                if sample.cur.impulses.iter().any(|e| e.name == name) {
+                    self.read_after_blow(sample);
+                }
+            }
+        }
+    }
+
+    /// Reads the quantity right after the impulse events of the sample's step, with the blow's
+    /// impulse-momentum solution as the analysis.
+    fn read_after_blow(&mut self, sample: &Sample) {
+        let blow = sample.prev.map(|p| Blow::solve(&self.facts, p, sample.cur));
+        let occ = match &blow {
+            Some(b) => Occasion::AfterBlow(b),
+            None => Occasion::Plain,
+        };
+        self.value = Some(self.meter.read(sample, occ));
+        self.done = true;
+    }
+
+    /// The question's result, with the grade of the student's answer when there is one.
+    pub fn finish(mut self, student: Option<f64>) -> QuestionResult {
+        while self.hist.iter().any(|h| h.step >= self.next_step) {
+            self.process_next();
+        }
+        // A contact that went quiet before the run ended counts as ended.
+        if !self.done {
+            if let Some(p) = self.pending.take() {
+                self.value = Some(p);
+            }
+        }
+        if self.value.is_none() && self.note.is_empty() {
+            self.note = match &self.def.at {
+                When::End | When::Time(_) | When::Max(_) | When::Min(_) => "no sample".into(),
+                w => format!("the event {w:?} did not happen in the run"),
+            };
+        }
+        let r = self.value.unwrap_or(Reading::MISSING);
+        if r.engine.is_nan() && self.note.is_empty() {
+            self.note = "the quantity could not be read (too few oscillations, no contact, or a missing item)".into();
+        }
+        QuestionResult::new(&self.def, r, self.note, student)
+    }
+}

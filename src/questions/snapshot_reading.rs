@@ -1,0 +1,67 @@
+//! Small readings of a snapshot that several families share: finding a joint, a body's local
+//! coordinates and height, whether it flies free, carrying it forward in time, and a pair's
+//! normal impulse.
+
+use crate::analysis::energy::body_kinetic_energy;
+pub(super) use crate::analysis::impulse_solver::is_massive;
+use crate::snapshot::{BodyState, Snapshot};
+use glam::DVec2;
+
+/// The index of the named joint in the snapshot.
+pub(super) fn joint_index(s: &Snapshot, name: &str) -> Option<usize> {
+    s.joints.iter().position(|j| j.name == name)
+}
+
+/// Body-frame coordinates of a world point.
+pub(super) fn to_local(b: &BodyState, p: DVec2) -> DVec2 {
+    DVec2::from_angle(-b.angle).rotate(p - b.position)
+}
+
+/// Height above the origin against gravity (y when g points down), m.
+pub(super) fn height(g: DVec2, p: DVec2) -> f64 {
+    if g.length() > 0.0 {
+        -p.dot(g.normalize())
+    } else {
+        p.y
+    }
+}
+
+/// Mechanical energy T + V_g of a body, J.
+pub(super) fn mechanical_energy(g: DVec2, b: &BodyState) -> f64 {
+    body_kinetic_energy(b) - b.mass * g.dot(b.com)
+}
+
+/// A body moving under gravity alone over this stretch (dynamic, no joint, no coupling).
+pub(super) fn is_free(s: &Snapshot, i: usize) -> bool {
+    is_massive(&s.bodies[i])
+        && !s.joints.iter().any(|j| j.body1 == i || j.body2 == i)
+        && !s.couplings.iter().any(|c| c.terms.iter().any(|t| t.0 == i))
+}
+
+/// A body state carried forward by `tau` at constant acceleration `a` and constant omega.
+pub(super) fn carried_forward(b: &BodyState, tau: f64, a: DVec2) -> BodyState {
+    let mut n = b.clone();
+    n.com = b.com + b.velocity * tau + 0.5 * a * tau * tau;
+    n.velocity = b.velocity + a * tau;
+    n.angle = b.angle + b.omega * tau;
+    n.position = n.com - DVec2::from_angle(n.angle).rotate(b.local_com);
+    n
+}
+
+/// Total normal impulse over the step between `body` and `other` (any body when None), N s.
+pub(super) fn pair_normal_impulse(s: &Snapshot, body: usize, other: Option<usize>) -> f64 {
+    s.contacts
+        .iter()
+        .filter(|c| {
+            (c.body1 == body && other.is_none_or(|o| c.body2 == o))
+                || (c.body2 == body && other.is_none_or(|o| c.body1 == o))
+        })
+        .flat_map(|c| c.points.iter())
+        .map(|p| p.normal_impulse.max(0.0))
+        .sum()
+}
+
+/// The named body of the snapshot, with its index.
+pub(super) fn named_body<'a>(s: &'a Snapshot, name: &str) -> Option<(usize, &'a BodyState)> {
+    s.body_index(name).map(|i| (i, &s.bodies[i]))
+}
