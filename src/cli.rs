@@ -433,8 +433,3 @@ fn play(_: PathBuf) -> ExitCode {
 fn render(_: PathBuf, _: f64, _: PathBuf) -> ExitCode {
     no_app()
 }
-
-/// Used by tests: a LevelError rendered as the CLI prints it.
-pub fn render_error(e: &LevelError) -> String {
-    e.to_string()
-}

@@ -4,9 +4,9 @@
 //! (`app::physics::LiveChecks`), the accuracy study and the tests all feed it, so every consumer
 //! grades a run the same way. [`run_scene`] drives a level headless from start to end.
 
-use crate::checks::questions::{QuestionProbe, QuestionResult};
 use crate::checks::{CheckResult, CheckSet};
 use crate::level::{self, Level, LevelError, Scene};
+use crate::questions::{QuestionProbe, QuestionResult};
 use crate::report::LevelReport;
 use crate::sim::{Options, SimError, Simulation};
 use crate::snapshot::Snapshot;

@@ -80,7 +80,6 @@ impl Precision {
     }
 }
 
-
 pub use crate::level::{BodyKind, Coordinate};
 
 /// One rigid body.

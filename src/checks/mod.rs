@@ -8,10 +8,6 @@
 
 mod kinds;
 
-/// The questions' old path, kept while branches written against it (the run loop's) land:
-/// new code imports [`crate::questions`].
-pub use crate::questions;
-
 use crate::analysis::frame::FrameAnalysis;
 use crate::level::{CheckDef, CheckKind, Level};
 use crate::snapshot::Snapshot;

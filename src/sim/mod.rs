@@ -19,8 +19,8 @@ pub mod options;
 pub mod settings;
 mod world;
 
+pub use crate::snapshot::Precision;
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
-pub use crate::snapshot::Precision;
 pub use settings::{Settings, Substepping};
 pub use world::{sample1, sample2, Simulation};

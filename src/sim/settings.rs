@@ -13,8 +13,8 @@
 //! it is engine-independent (no rapier type) and names what the textbook analysis needs.
 
 use crate::level::{Effect, Level};
-use crate::snapshot::Precision;
 use crate::sim::options::{Effects, Options};
+use crate::snapshot::Precision;
 use serde::{Deserialize, Serialize};
 
 /// How a step's substeps are taken.
