@@ -45,6 +45,13 @@ pub struct Snapshot {
     pub impulses: Vec<ImpulseState>,
 }
 
+impl Snapshot {
+    /// The state before any step (t = 0).
+    pub fn is_initial(&self) -> bool {
+        self.step == 0
+    }
+}
+
 fn one() -> usize {
     1
 }

@@ -181,7 +181,7 @@ impl FrameAnalysis {
     /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
     pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
         let n = snap.bodies.len();
-        let stepped = snap.dt > 0.0 && self.before.len() == n;
+        let stepped = !snap.is_initial() && self.before.len() == n;
         let f = &mut self.frame;
         if stepped {
             // The end of the last step is the start of this one. Fixed bodies do not move: their

@@ -114,7 +114,7 @@ pub fn free_body(s: &Snapshot, i: usize) -> (Vec<Force>, f64) {
             force: s.gravity * b.mass,
         });
     }
-    if s.dt > 0.0 {
+    if !s.is_initial() {
         let inv = 1.0 / s.dt;
         for c in &s.contacts {
             let (sign, other) = if c.body2 == i {
@@ -172,7 +172,7 @@ pub fn free_body(s: &Snapshot, i: usize) -> (Vec<Force>, f64) {
             }
         }
     }
-    if s.dt > 0.0 {
+    if !s.is_initial() {
         // Couplings: term k receives ratio_k * lambda along its coordinate (at G) or as a couple.
         for (k, c) in s.couplings.iter().enumerate() {
             for (body, coord, ratio) in &c.terms {
@@ -245,7 +245,7 @@ pub fn free_body_mean<'a>(
     let mut total_time = 0.0;
     for s in snaps {
         let (forces, c) = free_body(s, i);
-        let dt = if s.dt > 0.0 { s.dt } else { continue };
+        let dt = if s.is_initial() { continue } else { s.dt };
         total_time += dt;
         couple += c * dt;
         for f in forces {

@@ -38,7 +38,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
     Some(match &m.q {
         Quantity::JointForce(j) => {
             let k = joint_index(s, j)?;
-            if s.dt <= 0.0 {
+            if s.is_initial() {
                 return None;
             }
             (s.joints[k].impulse_on_body2.length() / s.dt, None)
@@ -100,7 +100,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         }
         Quantity::ContactForce(b) => {
             let i = s.body_index(b)?;
-            if s.dt <= 0.0 {
+            if s.is_initial() {
                 return None;
             }
             let total: DVec2 = s

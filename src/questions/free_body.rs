@@ -25,7 +25,7 @@ pub(super) fn newton_euler(f: &Sample, i: usize) -> Option<(DVec2, f64)> {
     }
     let (mut j, mut m, mut t) = (DVec2::ZERO, 0.0, 0.0);
     for (a, b) in pairs {
-        if b.dt <= 0.0 {
+        if b.is_initial() {
             continue;
         }
         let (jj, mm) = external_impulse(a, b, i);

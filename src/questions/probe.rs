@@ -94,7 +94,7 @@ impl QuestionProbe {
                 }
             }
             // The averaging window in steps, each side.
-            if s.dt > 0.0 {
+            if !s.is_initial() {
                 self.lag = ((0.5 * self.window / s.dt).round() as usize).max(1);
             }
         }

@@ -40,7 +40,7 @@ impl Sample<'_> {
     pub fn steps(&self) -> impl Iterator<Item = &Snapshot> {
         std::iter::once(self.cur)
             .chain(self.next)
-            .filter(|s| s.dt > 0.0)
+            .filter(|s| !s.is_initial())
     }
 
     /// The mean of a per-step impulse divided by dt (a force) over the steps of the window, or,
@@ -51,7 +51,7 @@ impl Sample<'_> {
         }
         // The window's first snapshot only bounds the first step.
         let (mut sum, mut n) = (DVec2::ZERO, 0.0);
-        for s in self.window.iter().skip(1).filter(|s| s.dt > 0.0) {
+        for s in self.window.iter().skip(1).filter(|s| !s.is_initial()) {
             sum += f(s)? / s.dt;
             n += 1.0;
         }

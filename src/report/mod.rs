@@ -199,7 +199,7 @@ impl CsvWriter {
             )?;
             let w = self.joints.as_mut().expect("created above");
             for j in &s.joints {
-                let force = if s.dt > 0.0 {
+                let force = if !s.is_initial() {
                     j.impulse_on_body2 / s.dt
                 } else {
                     glam::DVec2::ZERO

@@ -81,7 +81,7 @@ impl Probe for KineticEnergyG {
         if self.history.len() == 2 {
             let (g0, a0, _, _, _) = self.history[0];
             let (g1, a1, t1, time1, ev1) = self.history[1];
-            if s.dt > 0.0 && !ev1 && !event {
+            if !s.is_initial() && !ev1 && !event {
                 let v = velocity_from_positions(g1 - g0, g - g1, s.dt, self.substeps);
                 let w = omega_from_angles(
                     wrap_angle(a1 - a0),

@@ -142,7 +142,7 @@ impl Probe for CenterOfPercussion {
         let r_bar = (g_before - o).length();
         let i_o = parallel_axis(m.inertia, m.mass, r_bar);
         self.q = center_of_percussion_distance(i_o, m.mass, r_bar).unwrap_or(f64::INFINITY);
-        if s.dt > 0.0 {
+        if !s.is_initial() {
             let reaction = self.pivot_reaction(s, i);
             if self.strikes > 0 {
                 let events: Vec<Blow> = s

@@ -151,7 +151,7 @@ pub fn impulse_work(prev: &[Prev], s: &Snapshot) -> f64 {
 /// Work of the joint motors over the step: motor impulse times the change of the joint coordinate
 /// over dt (the motor's mean power tau * omega_rel times dt).
 pub fn motor_work(prev_coords: &[f64], s: &Snapshot) -> f64 {
-    if s.dt <= 0.0 {
+    if s.is_initial() {
         return 0.0;
     }
     s.joints
