@@ -1,0 +1,270 @@
+//! The exercise: checks (kind, body, tolerance and why) and questions (quantity, when, answer).
+
+use super::*;
+
+pub(super) fn check(v: &V, i: usize, c: &CheckDef) -> R {
+    let pos = v.loc.nth_in_section("checks", i);
+    for (field, name) in [("body", &c.body), ("other", &c.other)] {
+        if let Some(n) = name {
+            let is_body = v.level.bodies.iter().any(|b| &b.name == n);
+            let is_joint = v.level.joints.iter().any(|j| &j.name == n);
+            if !is_body && !is_joint {
+                return Err(v.err(
+                    pos,
+                    format!("check {field} names \"{n}\", which is neither a body nor a joint"),
+                    "name a body or joint of this level",
+                ));
+            }
+        }
+    }
+    if let Some(p) = c.point {
+        v.finite2(p, "check point", pos)?;
+    }
+    if c.kind == CheckKind::KineticEnergyIc && c.point.is_none() && c.other.is_none() {
+        // An instantaneous center found from the engine's own velocities makes 1/2 I_C w^2
+        // equal 1/2 m v^2 + 1/2 I_G w^2 identically: the check would compare a number with itself.
+        return Err(v.err(
+            pos,
+            "check kinetic_energy_ic has neither `point` nor `other`: it would compare the engine's kinetic energy with itself",
+            "give `point: (x, y)` for a body turning about a fixed pivot, or `other: \"ground\"` for a body rolling on it",
+        ));
+    }
+    if let Some((t1, t2)) = c.window {
+        if c.kind != CheckKind::ImpulseMomentum {
+            return Err(v.err(
+                pos,
+                format!(
+                    "check {} has a `window`; only impulse_momentum takes one",
+                    c.kind.name()
+                ),
+                "remove `window`, or make the check `kind: impulse_momentum`",
+            ));
+        }
+        v.non_negative(t1, "check window start", "s", pos)?;
+        v.finite(t2, "check window end", pos)?;
+        if t2 <= t1 {
+            return Err(v.err(
+                pos,
+                format!("check window ({t1}, {t2}) ends before it starts"),
+                "write `window: (t1, t2)` with t1 < t2, in seconds",
+            ));
+        }
+        let d = v.level.world.duration;
+        if t2 > d * (1.0 + 1e-12) {
+            return Err(v.err(
+                pos,
+                format!("check window ({t1}, {t2}) ends after the run (world.duration = {d} s)"),
+                "end the window at or before world.duration, or lengthen the run",
+            ));
+        }
+    }
+    v.positive(c.tolerance, "check tolerance", "", pos)?;
+    if c.why.trim().is_empty() {
+        return Err(v.err(
+            pos,
+            format!("check {} gives no `why` for its tolerance {}", c.kind.name(), c.tolerance),
+            "add `why: \"...\"`: the engine limitation or the discretization error the tolerance covers, with its size",
+        ));
+    }
+    Ok(())
+}
+
+pub(super) fn question(v: &V, q: &QuestionDef) -> R {
+    let at = |f: &str| v.loc.field_pos("questions", &q.id, f);
+    v.finite(
+        q.expected,
+        &format!("question \"{}\" expected", q.id),
+        at("expected"),
+    )?;
+    v.positive(
+        q.tolerance,
+        &format!("question \"{}\" tolerance", q.id),
+        "",
+        at("tolerance"),
+    )?;
+    for (kind, name) in quantity_refs(&q.quantity) {
+        question_ref(v, q, kind, name, "quantity")?;
+    }
+    match &q.at {
+        When::Time(t) | When::Max(t) | When::Min(t) => {
+            v.non_negative(*t, "question time", "s", at("at"))?
+        }
+        When::End => {}
+        When::Angle { body, angle } => {
+            question_ref(v, q, "body", body, "at")?;
+            v.finite(*angle, "question angle", at("at"))?;
+        }
+        When::Crossing { of, value, after } => {
+            for (kind, name) in quantity_refs(of) {
+                question_ref(v, q, kind, name, "at")?;
+            }
+            if matches!(of, Quantity::Time) {
+                return Err(v.err(
+                    at("at"),
+                    format!("question \"{}\" waits for `Time` to cross a value", q.id),
+                    "use `at: Time(t)` to read at a time",
+                ));
+            }
+            v.finite(*value, "crossing value", at("at"))?;
+            v.non_negative(*after, "crossing `after`", "s", at("at"))?;
+        }
+        When::FirstContact { body, other } | When::ContactEnds { body, other } => {
+            v.need(
+                Effect::Contacts,
+                at("at"),
+                &format!("question \"{}\" waits for a contact", q.id),
+            )?;
+            question_ref(v, q, "body", body, "at")?;
+            if let Some(o) = other {
+                question_ref(v, q, "body", o, "at")?;
+            }
+        }
+        When::AfterEvent(e) => question_ref(v, q, "event", e, "at")?,
+        When::FirstStep => {}
+    }
+    if matches!(q.quantity, Quantity::Time)
+        && matches!(q.at, When::End | When::Max(_) | When::Min(_))
+    {
+        return Err(v.err(
+            at("at"),
+            format!("question \"{}\" asks for the time of `{:?}`, which is not an event", q.id, q.at),
+            "give an event: `at: Angle(..)`, `Crossing(..)`, `FirstContact(..)`, `ContactEnds(..)` or `AfterEvent(..)`",
+        ));
+    }
+    let needs = |e: Effect, what: &str| {
+        v.need(
+            e,
+            at("quantity"),
+            &format!("question \"{}\" asks for {what}", q.id),
+        )
+    };
+    match &q.quantity {
+        Quantity::RollingAcceleration { .. }
+        | Quantity::RollingFriction { .. }
+        | Quantity::RollingFrictionNeeded { .. }
+        | Quantity::ContactNormalForce { .. }
+        | Quantity::FrictionWork { .. }
+        | Quantity::ReboundHeight { .. }
+        | Quantity::Restitution { .. }
+        | Quantity::EnergyLost { .. } => needs(Effect::Contacts, "a contact quantity")?,
+        Quantity::PendulumPeriod { .. }
+        | Quantity::LinkOmega { .. }
+        | Quantity::PinSpeed { .. }
+        | Quantity::JointReaction { .. }
+        | Quantity::JointImpulse { .. }
+        | Quantity::JointForce(_) => needs(Effect::Joints, "a joint quantity")?,
+        Quantity::MotorTorque { .. } => needs(Effect::Motors, "a motor torque")?,
+        Quantity::SpringPeriod(_) | Quantity::SpringWork(_) | Quantity::SpringExtension(_) => {
+            needs(Effect::Springs, "a spring quantity")?
+        }
+        _ => {}
+    }
+    match &q.quantity {
+        Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
+            v.non_negative(*window, "averaging window", "s", at("quantity"))?
+        }
+        _ => {}
+    }
+    if let Quantity::MotorTorque { joint: j, .. } = &q.quantity {
+        if v.level
+            .joints
+            .iter()
+            .any(|d| &d.name == j && d.motor.is_none())
+        {
+            return Err(v.err(
+                at("quantity"),
+                format!("question \"{}\" asks for the motor torque of joint \"{j}\", which has no motor", q.id),
+                "give the joint a `motor`, or ask for its reaction",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The named items a quantity refers to, as (kind, name).
+pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
+    use Quantity as Q;
+    match q {
+        Q::X(b)
+        | Q::Y(b)
+        | Q::Angle(b)
+        | Q::Vx(b)
+        | Q::Vy(b)
+        | Q::Speed(b)
+        | Q::Omega(b)
+        | Q::KineticEnergy(b)
+        | Q::ContactForce(b)
+        | Q::Distance(b)
+        | Q::Ax(b)
+        | Q::Ay(b)
+        | Q::Accel(b)
+        | Q::Alpha(b)
+        | Q::Direction(b)
+        | Q::GravityWork(b)
+        | Q::SpringPeriod(b)
+        | Q::PointX { body: b, .. }
+        | Q::PointY { body: b, .. }
+        | Q::PointSpeed { body: b, .. }
+        | Q::PointAccel { body: b, .. } => vec![("body", b)],
+        Q::CouplingForce(c) => vec![("coupling", c)],
+        Q::RelativeDistance(a, b) | Q::RelativeSpeed(a, b) | Q::RelativeAngle(a, b) => {
+            vec![("body", a), ("body", b)]
+        }
+        Q::FrictionWork { body, other }
+        | Q::ContactNormalForce { body, other }
+        | Q::ReboundHeight { body, other }
+        | Q::Restitution { body, other }
+        | Q::EnergyLost { body, other } => vec![("body", body), ("body", other)],
+        Q::RollingAcceleration { body, ground }
+        | Q::RollingFriction { body, ground }
+        | Q::RollingFrictionNeeded { body, ground } => vec![("body", body), ("body", ground)],
+        Q::JointForce(j)
+        | Q::MotorTorque { joint: j, .. }
+        | Q::JointReaction { joint: j, .. }
+        | Q::JointImpulse { joint: j, .. } => vec![("joint", j)],
+        Q::PendulumPeriod { body, joint } => vec![("body", body), ("joint", joint)],
+        Q::LinkOmega { link, known, other } => {
+            vec![("body", link), ("joint", known), ("joint", other)]
+        }
+        Q::PinSpeed {
+            link,
+            known,
+            other,
+            pin,
+        } => {
+            vec![
+                ("body", link),
+                ("joint", known),
+                ("joint", other),
+                ("joint", pin),
+            ]
+        }
+        Q::SpringWork(s) | Q::SpringExtension(s) => vec![("spring", s)],
+        Q::LoadWork(l) | Q::LoadPower(l) => vec![("load", l)],
+        Q::Time => vec![],
+    }
+}
+
+/// Checks that a question's reference names an item of the level.
+pub(super) fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field: &str) -> R {
+    let l = v.level;
+    let known = match kind {
+        "body" => l.bodies.iter().any(|b| b.name == name),
+        "joint" => l.joints.iter().any(|j| j.name == name),
+        "spring" => l.springs.iter().any(|s| s.name == name),
+        "load" => l.loads.iter().any(|x| x.name == name),
+        "coupling" => l.couplings.iter().any(|x| x.name == name),
+        _ => l.events.iter().any(|e| e.name() == name),
+    };
+    if known {
+        return Ok(());
+    }
+    Err(v.err(
+        v.loc.field_pos("questions", &q.id, field),
+        format!(
+            "question \"{}\" asks about the {kind} \"{name}\", which does not exist",
+            q.id
+        ),
+        format!("name a {kind} of this level"),
+    ))
+}

@@ -1,0 +1,152 @@
+//! Couplings, springs and loads, and the time profiles of loads.
+
+use super::*;
+
+pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
+    let pos = v.loc.item_pos("couplings", &c.name);
+    v.need(
+        Effect::Joints,
+        pos,
+        &format!("coupling \"{}\" is defined", c.name),
+    )?;
+    if c.terms.len() < 2 {
+        return Err(v.err(
+            pos,
+            format!("coupling \"{}\" has {} term(s)", c.name, c.terms.len()),
+            "a coupling ties at least two coordinates: add terms",
+        ));
+    }
+    let mut any_dynamic = false;
+    for t in &c.terms {
+        let b = v.body_ref(&t.body, "couplings", &c.name, "body")?;
+        any_dynamic |=
+            b.kind == BodyKind::Dynamic && !(t.coordinate == Coordinate::Angle && b.lock_rotation);
+        v.finite(t.ratio, "coupling ratio", pos)?;
+        if t.ratio == 0.0 {
+            return Err(v.err(
+                pos,
+                format!(
+                    "coupling \"{}\" has a zero ratio for body \"{}\"",
+                    c.name, t.body
+                ),
+                "remove the term or give it a non-zero ratio",
+            ));
+        }
+    }
+    if !any_dynamic {
+        return Err(v.err(
+            pos,
+            format!("coupling \"{}\" ties no coordinate that can move", c.name),
+            "include a dynamic body's free coordinate",
+        ));
+    }
+    Ok(())
+}
+
+pub(super) fn spring(v: &V, s: &SpringDef) -> R {
+    let at = |f: &str| v.loc.field_pos("springs", &s.name, f);
+    v.need(
+        Effect::Springs,
+        v.loc.item_pos("springs", &s.name),
+        &format!("spring \"{}\" is defined", s.name),
+    )?;
+    v.body_ref(&s.body1, "springs", &s.name, "body1")?;
+    if let Some(b2) = &s.body2 {
+        v.body_ref(b2, "springs", &s.name, "body2")?;
+        if *b2 == s.body1 {
+            return Err(v.err(
+                at("body2"),
+                "a spring joins a body to itself",
+                "name two different bodies, or leave body2 out to anchor it to the ground",
+            ));
+        }
+    }
+    v.finite2(s.point1, "point1", at("point1"))?;
+    v.finite2(s.point2, "point2", at("point2"))?;
+    v.positive(
+        s.stiffness,
+        &format!("spring \"{}\" stiffness", s.name),
+        "N/m",
+        at("stiffness"),
+    )?;
+    v.non_negative(
+        s.rest_length,
+        &format!("spring \"{}\" rest_length", s.name),
+        "m",
+        at("rest_length"),
+    )?;
+    v.non_negative(
+        s.damping,
+        &format!("spring \"{}\" damping", s.name),
+        "N s/m",
+        at("damping"),
+    )?;
+    if s.damping > 0.0 {
+        v.need(
+            Effect::Damping,
+            at("damping"),
+            &format!("spring \"{}\" has damping", s.name),
+        )?;
+    }
+    Ok(())
+}
+
+pub(super) fn profile_times<T>(v: &V, p: &Profile<T>, pos: (usize, usize)) -> R {
+    if let Profile::Table(rows) = p {
+        if rows.is_empty() {
+            return Err(v.err(
+                pos,
+                "a Table profile needs at least one (t, value) row",
+                "add rows, or use Constant(...)",
+            ));
+        }
+        for w in rows.windows(2) {
+            if w[1].0 <= w[0].0 {
+                return Err(v.err(
+                    pos,
+                    format!(
+                        "table times must increase, but {} follows {}",
+                        w[1].0, w[0].0
+                    ),
+                    "sort the rows by time",
+                ));
+            }
+        }
+        for r in rows {
+            v.finite(r.0, "table time", pos)?;
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn load(v: &V, l: &LoadDef) -> R {
+    let at = |f: &str| v.loc.field_pos("loads", &l.name, f);
+    v.body_ref(&l.body, "loads", &l.name, "body")?;
+    v.finite2(l.point, "load point", at("point"))?;
+    if l.force.is_none() && l.torque.is_none() {
+        return Err(v.err(
+            v.loc.item_pos("loads", &l.name),
+            format!("load \"{}\" has neither force nor torque", l.name),
+            "add `force: Constant((fx, fy))` or `torque: Constant(m)`",
+        ));
+    }
+    if let Some(f) = &l.force {
+        profile_times(v, f, at("force"))?;
+        match f {
+            Profile::Constant(x) => v.finite2(*x, "force", at("force"))?,
+            Profile::Table(rows) => rows
+                .iter()
+                .try_for_each(|r| v.finite2(r.1, "force", at("force")))?,
+        }
+    }
+    if let Some(t) = &l.torque {
+        profile_times(v, t, at("torque"))?;
+        match t {
+            Profile::Constant(x) => v.finite(*x, "torque", at("torque"))?,
+            Profile::Table(rows) => rows
+                .iter()
+                .try_for_each(|r| v.finite(r.1, "torque", at("torque")))?,
+        }
+    }
+    Ok(())
+}
