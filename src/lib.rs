@@ -34,7 +34,11 @@ pub mod sim64 {
     pub(crate) use rapier2d_f64 as rapier;
     pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod build;
+    mod couplings;
     pub mod joints;
+    mod profiles;
+    mod readings;
+    mod welds;
     mod world;
     pub use world::Simulation;
 }

@@ -13,14 +13,19 @@ pub(crate) use rapier2d as rapier;
 pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precision::F32;
 
 mod build;
+mod couplings;
 pub mod energy;
 pub mod joints;
 pub mod options;
+mod profiles;
+mod readings;
 pub mod settings;
+mod welds;
 mod world;
 
 pub use crate::snapshot::Precision;
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
+pub use profiles::{sample1, sample2};
 pub use settings::{Settings, Substepping};
-pub use world::{sample1, sample2, Simulation};
+pub use world::Simulation;

@@ -1,0 +1,163 @@
+//! Couplings (pulleys, cables, gears): ratio constraints rigidlab enforces after each rapier call
+//! by projecting velocities and positions, and the impulses that took.
+
+use super::rapier::prelude::*;
+use super::world::{wrap_pi, Simulation};
+use crate::level::*;
+use crate::snapshot::*;
+
+impl Simulation {
+    pub(super) fn coordinate(&self, body: usize, c: Coordinate) -> (f64, f64, f64) {
+        // (q, dq/dt, inverse generalized mass) of a body coordinate.
+        let rb = &self.world.bodies[self.bodies[body]];
+        let mp = rb.mass_properties();
+        let dynamic = rb.is_dynamic();
+        let com = *rb.position() * mp.local_mprops.local_com;
+        match c {
+            Coordinate::X => (
+                com.x as f64,
+                rb.linvel().x as f64,
+                if dynamic {
+                    mp.effective_inv_mass.x as f64
+                } else {
+                    0.0
+                },
+            ),
+            Coordinate::Y => (
+                com.y as f64,
+                rb.linvel().y as f64,
+                if dynamic {
+                    mp.effective_inv_mass.y as f64
+                } else {
+                    0.0
+                },
+            ),
+            Coordinate::Angle => {
+                let prev = self.snapshot.bodies[body].angle;
+                let q = prev + wrap_pi(rb.rotation().angle() as f64 - prev);
+                (
+                    q,
+                    rb.angvel() as f64,
+                    if dynamic {
+                        mp.effective_world_inv_inertia as f64
+                    } else {
+                        0.0
+                    },
+                )
+            }
+        }
+    }
+
+    pub(super) fn coupling_value(&self, c: &CouplingDef) -> f64 {
+        c.terms
+            .iter()
+            .map(|t| t.ratio * self.coordinate(self.body_index[&t.body], t.coordinate).0)
+            .sum()
+    }
+
+    /// Enforces every coupling after rapier's step: Gauss-Seidel on velocities (the impulse
+    /// lambda that makes sum(c_i v_i) = 0; exact in one pass for a single coupling, iterated for
+    /// couplings that share a body), then a position projection that removes the drift without
+    /// adding velocity. Returns each coupling's impulse over the step.
+    pub(super) fn solve_couplings(&mut self) -> Vec<f64> {
+        let n = self.level.couplings.len();
+        let mut lambdas = vec![0.0; n];
+        if n == 0 || !self.settings.effects.has(Effect::Joints) {
+            return lambdas;
+        }
+        let terms: Vec<Vec<(usize, Coordinate, f64)>> = self
+            .level
+            .couplings
+            .iter()
+            .map(|c| {
+                c.terms
+                    .iter()
+                    .map(|t| (self.body_index[&t.body], t.coordinate, t.ratio))
+                    .collect()
+            })
+            .collect();
+        for pass in 0..2 {
+            // pass 0: velocities; pass 1: positions.
+            for _sweep in 0..64 {
+                let mut worst: f64 = 0.0;
+                for (k, ts) in terms.iter().enumerate() {
+                    let (mut num, mut den) = (0.0, 0.0);
+                    for &(b, c, r) in ts {
+                        let (q, v, w) = self.coordinate(b, c);
+                        num += r * if pass == 0 { v } else { q };
+                        den += r * r * w;
+                    }
+                    if den <= 0.0 {
+                        continue;
+                    }
+                    let target = if pass == 0 {
+                        0.0
+                    } else {
+                        self.coupling_rest[k]
+                    };
+                    let mu = -(num - target) / den;
+                    worst = worst.max((num - target).abs());
+                    if pass == 0 {
+                        lambdas[k] += mu;
+                    }
+                    for &(b, c, r) in ts {
+                        let w = self.coordinate(b, c).2;
+                        if w == 0.0 {
+                            continue;
+                        }
+                        let d = (r * w * mu) as Real;
+                        let rb = &mut self.world.bodies[self.bodies[b]];
+                        match (pass, c) {
+                            (0, Coordinate::X) => {
+                                rb.set_linvel(rb.linvel() + Vector::new(d, 0.0), true)
+                            }
+                            (0, Coordinate::Y) => {
+                                rb.set_linvel(rb.linvel() + Vector::new(0.0, d), true)
+                            }
+                            (0, Coordinate::Angle) => rb.set_angvel(rb.angvel() + d, true),
+                            (_, Coordinate::X) => {
+                                rb.set_translation(rb.translation() + Vector::new(d, 0.0), true)
+                            }
+                            (_, Coordinate::Y) => {
+                                rb.set_translation(rb.translation() + Vector::new(0.0, d), true)
+                            }
+                            (_, Coordinate::Angle) => {
+                                // Turn about the mass center, not the body origin.
+                                let local_com = rb.mass_properties().local_mprops.local_com;
+                                let com = *rb.position() * local_com;
+                                let rot = Rotation::new(rb.rotation().angle() + d);
+                                rb.set_position(Pose::from_parts(com - rot * local_com, rot), true);
+                            }
+                        }
+                    }
+                }
+                if worst < 1e-12 {
+                    break;
+                }
+            }
+        }
+        lambdas
+    }
+
+    pub(super) fn coupling_states(&self, lambdas: &[f64]) -> Vec<CouplingState> {
+        self.level
+            .couplings
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let value = self.coupling_value(c);
+                CouplingState {
+                    name: c.name.clone(),
+                    terms: c
+                        .terms
+                        .iter()
+                        .map(|t| (self.body_index[&t.body], t.coordinate, t.ratio))
+                        .collect(),
+                    impulse: lambdas[k],
+                    value,
+                    drift: value - self.coupling_rest[k],
+                }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,258 @@
+//! Reading the engine into the snapshot: bodies, contacts and joints after a rapier call, and
+//! the sums of several calls' impulses over one step (split substeps).
+
+#![allow(clippy::unnecessary_cast)]
+
+use super::rapier::prelude::*;
+use super::world::{to_d, wrap_pi, Simulation};
+use super::{build, joints};
+use crate::level::*;
+use crate::snapshot::*;
+use glam::DVec2;
+
+/// The poses a rapier call built one joint's rows from.
+pub(super) struct JointPoses {
+    pub(super) pose1: Pose,
+    pub(super) pose2: Pose,
+    /// The two bodies' mass centers (world), from which rapier measured the rows' lever arms.
+    pub(super) com1: DVec2,
+    pub(super) com2: DVec2,
+}
+
+impl Simulation {
+    pub(super) fn read_bodies(&mut self) {
+        if self.snapshot.bodies.is_empty() {
+            // Names, kinds and mass properties are set once: they do not change during a run.
+            // Mass properties are the ones handed to rapier (parry's, from the shapes); rapier
+            // itself only folds them into the body inside its first step.
+            for (i, h) in self.bodies.iter().enumerate() {
+                let rb = &self.world.bodies[*h];
+                let def = &self.level.bodies[i];
+                let dynamic = def.kind == BodyKind::Dynamic;
+                let mp = build::mass_properties(def);
+                self.snapshot.bodies.push(BodyState {
+                    name: self.level.bodies[i].name.clone(),
+                    kind: self.level.bodies[i].kind,
+                    position: to_d(rb.translation()),
+                    angle: rb.rotation().angle() as f64,
+                    // From the pose, not rb.center_of_mass(): rapier refreshes that only inside a step.
+                    com: to_d(*rb.position() * mp.local_com),
+                    velocity: to_d(rb.linvel()),
+                    omega: rb.angvel() as f64,
+                    mass: if dynamic { mp.mass() as f64 } else { 0.0 },
+                    inertia: if dynamic && !def.lock_rotation {
+                        mp.principal_inertia() as f64
+                    } else {
+                        0.0
+                    },
+                    local_com: to_d(mp.local_com),
+                });
+            }
+            return;
+        }
+        for (b, h) in self.snapshot.bodies.iter_mut().zip(&self.bodies) {
+            let rb = &self.world.bodies[*h];
+            let pose = rb.position();
+            b.position = to_d(pose.translation);
+            // Continuous angle: add the wrapped change since the last snapshot.
+            b.angle += wrap_pi(pose.rotation.angle() as f64 - b.angle);
+            let rot = DVec2::new(pose.rotation.re as f64, pose.rotation.im as f64);
+            b.com = b.position + rot.rotate(b.local_com);
+            b.velocity = to_d(rb.linvel());
+            b.omega = rb.angvel() as f64;
+        }
+    }
+
+    pub(super) fn read_contacts(&mut self) {
+        // Overwrite the previous step's entries in place: no allocation per manifold in steady state.
+        let contacts = &mut self.snapshot.contacts;
+        let mut n = 0;
+        for pair in self.world.narrow_phase.contact_pairs() {
+            if !pair.has_any_active_contact() {
+                continue;
+            }
+            // Colliders carry their body's index in user_data (set when the world is built).
+            let (c1, c2) = (
+                &self.world.colliders[pair.collider1],
+                &self.world.colliders[pair.collider2],
+            );
+            let (b1, b2) = (c1.user_data as usize, c2.user_data as usize);
+            let (pose1, pose2) = (*c1.position(), *c2.position());
+            for m in pair.manifolds() {
+                if m.points.is_empty() {
+                    continue;
+                }
+                if n == contacts.len() {
+                    contacts.push(ContactState {
+                        body1: 0,
+                        body2: 0,
+                        normal: DVec2::ZERO,
+                        points: Vec::new(),
+                    });
+                }
+                let c = &mut contacts[n];
+                n += 1;
+                c.body1 = b1;
+                c.body2 = b2;
+                c.normal = to_d(m.data.normal);
+                c.points.clear();
+                c.points.extend(m.points.iter().map(|pt| ContactPoint {
+                    point: to_d(pose1 * pt.local_p1),
+                    // From the current poses: rapier recycles contacts, and a recycled point
+                    // keeps the distance of its last full update (a 9 mm overlap read as 0).
+                    distance: ((pose2 * pt.local_p2 - pose1 * pt.local_p1).dot(m.data.normal))
+                        as f64,
+                    normal_impulse: pt.data.impulse as f64,
+                    tangent_impulse: pt.data.tangent_impulse[0] as f64,
+                    arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
+                }));
+            }
+        }
+        contacts.truncate(n);
+    }
+
+    pub(super) fn read_joints(&mut self) {
+        self.read_joints_scaled(self.substeps() as f64, None);
+    }
+
+    /// Each joint's two bodies' poses and mass centers now, before a rapier call builds its rows.
+    pub(super) fn joint_poses(&self) -> Vec<JointPoses> {
+        self.joints
+            .iter()
+            .map(|h| {
+                let j = self
+                    .world
+                    .impulse_joints
+                    .get(*h)
+                    .expect("joint handles stay valid");
+                let (rb1, rb2) = (&self.world.bodies[j.body1()], &self.world.bodies[j.body2()]);
+                JointPoses {
+                    pose1: *rb1.position(),
+                    pose2: *rb2.position(),
+                    com1: to_d(rb1.center_of_mass()),
+                    com2: to_d(rb2.center_of_mass()),
+                }
+            })
+            .collect()
+    }
+
+    /// Joint states with the last substep's impulses times `n` (the substeps of one rapier call),
+    /// read along rows rebuilt from `rows_from` (the poses the call started from) when given,
+    /// else from the poses now (one substep of motion off: O(h) in the rows' direction).
+    pub(super) fn read_joints_scaled(&mut self, n: f64, rows_from: Option<&[JointPoses]>) {
+        self.snapshot.joints.clear();
+        for (k, h) in self.joints.iter().enumerate() {
+            let j = &self
+                .world
+                .impulse_joints
+                .get(*h)
+                .expect("joint handles stay valid");
+            let def = &self.joint_defs[k];
+            let (i1, i2) = (self.body_index[&def.body1], self.body_index[&def.body2]);
+            let (rb1, rb2) = (
+                &self.world.bodies[self.bodies[i1]],
+                &self.world.bodies[self.bodies[i2]],
+            );
+            // Mass properties do not change within a call (rapier refreshes a body's effective
+            // inverse mass and inertia inside its step), so they are read now; only the poses and
+            // G are the call's start.
+            let (mut m1, mut m2) = (joints::BodyMetric::of(rb1), joints::BodyMetric::of(rb2));
+            let r = match rows_from.and_then(|p| p.get(k)) {
+                Some(p) => {
+                    (m1.com, m2.com) = (p.com1, p.com2);
+                    joints::last_substep_reaction(j, &p.pose1, &p.pose2, &m1, &m2)
+                }
+                None => joints::last_substep_reaction(j, rb1.position(), rb2.position(), &m1, &m2),
+            };
+            let frame1 = *rb1.position() * j.data.local_frame1;
+            let frame2 = *rb2.position() * j.data.local_frame2;
+            let coordinate = match def.kind {
+                JointKind::Revolute | JointKind::Fixed => {
+                    (rb2.rotation().angle() - rb1.rotation().angle()) as f64
+                        - (self.level.bodies[i2].angle - self.level.bodies[i1].angle)
+                }
+                JointKind::Prismatic | JointKind::PinSlot => {
+                    let axis = frame1.rotation * Vector::X;
+                    (frame2.translation - frame1.translation).dot(axis) as f64
+                }
+            };
+            // Joint rows restart each substep: the step's impulse is `substeps` times the last one.
+            self.snapshot.joints.push(JointState {
+                name: def.name.clone(),
+                body1: i1,
+                body2: i2,
+                anchor: to_d(frame2.translation),
+                anchor1: to_d(frame1.translation),
+                impulse_on_body2: r.on_body2 * n,
+                angular_impulse_on_body2: r.angular_on_body2 * n,
+                angular_impulse_on_body1: r.angular_on_body1 * n,
+                couple_on_body2: r.couple_on_body2 * n,
+                motor_impulse: r.motor * n,
+                limit_impulse: r.limit * n,
+                coordinate,
+            });
+        }
+    }
+}
+
+/// Adds one rapier call's contacts to the step's sums: each earlier point's impulses go to the
+/// nearest point of the same body pair's manifold (same ordinal), so every manifold's total
+/// impulse is kept; contacts gone by the last call stay in the list with their last geometry.
+pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) {
+    let old = std::mem::take(sum);
+    *sum = now.to_vec();
+    let mut used = vec![false; old.len()];
+    for (k, c) in sum.iter_mut().enumerate() {
+        let ordinal = now[..k]
+            .iter()
+            .filter(|o| o.body1 == c.body1 && o.body2 == c.body2)
+            .count();
+        let Some(j) = old
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.body1 == c.body1 && o.body2 == c.body2)
+            .map(|(j, _)| j)
+            .nth(ordinal)
+        else {
+            continue;
+        };
+        used[j] = true;
+        if c.points.is_empty() {
+            c.points = old[j].points.clone();
+            continue;
+        }
+        for p in &old[j].points {
+            let q = c
+                .points
+                .iter_mut()
+                .min_by(|a, b| {
+                    (a.point - p.point)
+                        .length_squared()
+                        .total_cmp(&(b.point - p.point).length_squared())
+                })
+                .expect("non-empty");
+            q.normal_impulse += p.normal_impulse;
+            q.tangent_impulse += p.tangent_impulse;
+        }
+    }
+    for (j, o) in old.into_iter().enumerate() {
+        if !used[j] {
+            sum.push(o);
+        }
+    }
+}
+
+/// Adds one rapier call's joint impulses (world axes) to the step's sums; the rest of the
+/// state (anchors, coordinate) is the latest call's.
+pub(super) fn merge_joints(sum: &mut Vec<JointState>, now: &[JointState]) {
+    let old = std::mem::take(sum);
+    *sum = now.to_vec();
+    for (s, o) in sum.iter_mut().zip(old) {
+        s.impulse_on_body2 += o.impulse_on_body2;
+        s.angular_impulse_on_body2 += o.angular_impulse_on_body2;
+        s.angular_impulse_on_body1 += o.angular_impulse_on_body1;
+        s.couple_on_body2 += o.couple_on_body2;
+        s.motor_impulse += o.motor_impulse;
+        s.limit_impulse += o.limit_impulse;
+    }
+}
