@@ -84,9 +84,6 @@ const LISTED: &[(&str, &str)] = &[
         "levels/energy/block_friction_work.ron",
         "check impulse_momentum",
     ),
-    // newton_euler's per-step scale F_s falls to 1e-4 N once body B coasts after the impact, and
-    // a 8e-5 N residual then reads as 1.0 relative: the scale is wrong for force-free steps.
-    ("levels/impact/central_impact.ron", "check newton_euler"),
     // The pulley's alpha from its free-body diagram (sum M_G / I_G): 3.5e-4 from the answer at the
     // level's settings, 2.2e-3 at 8 substeps or dt/2, while the engine's alpha stays at 1.3e-5:
     // the coupling's impulses on the pulley are summed per substep and the pulley's axle does
