@@ -4,6 +4,7 @@
 //! The criteria themselves (limits and their reasons) live in src/study/stability/cases.rs;
 //! the figures are computed from the snapshots by src/study/stability/criteria.rs.
 
+use rigidlab::analysis::energy;
 use rigidlab::study::stability::criteria::{
     self, linearized_rate_ratio, outside, wrap, Ramp, SpringBound,
 };
@@ -229,9 +230,10 @@ fn energy_of_a_known_state() {
     assert_eq!(m, vec![(2.0, 0.5)]);
     let snap = sim.snapshot();
     // f32 state: gravity is 9.81 rounded to f32 (relative 4e-7).
-    assert!((criteria::kinetic_energy(snap, &m) - 26.0).abs() < 1e-9);
-    assert!((criteria::gravity_potential(snap, &m) - 58.86).abs() < 1e-4);
-    assert!((criteria::mechanical_energy(snap, &m) - 84.86).abs() < 1e-4);
+    let mass = criteria::level_mass(&m);
+    assert!((energy::system_kinetic_energy(snap, mass) - 26.0).abs() < 1e-9);
+    assert!((energy::system_gravity_potential(snap, mass) - 58.86).abs() < 1e-4);
+    assert!((energy::system_mechanical_energy(snap, mass) - 84.86).abs() < 1e-4);
 }
 
 #[test]

@@ -2,6 +2,7 @@
 //! potential energy, power, the work of a step's impulse, and the work-energy ledger.
 
 use super::{cross, Motion};
+use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 
 /// Kinetic energy of a translating body: T = 1/2 m v^2 (6/7, WE-8).
@@ -20,7 +21,7 @@ pub fn kinetic_energy(m: f64, v_g: DVec2, i_g: f64, omega: f64) -> f64 {
 }
 
 /// 6/9 for a body of a snapshot (its mass properties as the engine holds them).
-pub fn body_kinetic_energy(b: &crate::snapshot::BodyState) -> f64 {
+pub fn body_kinetic_energy(b: &BodyState) -> f64 {
     kinetic_energy(b.mass, b.velocity, b.inertia, b.omega)
 }
 
@@ -39,6 +40,61 @@ pub fn gravity_potential(m: f64, gravity: DVec2, r_g: DVec2) -> f64 {
 /// Elastic potential energy of a linear spring, V_e = 1/2 k x^2 (WE-13).
 pub fn spring_potential(k: f64, x: f64) -> f64 {
     0.5 * k * x * x
+}
+
+/// The mass data a scene total uses for one body: m, I_G and where G is. The engine's are the
+/// snapshot's own ([`engine_mass`]); the studies and checks may use the level's textbook values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMass {
+    pub m: f64,
+    pub i_g: f64,
+    pub r_g: DVec2,
+}
+
+/// A body's mass data as the engine holds it (the snapshot's m, I_G and G).
+pub fn engine_mass(_: usize, b: &BodyState) -> BodyMass {
+    BodyMass {
+        m: b.mass,
+        i_g: b.inertia,
+        r_g: b.com,
+    }
+}
+
+/// T of a scene: 6/9 summed over its bodies (RE-3), with each body's mass data from `mass`.
+pub fn system_kinetic_energy(s: &Snapshot, mass: impl Fn(usize, &BodyState) -> BodyMass) -> f64 {
+    s.bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let bm = mass(i, b);
+            kinetic_energy(bm.m, b.velocity, bm.i_g, b.omega)
+        })
+        .sum()
+}
+
+/// V_g of a scene: WE-13 summed over its bodies, datum through the origin.
+pub fn system_gravity_potential(s: &Snapshot, mass: impl Fn(usize, &BodyState) -> BodyMass) -> f64 {
+    s.bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let bm = mass(i, b);
+            gravity_potential(bm.m, s.gravity, bm.r_g)
+        })
+        .sum()
+}
+
+/// V_e of a scene: WE-13 summed over its springs, as the snapshot reports each.
+pub fn system_spring_potential(s: &Snapshot) -> f64 {
+    s.springs.iter().map(|sp| sp.energy).sum()
+}
+
+/// E = T + V_g + V_e of a scene (WE-14).
+pub fn system_mechanical_energy(
+    s: &Snapshot,
+    mass: impl Fn(usize, &BodyState) -> BodyMass + Copy,
+) -> f64 {
+    system_kinetic_energy(s, mass) + system_gravity_potential(s, mass) + system_spring_potential(s)
 }
 
 /// Power of a force F at a point moving with v_P plus a couple M on a body turning at omega:

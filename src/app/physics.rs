@@ -7,6 +7,7 @@
 //! not depend on the frame rate.
 
 use super::quantities;
+use crate::analysis::energy;
 use crate::checks::CheckResult;
 use crate::level::Scene;
 use crate::questions::QuestionResult;
@@ -287,8 +288,8 @@ impl Physics {
 fn series_point(s: &Snapshot) -> SeriesPoint {
     SeriesPoint {
         t: s.time,
-        kinetic: quantities::kinetic_energy(s),
-        gravity: quantities::gravity_potential(s),
+        kinetic: energy::system_kinetic_energy(s, energy::engine_mass),
+        gravity: energy::system_gravity_potential(s, energy::engine_mass),
         elastic: s.springs.iter().map(|sp| sp.energy).sum(),
         h_o: quantities::angular_momentum_about(s, DVec2::ZERO),
     }

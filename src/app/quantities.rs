@@ -8,19 +8,6 @@ use glam::DVec2;
 pub use crate::analysis::energy::body_kinetic_energy;
 pub use crate::analysis::kinematics::body_point_velocity as point_velocity;
 
-/// Total kinetic energy of the scene, J.
-pub fn kinetic_energy(s: &Snapshot) -> f64 {
-    s.bodies.iter().map(body_kinetic_energy).sum()
-}
-
-/// Gravitational potential energy of the scene, sum of V_g = -m g . r_G (WE-13), datum at the origin.
-pub fn gravity_potential(s: &Snapshot) -> f64 {
-    s.bodies
-        .iter()
-        .map(|b| energy::gravity_potential(b.mass, s.gravity, b.com))
-        .sum()
-}
-
 /// Angular momentum of the scene about a fixed point O, sum of H_O (6/15), N m s, CCW.
 pub fn angular_momentum_about(s: &Snapshot, o: DVec2) -> f64 {
     s.bodies

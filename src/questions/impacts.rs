@@ -9,7 +9,7 @@
 use super::contact_events::{ContactPhase, PairEvent, PairTracker};
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
-use super::snapshot_reading::{carried_forward, height, is_massive, mechanical_energy};
+use super::snapshot_reading::{body_mechanical_energy, carried_forward, height, is_massive};
 use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::level::Quantity;
@@ -92,7 +92,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 [i, o]
                     .iter()
                     .filter(|&&k| is_massive(&snap.bodies[k]))
-                    .map(|&k| mechanical_energy(snap.gravity, &snap.bodies[k]))
+                    .map(|&k| body_mechanical_energy(snap.gravity, &snap.bodies[k]))
                     .sum::<f64>()
             };
             let analysis = p.impact.as_ref().map(|imp| {

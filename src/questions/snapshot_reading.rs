@@ -26,9 +26,9 @@ pub(super) fn height(g: DVec2, p: DVec2) -> f64 {
     }
 }
 
-/// Mechanical energy T + V_g of a body, J.
-pub(super) fn mechanical_energy(g: DVec2, b: &BodyState) -> f64 {
-    body_kinetic_energy(b) - b.mass * g.dot(b.com)
+/// Mechanical energy T + V_g of a body, J (6/9 and WE-13 of `analysis::energy`).
+pub(super) fn body_mechanical_energy(g: DVec2, b: &BodyState) -> f64 {
+    body_kinetic_energy(b) + crate::analysis::energy::gravity_potential(b.mass, g, b.com)
 }
 
 /// A body moving under gravity alone over this stretch (dynamic, no joint, no coupling).

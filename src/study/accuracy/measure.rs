@@ -2,6 +2,7 @@
 //! self-consistency pieces against a reference) and cost (timed stepping).
 
 use super::metrics;
+use crate::analysis::energy;
 use crate::checks::CheckResult;
 use crate::level::{BodyKind, CheckKind, EventDef, Level, Profile, Scene};
 use crate::runner::Observers;
@@ -335,8 +336,11 @@ fn conservation_on<E: StudyEngine>(
     let m = metrics::mass_props(&scene.level);
     let mut observe = |s: &Snapshot| {
         t.push(s.time);
-        e.push(metrics::mechanical_energy(s, &m));
-        ke.push(metrics::kinetic_energy(s, &m));
+        e.push(energy::system_mechanical_energy(
+            s,
+            metrics::textbook_mass(&m),
+        ));
+        ke.push(energy::system_kinetic_energy(s, metrics::textbook_mass(&m)));
         l.push(metrics::linear_momentum(s, &m));
         h.push(metrics::angular_momentum(s, &m));
         l_scale = l_scale.max(metrics::momentum_scale(s, &m));

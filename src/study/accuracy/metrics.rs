@@ -3,6 +3,7 @@
 //! Everything here takes plain data (snapshots, body states, level definitions) and
 //! returns numbers; nothing touches the engine.
 
+use crate::analysis::energy::BodyMass;
 use crate::level::{BodyKind, Effect, EventDef, JointDef, JointKind, Level};
 use crate::snapshot::{BodyState, JointState, Snapshot};
 use glam::DVec2;
@@ -54,26 +55,21 @@ fn massive<'a>(
         .map(|(b, m)| (b, m, b.world_point(m.local_com)))
 }
 
-/// Kinetic energy of the scene, T = sum of 1/2 m v^2 + 1/2 I_G w^2 (RE-3, MK eq. 6/9), J.
-/// (The snapshot's velocity is the mass center's, as rapier's linvel.)
-pub fn kinetic_energy(s: &Snapshot, m: &[MassProps]) -> f64 {
-    massive(&s.bodies, m)
-        .map(|(b, m, _)| {
-            crate::analysis::energy::kinetic_energy(m.mass, b.velocity, m.inertia, b.omega)
-        })
-        .sum()
-}
-
-/// Mechanical energy E = T + V_g + V_e (WE-14), J.
-///
-/// V_g = -m g . r_G per dynamic body (WE-13 with the datum through the origin, so that
-/// g = (0, -9.81) gives m 9.81 y); V_e = 1/2 k x^2 per spring (WE-13), as the snapshot reports it.
-pub fn mechanical_energy(s: &Snapshot, m: &[MassProps]) -> f64 {
-    let vg: f64 = massive(&s.bodies, m)
-        .map(|(_, m, g)| -m.mass * s.gravity.dot(g))
-        .sum();
-    let ve: f64 = s.springs.iter().map(|sp| sp.energy).sum();
-    kinetic_energy(s, m) + vg + ve
+/// The level's mass data for the scene totals of `analysis::energy`: m, I_G and G from the
+/// textbook shape formulas; massless bodies (fixed, kinematic) count for nothing.
+pub fn textbook_mass(m: &[MassProps]) -> impl Fn(usize, &BodyState) -> BodyMass + Copy + '_ {
+    move |i, b| match m.get(i) {
+        Some(p) if p.mass > 0.0 => BodyMass {
+            m: p.mass,
+            i_g: p.inertia,
+            r_g: b.world_point(p.local_com),
+        },
+        _ => BodyMass {
+            m: 0.0,
+            i_g: 0.0,
+            r_g: b.com,
+        },
+    }
 }
 
 /// Linear momentum L = sum of m v_G (IM-1), kg m/s.

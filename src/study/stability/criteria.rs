@@ -7,9 +7,9 @@
 //! (RE-5, RE-6), event impulses and joint motors. A solver that injects energy
 //! (position correction, restitution, stale forces) shows as a positive excess.
 
-use crate::analysis::energy;
+use crate::analysis::energy::{self, BodyMass};
 use crate::level::{BodyKind, Level};
-use crate::snapshot::Snapshot;
+use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -64,32 +64,13 @@ pub fn with_level_coms(s: &Snapshot, local: &[DVec2]) -> Snapshot {
     s
 }
 
-/// Kinetic energy of the bodies, T = sum(1/2 m v_G^2 + 1/2 I_G omega^2) (MK eq. 6/9, RE-3), J.
-pub fn kinetic_energy(s: &Snapshot, masses: &[(f64, f64)]) -> f64 {
-    s.bodies
-        .iter()
-        .zip(masses)
-        .map(|(b, &(m, i))| energy::kinetic_energy(m, b.velocity, i, b.omega))
-        .sum()
-}
-
-/// Gravitational potential energy V_g = sum(-m g . r_G) (WE-13: W y with y up), datum at the origin, J.
-pub fn gravity_potential(s: &Snapshot, masses: &[(f64, f64)]) -> f64 {
-    s.bodies
-        .iter()
-        .zip(masses)
-        .map(|(b, &(m, _))| energy::gravity_potential(m, s.gravity, b.com))
-        .sum()
-}
-
-/// Elastic potential energy V_e = sum(1/2 k x^2) of rigidlab's springs (WE-13), J.
-pub fn spring_potential(s: &Snapshot) -> f64 {
-    s.springs.iter().map(|sp| sp.energy).sum()
-}
-
-/// Mechanical energy E = T + V_g + V_e (WE-14), J.
-pub fn mechanical_energy(s: &Snapshot, masses: &[(f64, f64)]) -> f64 {
-    kinetic_energy(s, masses) + gravity_potential(s, masses) + spring_potential(s)
+/// The level's masses for the scene totals of `analysis::energy` (G as the snapshot has it: see
+/// [`with_level_coms`]).
+pub fn level_mass(masses: &[(f64, f64)]) -> impl Fn(usize, &BodyState) -> BodyMass + Copy + '_ {
+    move |i, b| {
+        let (m, i_g) = masses.get(i).copied().unwrap_or((0.0, 0.0));
+        BodyMass { m, i_g, r_g: b.com }
+    }
 }
 
 /// The body state a step's work needs from the previous snapshot.
@@ -414,10 +395,10 @@ impl Monitor {
         }
         if !self.started {
             self.started = true;
-            self.e0 = mechanical_energy(s, &self.masses);
+            self.e0 = energy::system_mechanical_energy(s, level_mass(&self.masses));
             let weight: f64 = self.masses.iter().map(|m| m.0).sum::<f64>() * s.gravity.length();
-            let e_ref = kinetic_energy(s, &self.masses)
-                + spring_potential(s)
+            let e_ref = energy::system_kinetic_energy(s, level_mass(&self.masses))
+                + energy::system_spring_potential(s)
                 + weight * self.limits.energy_length;
             self.e_ref = if e_ref > 0.0 { e_ref } else { 1.0 };
             for (k, (name, _)) in self.limits.hold.iter().enumerate() {
@@ -428,7 +409,8 @@ impl Monitor {
                 + impulse_work(&self.prev, s)
                 + motor_work(&self.prev_coords, s);
         }
-        let excess = mechanical_energy(s, &self.masses) - self.e0 - self.work;
+        let excess =
+            energy::system_mechanical_energy(s, level_mass(&self.masses)) - self.e0 - self.work;
         self.max_excess = self.max_excess.max(excess);
         self.last_excess = excess;
 
