@@ -35,7 +35,9 @@ pub mod sim64 {
     pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod build;
     mod couplings;
+    mod interventions;
     pub mod joints;
+    mod probes;
     mod profiles;
     mod readings;
     mod welds;

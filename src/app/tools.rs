@@ -8,7 +8,6 @@ use super::view::{self, palette, Outlines, View};
 use crate::snapshot::BodyKind;
 use bevy::prelude::*;
 use glam::DVec2;
-use rapier2d::prelude::Vector;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Tool {
@@ -167,15 +166,7 @@ fn mouse_tools(
 /// Applies an impulse `j` (N s) at world point `at` to body `i`, between steps: J on the mass
 /// center and the angular impulse r_{P/G} x J (from the snapshot's G, which is current between steps).
 pub fn apply_impulse(phys: &mut Physics, i: usize, at: DVec2, j: DVec2) {
-    let Some(&h) = phys.sim.body_handles().get(i) else {
-        return;
-    };
-    let Some(com) = phys.snapshot().bodies.get(i).map(|b| b.com) else {
-        return;
-    };
-    if let Some(rb) = phys.sim.world.bodies.get_mut(h) {
-        rb.apply_impulse(Vector::new(j.x as f32, j.y as f32), true);
-        rb.apply_torque_impulse((at - com).perp_dot(j) as f32, true);
+    if phys.sim.apply_impulse(i, at, j) {
         phys.interfered = true;
     }
 }

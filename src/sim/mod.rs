@@ -15,8 +15,10 @@ pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precis
 mod build;
 mod couplings;
 pub mod energy;
+mod interventions;
 pub mod joints;
 pub mod options;
+mod probes;
 mod profiles;
 mod readings;
 pub mod settings;

@@ -13,25 +13,11 @@
 //! limitation (`cases::Spec::gaps`) is reported with its figure and does not fail the case.
 //! `--dt`, `--substeps`, ... try other settings in place of the recorded ones.
 //!
-//! Penetration is measured on the engine's poses (`engine_probe`), not from the snapshot's
+//! Penetration is measured on the engine's poses (`Simulation::deepest_overlap`), not from the snapshot's
 //! contact distances, which rapier leaves stale while it recycles a pair's contacts.
 
 pub mod cases;
 pub mod criteria;
-
-/// Engine-side measurements for f32 rapier.
-pub mod probe32 {
-    #[allow(unused_imports)]
-    use rapier2d as rapier;
-    include!("stability/engine_probe.rs");
-}
-
-/// Engine-side measurements for f64 rapier.
-pub mod probe64 {
-    #[allow(unused_imports)]
-    use rapier2d_f64 as rapier;
-    include!("stability/engine_probe.rs");
-}
 
 use crate::level::{self, Scene};
 use crate::sim::{Engine, Options};
@@ -313,29 +299,15 @@ pub fn run(
     let error = if settings.f64 {
         let mut sim = crate::sim64::Simulation::new(&scene, &opts);
         if let Some(hz) = settings.joint_hz {
-            for (_, j) in sim.world.impulse_joints.iter_mut() {
-                j.data.softness.natural_frequency = hz as _;
-            }
+            sim.set_joint_softness(hz);
         }
-        drive(
-            sim,
-            |s| probe64::deepest_overlap(&s.world),
-            &mut monitor,
-            progress,
-        )
+        drive(sim, |s| s.deepest_overlap(), &mut monitor, progress)
     } else {
         let mut sim = crate::sim::Simulation::new(&scene, &opts);
         if let Some(hz) = settings.joint_hz {
-            for (_, j) in sim.world.impulse_joints.iter_mut() {
-                j.data.softness.natural_frequency = hz as _;
-            }
+            sim.set_joint_softness(hz);
         }
-        drive(
-            sim,
-            |s| probe32::deepest_overlap(&s.world),
-            &mut monitor,
-            progress,
-        )
+        drive(sim, |s| s.deepest_overlap(), &mut monitor, progress)
     };
     let wall_ms = start.elapsed().as_secs_f64() * 1e3;
     let mut outcome: Outcome = monitor.finish(error.as_deref());

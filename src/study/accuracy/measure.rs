@@ -4,7 +4,7 @@
 use super::metrics;
 use crate::analysis::energy;
 use crate::checks::CheckResult;
-use crate::level::{BodyKind, CheckKind, EventDef, Level, Profile, Scene};
+use crate::level::{CheckKind, EventDef, Level, Profile, Scene};
 use crate::runner::Observers;
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
@@ -118,32 +118,20 @@ pub trait StudyEngine: Engine + Sized {
 }
 
 macro_rules! study_engine {
-    ($sim:ty, $rapier:ident) => {
+    ($sim:ty) => {
         impl StudyEngine for $sim {
             fn build(scene: &Scene, opts: &Options) -> Self {
                 <$sim>::new(scene, opts)
             }
             fn restart(&mut self, bodies: &[BodyState]) {
-                use $rapier::prelude::{Pose, Real, Vector};
-                let handles = self.body_handles().to_vec();
-                for (h, b) in handles.iter().zip(bodies) {
-                    if b.kind == BodyKind::Fixed {
-                        continue;
-                    }
-                    let rb = &mut self.world.bodies[*h];
-                    let v = |p: glam::DVec2| Vector::new(p.x as Real, p.y as Real);
-                    rb.set_position(Pose::new(v(b.position), b.angle as Real), true);
-                    // rapier's linvel is the mass center's velocity, as the snapshot's.
-                    rb.set_linvel(v(b.velocity), true);
-                    rb.set_angvel(b.omega as Real, true);
-                }
+                self.restart_from(bodies);
             }
         }
     };
 }
 
-study_engine!(crate::sim::Simulation, rapier2d);
-study_engine!(crate::sim64::Simulation, rapier2d_f64);
+study_engine!(crate::sim::Simulation);
+study_engine!(crate::sim64::Simulation);
 
 /// Calls `f` with the engine of the setting's precision.
 macro_rules! with_engine {
