@@ -1,7 +1,7 @@
 //! What the overlays and plots show, over the plain snapshot. The formulas are the analysis
 //! layer's (`crate::analysis`); this file sums them over a scene and shapes them for the eye.
 
-use crate::analysis::{energy, momentum};
+use crate::analysis::momentum;
 use crate::snapshot::{BodyKind, BodyState, Coordinate, Snapshot};
 use glam::DVec2;
 

@@ -109,40 +109,13 @@ pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
     }
 }
 
-/// The error the accuracy study plots for a level with exact answers (src/study/accuracy.rs,
-/// `measure::full_run`): the worst relative error of the questions and of the closed-form
-/// (constant-acceleration) checks; and the worst error-to-tolerance ratio of all checks and
-/// questions.
+/// The accuracy study's error of the run so far (`study::accuracy::measure::RunGrade`, the one
+/// definition): the worst error against the answers and closed forms, and the worst
+/// error-to-tolerance ratio.
 pub fn study_error(
     checks: &[crate::checks::CheckResult],
     answers: &[crate::questions::QuestionResult],
 ) -> (Option<f64>, Option<f64>) {
-    let closed_form = crate::checks::kind_name(crate::level::CheckKind::ConstantAcceleration);
-    // As the study: kinds that observed nothing are not graded.
-    let checks: Vec<_> = checks.iter().filter(|c| c.samples > 0).collect();
-    let error = answers
-        .iter()
-        .map(|q| q.rel_error)
-        .chain(
-            checks
-                .iter()
-                .filter(|c| c.kind == closed_form)
-                .map(|c| c.max_rel_error),
-        )
-        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
-    let ratio = |e: f64, tol: f64| {
-        if tol > 0.0 {
-            e / tol
-        } else if e == 0.0 {
-            0.0
-        } else {
-            f64::INFINITY
-        }
-    };
-    let worst = checks
-        .iter()
-        .map(|c| ratio(c.max_rel_error, c.tolerance))
-        .chain(answers.iter().map(|q| ratio(q.rel_error, q.tolerance)))
-        .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
-    (error, worst)
+    let grade = crate::study::accuracy::measure::RunGrade::of(checks, answers);
+    (grade.error(), grade.tolerance_ratio)
 }

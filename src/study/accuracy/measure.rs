@@ -5,6 +5,7 @@ use super::metrics;
 use crate::analysis::energy;
 use crate::checks::CheckResult;
 use crate::level::{CheckKind, EventDef, Level, Profile, Scene};
+use crate::questions::QuestionResult;
 use crate::runner::Observers;
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
@@ -209,6 +210,56 @@ fn graded(c: &CheckResult) -> bool {
     c.samples > 0
 }
 
+/// The accuracy study's error of one run, from its check and question results: the one
+/// definition, which the window's solver panel shows too.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RunGrade {
+    /// The worst relative error of the questions against their answers.
+    pub question_error: Option<f64>,
+    /// The worst relative error of the closed-form (constant-acceleration) checks.
+    pub closed_form_error: Option<f64>,
+    /// The worst error-to-tolerance ratio of all graded checks and questions.
+    pub tolerance_ratio: Option<f64>,
+}
+
+impl RunGrade {
+    pub fn of(checks: &[CheckResult], answers: &[QuestionResult]) -> RunGrade {
+        let checks: Vec<&CheckResult> = checks.iter().filter(|c| graded(c)).collect();
+        let max = |it: &mut dyn Iterator<Item = f64>| {
+            it.fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
+        };
+        let closed_form = crate::checks::kind_name(CheckKind::ConstantAcceleration);
+        let ratio = |e: f64, tol: f64| {
+            if tol > 0.0 {
+                e / tol
+            } else if e == 0.0 {
+                0.0
+            } else {
+                f64::INFINITY
+            }
+        };
+        RunGrade {
+            question_error: max(&mut answers.iter().map(|q| q.rel_error)),
+            closed_form_error: max(&mut checks
+                .iter()
+                .filter(|c| c.kind == closed_form)
+                .map(|c| c.max_rel_error)),
+            tolerance_ratio: max(&mut checks
+                .iter()
+                .map(|c| ratio(c.max_rel_error, c.tolerance))
+                .chain(answers.iter().map(|q| ratio(q.rel_error, q.tolerance)))),
+        }
+    }
+
+    /// The study's error: the worst of the question and closed-form errors.
+    pub fn error(&self) -> Option<f64> {
+        match (self.question_error, self.closed_form_error) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
 /// Runs the level's duration at `setting`, with its checks and questions.
 pub fn full_run(scene: &Scene, setting: &Setting) -> FullRun {
     with_engine!(setting.precision, full_run_on(scene, setting))
@@ -245,36 +296,15 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
     }
     let (checks, answers) = observers.finish(&Default::default());
     let checks: Vec<CheckResult> = checks.into_iter().filter(graded).collect();
-    let max = |it: &mut dyn Iterator<Item = f64>| {
-        it.fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
-    };
-    let question_error = max(&mut answers.iter().map(|q| q.rel_error));
-    let closed_form = crate::checks::kind_name(CheckKind::ConstantAcceleration);
-    let closed_form_error = max(&mut checks
-        .iter()
-        .filter(|c| c.kind == closed_form)
-        .map(|c| c.max_rel_error));
-    let ratio = |e: f64, tol: f64| {
-        if tol > 0.0 {
-            e / tol
-        } else if e == 0.0 {
-            0.0
-        } else {
-            f64::INFINITY
-        }
-    };
-    let tolerance_ratio = max(&mut checks
-        .iter()
-        .map(|c| ratio(c.max_rel_error, c.tolerance))
-        .chain(answers.iter().map(|q| ratio(q.rel_error, q.tolerance))));
+    let grade = RunGrade::of(&checks, &answers);
     let meets_tolerance = (!checks.is_empty() || !answers.is_empty())
         .then(|| checks.iter().all(|c| c.passed) && answers.iter().all(|q| q.passed));
     FullRun {
         ran: true,
         stopped: None,
-        question_error,
-        closed_form_error,
-        tolerance_ratio,
+        question_error: grade.question_error,
+        closed_form_error: grade.closed_form_error,
+        tolerance_ratio: grade.tolerance_ratio,
         meets_tolerance,
         joint_drift_m: joint_drift,
     }
