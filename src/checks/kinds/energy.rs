@@ -117,17 +117,7 @@ impl Probe for KineticEnergyG {
         result(
             &self.def,
             subject_of(&self.def),
-            Summary {
-                theory: self.last.0,
-                engine: self.last.1,
-                max_abs: self.worst.max,
-                max_rel: self.worst.max / scale,
-                final_abs: self.worst.last,
-                final_rel: self.worst.last / scale,
-                samples: self.worst.samples,
-                scale,
-                note,
-            },
+            Summary::from_worst(self.last, &self.worst, scale, note),
         )
     }
 }
@@ -310,17 +300,7 @@ impl Probe for KineticEnergyIc {
         result(
             &self.def,
             subject_of(&self.def),
-            Summary {
-                theory: self.last.0,
-                engine: self.last.1,
-                max_abs: self.worst.max,
-                max_rel: self.worst.max / scale,
-                final_abs: self.worst.last,
-                final_rel: self.worst.last / scale,
-                samples: self.worst.samples,
-                scale,
-                note,
-            },
+            Summary::from_worst(self.last, &self.worst, scale, note),
         )
     }
 }
@@ -621,17 +601,7 @@ impl FrameProbe for WorkEnergy {
         result(
             &self.def,
             subject_of(&self.def),
-            Summary {
-                theory: self.last.0,
-                engine: self.last.1,
-                max_abs: self.worst.max,
-                max_rel: self.worst.max / scale,
-                final_abs: self.worst.last,
-                final_rel: self.worst.last / scale,
-                samples: self.worst.samples,
-                scale,
-                note,
-            },
+            Summary::from_worst(self.last, &self.worst, scale, note),
         )
     }
 }

@@ -108,6 +108,24 @@ pub(super) struct Summary {
     pub note: String,
 }
 
+impl Summary {
+    /// The usual summary: the last (theory, engine) pair, and the worst and final absolute
+    /// errors of `worst` against `scale`.
+    pub fn from_worst(last: (f64, f64), worst: &Worst, scale: f64, note: String) -> Summary {
+        Summary {
+            theory: last.0,
+            engine: last.1,
+            max_abs: worst.max,
+            max_rel: worst.max / scale,
+            final_abs: worst.last,
+            final_rel: worst.last / scale,
+            samples: worst.samples,
+            scale,
+            note,
+        }
+    }
+}
+
 pub(super) fn result(def: &CheckDef, subject: String, s: Summary) -> CheckResult {
     CheckResult {
         kind: kind_name(def.kind).to_string(),

@@ -263,17 +263,7 @@ impl Probe for CenterOfPercussion {
         result(
             &self.def,
             subject,
-            Summary {
-                theory: self.last.0,
-                engine: self.last.1,
-                max_abs: self.worst.max,
-                max_rel: self.worst.max / scale,
-                final_abs: self.worst.last,
-                final_rel: self.worst.last / scale,
-                samples: self.worst.samples,
-                scale,
-                note,
-            },
+            Summary::from_worst(self.last, &self.worst, scale, note),
         )
     }
 }
