@@ -6,12 +6,13 @@
 
 use crate::checks::{CheckResult, CheckSet};
 use crate::level::{self, Level, LevelError, Scene};
-use crate::questions::{QuestionProbe, QuestionResult};
+use crate::questions::{initial_in_f64, LevelFacts, QuestionProbe, QuestionResult};
 use crate::report::LevelReport;
 use crate::sim::{Options, SimError, Simulation};
 use crate::snapshot::Snapshot;
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Why a level could not be run to the end.
@@ -91,6 +92,10 @@ pub fn run_file(
 }
 
 /// The checks and questions of one run, fed every snapshot in order (the initial one first).
+///
+/// The questions share one copy of each snapshot (an `Arc`) and one copy of the level's facts:
+/// a run's memory grows with its questions, not with questions x bodies (tests/memory.rs: 1,000
+/// questions on 1,000 bodies).
 pub struct Observers {
     checks: CheckSet,
     questions: Vec<QuestionProbe>,
@@ -98,20 +103,29 @@ pub struct Observers {
 
 impl Observers {
     pub fn new(level: &Level) -> Self {
+        let facts = Arc::new(LevelFacts::of(level));
         Observers {
             checks: CheckSet::new(level),
             questions: level
                 .questions
                 .iter()
-                .map(|q| QuestionProbe::for_level(level, q))
+                .map(|q| QuestionProbe::sharing(Arc::clone(&facts), q))
                 .collect(),
         }
     }
 
     pub fn observe(&mut self, s: &Snapshot) {
         self.checks.observe(s);
+        if self.questions.is_empty() {
+            return;
+        }
+        let shared = Arc::new(if s.is_initial() {
+            initial_in_f64(s)
+        } else {
+            s.clone()
+        });
         for q in self.questions.iter_mut() {
-            q.observe(s);
+            q.observe_shared(&shared);
         }
     }
 

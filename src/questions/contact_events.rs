@@ -8,6 +8,7 @@ use super::level_facts::LevelFacts;
 use super::sample::Sample;
 use super::snapshot_reading::pair_normal_impulse;
 use crate::snapshot::Snapshot;
+use std::sync::Arc;
 
 /// The moments of a pair's first contact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,11 +59,11 @@ pub(super) struct PairTracker {
     /// The largest normal impulse of the contact so far, N s.
     peak: f64,
     /// The snapshot before the first touch (the pre-impact state).
-    pub pre: Option<Snapshot>,
+    pub pre: Option<Arc<Snapshot>>,
     /// The impact the first touch was (None when the bodies were not approaching).
     pub impact: Option<Impact>,
     /// The first snapshot without force (the post-impact state), while quiet or released.
-    pub release: Option<Snapshot>,
+    pub release: Option<Arc<Snapshot>>,
 }
 
 impl PairTracker {

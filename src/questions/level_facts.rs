@@ -31,10 +31,10 @@ pub(super) struct JointInfo {
 
 /// Level data some analyses need beyond the snapshot (declared coefficients, joint geometry).
 #[derive(Debug, Clone)]
-pub(super) struct LevelFacts {
-    pub bodies: Vec<BodyInfo>,
+pub struct LevelFacts {
+    pub(super) bodies: Vec<BodyInfo>,
     /// The level's joints (empty without the `joints` effect).
-    pub joints: Vec<JointInfo>,
+    pub(super) joints: Vec<JointInfo>,
 }
 
 impl LevelFacts {

@@ -21,7 +21,7 @@ pub(super) struct Meter {
     pub q: Quantity,
     pub facts: Arc<LevelFacts>,
     /// The first snapshot the meter saw (the initial state).
-    pub init: Option<Snapshot>,
+    pub init: Option<Arc<Snapshot>>,
     /// Running sum of the engine's value (works, distance).
     pub engine_sum: f64,
     /// Running sum for the analysis: path work of springs, loads and events on the body
@@ -64,7 +64,7 @@ impl Meter {
     pub fn advance(&mut self, f: &Sample) {
         let s = f.cur;
         if self.init.is_none() {
-            self.init = Some(s.clone());
+            self.init = Some(Arc::clone(s));
         }
         let pair_event = match &mut self.pair {
             Some(p) => p.update(f, &self.facts),

@@ -36,7 +36,7 @@ mod forces;
 mod free_body;
 mod impact_solution;
 mod impacts;
-mod level_facts;
+pub mod level_facts;
 mod linkages;
 mod meter;
 mod motion;
@@ -48,5 +48,6 @@ mod sample;
 mod snapshot_reading;
 mod work_and_power;
 
-pub use probe::QuestionProbe;
+pub use level_facts::LevelFacts;
+pub use probe::{initial_in_f64, QuestionProbe};
 pub use result::{grade_answer, QuestionResult, StudentGrade};

@@ -61,7 +61,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         Quantity::SpringPeriod(body) => {
             if let Some(i) = s.body_index(body) {
                 if m.spring_axis.is_none() {
-                    let init = m.init.as_ref().unwrap_or(prev);
+                    let init: &Snapshot = m.init.as_deref().unwrap_or(prev);
                     let sp = init
                         .springs
                         .iter()

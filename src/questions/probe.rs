@@ -24,7 +24,7 @@ pub struct QuestionProbe {
     /// The pair whose contact the question waits for.
     pair: Option<PairTracker>,
     /// The snapshots the next samples still need (their averaging windows).
-    hist: VecDeque<Snapshot>,
+    hist: VecDeque<Arc<Snapshot>>,
     last: Option<Reading>,
     last_signal: Option<f64>,
     value: Option<Reading>,
@@ -43,7 +43,12 @@ impl QuestionProbe {
     /// A probe for one of the level's questions (it reads the level's declared restitution,
     /// friction and joints for its analyses).
     pub fn for_level(level: &Level, def: &QuestionDef) -> Self {
-        let facts = Arc::new(LevelFacts::of(level));
+        Self::sharing(Arc::new(LevelFacts::of(level)), def)
+    }
+
+    /// A probe that shares the level's facts with the run's other questions (`runner::Observers`
+    /// builds them once: a copy per question is a copy of every body per question).
+    pub fn sharing(facts: Arc<LevelFacts>, def: &QuestionDef) -> Self {
         let trigger = match &def.at {
             When::Angle { body, .. } => {
                 Some(Meter::new(&Quantity::Angle(body.clone()), facts.clone()))
@@ -82,23 +87,24 @@ impl QuestionProbe {
         &self.def.id
     }
 
+    /// Observes a snapshot of its own (the window's single-question use).
     pub fn observe(&mut self, s: &Snapshot) {
+        let own = if s.is_initial() {
+            initial_in_f64(s)
+        } else {
+            s.clone()
+        };
+        self.observe_shared(&Arc::new(own));
+    }
+
+    /// Observes a snapshot shared with the run's other questions; the initial one must have
+    /// been passed through [`initial_in_f64`].
+    pub fn observe_shared(&mut self, s: &Arc<Snapshot>) {
         if s.step == 1 {
-            // The initial snapshot has its mass properties (the simulation sets them at build),
-            // but its mass centers are rapier's pose times local_com in f32, where every later
-            // snapshot's are computed in f64: recompute them in f64, so that the changes since
-            // the start (gravity's work, the pendulum's amplitude) carry no f32 round-off.
-            if let Some(first) = self.hist.back_mut().filter(|f| f.step == 0) {
-                for b0 in first.bodies.iter_mut() {
-                    b0.com = b0.world_point(b0.local_com);
-                }
-            }
             // The averaging window in steps, each side.
-            if !s.is_initial() {
-                self.lag = ((0.5 * self.window / s.dt).round() as usize).max(1);
-            }
+            self.lag = ((0.5 * self.window / s.dt).round() as usize).max(1);
         }
-        self.hist.push_back(s.clone());
+        self.hist.push_back(Arc::clone(s));
         while self.ready() {
             self.process_next();
         }
@@ -166,7 +172,7 @@ impl QuestionProbe {
         &mut self,
         sample: &Sample,
         event: Option<PairEvent>,
-        all: &[Snapshot],
+        all: &[Arc<Snapshot>],
         k: usize,
     ) {
         let t = sample.cur.time;
@@ -239,7 +245,7 @@ impl QuestionProbe {
                                     prev: k.checked_sub(2).map(|p| &all[p]),
                                     cur: prev,
                                     next: Some(sample.cur),
-                                    window: std::slice::from_ref(prev),
+                                    window: &all[k - 1..k],
                                 };
                                 self.meter.read(&before, Occasion::PreImpact(imp)).analysis
                             }
@@ -321,4 +327,16 @@ impl QuestionProbe {
         }
         QuestionResult::new(&self.def, r, self.note, student)
     }
+}
+
+/// The initial snapshot as the questions read it. Its mass centers are rapier's pose times
+/// local_com in f32, where every later snapshot's are computed in f64: recomputed in f64, so
+/// that the changes since the start (gravity's work, the pendulum's amplitude) carry no f32
+/// round-off.
+pub fn initial_in_f64(s: &Snapshot) -> Snapshot {
+    let mut first = s.clone();
+    for b0 in first.bodies.iter_mut() {
+        b0.com = b0.world_point(b0.local_com);
+    }
+    first
 }

@@ -9,15 +9,17 @@
 use super::impact_solution::{Blow, Impact};
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
+use std::sync::Arc;
 
 /// The sample and the snapshots on both sides of it.
 #[derive(Clone, Copy)]
 pub(super) struct Sample<'a> {
-    pub prev: Option<&'a Snapshot>,
-    pub cur: &'a Snapshot,
-    pub next: Option<&'a Snapshot>,
+    pub prev: Option<&'a Arc<Snapshot>>,
+    pub cur: &'a Arc<Snapshot>,
+    pub next: Option<&'a Arc<Snapshot>>,
     /// The snapshots within the quantity's averaging window around the sample (at least cur).
-    pub window: &'a [Snapshot],
+    /// Shared: every question of a run reads the same snapshots (`runner::Observers`).
+    pub window: &'a [Arc<Snapshot>],
 }
 
 impl Sample<'_> {
@@ -40,6 +42,7 @@ impl Sample<'_> {
     pub fn steps(&self) -> impl Iterator<Item = &Snapshot> {
         std::iter::once(self.cur)
             .chain(self.next)
+            .map(|s| &**s)
             .filter(|s| !s.is_initial())
     }
 
