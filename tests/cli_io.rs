@@ -262,3 +262,60 @@ fn a_full_stderr_keeps_the_exit_code() {
         .unwrap();
     assert_eq!(out.code(), Some(2));
 }
+
+/// `study accuracy` writes its results to files and prints nothing on stdout (its progress and
+/// the list of files go to stderr): a closed or full stdout does not stop it, and its files are
+/// written; a full stderr does not make it panic.
+#[test]
+fn study_accuracy_writes_its_files_whatever_stdout_and_stderr_are() {
+    let dir = temp_dir("accuracy-io");
+    let cases: [(&str, Stdio, Stdio); 3] = [
+        (
+            "closed",
+            {
+                let (r, w) = std::io::pipe().unwrap();
+                drop(r);
+                Stdio::from(w)
+            },
+            Stdio::piped(),
+        ),
+        (
+            "full",
+            Stdio::from(std::fs::File::create("/dev/full").unwrap()),
+            Stdio::piped(),
+        ),
+        (
+            "full-stderr",
+            Stdio::null(),
+            Stdio::from(
+                std::fs::OpenOptions::new()
+                    .write(true)
+                    .open("/dev/full")
+                    .unwrap(),
+            ),
+        ),
+    ];
+    for (name, stdout, stderr) in cases {
+        let out = dir.join(name);
+        let o = rigidlab()
+            .args([
+                "study",
+                "accuracy",
+                FREE_FALL,
+                "--quick",
+                "--out",
+                out.to_str().unwrap(),
+            ])
+            .stdout(stdout)
+            .stderr(stderr)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{name}: {err}");
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        assert!(
+            out.join("accuracy.csv").is_file() && out.join("summary.md").is_file(),
+            "{name}"
+        );
+    }
+}
