@@ -2,13 +2,13 @@
 //! a step (PL-1), Newton-Euler centered on a sample (6/1), and the impulse a joint passes to the
 //! bodies on one side of it (IM-3).
 //!
-//! Contact moments are taken about the recorded contact points, not the solver's lever arms
-//! (`ContactPoint::arms`) that `analysis::kinetics::free_body` uses: the two diagrams differ
-//! slightly (issue 15 asks for one), and the questions' numbers are this one's.
+//! One step's diagram is `analysis::kinetics::free_body`, the one the checks use (with the
+//! solver's lever arms for contacts and joints).
 
 use super::sample::Sample;
 use super::snapshot_reading::is_massive;
-use crate::analysis::cross;
+use crate::analysis::kinetics::{self, Before};
+use crate::analysis::Motion;
 use crate::level::Coordinate;
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -45,64 +45,14 @@ pub(super) fn newton_euler(f: &Sample, i: usize) -> Option<(DVec2, f64)> {
     Some((j / (body.mass * t), alpha))
 }
 
-/// The external impulse on body i over the step from `a` to `b` and its angular impulse about G
-/// (the free-body diagram of PL-1): gravity, loads, springs, event impulses, contacts, joints.
+/// The external impulse on body i over the step from `a` to `b` and its angular impulse about G:
+/// the free-body diagram of `analysis::kinetics` (PL-1, 6/1), with the solver's lever arms.
 fn external_impulse(a: &Snapshot, b: &Snapshot, i: usize) -> (DVec2, f64) {
-    let dt = b.dt;
-    let body = &b.bodies[i];
-    let g = 0.5 * (a.bodies[i].com + body.com);
-    let mut j = body.mass * b.gravity * dt;
-    let mut m = 0.0;
-    for l in b.loads.iter().filter(|l| l.body == i) {
-        j += l.force * dt;
-        m += (cross(l.point - a.bodies[i].com, l.force) + l.torque) * dt;
-    }
-    for sp in &b.springs {
-        if sp.body1 == i {
-            j += sp.force_on_body1 * dt;
-            m += cross(sp.applied_at1 - a.bodies[i].com, sp.force_on_body1) * dt;
-        } else if sp.body2 == Some(i) {
-            j -= sp.force_on_body1 * dt;
-            m -= cross(sp.applied_at2 - a.bodies[i].com, sp.force_on_body1) * dt;
-        }
-    }
-    for e in b.impulses.iter().filter(|e| e.body == i) {
-        j += e.impulse;
-        m += cross(e.point - a.bodies[i].com, e.impulse) + e.angular_impulse;
-    }
-    for c in &b.contacts {
-        let sign = if c.body2 == i {
-            1.0
-        } else if c.body1 == i {
-            -1.0
-        } else {
-            continue;
-        };
-        let t = c.tangent();
-        for p in &c.points {
-            let imp = (c.normal * p.normal_impulse + t * p.tangent_impulse) * sign;
-            j += imp;
-            m += cross(p.point - g, imp);
-        }
-    }
-    for jt in &b.joints {
-        if jt.body2 == i {
-            j += jt.impulse_on_body2;
-            m += jt.angular_impulse_on_body2;
-        } else if jt.body1 == i {
-            j -= jt.impulse_on_body2;
-            m += jt.angular_impulse_on_body1;
-        }
-    }
-    // A coupling gives each of its terms ratio x lambda along that coordinate (about G for angles).
-    for c in &b.couplings {
-        for &(_, coord, ratio) in c.terms.iter().filter(|t| t.0 == i) {
-            match coord {
-                Coordinate::X => j.x += ratio * c.impulse,
-                Coordinate::Y => j.y += ratio * c.impulse,
-                Coordinate::Angle => m += ratio * c.impulse,
-            }
-        }
+    let before = Motion::from(&a.bodies[i]);
+    let (mut j, mut m) = (DVec2::ZERO, 0.0);
+    for imp in kinetics::free_body(Before::One(i, &before), b, i, b.substeps) {
+        j += imp.impulse;
+        m += imp.moment_about_g();
     }
     (j, m)
 }
