@@ -84,14 +84,6 @@ const LISTED: &[(&str, &str)] = &[
         "levels/energy/block_friction_work.ron",
         "check impulse_momentum",
     ),
-    // The pulley's alpha from its free-body diagram (sum M_G / I_G): 3.5e-4 from the answer at the
-    // level's settings, 2.2e-3 at 8 substeps or dt/2, while the engine's alpha stays at 1.3e-5:
-    // the coupling's impulses on the pulley are summed per substep and the pulley's axle does
-    // not feel the cable (issue: axle loads).
-    (
-        "levels/kinetics/classic_atwood_massive_pulley.ron",
-        "question alpha",
-    ),
 ];
 
 #[test]
