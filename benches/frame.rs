@@ -10,10 +10,10 @@
 use bevy::gizmos::config::DefaultGizmoConfigGroup;
 use bevy::gizmos::gizmos::GizmoBuffer;
 use bevy::prelude::Rect;
+use rigidlab::analysis::energy;
 use rigidlab::app::draw::{self, Drawing};
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::physics::{LiveChecks, Physics};
-use rigidlab::analysis::energy;
 use rigidlab::app::quantities;
 use rigidlab::app::view::{self, SceneIndex, View};
 use rigidlab::level;
