@@ -10,6 +10,7 @@
 use bevy::gizmos::config::DefaultGizmoConfigGroup;
 use bevy::gizmos::gizmos::GizmoBuffer;
 use bevy::prelude::Rect;
+use rigidlab::analysis::energy;
 use rigidlab::app::draw::{self, Drawing};
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::physics::{LiveChecks, Physics};
@@ -108,9 +109,10 @@ fn main() {
             }
             max_speed = max_speed.max(b.velocity.length());
         }
-        sink += quantities::kinetic_energy(s) + quantities::gravity_potential(s);
+        sink += energy::system_kinetic_energy(s, energy::engine_mass)
+            + energy::system_gravity_potential(s, energy::engine_mass);
         sink += quantities::angular_momentum_about(s, glam::DVec2::ZERO);
-        sink += quantities::free_body(s, ov.selected.unwrap()).1;
+        sink += quantities::free_body(None, s, ov.selected.unwrap()).1;
         let t3 = Instant::now();
         drawing.clear(view.m_per_px);
         view::scene_lines(

@@ -146,12 +146,14 @@ fn free_body_diagram_of_a_sliding_block_shows_n_and_mu_n() {
     use rigidlab::app::quantities::{free_body, ForceKind};
     let scene = level::load(Path::new("levels/kinetics/incline_friction.ron")).unwrap();
     let mut phys = Physics::new(scene, Options::default(), false);
+    let mut prev = phys.snapshot().clone();
     while phys.snapshot().time < 0.5 {
+        prev = phys.snapshot().clone();
         assert!(phys.advance());
     }
     let s = phys.snapshot();
     let i = s.body_index("block").unwrap();
-    let (forces, _) = free_body(s, i);
+    let (forces, _) = free_body(Some(&prev), s, i);
     let sum = |k: ForceKind| -> glam::DVec2 {
         forces.iter().filter(|f| f.kind == k).map(|f| f.force).sum()
     };

@@ -60,6 +60,19 @@ pub fn system_angular_momentum(bodies: impl IntoIterator<Item = BodyMomentum>, o
         .sum()
 }
 
+/// A snapshot's system angular momentum about O (6/19): every body's H_O with its engine mass
+/// and I_G (fixed bodies have none), the sum the window plots and draws.
+pub fn scene_angular_momentum_about(s: &crate::snapshot::Snapshot, o: DVec2) -> f64 {
+    let body = |b: &crate::snapshot::BodyState| BodyMomentum {
+        m: b.mass,
+        i_g: b.inertia,
+        r_g: b.com,
+        v_g: b.velocity,
+        omega: b.omega,
+    };
+    system_angular_momentum(s.bodies.iter().map(body), o)
+}
+
 // ---------------------------------------------------------------------------------------------
 // Impulse-momentum over a window [t1, t2].
 

@@ -152,7 +152,7 @@ fn force_color(k: ForceKind) -> Color {
         ForceKind::Friction => palette::FRICTION,
         ForceKind::Joint => palette::REACTION,
         ForceKind::Spring => palette::SPRING,
-        ForceKind::Load => palette::LOAD,
+        ForceKind::Load | ForceKind::Blow => palette::LOAD,
         ForceKind::Coupling => palette::COUPLING,
     }
 }
@@ -328,9 +328,9 @@ pub fn build(
             }
             // Mean forces over the last frame's steps when the step is short (see free_body_mean).
             let (forces, couple) = if phys.recent.len() > 1 {
-                quantities::free_body_mean(phys.recent.iter(), i)
+                quantities::free_body_mean(quantities::with_previous(&phys.recent), i)
             } else {
-                quantities::free_body(s, i)
+                quantities::free_body(None, s, i)
             };
             if ov.free_body {
                 for f in &forces {
@@ -448,12 +448,11 @@ pub fn center_of_percussion(phys: &Physics, i: usize) -> Option<(DVec2, DVec2, f
         } else {
             return None;
         };
-        let r = (b.com - o).length();
-        if !revolute || r < 1e-9 {
+        if !revolute || (b.com - o).length() < 1e-9 {
             return None;
         }
-        let q = (b.inertia / b.mass + r * r) / r;
-        Some((o, o + (b.com - o) / r * q, q))
+        let p = crate::analysis::percussion::center_of_percussion(o, b.com, b.inertia, b.mass)?;
+        Some((o, p, (p - o).length()))
     })
 }
 

@@ -1,41 +1,37 @@
-//! What the overlays and plots show, over the plain snapshot. The formulas are the analysis
-//! layer's (`crate::analysis`); this file sums them over a scene and shapes them for the eye.
+//! What the overlays and plots show, shaped for the eye. Every formula is the analysis layer's
+//! (`crate::analysis`): the free-body diagram is `analysis::kinetics::free_body`, point velocities
+//! RK-6, accelerations the step's finite differences, momenta 6/19. This file only groups a
+//! diagram's impulses into the arrows a student draws (one normal force and one friction force per
+//! contact, one reaction per joint) and averages them over a rendered frame.
 
-use crate::analysis::momentum;
-use crate::snapshot::{BodyKind, BodyState, Coordinate, Snapshot};
+use crate::analysis::kinematics::{acceleration_fd, angular_acceleration_fd, instantaneous_center};
+use crate::analysis::kinetics::{self, Before, Source, StepImpulse};
+use crate::analysis::Motion;
+use crate::snapshot::{BodyKind, BodyState, Snapshot};
 use glam::DVec2;
 
 pub use crate::analysis::energy::body_kinetic_energy;
 pub use crate::analysis::kinematics::body_point_velocity as point_velocity;
+pub use crate::analysis::momentum::scene_angular_momentum_about as angular_momentum_about;
 
-/// Angular momentum of the scene about a fixed point O, sum of H_O (6/15), N m s, CCW.
-pub fn angular_momentum_about(s: &Snapshot, o: DVec2) -> f64 {
-    s.bodies
-        .iter()
-        .map(|b| momentum::angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, o))
-        .sum()
-}
-
-/// Instantaneous center of zero velocity C: v_C = 0 gives r_{C/G} = (k x v_G) / omega (MK art. 5/5).
-/// None for pure translation (|omega| tiny against v_G / `size`: the center is at infinity).
+/// Instantaneous center of zero velocity C (RK-11), drawn only within a million body sizes of G:
+/// farther, the body translates to the eye (the center is at infinity).
 pub fn instant_center(b: &BodyState, size: f64) -> Option<DVec2> {
-    let w = b.omega;
-    let v = b.velocity;
-    if w.abs() * size.max(1e-9) <= 1e-6 * v.length().max(1e-12) || w == 0.0 {
-        return None;
-    }
-    Some(b.com + v.perp() / w)
+    instantaneous_center(b.com, b.velocity, b.omega, 1e6 * size.max(1e-9))
 }
 
-/// Mass-center acceleration and angular acceleration by backward difference of the velocities,
-/// a_G ~ (v_n - v_{n-1}) / dt: the mean acceleration over the last step (O(dt) behind the instant).
+/// Every body's a_G and alpha over the last step by finite differences (`FD`), from its v_G and
+/// omega before the step; zero before the first step.
 pub fn accelerations(now: &Snapshot, prev: &[(DVec2, f64)], dt: f64) -> Vec<(DVec2, f64)> {
     now.bodies
         .iter()
         .zip(prev)
         .map(|(b, (v0, w0))| {
             if dt > 0.0 {
-                ((b.velocity - *v0) / dt, (b.omega - w0) / dt)
+                (
+                    acceleration_fd(*v0, b.velocity, dt),
+                    angular_acceleration_fd(*w0, b.omega, dt),
+                )
             } else {
                 (DVec2::ZERO, 0.0)
             }
@@ -43,7 +39,7 @@ pub fn accelerations(now: &Snapshot, prev: &[(DVec2, f64)], dt: f64) -> Vec<(DVe
         .collect()
 }
 
-/// What a force on a free-body diagram is.
+/// What an arrow of the free-body diagram is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ForceKind {
     Gravity,
@@ -52,6 +48,8 @@ pub enum ForceKind {
     Joint,
     Spring,
     Load,
+    /// An impulse event (a blow), drawn as its mean force over the step.
+    Blow,
     /// A coupling's reaction (cable tension, gear tooth force) on the mass center.
     Coupling,
 }
@@ -65,211 +63,172 @@ impl ForceKind {
             ForceKind::Joint => "R",
             ForceKind::Spring => "Fs",
             ForceKind::Load => "P",
+            ForceKind::Blow => "P̂/Δt",
             ForceKind::Coupling => "T",
         }
     }
 }
 
-/// One force on a body, at its point of application, N.
+/// One arrow of the free-body diagram: a mean force, N, at its point of application.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Force {
     pub kind: ForceKind,
     /// Which one of its kind: the other body (contacts), or the index of the joint, coupling,
-    /// spring or load. With `kind` it identifies the force from step to step.
+    /// spring, load or event. With `kind` it identifies the arrow from step to step.
     pub source: usize,
     pub point: DVec2,
     pub force: DVec2,
 }
 
-/// The external forces on body `i` during the last step: gravity m g at G, contact normal and
-/// friction forces (impulse / dt, one resultant per contact manifold), joint reactions (impulse on
-/// body2 / dt, opposite on body1), coupling reactions, spring forces and applied loads. Couples
-/// (load torques, joint and coupling couples) are summed separately, N m. This is the free-body
-/// diagram (MK art. 6/2), with the mean forces over the step.
-pub fn free_body(s: &Snapshot, i: usize) -> (Vec<Force>, f64) {
-    let mut out = Vec::new();
-    let mut couple = 0.0;
-    let b = &s.bodies[i];
-    if b.kind != BodyKind::Dynamic {
-        return (out, couple);
+/// Body `i`'s free-body diagram over the step that led to `s` (`prev`: the snapshot before it,
+/// when kept), as arrows: mean forces (impulse / dt) and the sum of its couples, N m. Before the
+/// first step it shows the forces known without a step: weight, springs and loads.
+pub fn free_body(prev: Option<&Snapshot>, s: &Snapshot, i: usize) -> (Vec<Force>, f64) {
+    if s.is_initial() {
+        // analysis reads a step's impulses; over a nominal 1 s step a held force's impulse is
+        // the force itself (contacts and joints carry no impulse yet).
+        let nominal = Snapshot {
+            dt: 1.0,
+            ..s.clone()
+        };
+        return free_body_mean([(None, &nominal)], i);
     }
-    if s.gravity != DVec2::ZERO && b.mass > 0.0 {
-        out.push(Force {
-            kind: ForceKind::Gravity,
-            source: 0,
-            point: b.com,
-            force: s.gravity * b.mass,
-        });
-    }
-    if !s.is_initial() {
-        let inv = 1.0 / s.dt;
-        for c in &s.contacts {
-            let (sign, other) = if c.body2 == i {
-                (1.0, c.body1)
-            } else if c.body1 == i {
-                (-1.0, c.body2)
-            } else {
-                continue;
-            };
-            // One resultant per contact manifold, at the normal-impulse-weighted center of its points.
-            let pn: f64 = c.points.iter().map(|p| p.normal_impulse).sum();
-            let pt: f64 = c.points.iter().map(|p| p.tangent_impulse).sum();
-            if c.points.is_empty() || (pn == 0.0 && pt == 0.0) {
-                continue;
-            }
-            let point = if pn > 0.0 {
-                c.points
-                    .iter()
-                    .map(|p| p.point * p.normal_impulse)
-                    .sum::<DVec2>()
-                    / pn
-            } else {
-                c.points.iter().map(|p| p.point).sum::<DVec2>() / c.points.len() as f64
-            };
-            out.push(Force {
-                kind: ForceKind::ContactNormal,
-                source: other,
-                point,
-                force: c.normal * pn * inv * sign,
-            });
-            out.push(Force {
-                kind: ForceKind::Friction,
-                source: other,
-                point,
-                force: c.tangent() * pt * inv * sign,
-            });
-        }
-        for (k, j) in s.joints.iter().enumerate() {
-            if j.body2 == i {
-                out.push(Force {
-                    kind: ForceKind::Joint,
-                    source: k,
-                    point: j.anchor,
-                    force: j.impulse_on_body2 * inv,
-                });
-                couple += j.couple_on_body2 * inv;
-            } else if j.body1 == i {
-                out.push(Force {
-                    kind: ForceKind::Joint,
-                    source: k,
-                    point: j.anchor1,
-                    force: -j.impulse_on_body2 * inv,
-                });
-                couple -= j.couple_on_body2 * inv;
-            }
-        }
-    }
-    if !s.is_initial() {
-        // Couplings: term k receives ratio_k * lambda along its coordinate (at G) or as a couple.
-        for (k, c) in s.couplings.iter().enumerate() {
-            for (body, coord, ratio) in &c.terms {
-                if *body != i {
-                    continue;
-                }
-                let q = ratio * c.impulse / s.dt;
-                match coord {
-                    Coordinate::X => out.push(Force {
-                        kind: ForceKind::Coupling,
-                        source: k,
-                        point: b.com,
-                        force: DVec2::new(q, 0.0),
-                    }),
-                    Coordinate::Y => out.push(Force {
-                        kind: ForceKind::Coupling,
-                        source: k,
-                        point: b.com,
-                        force: DVec2::new(0.0, q),
-                    }),
-                    Coordinate::Angle => couple += q,
-                }
-            }
-        }
-    }
-    for (k, sp) in s.springs.iter().enumerate() {
-        if sp.body1 == i {
-            out.push(Force {
-                kind: ForceKind::Spring,
-                source: k,
-                point: sp.point1,
-                force: sp.force_on_body1,
-            });
-        } else if sp.body2 == Some(i) {
-            out.push(Force {
-                kind: ForceKind::Spring,
-                source: k,
-                point: sp.point2,
-                force: -sp.force_on_body1,
-            });
-        }
-    }
-    for (k, l) in s.loads.iter().enumerate() {
-        if l.body == i {
-            if l.force != DVec2::ZERO {
-                out.push(Force {
-                    kind: ForceKind::Load,
-                    source: k,
-                    point: l.point,
-                    force: l.force,
-                });
-            }
-            couple += l.torque;
-        }
-    }
-    out.retain(|f| f.force.length_squared() > 0.0);
-    (out, couple)
+    free_body_mean([(prev, s)], i)
 }
 
-/// The free-body diagram averaged over consecutive steps: each force's impulse over the window
-/// divided by its duration (the mean force), at its impulse-weighted mean point; couples likewise.
-/// With a step much shorter than a frame, rapier delivers contact impulses in bursts (many steps
-/// carry none); the mean over a frame is what the eye can follow.
+/// The free-body diagram averaged over consecutive snapshots (each with the one before it, if
+/// kept): each arrow's impulse over the window divided by its duration (the mean force), at its
+/// impulse-weighted mean point; couples likewise. With a step much shorter than a frame, rapier
+/// delivers contact impulses in bursts (many steps carry none); the mean over a frame is what the
+/// eye can follow.
 pub fn free_body_mean<'a>(
-    snaps: impl IntoIterator<Item = &'a Snapshot>,
+    steps: impl IntoIterator<Item = (Option<&'a Snapshot>, &'a Snapshot)>,
     i: usize,
 ) -> (Vec<Force>, f64) {
-    let mut acc: Vec<(Force, f64)> = Vec::new();
-    let mut couple = 0.0;
-    let mut total_time = 0.0;
-    for s in snaps {
-        let (forces, c) = free_body(s, i);
-        let dt = if s.is_initial() { continue } else { s.dt };
-        total_time += dt;
-        couple += c * dt;
-        for f in forces {
-            let w = f.force.length() * dt;
-            match acc
-                .iter_mut()
-                .find(|(g, _)| g.kind == f.kind && g.source == f.source)
-            {
-                Some((g, wsum)) => {
-                    g.force += f.force * dt;
-                    g.point += f.point * w;
-                    *wsum += w;
-                }
-                None => acc.push((
-                    Force {
-                        force: f.force * dt,
-                        point: f.point * w,
-                        ..f
-                    },
-                    w,
-                )),
+    let mut mean = MeanDiagram::default();
+    for (prev, s) in steps {
+        mean.add_step(prev, s, i);
+    }
+    mean.finish()
+}
+
+/// Each item of a run of snapshots with the one before it (None for the first).
+pub fn with_previous<'a, T: 'a>(
+    items: impl IntoIterator<Item = &'a T>,
+) -> impl Iterator<Item = (Option<&'a T>, &'a T)> {
+    let mut last: Option<&T> = None;
+    items.into_iter().map(move |s| (last.replace(s), s))
+}
+
+/// Impulses summed per arrow over a window of steps.
+#[derive(Default)]
+struct MeanDiagram {
+    /// Per arrow: the summed impulse (in `force`), point x |impulse| (in `point`), and sum |impulse|.
+    arrows: Vec<(Force, f64)>,
+    angular_impulse: f64,
+    time: f64,
+}
+
+impl MeanDiagram {
+    fn add_step(&mut self, prev: Option<&Snapshot>, s: &Snapshot, i: usize) {
+        let b = &s.bodies[i];
+        if s.dt <= 0.0 || b.kind != BodyKind::Dynamic {
+            return;
+        }
+        self.time += s.dt;
+        let start = prev.map(|p| Motion::from(&p.bodies[i]));
+        let before = match &start {
+            Some(m) => Before::One(i, m),
+            None => Before::All(&[]),
+        };
+        for imp in kinetics::free_body(before, s, i, s.substeps) {
+            self.angular_impulse += drawn_couple(s, &imp);
+            // Drawn on the body where it is now: G at the end of the step plus the lever arm.
+            let point = b.com + imp.arm;
+            for (kind, source, impulse) in arrows_of(s, &imp) {
+                self.add(kind, source, point, impulse);
             }
         }
     }
-    if total_time == 0.0 {
-        return (Vec::new(), 0.0);
+
+    fn add(&mut self, kind: ForceKind, source: usize, point: DVec2, impulse: DVec2) {
+        let w = impulse.length();
+        if w == 0.0 {
+            return;
+        }
+        match self
+            .arrows
+            .iter_mut()
+            .find(|(g, _)| g.kind == kind && g.source == source)
+        {
+            Some((g, wsum)) => {
+                g.force += impulse;
+                g.point += point * w;
+                *wsum += w;
+            }
+            None => self.arrows.push((
+                Force {
+                    kind,
+                    source,
+                    point: point * w,
+                    force: impulse,
+                },
+                w,
+            )),
+        }
     }
-    let out = acc
-        .into_iter()
-        .filter(|(_, w)| *w > 0.0)
-        .map(|(f, w)| Force {
-            force: f.force / total_time,
-            point: f.point / w,
-            ..f
-        })
-        .collect();
-    (out, couple / total_time)
+
+    fn finish(self) -> (Vec<Force>, f64) {
+        if self.time == 0.0 {
+            return (Vec::new(), 0.0);
+        }
+        let t = self.time;
+        let out = self
+            .arrows
+            .into_iter()
+            .map(|(f, w)| Force {
+                force: f.force / t,
+                point: f.point / w,
+                ..f
+            })
+            .collect();
+        (out, self.angular_impulse / t)
+    }
+}
+
+/// The couple drawn with an impulse. A joint's is its constraint couple (a weld's, a slider's):
+/// analysis's `couple` for a joint also holds the moment of the reaction's drift within the step
+/// (its arm from G turns with the body over the substeps), which the arrow at the anchor shows and
+/// a curl would misread (a pendulum's pin would show 0.5 N m).
+fn drawn_couple(s: &Snapshot, imp: &StepImpulse) -> f64 {
+    match imp.source {
+        Source::Joint(k) if s.joints[k].body2 == imp.body => s.joints[k].couple_on_body2,
+        Source::Joint(k) => -s.joints[k].couple_on_body2,
+        _ => imp.couple,
+    }
+}
+
+/// The arrows one impulse of the diagram is drawn as: a contact point's impulse as its normal and
+/// its friction part (one arrow each per contact, keyed by the other body), anything else as one.
+fn arrows_of(s: &Snapshot, imp: &StepImpulse) -> Vec<(ForceKind, usize, DVec2)> {
+    let one = |kind, source| vec![(kind, source, imp.impulse)];
+    match imp.source {
+        Source::Gravity => one(ForceKind::Gravity, 0),
+        Source::Load(k) => one(ForceKind::Load, k),
+        Source::Spring(k) => one(ForceKind::Spring, k),
+        Source::Event(k) => one(ForceKind::Blow, k),
+        Source::Joint(k) => one(ForceKind::Joint, k),
+        Source::Coupling(k, _) => one(ForceKind::Coupling, k),
+        Source::Contact { contact, .. } => {
+            let c = &s.contacts[contact];
+            let other = imp.other.unwrap_or(usize::MAX);
+            let normal = c.normal * imp.impulse.dot(c.normal);
+            vec![
+                (ForceKind::ContactNormal, other, normal),
+                (ForceKind::Friction, other, imp.impulse - normal),
+            ]
+        }
+    }
 }
 
 #[cfg(test)]
@@ -307,5 +266,13 @@ mod tests {
     #[test]
     fn translation_has_no_instant_center() {
         assert!(instant_center(&body(DVec2::new(1.0, 0.0), 0.0), 1.0).is_none());
+        // A turn so slow that C is beyond a million sizes is drawn as translation too.
+        assert!(instant_center(&body(DVec2::new(1.0, 0.0), 1e-7), 1.0).is_none());
+    }
+
+    #[test]
+    fn pairs_each_item_with_the_one_before() {
+        let steps: Vec<(Option<&u32>, &u32)> = with_previous(&[0, 1, 2]).collect();
+        assert_eq!(steps, vec![(None, &0), (Some(&0), &1), (Some(&1), &2)]);
     }
 }

@@ -1,15 +1,12 @@
-//! The engine's free-body diagram as the questions read it: the external impulse on a body over
-//! a step (PL-1), Newton-Euler centered on a sample (6/1), and the impulse a joint passes to the
-//! bodies on one side of it (IM-3).
-//!
-//! One step's diagram is `analysis::kinetics::free_body`, the one the checks use (with the
-//! solver's lever arms for contacts and joints).
+//! The engine's free-body diagram as the questions read it: analysis's diagram
+//! (`analysis::kinetics::for_each_external_impulse`, the one the checks read), summed for
+//! Newton-Euler centered on a sample (6/1) and for the impulse a joint passes to the bodies on
+//! one side of it (IM-3). Contact moments use the solver's lever arms (`ContactPoint::arms`).
 
 use super::sample::Sample;
 use super::snapshot_reading::is_massive;
-use crate::analysis::kinetics::{self, Before};
+use crate::analysis::kinetics::{for_each_external_impulse, Before, Source};
 use crate::analysis::Motion;
-use crate::level::Coordinate;
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
@@ -46,14 +43,20 @@ pub(super) fn newton_euler(f: &Sample, i: usize) -> Option<(DVec2, f64)> {
 }
 
 /// The external impulse on body i over the step from `a` to `b` and its angular impulse about G:
-/// the free-body diagram of `analysis::kinetics` (PL-1, 6/1), with the solver's lever arms.
+/// the sums of body i's free-body diagram (PL-1).
 fn external_impulse(a: &Snapshot, b: &Snapshot, i: usize) -> (DVec2, f64) {
-    let before = Motion::from(&a.bodies[i]);
+    let start = Motion::from(&a.bodies[i]);
     let (mut j, mut m) = (DVec2::ZERO, 0.0);
-    for imp in kinetics::free_body(Before::One(i, &before), b, i, b.substeps) {
-        j += imp.impulse;
-        m += imp.moment_about_g();
-    }
+    for_each_external_impulse(
+        Before::One(i, &start),
+        b,
+        b.substeps,
+        |k| k == i,
+        |s| {
+            j += s.impulse;
+            m += s.moment_about_g();
+        },
+    );
     (j, m)
 }
 
@@ -61,8 +64,29 @@ fn external_impulse(a: &Snapshot, b: &Snapshot, i: usize) -> (DVec2, f64) {
 /// their momentum change minus every other external impulse on them (gravity, loads, springs,
 /// events, contacts and other joints reaching outside the group), IM-3.
 pub(super) fn side_impulse(prev: &Snapshot, s: &Snapshot, k: usize, moving: usize) -> DVec2 {
-    let n = s.bodies.len();
-    let mut side = vec![false; n];
+    let side = joined_side(s, k, moving);
+    let mut j = DVec2::ZERO;
+    for (i, b) in s.bodies.iter().enumerate().filter(|&(i, _)| side[i]) {
+        j += b.mass * (b.velocity - prev.bodies[i].velocity);
+    }
+    // Only the sum of impulses is read, so the start-of-step poses (for moments) are not needed.
+    for_each_external_impulse(
+        Before::All(&[]),
+        s,
+        s.substeps,
+        |i| side[i],
+        |imp| {
+            if imp.source != Source::Joint(k) {
+                j -= imp.impulse;
+            }
+        },
+    );
+    j
+}
+
+/// The bodies joined to `moving` through joints other than k (bodies with mass only).
+fn joined_side(s: &Snapshot, k: usize, moving: usize) -> Vec<bool> {
+    let mut side = vec![false; s.bodies.len()];
     side[moving] = true;
     let mut grew = true;
     while grew {
@@ -79,51 +103,5 @@ pub(super) fn side_impulse(prev: &Snapshot, s: &Snapshot, k: usize, moving: usiz
             }
         }
     }
-    let dt = s.dt;
-    let mut j = DVec2::ZERO;
-    for i in (0..n).filter(|&i| side[i]) {
-        let b = &s.bodies[i];
-        j += b.mass * (b.velocity - prev.bodies[i].velocity) - b.mass * s.gravity * dt;
-    }
-    for l in s.loads.iter().filter(|l| side[l.body]) {
-        j -= l.force * dt;
-    }
-    for sp in &s.springs {
-        let (a, b) = (side[sp.body1], sp.body2.is_some_and(|b| side[b]));
-        if a && !b {
-            j -= sp.force_on_body1 * dt;
-        } else if b && !a {
-            j += sp.force_on_body1 * dt;
-        }
-    }
-    for e in s.impulses.iter().filter(|e| side[e.body]) {
-        j -= e.impulse;
-    }
-    for c in &s.contacts {
-        match (side[c.body1], side[c.body2]) {
-            (false, true) => j -= c.impulse_on_body2(),
-            (true, false) => j += c.impulse_on_body2(),
-            _ => {}
-        }
-    }
-    for (q, jt) in s.joints.iter().enumerate() {
-        if q == k {
-            continue;
-        }
-        match (side[jt.body1], side[jt.body2]) {
-            (false, true) => j -= jt.impulse_on_body2,
-            (true, false) => j += jt.impulse_on_body2,
-            _ => {}
-        }
-    }
-    for c in &s.couplings {
-        for &(_, coord, ratio) in c.terms.iter().filter(|t| side[t.0]) {
-            match coord {
-                Coordinate::X => j.x -= ratio * c.impulse,
-                Coordinate::Y => j.y -= ratio * c.impulse,
-                Coordinate::Angle => {}
-            }
-        }
-    }
-    j
+    side
 }

@@ -10,6 +10,7 @@ use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::named_body;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::analysis::kinematics::point_acceleration;
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
@@ -94,10 +95,9 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             };
             let ax = f.rate(|y| Some(vp(y).x))?;
             let ay = f.rate(|y| Some(vp(y).y))?;
-            // RK-10 written out: a_P = a_G + alpha k x r - omega^2 r.
+            // RK-10 with a_G and alpha from Newton-Euler on the free-body diagram.
             let analysis = newton_euler(f, i).map(|(a_g, alpha)| {
-                let r = x.world_point(local) - x.com;
-                (a_g + r.perp() * alpha - r * x.omega * x.omega).length()
+                point_acceleration(a_g, alpha, x.omega, x.world_point(local) - x.com).length()
             });
             (DVec2::new(ax, ay).length(), analysis)
         }

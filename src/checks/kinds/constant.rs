@@ -50,29 +50,12 @@ impl Probe for ConstantAcceleration {
             self.index = Some(i);
             self.r0 = b.com;
             self.v0 = b.velocity;
-            let load: DVec2 = s
-                .loads
-                .iter()
-                .filter(|l| l.body == i)
-                .map(|l| l.force)
-                .sum();
-            self.accel = s.gravity
-                + if b.mass > 0.0 {
-                    load / b.mass
-                } else {
-                    DVec2::ZERO
-                };
+            self.accel = constant_acceleration(s, i);
             return;
         }
         if s.step == 1 && b.mass > 0.0 {
             // Loads are known only once the first step applied them.
-            let load: DVec2 = s
-                .loads
-                .iter()
-                .filter(|l| l.body == i)
-                .map(|l| l.force)
-                .sum();
-            self.accel = s.gravity + load / b.mass;
+            self.accel = constant_acceleration(s, i);
         }
         let t = s.time;
         let theory = self.r0 + self.v0 * t + 0.5 * self.accel * t * t;
@@ -97,4 +80,22 @@ impl Probe for ConstantAcceleration {
             note,
         )
     }
+}
+
+/// a = g + F/m for body i under the snapshot's loads (g alone for a body without mass: the
+/// initial snapshot, before rapier computed its mass properties).
+fn constant_acceleration(s: &Snapshot, i: usize) -> DVec2 {
+    let b = &s.bodies[i];
+    let load: DVec2 = s
+        .loads
+        .iter()
+        .filter(|l| l.body == i)
+        .map(|l| l.force)
+        .sum();
+    s.gravity
+        + if b.mass > 0.0 {
+            load / b.mass
+        } else {
+            DVec2::ZERO
+        }
 }

@@ -1,8 +1,8 @@
 //! Energy checks: `kinetic_energy_g`, `kinetic_energy_ic`, `work_energy`.
 
 use super::{
-    body_def, dynamic_body, framed, misconfigured, result, scale_or, subject_of, subject_set,
-    textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
+    body_def, cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_index,
+    subject_of, subject_set, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::FrameAnalysis;
@@ -69,10 +69,9 @@ impl Probe for KineticEnergyG {
     fn observe(&mut self, s: &Snapshot) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
-        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+        let Some(i) = cached_body(&mut self.index, s, &self.name) else {
             return;
         };
-        self.index = Some(i);
         let b = &s.bodies[i];
         let g = Motion::from(b).world_point(self.mass.com);
         let t_engine = engine_ke(b);
@@ -208,10 +207,9 @@ struct KineticEnergyIc {
 
 impl Probe for KineticEnergyIc {
     fn observe(&mut self, s: &Snapshot) {
-        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+        let Some(i) = cached_body(&mut self.index, s, &self.name) else {
             return;
         };
-        self.index = Some(i);
         let b = &s.bodies[i];
         if b.mass <= 0.0 {
             // The initial snapshot: rapier computes mass properties inside the first step.
@@ -225,10 +223,9 @@ impl Probe for KineticEnergyIc {
         let c = match &self.center {
             Center::Fixed(o) => Some(*o),
             Center::Contact(other) => {
-                let Some(k) = self.other_index.or_else(|| s.body_index(other)) else {
+                let Some(k) = cached_body(&mut self.other_index, s, other) else {
                     return;
                 };
-                self.other_index = Some(k);
                 // The body's own contact point(s) with `other`, weighted by normal impulse: G plus
                 // the lever arm the solver used (recorded points go stale while rapier recycles
                 // the manifold; the arm of a rolling disc stays -r n).
@@ -477,13 +474,10 @@ impl WorkEnergy {
 impl FrameProbe for WorkEnergy {
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         if self.set.is_empty() {
-            self.index = match &self.body {
-                Some(n) => match s.body_index(n) {
-                    Some(i) => Some(i),
-                    None => return,
-                },
-                None => None,
+            let Some(index) = subject_index(s, self.body.as_deref()) else {
+                return;
             };
+            self.index = index;
             self.set = subject_set(s, self.index);
         }
         let f = fa.frame();

@@ -1,6 +1,8 @@
 //! `restitution`: impacts between two bodies, e measured against e set (IM-9 to IM-15).
 
-use super::{body_def, copy_motions, dynamic_body, misconfigured, result, subject_of, Summary};
+use super::{
+    body_def, cached_body, copy_motions, dynamic_body, misconfigured, result, subject_of, Summary,
+};
 use crate::analysis::energy::kinetic_energy;
 use crate::analysis::impact::{
     central_impact_energy_loss, measure_impact, pair_contact, Bracket, ImpactDetector,
@@ -211,10 +213,9 @@ impl Probe for Restitution {
     fn observe(&mut self, s: &Snapshot) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
-        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+        let Some(i) = cached_body(&mut self.index, s, &self.name) else {
             return;
         };
-        self.index = Some(i);
         if self.partner.is_none() {
             self.partner = match &self.other {
                 Some(o) => s.body_index(o),

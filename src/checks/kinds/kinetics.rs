@@ -2,8 +2,8 @@
 
 use super::momentum::pivot_of;
 use super::{
-    dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass, v2,
-    FrameProbe, Summary, Worst,
+    cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass,
+    v2, FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::kinematics::{acceleration_fd, angular_acceleration_fd};
@@ -94,10 +94,9 @@ impl FrameProbe for NewtonEuler {
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
-        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+        let Some(i) = cached_body(&mut self.index, s, &self.name) else {
             return;
         };
-        self.index = Some(i);
         let b = &s.bodies[i];
         let now = Motion::from(b);
         self.k_g = crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);

@@ -40,6 +40,23 @@ pub(super) trait FrameProbe {
     fn finish(self) -> CheckResult;
 }
 
+/// The index of the body named `name` in the run's snapshots, looked up once and kept in
+/// `index` (a scene's bodies do not come or go). None while the name is not in the snapshot.
+pub(super) fn cached_body(index: &mut Option<usize>, s: &Snapshot, name: &str) -> Option<usize> {
+    let i = index.or_else(|| s.body_index(name))?;
+    *index = Some(i);
+    Some(i)
+}
+
+/// A check's subject in the snapshot: `Some(Some(i))` for the named body, `Some(None)` for the
+/// whole scene (no body named), None while the named body is not in the snapshot.
+pub(super) fn subject_index(s: &Snapshot, body: Option<&str>) -> Option<Option<usize>> {
+    match body {
+        Some(n) => s.body_index(n).map(Some),
+        None => Some(None),
+    }
+}
+
 /// A [`FrameProbe`] as a [`Probe`]: fed by a `CheckSet` it reads the set's frame; fed snapshots
 /// alone (tests, tools) it runs its own frame pass.
 pub(super) struct Framed<P> {

@@ -1,8 +1,8 @@
 //! Momentum checks: `angular_momentum_fixed_point`, `impulse_momentum`.
 
 use super::{
-    dynamic_body, framed, misconfigured, result, scale_or, subject_of, subject_set, v2, BodySet,
-    FrameProbe, Summary, Worst,
+    dynamic_body, framed, misconfigured, result, scale_or, subject_index, subject_of, subject_set,
+    v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::cross;
 use crate::analysis::frame::FrameAnalysis;
@@ -102,13 +102,10 @@ impl FrameProbe for AngularMomentumFixedPoint {
             return;
         }
         if self.set.is_empty() {
-            self.index = match &self.body {
-                Some(n) => match s.body_index(n) {
-                    Some(i) => Some(i),
-                    None => return,
-                },
-                None => None,
+            let Some(index) = subject_index(s, self.body.as_deref()) else {
+                return;
             };
+            self.index = index;
             self.set = subject_set(s, self.index);
             // The joints with a side on the set (a scene's joints do not come or go).
             self.set_joints = (0..s.joints.len())
@@ -276,13 +273,10 @@ impl FrameProbe for ImpulseMomentum {
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         let o = self.o.unwrap_or_default();
         if !self.resolved {
-            self.index = match &self.body {
-                Some(n) => match s.body_index(n) {
-                    Some(i) => Some(i),
-                    None => return,
-                },
-                None => None,
+            let Some(index) = subject_index(s, self.body.as_deref()) else {
+                return;
             };
+            self.index = index;
             self.resolved = true;
         }
         let f = fa.frame();

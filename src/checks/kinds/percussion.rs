@@ -2,7 +2,8 @@
 //! through the center of percussion (CP-2).
 
 use super::{
-    dynamic_body, misconfigured, result, scale_or, subject_of, textbook_mass, v2, Summary, Worst,
+    cached_body, dynamic_body, misconfigured, result, scale_or, subject_of, textbook_mass, v2,
+    Summary, Worst,
 };
 use crate::analysis::kinetics::{for_each_external_impulse, gravity_point, Before, Source};
 use crate::analysis::mass::{parallel_axis, MassProps};
@@ -118,10 +119,9 @@ impl Probe for CenterOfPercussion {
     fn observe(&mut self, s: &Snapshot) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
-        let Some(i) = self.index.or_else(|| s.body_index(&self.name)) else {
+        let Some(i) = cached_body(&mut self.index, s, &self.name) else {
             return;
         };
-        self.index = Some(i);
         let b = &s.bodies[i];
         let now = Motion::from(b);
         if self.o.is_none() {
