@@ -16,6 +16,12 @@
 //!   about that point);
 //! - B (information): the same with 250 per-body checks as well, `newton_euler` and
 //!   `kinetic_energy_ic` on all 100 bodies and `angular_momentum_fixed_point` on the 50 bars.
+//! - C (the goal of issue 15, <= 5%): every per-body check kind on every body it applies to, on
+//!   its own (no scene checks): `mass_properties`, `constant_acceleration`, `kinetic_energy_g`,
+//!   `kinetic_energy_ic`, `angular_momentum_fixed_point`, `newton_euler` (about G and about a
+//!   point), `work_energy`, `impulse_momentum` and `restitution` on all 100 bodies, and
+//!   `center_of_percussion` on the 50 pinned bars (1,050 probes). The scene adds the `restitution`
+//!   effect (every body keeps e = 0) for the `restitution` checks.
 
 use rigidlab::analysis::frame::FrameAnalysis;
 use rigidlab::checks::CheckSet;
@@ -97,6 +103,61 @@ fn scene_ron() -> String {
     )
 }
 
+/// C's level: the scene with every per-body check kind on every body (see the module doc).
+fn every_kind_ron() -> String {
+    let mut checks = String::new();
+    let mut add = |body: &str, extra: &str, kinds: &[&str]| {
+        for kind in kinds {
+            let _ = writeln!(
+                checks,
+                r#"(kind: {kind}, body: "{body}", {extra}tolerance: 1.0, why: "bench"),"#
+            );
+        }
+    };
+    let anywhere = [
+        "mass_properties",
+        "constant_acceleration",
+        "kinetic_energy_g",
+        "newton_euler",
+        "work_energy",
+        "impulse_momentum",
+        "restitution",
+    ];
+    for k in 0..BALLS {
+        let ball = format!("ball{k}");
+        add(&ball, "", &anywhere);
+        add(&ball, r#"other: "floor", "#, &["kinetic_energy_ic"]);
+        add(
+            &ball,
+            "point: (0.0, 0.0), ",
+            &["angular_momentum_fixed_point", "newton_euler"],
+        );
+    }
+    for k in 0..BARS {
+        let (bar, pin) = (
+            format!("bar{k}"),
+            format!("point: ({}, 5.0), ", 10.0 + 1.5 * k as f64),
+        );
+        add(&bar, "", &anywhere);
+        add(
+            &bar,
+            &pin,
+            &[
+                "kinetic_energy_ic",
+                "angular_momentum_fixed_point",
+                "newton_euler",
+            ],
+        );
+        add(&bar, "", &["center_of_percussion"]);
+    }
+    let scene = scene_ron();
+    let start = scene.find("checks: [").expect("the scene has checks");
+    format!("{}checks: [{checks}])", &scene[..start]).replace(
+        "effects: [gravity, contacts, friction, joints]",
+        "effects: [gravity, contacts, friction, joints, restitution]",
+    )
+}
+
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -104,6 +165,8 @@ fn median(v: &mut [f64]) -> f64 {
 
 fn main() {
     let scene = parse(Path::new("bench.ron"), &scene_ron()).unwrap_or_else(|e| panic!("{e}"));
+    let every = parse(Path::new("bench-every-kind.ron"), &every_kind_ron())
+        .unwrap_or_else(|e| panic!("{e}"));
     let level = &scene.level;
     let dynamic = level
         .bodies
@@ -111,23 +174,27 @@ fn main() {
         .filter(|b| b.kind == rigidlab::level::BodyKind::Dynamic)
         .count();
     // A's level: the same scene with its scene-wide checks only.
-    let mut scene_level = level.clone();
-    scene_level.checks.retain(|c| c.body.is_none());
-    let per_body = level.checks.len() - scene_level.checks.len();
+    let mut scene_only = scene.clone();
+    scene_only.level.checks.retain(|c| c.body.is_none());
+    let per_body = level.checks.len() - scene_only.level.checks.len();
     println!(
-        "scene: {dynamic} dynamic bodies ({BARS} pinned bars, {BALLS} balls in a box); {} scene checks, {per_body} per-body probes; {STEPS} steps x {REPEATS} repeats",
-        scene_level.checks.len(),
+        "scene: {dynamic} dynamic bodies ({BARS} pinned bars, {BALLS} balls in a box); A: {} scene checks; B: {per_body} per-body probes as well; C: {} per-body probes of every kind; {STEPS} steps x {REPEATS} repeats",
+        scene_only.level.checks.len(),
+        every.level.checks.len(),
     );
-    let (mut ratio_a, mut ratio_b) = (Vec::new(), Vec::new());
-    let (mut step_us, mut a_us, mut b_us) = (Vec::new(), Vec::new(), Vec::new());
+    let configs = [&scene_only, &scene, &every];
+    let mut ratios: [Vec<f64>; 3] = Default::default();
+    let mut check_us: [Vec<f64>; 3] = Default::default();
+    let mut step_us = Vec::new();
     let mut contacts = 0;
     let mut rows = 0;
-    // Runs alternate: one with A's checks, one with all of B's, so each run has the cache and
-    // the analysis work of that configuration alone, and both see the same machine noise.
-    for k in 0..2 * REPEATS {
-        let with_b = k % 2 == 1;
-        let mut sim = Simulation::new(&scene, &Options::default());
-        let mut checks = CheckSet::new(if with_b { level } else { &scene_level });
+    // Runs take turns (A, B, C, A, ...), so each run has the cache and the analysis work of
+    // that configuration alone, and all see the same machine noise.
+    for k in 0..3 * REPEATS {
+        let c = k % 3;
+        let run = configs[c];
+        let mut sim = Simulation::new(run, &Options::default());
+        let mut checks = CheckSet::new(&run.level);
         checks.observe(sim.snapshot());
         let (mut t_step, mut t_checks) = (0.0, 0.0);
         for k in 0..STEPS {
@@ -142,22 +209,43 @@ fn main() {
             if (k + 1) % BLOCK == 0 {
                 let per_step = 1e6 / BLOCK as f64;
                 step_us.push(t_step * per_step);
-                if with_b {
-                    ratio_b.push(t_checks / t_step);
-                    b_us.push(t_checks * per_step);
-                } else {
-                    ratio_a.push(t_checks / t_step);
-                    a_us.push(t_checks * per_step);
-                }
+                ratios[c].push(t_checks / t_step);
+                check_us[c].push(t_checks * per_step);
                 (t_step, t_checks) = (0.0, 0.0);
             }
         }
-        let n = if with_b {
-            level.checks.len()
-        } else {
-            scene_level.checks.len()
-        };
-        assert_eq!(checks.finish().len(), n);
+        assert_eq!(checks.finish().len(), run.level.checks.len());
+    }
+    // Information: C's cost kind by kind (each kind's probes alone, the runs taking turns).
+    let kinds: Vec<_> = {
+        let mut v: Vec<_> = every.level.checks.iter().map(|c| c.kind).collect();
+        v.dedup();
+        v.sort_by_key(|k| k.name());
+        v.dedup();
+        v
+    };
+    let mut by_kind: Vec<Vec<f64>> = vec![Vec::new(); kinds.len()];
+    for k in 0..REPEATS * kinds.len() {
+        let kind = kinds[k % kinds.len()];
+        let mut only = every.clone();
+        only.level.checks.retain(|c| c.kind == kind);
+        let mut sim = Simulation::new(&only, &Options::default());
+        let mut checks = CheckSet::new(&only.level);
+        checks.observe(sim.snapshot());
+        let (mut t_step, mut t_checks) = (0.0, 0.0);
+        for n in 0..STEPS {
+            let t0 = Instant::now();
+            let s = sim.step().expect("the bench scene runs");
+            t_step += t0.elapsed().as_secs_f64();
+            let t0 = Instant::now();
+            checks.observe(s);
+            t_checks += t0.elapsed().as_secs_f64();
+            if (n + 1) % BLOCK == 0 {
+                by_kind[k % kinds.len()].push(t_checks / t_step);
+                (t_step, t_checks) = (0.0, 0.0);
+            }
+        }
+        std::hint::black_box(checks.finish());
     }
     // The shared frame pass alone, on the same steps (information: how much of A it is).
     let mut frame_us = Vec::new();
@@ -178,29 +266,50 @@ fn main() {
         }
     }
     assert!(rows > 0);
-    let blocks = ratio_a.len() + ratio_b.len();
-    let (ra, rb) = (median(&mut ratio_a), median(&mut ratio_b));
-    let quartiles = |v: &[f64]| (100.0 * v[v.len() / 4], 100.0 * v[3 * v.len() / 4]);
+    let blocks: usize = ratios.iter().map(Vec::len).sum();
     println!("contact manifolds at the end: {contacts}; {blocks} blocks of {BLOCK} steps");
     println!(
-        "per step (block medians): physics {:.1} us; A: all-body analysis + scene checks {:.1} us (the shared frame pass alone: {:.1} us); B: every check of the level {:.1} us",
+        "per step (block medians): physics {:.1} us; A: all-body analysis + scene checks {:.1} us (the shared frame pass alone: {:.1} us); B: every check of the level {:.1} us; C: every per-body kind {:.1} us",
         median(&mut step_us),
-        median(&mut a_us),
+        median(&mut check_us[0]),
         median(&mut frame_us),
-        median(&mut b_us)
+        median(&mut check_us[1]),
+        median(&mut check_us[2]),
     );
-    let (qa, qb) = (quartiles(&ratio_a), quartiles(&ratio_b));
-    println!(
-        "A  analysis + checks / step time: {:.2}% (median of blocks; quartiles {:.2}%..{:.2}%); goal <= 5%: {}",
-        100.0 * ra,
-        qa.0,
-        qa.1,
-        if ra <= 0.05 { "met" } else { "NOT met" }
-    );
-    println!(
-        "B  with the {per_body} per-body probes as well:    {:.2}% (median of blocks; quartiles {:.2}%..{:.2}%)",
-        100.0 * rb,
-        qb.0,
-        qb.1
-    );
+    let quartiles = |v: &[f64]| (100.0 * v[v.len() / 4], 100.0 * v[3 * v.len() / 4]);
+    for (c, label, goal) in [
+        (0, "A  analysis + scene checks / step time:", true),
+        (1, "B  with the per-body probes as well:    ", false),
+        (2, "C  every per-body kind on every body:   ", true),
+    ] {
+        let r = median(&mut ratios[c]);
+        let q = quartiles(&ratios[c]);
+        let verdict = if !goal {
+            String::new()
+        } else if r <= 0.05 {
+            "; goal <= 5%: met".into()
+        } else {
+            "; goal <= 5%: NOT met".into()
+        };
+        println!(
+            "{label} {:.2}% (median of blocks; quartiles {:.2}%..{:.2}%){verdict}",
+            100.0 * r,
+            q.0,
+            q.1
+        );
+    }
+    println!("C by kind (each kind's probes alone / step time, median of blocks):");
+    for (kind, r) in kinds.iter().zip(by_kind.iter_mut()) {
+        let n = every
+            .level
+            .checks
+            .iter()
+            .filter(|c| c.kind == *kind)
+            .count();
+        println!(
+            "   {:<30} {n:>4} probes {:>7.2}%",
+            kind.name(),
+            100.0 * median(r)
+        );
+    }
 }

@@ -1,8 +1,10 @@
 //! `restitution`: impacts between two bodies, e measured against e set (IM-9 to IM-15).
 
 use super::{
-    body_def, cached_body, copy_motions, dynamic_body, misconfigured, result, subject_of, Summary,
+    body_def, cached_body, dynamic_body, framed, misconfigured, result, subject_of, FrameProbe,
+    Summary,
 };
+use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::energy::kinetic_energy;
 use crate::analysis::impact::{
     central_impact_energy_loss, measure_impact, pair_contact, Bracket, ImpactDetector,
@@ -53,7 +55,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             0.0
         }
     };
-    Box::new(Restitution {
+    framed(Restitution {
         def: def.clone(),
         name: b.name.clone(),
         other,
@@ -66,7 +68,6 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         substeps: 1,
         index: None,
         partner: None,
-        before: Vec::new(),
         detector: None,
         open: None,
         impacts: Vec::new(),
@@ -111,7 +112,6 @@ struct Restitution {
     substeps: usize,
     index: Option<usize>,
     partner: Option<usize>,
-    before: Vec<Motion>,
     detector: Option<ImpactDetector>,
     open: Option<Open>,
     impacts: Vec<Done>,
@@ -209,8 +209,8 @@ impl Restitution {
     }
 }
 
-impl Probe for Restitution {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for Restitution {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
         let Some(i) = cached_body(&mut self.index, s, &self.name) else {
@@ -233,7 +233,10 @@ impl Probe for Restitution {
                     .map(|c| if c.body1 == i { c.body2 } else { c.body1 }),
             };
         }
-        if let (Some(k), false) = (self.partner, self.before.is_empty()) {
+        // The bodies' states at the start of the step, copied once per step for every check
+        // (the shared frame pass): a copy per probe made 100 probes on 100 bodies cost O(N^2).
+        let before = fa.start_of_step();
+        if let (Some(k), true) = (self.partner, fa.frame().stepped) {
             let detector = self.detector.get_or_insert_with(|| {
                 let weight: f64 = [i, k]
                     .iter()
@@ -248,8 +251,8 @@ impl Probe for Restitution {
                 (Bracket::Start, Some(c)) => {
                     self.open = Some(Open {
                         start_time: s.time - s.dt,
-                        a0: self.before[i],
-                        b0: self.before[k],
+                        a0: before[i],
+                        b0: before[k],
                         a1: now_a,
                         b1: now_b,
                         normal: c.normal,
@@ -274,7 +277,7 @@ impl Probe for Restitution {
                 let point = o.point;
                 let mut other_moment = 0.0;
                 for_each_external_impulse(
-                    Before::All(&self.before),
+                    Before::All(before),
                     s,
                     self.substeps,
                     |x| x == i || x == k,
@@ -294,10 +297,9 @@ impl Probe for Restitution {
                 o.other_moment += other_moment;
             }
         }
-        copy_motions(&mut self.before, s);
     }
 
-    fn finish(mut self: Box<Self>) -> CheckResult {
+    fn finish(mut self) -> CheckResult {
         let subject = subject_of(&self.def);
         // An impact still in progress at the end is measured with the last states.
         self.close();

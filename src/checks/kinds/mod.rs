@@ -261,14 +261,6 @@ pub(super) fn dynamic_body<'a>(level: &'a Level, def: &CheckDef) -> Result<&'a B
     Ok(b)
 }
 
-/// Copies every body's motion into `v` in place (no allocation once sized).
-pub(super) fn copy_motions(v: &mut Vec<crate::analysis::Motion>, s: &Snapshot) {
-    v.resize(s.bodies.len(), crate::analysis::Motion::default());
-    for (m, b) in v.iter_mut().zip(&s.bodies) {
-        *m = crate::analysis::Motion::from(b);
-    }
-}
-
 pub(super) fn v2(p: (f64, f64)) -> DVec2 {
     DVec2::new(p.0, p.1)
 }
