@@ -87,6 +87,11 @@ pub enum Before<'a> {
     All(&'a [Motion]),
     /// Only one body (enough for that body's own free-body diagram).
     One(usize, &'a Motion),
+    /// Only two bodies (enough for a pair's diagram, an impact's): the set is at most these two,
+    /// and the walk does not touch the other bodies' states. A contact point without the
+    /// solver's arms (`ContactPoint::arms`, which engine snapshots always carry) on a third body
+    /// keeps its end-of-step position.
+    Two([(usize, &'a Motion); 2]),
 }
 
 impl<'a> From<&'a [Motion]> for Before<'a> {
@@ -107,6 +112,16 @@ impl Before<'_> {
         match self {
             Before::All(v) => v.get(i),
             Before::One(k, m) => (*k == i).then_some(*m),
+            Before::Two(pair) => pair.iter().find(|(k, _)| *k == i).map(|(_, m)| *m),
+        }
+    }
+
+    /// Whether body i may be in the set (`One` and `Two` name the only bodies that may).
+    fn admits(&self, i: usize) -> bool {
+        match self {
+            Before::All(_) => true,
+            Before::One(k, _) => *k == i,
+            Before::Two([(a, _), (b, _)]) => *a == i || *b == i,
         }
     }
 }
@@ -151,24 +166,26 @@ fn visit_impulses(
     if dt <= 0.0 {
         return;
     }
-    let only = match before {
-        Before::One(k, _) => Some(k),
-        Before::All(_) => None,
-    };
-    let member = |i: usize| {
-        i < snap.bodies.len()
-            && snap.bodies[i].mass > 0.0
-            && only.is_none_or(|k| k == i)
-            && in_set(i)
-    };
+    let n = snap.bodies.len();
+    let member = |i: usize| i < n && snap.bodies[i].mass > 0.0 && before.admits(i) && in_set(i);
     let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
     let g_point = |i: usize| gravity_point(start(i), snap.bodies[i].com, substeps);
 
-    // With one body's start state only, the set is (at most) that body: skip the scan.
-    let bodies = match before {
-        Before::One(k, _) => k..(k + 1).min(snap.bodies.len()),
-        Before::All(_) => 0..snap.bodies.len(),
+    // With one or two bodies' start states only, the set is (at most) those: skip the scan.
+    // The bodies in index order, each once.
+    let (range, pair) = match before {
+        Before::All(_) => (0..n, None),
+        Before::One(k, _) => (k..(k + 1).min(n), None),
+        Before::Two([(a, _), (b, _)]) => (
+            0..0,
+            Some(if a == b {
+                [a, usize::MAX]
+            } else {
+                [a.min(b), a.max(b)]
+            }),
+        ),
     };
+    let bodies = range.chain(pair.into_iter().flatten().filter(|&i| i < n));
     if snap.gravity != DVec2::ZERO {
         for i in bodies {
             let b = &snap.bodies[i];

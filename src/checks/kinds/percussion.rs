@@ -69,6 +69,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         def: def.clone(),
         name: b.name.clone(),
         joint: joint.name.clone(),
+        joint_index: None,
         mass: textbook_mass(b),
         substeps: 1,
         strikes,
@@ -88,6 +89,8 @@ struct CenterOfPercussion {
     def: CheckDef,
     name: String,
     joint: String,
+    /// The joint's index in the snapshots, once found.
+    joint_index: Option<usize>,
     mass: MassProps,
     substeps: usize,
     strikes: usize,
@@ -105,8 +108,13 @@ struct CenterOfPercussion {
 }
 
 impl CenterOfPercussion {
-    fn pivot_reaction(&self, s: &Snapshot, i: usize) -> Option<DVec2> {
-        let j = s.joints.iter().find(|j| j.name == self.joint)?;
+    fn pivot_reaction(&mut self, s: &Snapshot, i: usize) -> Option<DVec2> {
+        // Looked up by name once: a scene's joints do not come or go.
+        let k = self
+            .joint_index
+            .or_else(|| s.joints.iter().position(|j| j.name == self.joint))?;
+        self.joint_index = Some(k);
+        let j = &s.joints[k];
         Some(if j.body2 == i {
             j.impulse_on_body2
         } else {
