@@ -20,6 +20,7 @@
 //! - couplings (pulleys, cables, gears): `ratio * lambda` along x or y at G, or as a couple for an
 //!   angle term. A coupling is never internal to a set: its ground (the pulley's axle) takes load.
 
+use super::links::{merged, BodyLinks};
 use super::{cross, Motion};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -140,7 +141,21 @@ pub fn for_each_external_impulse(
     in_set: impl Fn(usize) -> bool,
     visit: impl FnMut(StepImpulse),
 ) {
-    visit_impulses(before, snap, substeps, in_set, true, visit)
+    visit_impulses(before, snap, substeps, in_set, true, None, visit)
+}
+
+/// [`for_each_external_impulse`] for one body or a pair (`Before::One`, `Before::Two`), visiting
+/// only the contacts and joints that `links` (built from `snap`) lists for them: the same impulses
+/// in the same order, without scanning the scene's. With `Before::All` it scans as the other does.
+pub fn for_each_external_impulse_linked(
+    before: Before,
+    snap: &Snapshot,
+    substeps: usize,
+    links: &BodyLinks,
+    in_set: impl Fn(usize) -> bool,
+    visit: impl FnMut(StepImpulse),
+) {
+    visit_impulses(before, snap, substeps, in_set, true, Some(links), visit)
 }
 
 /// Visits every impulse on every body with mass over the step that led to `snap`, both sides of
@@ -151,7 +166,15 @@ pub fn for_each_body_impulse(
     substeps: usize,
     visit: impl FnMut(StepImpulse),
 ) {
-    visit_impulses(Before::All(before), snap, substeps, |_| true, false, visit)
+    visit_impulses(
+        Before::All(before),
+        snap,
+        substeps,
+        |_| true,
+        false,
+        None,
+        visit,
+    )
 }
 
 fn visit_impulses(
@@ -160,6 +183,7 @@ fn visit_impulses(
     substeps: usize,
     in_set: impl Fn(usize) -> bool,
     skip_internal: bool,
+    links: Option<&BodyLinks>,
     mut visit: impl FnMut(StepImpulse),
 ) {
     let dt = snap.dt;
@@ -267,7 +291,8 @@ fn visit_impulses(
             });
         }
     }
-    for (k, c) in snap.contacts.iter().enumerate() {
+    for k in ids(&before, links, BodyLinks::contacts_of, snap.contacts.len()) {
+        let c = &snap.contacts[k];
         let (in1, in2) = (member(c.body1), member(c.body2));
         if !in1 && !in2 || skip_internal && in1 && in2 {
             continue; // neither, or internal to the set
@@ -320,7 +345,8 @@ fn visit_impulses(
             }
         }
     }
-    for (k, j) in snap.joints.iter().enumerate() {
+    for k in ids(&before, links, BodyLinks::joints_of, snap.joints.len()) {
+        let j = &snap.joints[k];
         let (in1, in2) = (member(j.body1), member(j.body2));
         if !in1 && !in2 || skip_internal && in1 && in2 {
             continue;
@@ -363,6 +389,40 @@ fn visit_impulses(
         }
     }
     couplings(snap, &member, &g_point, &mut visit);
+}
+
+/// The contacts (or joints) a walk visits, ascending: every one, or with links and a set of one
+/// or two bodies only theirs.
+enum Ids<M> {
+    All(std::ops::Range<usize>),
+    Linked(M),
+}
+
+fn ids<'a>(
+    before: &Before,
+    links: Option<&'a BodyLinks>,
+    of: fn(&BodyLinks, usize) -> &[u32],
+    len: usize,
+) -> Ids<impl Iterator<Item = usize> + 'a> {
+    let lists = links.and_then(|l| match *before {
+        Before::All(_) => None,
+        Before::One(k, _) => Some((of(l, k), &[][..])),
+        Before::Two([(a, _), (b, _)]) => Some((of(l, a), of(l, b))),
+    });
+    match lists {
+        Some((a, b)) => Ids::Linked(merged(a, b)),
+        None => Ids::All(0..len),
+    }
+}
+
+impl<M: Iterator<Item = usize>> Iterator for Ids<M> {
+    type Item = usize;
+    fn next(&mut self) -> Option<usize> {
+        match self {
+            Ids::All(r) => r.next(),
+            Ids::Linked(m) => m.next(),
+        }
+    }
 }
 
 /// Visits the coupling impulses on the set (see [`for_each_external_impulse`]).

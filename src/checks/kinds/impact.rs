@@ -7,9 +7,9 @@ use super::{
 use crate::analysis::energy::kinetic_energy;
 use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::impact::{
-    central_impact_energy_loss, measure_impact, pair_contact, Bracket, ImpactDetector,
+    central_impact_energy_loss, measure_impact, pair_contact_linked, Bracket, ImpactDetector,
 };
-use crate::analysis::kinetics::{for_each_external_impulse, Before, Source};
+use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -268,7 +268,7 @@ impl FrameProbe for Restitution {
                     .sum();
                 ImpactDetector::new(2.0 * weight * s.dt + 1e-12, 0.2)
             });
-            let pc = pair_contact(s, i, k);
+            let pc = pair_contact_linked(s, i, k, &fa.links(s));
             let bracket = detector.step(pc.map_or(0.0, |c| c.normal_impulse));
             let (now_a, now_b) = (Motion::from(&s.bodies[i]), Motion::from(&s.bodies[k]));
             match (bracket, pc) {
@@ -300,10 +300,11 @@ impl FrameProbe for Restitution {
                 o.points = o.points.max(c.points);
                 let point = o.point;
                 let mut other_moment = 0.0;
-                for_each_external_impulse(
+                for_each_external_impulse_linked(
                     Before::Two([(i, &before[i]), (k, &before[k])]),
                     s,
                     self.substeps,
+                    &fa.links(s),
                     |x| x == i || x == k,
                     |imp| {
                         let between = match imp.source {
