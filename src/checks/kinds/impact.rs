@@ -46,11 +46,9 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         },
         None => None,
     };
-    let restitution = |name: &str| {
+    let restitution = |d: &crate::level::BodyDef| {
         if level.effects.contains(&Effect::Restitution) {
-            body_def(level, name)
-                .and_then(|d| d.restitution)
-                .unwrap_or(0.0)
+            d.restitution.unwrap_or(0.0)
         } else {
             0.0
         }
@@ -59,14 +57,14 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         def: def.clone(),
         name: b.name.clone(),
         other,
-        e_body: restitution(&b.name),
+        e_body: restitution(b),
         // Only the bodies with a restitution: a probe on every body of a large scene would
         // otherwise hold every body's name.
         level_restitution: level
             .bodies
             .iter()
-            .map(|d| (d.name.clone(), restitution(&d.name)))
-            .filter(|(_, e)| *e != 0.0)
+            .filter(|d| restitution(d) != 0.0)
+            .map(|d| (d.name.clone(), restitution(d)))
             .collect(),
         partner_e: 0.0,
         substeps: 1,
