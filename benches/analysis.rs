@@ -190,7 +190,12 @@ fn main() {
     let mut rows = 0;
     // Runs take turns (A, B, C, A, ...), so each run has the cache and the analysis work of
     // that configuration alone, and all see the same machine noise.
+    // RIGIDLAB_BENCH_KIND=restitution: only that kind's runs below (to profile it).
+    let profiling = std::env::var("RIGIDLAB_BENCH_KIND").is_ok();
     for k in 0..3 * REPEATS {
+        if profiling {
+            break;
+        }
         let c = k % 3;
         let run = configs[c];
         let mut sim = Simulation::new(run, &Options::default());
@@ -222,6 +227,9 @@ fn main() {
         v.dedup();
         v.sort_by_key(|k| k.name());
         v.dedup();
+        if let Ok(only) = std::env::var("RIGIDLAB_BENCH_KIND") {
+            v.retain(|k| k.name() == only);
+        }
         v
     };
     let mut by_kind: Vec<Vec<f64>> = vec![Vec::new(); kinds.len()];
@@ -249,7 +257,7 @@ fn main() {
     }
     // The shared frame pass alone, on the same steps (information: how much of A it is).
     let mut frame_us = Vec::new();
-    for _ in 0..REPEATS {
+    for _ in 0..if profiling { 0 } else { REPEATS } {
         let mut sim = Simulation::new(&scene, &Options::default());
         let mut frame = FrameAnalysis::new();
         frame.observe(sim.snapshot());
@@ -264,6 +272,12 @@ fn main() {
                 t_f = 0.0;
             }
         }
+    }
+    if profiling {
+        for (kind, r) in kinds.iter().zip(by_kind.iter_mut()) {
+            println!("   {:<30} {:>7.2}%", kind.name(), 100.0 * median(r));
+        }
+        return;
     }
     assert!(rows > 0);
     let blocks: usize = ratios.iter().map(Vec::len).sum();

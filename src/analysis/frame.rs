@@ -14,10 +14,12 @@
 use super::energy::{gravity_potential, kinetic_energy};
 use super::kinematics::{acceleration_fd, angular_acceleration_fd, instantaneous_center};
 use super::kinetics::contact_arms_at_start;
+use super::links::BodyLinks;
 use super::momentum::{angular_momentum_g, linear_momentum};
 use super::{cross, Motion};
 use crate::snapshot::{BodyKind, Coordinate, Snapshot};
 use glam::DVec2;
+use std::cell::{Cell, Ref, RefCell};
 
 /// Sums of a step's impulses on a body or a set of bodies (impulses over the step, N s and N m s).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -155,6 +157,10 @@ pub struct FrameAnalysis {
     moving: Vec<usize>,
     /// Scratch for the pass, per body.
     mids: Vec<Mid>,
+    /// Which contacts and joints touch each body in the last snapshot, built when first asked
+    /// for in a step (`fresh` says it is): most levels' checks never ask.
+    links: RefCell<BodyLinks>,
+    fresh: Cell<bool>,
     frame: Frame,
 }
 
@@ -176,12 +182,23 @@ impl FrameAnalysis {
         &self.frame
     }
 
+    /// Which contacts and joints touch each body in `snap`, the last snapshot observed (for
+    /// readings about one body or a pair: `kinetics::for_each_external_impulse_linked`).
+    pub fn links(&self, snap: &Snapshot) -> Ref<'_, BodyLinks> {
+        if !self.fresh.get() {
+            self.links.borrow_mut().rebuild(snap);
+            self.fresh.set(true);
+        }
+        self.links.borrow()
+    }
+
     /// The frame of `snap` (the snapshots must come in order, the initial one first).
     ///
     /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
     pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
         let n = snap.bodies.len();
         let stepped = !snap.is_initial() && self.before.len() == n;
+        self.fresh.set(false);
         let f = &mut self.frame;
         if stepped {
             // The end of the last step is the start of this one. Fixed bodies do not move: their

@@ -57,10 +57,31 @@ pub struct PairContact {
 
 /// The contact between a and b in `snap`, if their colliders touch (or are within prediction distance).
 pub fn pair_contact(snap: &Snapshot, a: usize, b: usize) -> Option<PairContact> {
+    pair_contact_among(snap, a, b, 0..snap.contacts.len())
+}
+
+/// [`pair_contact`] reading only the contacts `links` (built from `snap`) lists for a: the same
+/// result without scanning the scene's contacts.
+pub fn pair_contact_linked(
+    snap: &Snapshot,
+    a: usize,
+    b: usize,
+    links: &super::links::BodyLinks,
+) -> Option<PairContact> {
+    pair_contact_among(snap, a, b, links.contacts_of(a).iter().map(|&k| k as usize))
+}
+
+/// [`pair_contact`] over the contacts `ids` (ascending: the sums add in the snapshot's order).
+fn pair_contact_among(
+    snap: &Snapshot,
+    a: usize,
+    b: usize,
+    ids: impl Iterator<Item = usize>,
+) -> Option<PairContact> {
     let mut out = PairContact::default();
     let (mut wsum, mut psum, mut nsum) = (0.0, DVec2::ZERO, DVec2::ZERO);
     let mut first: Option<(DVec2, DVec2)> = None;
-    for c in &snap.contacts {
+    for c in ids.map(|k| &snap.contacts[k]) {
         let sign = if c.body1 == a && c.body2 == b {
             1.0
         } else if c.body1 == b && c.body2 == a {

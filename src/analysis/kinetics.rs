@@ -20,6 +20,7 @@
 //! - couplings (pulleys, cables, gears): `ratio * lambda` along x or y at G, or as a couple for an
 //!   angle term. A coupling is never internal to a set: its ground (the pulley's axle) takes load.
 
+use super::links::{merged, BodyLinks};
 use super::{cross, Motion};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -87,6 +88,11 @@ pub enum Before<'a> {
     All(&'a [Motion]),
     /// Only one body (enough for that body's own free-body diagram).
     One(usize, &'a Motion),
+    /// Only two bodies (enough for a pair's diagram, an impact's): the set is at most these two,
+    /// and the walk does not touch the other bodies' states. A contact point without the
+    /// solver's arms (`ContactPoint::arms`, which engine snapshots always carry) on a third body
+    /// keeps its end-of-step position.
+    Two([(usize, &'a Motion); 2]),
 }
 
 impl<'a> From<&'a [Motion]> for Before<'a> {
@@ -107,6 +113,16 @@ impl Before<'_> {
         match self {
             Before::All(v) => v.get(i),
             Before::One(k, m) => (*k == i).then_some(*m),
+            Before::Two(pair) => pair.iter().find(|(k, _)| *k == i).map(|(_, m)| *m),
+        }
+    }
+
+    /// Whether body i may be in the set (`One` and `Two` name the only bodies that may).
+    fn admits(&self, i: usize) -> bool {
+        match self {
+            Before::All(_) => true,
+            Before::One(k, _) => *k == i,
+            Before::Two([(a, _), (b, _)]) => *a == i || *b == i,
         }
     }
 }
@@ -125,7 +141,21 @@ pub fn for_each_external_impulse(
     in_set: impl Fn(usize) -> bool,
     visit: impl FnMut(StepImpulse),
 ) {
-    visit_impulses(before, snap, substeps, in_set, true, visit)
+    visit_impulses(before, snap, substeps, in_set, true, None, visit)
+}
+
+/// [`for_each_external_impulse`] for one body or a pair (`Before::One`, `Before::Two`), visiting
+/// only the contacts and joints that `links` (built from `snap`) lists for them: the same impulses
+/// in the same order, without scanning the scene's. With `Before::All` it scans as the other does.
+pub fn for_each_external_impulse_linked(
+    before: Before,
+    snap: &Snapshot,
+    substeps: usize,
+    links: &BodyLinks,
+    in_set: impl Fn(usize) -> bool,
+    visit: impl FnMut(StepImpulse),
+) {
+    visit_impulses(before, snap, substeps, in_set, true, Some(links), visit)
 }
 
 /// Visits every impulse on every body with mass over the step that led to `snap`, both sides of
@@ -136,7 +166,15 @@ pub fn for_each_body_impulse(
     substeps: usize,
     visit: impl FnMut(StepImpulse),
 ) {
-    visit_impulses(Before::All(before), snap, substeps, |_| true, false, visit)
+    visit_impulses(
+        Before::All(before),
+        snap,
+        substeps,
+        |_| true,
+        false,
+        None,
+        visit,
+    )
 }
 
 fn visit_impulses(
@@ -145,30 +183,33 @@ fn visit_impulses(
     substeps: usize,
     in_set: impl Fn(usize) -> bool,
     skip_internal: bool,
+    links: Option<&BodyLinks>,
     mut visit: impl FnMut(StepImpulse),
 ) {
     let dt = snap.dt;
     if dt <= 0.0 {
         return;
     }
-    let only = match before {
-        Before::One(k, _) => Some(k),
-        Before::All(_) => None,
-    };
-    let member = |i: usize| {
-        i < snap.bodies.len()
-            && snap.bodies[i].mass > 0.0
-            && only.is_none_or(|k| k == i)
-            && in_set(i)
-    };
+    let n = snap.bodies.len();
+    let member = |i: usize| i < n && snap.bodies[i].mass > 0.0 && before.admits(i) && in_set(i);
     let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
     let g_point = |i: usize| gravity_point(start(i), snap.bodies[i].com, substeps);
 
-    // With one body's start state only, the set is (at most) that body: skip the scan.
-    let bodies = match before {
-        Before::One(k, _) => k..(k + 1).min(snap.bodies.len()),
-        Before::All(_) => 0..snap.bodies.len(),
+    // With one or two bodies' start states only, the set is (at most) those: skip the scan.
+    // The bodies in index order, each once.
+    let (range, pair) = match before {
+        Before::All(_) => (0..n, None),
+        Before::One(k, _) => (k..(k + 1).min(n), None),
+        Before::Two([(a, _), (b, _)]) => (
+            0..0,
+            Some(if a == b {
+                [a, usize::MAX]
+            } else {
+                [a.min(b), a.max(b)]
+            }),
+        ),
     };
+    let bodies = range.chain(pair.into_iter().flatten().filter(|&i| i < n));
     if snap.gravity != DVec2::ZERO {
         for i in bodies {
             let b = &snap.bodies[i];
@@ -250,7 +291,8 @@ fn visit_impulses(
             });
         }
     }
-    for (k, c) in snap.contacts.iter().enumerate() {
+    for k in ids(&before, links, BodyLinks::contacts_of, snap.contacts.len()) {
+        let c = &snap.contacts[k];
         let (in1, in2) = (member(c.body1), member(c.body2));
         if !in1 && !in2 || skip_internal && in1 && in2 {
             continue; // neither, or internal to the set
@@ -303,7 +345,8 @@ fn visit_impulses(
             }
         }
     }
-    for (k, j) in snap.joints.iter().enumerate() {
+    for k in ids(&before, links, BodyLinks::joints_of, snap.joints.len()) {
+        let j = &snap.joints[k];
         let (in1, in2) = (member(j.body1), member(j.body2));
         if !in1 && !in2 || skip_internal && in1 && in2 {
             continue;
@@ -346,6 +389,40 @@ fn visit_impulses(
         }
     }
     couplings(snap, &member, &g_point, &mut visit);
+}
+
+/// The contacts (or joints) a walk visits, ascending: every one, or with links and a set of one
+/// or two bodies only theirs.
+enum Ids<M> {
+    All(std::ops::Range<usize>),
+    Linked(M),
+}
+
+fn ids<'a>(
+    before: &Before,
+    links: Option<&'a BodyLinks>,
+    of: fn(&BodyLinks, usize) -> &[u32],
+    len: usize,
+) -> Ids<impl Iterator<Item = usize> + 'a> {
+    let lists = links.and_then(|l| match *before {
+        Before::All(_) => None,
+        Before::One(k, _) => Some((of(l, k), &[][..])),
+        Before::Two([(a, _), (b, _)]) => Some((of(l, a), of(l, b))),
+    });
+    match lists {
+        Some((a, b)) => Ids::Linked(merged(a, b)),
+        None => Ids::All(0..len),
+    }
+}
+
+impl<M: Iterator<Item = usize>> Iterator for Ids<M> {
+    type Item = usize;
+    fn next(&mut self) -> Option<usize> {
+        match self {
+            Ids::All(r) => r.next(),
+            Ids::Linked(m) => m.next(),
+        }
+    }
 }
 
 /// Visits the coupling impulses on the set (see [`for_each_external_impulse`]).

@@ -20,7 +20,8 @@
 //! - [`impact`]: impact detection from contact impulses, restitution, energy lost, H about the contact;
 //! - [`percussion`]: the center of percussion and the pivot reaction of a struck pinned body;
 //! - [`impulse_solver`]: impulse-momentum for a whole mechanism hit by a blow or an impact;
-//! - [`frame`]: all of the above for every body and the scene in one pass per step.
+//! - [`frame`]: all of the above for every body and the scene in one pass per step;
+//! - [`links`]: which contacts and joints touch each body, for readings about one body or a pair.
 
 pub mod closed_forms;
 pub mod energy;
@@ -29,6 +30,7 @@ pub mod impact;
 pub mod impulse_solver;
 pub mod kinematics;
 pub mod kinetics;
+pub mod links;
 pub mod mass;
 pub mod momentum;
 pub mod percussion;

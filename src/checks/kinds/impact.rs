@@ -4,12 +4,12 @@ use super::{
     body_def, cached_body, dynamic_body, framed, misconfigured, result, subject_of, FrameProbe,
     Summary,
 };
-use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::energy::kinetic_energy;
+use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::impact::{
-    central_impact_energy_loss, measure_impact, pair_contact, Bracket, ImpactDetector,
+    central_impact_energy_loss, measure_impact, pair_contact_linked, Bracket, ImpactDetector,
 };
-use crate::analysis::kinetics::{for_each_external_impulse, Before, Source};
+use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -46,11 +46,9 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         },
         None => None,
     };
-    let restitution = |name: &str| {
+    let restitution = |d: &crate::level::BodyDef| {
         if level.effects.contains(&Effect::Restitution) {
-            body_def(level, name)
-                .and_then(|d| d.restitution)
-                .unwrap_or(0.0)
+            d.restitution.unwrap_or(0.0)
         } else {
             0.0
         }
@@ -59,12 +57,16 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         def: def.clone(),
         name: b.name.clone(),
         other,
-        e_body: restitution(&b.name),
+        e_body: restitution(b),
+        // Only the bodies with a restitution: a probe on every body of a large scene would
+        // otherwise hold every body's name.
         level_restitution: level
             .bodies
             .iter()
-            .map(|d| (d.name.clone(), restitution(&d.name)))
+            .filter(|d| restitution(d) != 0.0)
+            .map(|d| (d.name.clone(), restitution(d)))
             .collect(),
+        partner_e: 0.0,
         substeps: 1,
         index: None,
         partner: None,
@@ -88,9 +90,25 @@ struct Open {
     other_moment: f64,
     steps: u32,
     points: usize,
-    /// The two bodies as they were at the start (mass properties, names).
-    body_a: crate::snapshot::BodyState,
-    body_b: crate::snapshot::BodyState,
+    /// The two bodies' mass properties at the start.
+    body_a: MassOf,
+    body_b: MassOf,
+}
+
+/// A body's mass and I_G (copied at the start of an impact, without the name a `BodyState` clones).
+#[derive(Clone, Copy)]
+struct MassOf {
+    mass: f64,
+    inertia: f64,
+}
+
+impl MassOf {
+    fn of(b: &crate::snapshot::BodyState) -> Self {
+        MassOf {
+            mass: b.mass,
+            inertia: b.inertia,
+        }
+    }
 }
 
 struct Done {
@@ -108,7 +126,10 @@ struct Restitution {
     name: String,
     other: Option<String>,
     e_body: f64,
+    /// The level's nonzero body restitutions, by name.
     level_restitution: Vec<(String, f64)>,
+    /// The partner's restitution (set with `partner`).
+    partner_e: f64,
     substeps: usize,
     index: Option<usize>,
     partner: Option<usize>,
@@ -119,7 +140,7 @@ struct Restitution {
 
 impl Restitution {
     /// H about C of a body (6/15); nothing for a body without mass.
-    fn h_about(b: &crate::snapshot::BodyState, m: &Motion, c: DVec2) -> f64 {
+    fn h_about(b: &MassOf, m: &Motion, c: DVec2) -> f64 {
         if b.mass > 0.0 {
             angular_momentum_about(b.mass, b.inertia, m.com, m.velocity, m.omega, c)
         } else {
@@ -131,15 +152,8 @@ impl Restitution {
         let Some(o) = self.open.take() else { return };
         let m = measure_impact((&o.a0, &o.a1), (&o.b0, &o.b1), o.point, o.normal, o.impulse);
         let (ba, bb) = (&o.body_a, &o.body_b);
-        let e_set = self.e_body.max(
-            self.level_restitution
-                .iter()
-                .find(|(n, _)| n == &bb.name)
-                .map_or(0.0, |x| x.1),
-        );
-        let k_g = |b: &crate::snapshot::BodyState| {
-            crate::analysis::mass::radius_of_gyration(b.inertia, b.mass)
-        };
+        let e_set = self.e_body.max(self.partner_e);
+        let k_g = |b: &MassOf| crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
         // Eccentric when the impulse's line of action misses a body's G by more than 1% of its
         // k_G: read from what the impulse did (its moment about G, I_G dw, against m |dv|), not
         // from the contact normal and point, which rapier takes up to a step before touching (two
@@ -155,7 +169,7 @@ impl Restitution {
         let h_before = Self::h_about(ba, &o.a0, o.point) + Self::h_about(bb, &o.b0, o.point);
         let h_engine = Self::h_about(ba, &o.a1, o.point) + Self::h_about(bb, &o.b1, o.point);
         let h_theory = h_before + o.other_moment;
-        let t = |b: &crate::snapshot::BodyState, st: &Motion| {
+        let t = |b: &MassOf, st: &Motion| {
             if b.mass > 0.0 {
                 kinetic_energy(b.mass, st.velocity, b.inertia, st.omega)
             } else {
@@ -194,7 +208,7 @@ impl Restitution {
         } else {
             note += &format!(
                 " (IM-14: {:.4e} J), normal impulse on \"{}\" {:.4e} N s vs m dv_n {:.4e} N s",
-                lost_theory, ba.name, j_on_a, dp
+                lost_theory, self.name, j_on_a, dp
             );
         }
         self.impacts.push(Done {
@@ -232,6 +246,14 @@ impl FrameProbe for Restitution {
                     })
                     .map(|c| if c.body1 == i { c.body2 } else { c.body1 }),
             };
+            if let Some(k) = self.partner {
+                let name = &s.bodies[k].name;
+                self.partner_e = self
+                    .level_restitution
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map_or(0.0, |x| x.1);
+            }
         }
         // The bodies' states at the start of the step, copied once per step for every check
         // (the shared frame pass): a copy per probe made 100 probes on 100 bodies cost O(N^2).
@@ -244,7 +266,7 @@ impl FrameProbe for Restitution {
                     .sum();
                 ImpactDetector::new(2.0 * weight * s.dt + 1e-12, 0.2)
             });
-            let pc = pair_contact(s, i, k);
+            let pc = pair_contact_linked(s, i, k, &fa.links(s));
             let bracket = detector.step(pc.map_or(0.0, |c| c.normal_impulse));
             let (now_a, now_b) = (Motion::from(&s.bodies[i]), Motion::from(&s.bodies[k]));
             match (bracket, pc) {
@@ -261,8 +283,8 @@ impl FrameProbe for Restitution {
                         other_moment: 0.0,
                         steps: 0,
                         points: c.points,
-                        body_a: s.bodies[i].clone(),
-                        body_b: s.bodies[k].clone(),
+                        body_a: MassOf::of(&s.bodies[i]),
+                        body_b: MassOf::of(&s.bodies[k]),
                     });
                 }
                 (Bracket::End, _) => self.close(),
@@ -276,10 +298,11 @@ impl FrameProbe for Restitution {
                 o.points = o.points.max(c.points);
                 let point = o.point;
                 let mut other_moment = 0.0;
-                for_each_external_impulse(
-                    Before::All(before),
+                for_each_external_impulse_linked(
+                    Before::Two([(i, &before[i]), (k, &before[k])]),
                     s,
                     self.substeps,
+                    &fa.links(s),
                     |x| x == i || x == k,
                     |imp| {
                         let between = match imp.source {

@@ -2,10 +2,11 @@
 //! through the center of percussion (CP-2).
 
 use super::{
-    cached_body, dynamic_body, misconfigured, result, scale_or, subject_of, textbook_mass, v2,
-    Summary, Worst,
+    cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass,
+    v2, FrameProbe, Summary, Worst,
 };
-use crate::analysis::kinetics::{for_each_external_impulse, gravity_point, Before, Source};
+use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::kinetics::{for_each_external_impulse_linked, gravity_point, Before, Source};
 use crate::analysis::mass::{parallel_axis, MassProps};
 use crate::analysis::percussion::{
     center_of_percussion_distance, moment_about_center_of_percussion, pivot_impulse, Blow,
@@ -65,10 +66,11 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         .iter()
         .filter(|e| matches!(e, EventDef::Impulse { body, .. } if body == &b.name))
         .count();
-    Box::new(CenterOfPercussion {
+    framed(CenterOfPercussion {
         def: def.clone(),
         name: b.name.clone(),
         joint: joint.name.clone(),
+        joint_index: None,
         mass: textbook_mass(b),
         substeps: 1,
         strikes,
@@ -88,6 +90,8 @@ struct CenterOfPercussion {
     def: CheckDef,
     name: String,
     joint: String,
+    /// The joint's index in the snapshots, once found.
+    joint_index: Option<usize>,
     mass: MassProps,
     substeps: usize,
     strikes: usize,
@@ -105,8 +109,13 @@ struct CenterOfPercussion {
 }
 
 impl CenterOfPercussion {
-    fn pivot_reaction(&self, s: &Snapshot, i: usize) -> Option<DVec2> {
-        let j = s.joints.iter().find(|j| j.name == self.joint)?;
+    fn pivot_reaction(&mut self, s: &Snapshot, i: usize) -> Option<DVec2> {
+        // Looked up by name once: a scene's joints do not come or go.
+        let k = self
+            .joint_index
+            .or_else(|| s.joints.iter().position(|j| j.name == self.joint))?;
+        self.joint_index = Some(k);
+        let j = &s.joints[k];
         Some(if j.body2 == i {
             j.impulse_on_body2
         } else {
@@ -115,8 +124,8 @@ impl CenterOfPercussion {
     }
 }
 
-impl Probe for CenterOfPercussion {
-    fn observe(&mut self, s: &Snapshot) {
+impl FrameProbe for CenterOfPercussion {
+    fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
         let Some(i) = cached_body(&mut self.index, s, &self.name) else {
@@ -201,10 +210,11 @@ impl Probe for CenterOfPercussion {
                 let dir = (g_before - o).normalize_or(DVec2::ZERO);
                 let q_point = o + dir * self.q;
                 let (mut m_q, mut m_o) = (0.0, 0.0);
-                for_each_external_impulse(
+                for_each_external_impulse_linked(
                     Before::One(i, &before),
                     s,
                     self.substeps,
+                    &fa.links(s),
                     |k| k == i,
                     |imp| {
                         m_q += moment_about_center_of_percussion(
@@ -232,7 +242,7 @@ impl Probe for CenterOfPercussion {
         self.before = Some(now);
     }
 
-    fn finish(self: Box<Self>) -> CheckResult {
+    fn finish(self) -> CheckResult {
         let o = self.o.unwrap_or_default();
         let mut subject = subject_of(&self.def);
         subject += &format!(" pinned at ({:.3}, {:.3})", o.x, o.y);

@@ -1,0 +1,128 @@
+//! Which contacts and joints touch each body in a snapshot, so that a reading about one body
+//! (or a pair) visits only its own: a check on every body of a scene would otherwise scan every
+//! contact and joint once per body, O(bodies x contacts) a step (benches/analysis.rs, C).
+
+use crate::snapshot::Snapshot;
+
+/// Per body, the indices of the contacts and of the joints that touch it, ascending (the
+/// snapshot's order, so sums over them add in the same order as a scan of the whole list).
+#[derive(Debug, Clone, Default)]
+pub struct BodyLinks {
+    contacts: Adjacency,
+    joints: Adjacency,
+}
+
+impl BodyLinks {
+    /// The links of `snap` (reusing the buffers: no allocation once sized).
+    pub fn rebuild(&mut self, snap: &Snapshot) {
+        let n = snap.bodies.len();
+        self.contacts
+            .rebuild(n, snap.contacts.iter().map(|c| (c.body1, c.body2)));
+        self.joints
+            .rebuild(n, snap.joints.iter().map(|j| (j.body1, j.body2)));
+    }
+
+    /// The contacts touching body i, ascending.
+    pub fn contacts_of(&self, i: usize) -> &[u32] {
+        self.contacts.of(i)
+    }
+
+    /// The joints touching body i, ascending.
+    pub fn joints_of(&self, i: usize) -> &[u32] {
+        self.joints.of(i)
+    }
+}
+
+/// Items touching each body, in compressed rows: body i's are `items[start[i]..start[i + 1]]`.
+#[derive(Debug, Clone, Default)]
+struct Adjacency {
+    start: Vec<u32>,
+    items: Vec<u32>,
+    /// Scratch while filling: where each body's next item goes.
+    next: Vec<u32>,
+}
+
+impl Adjacency {
+    fn rebuild(&mut self, bodies: usize, pairs: impl Iterator<Item = (usize, usize)> + Clone) {
+        self.start.clear();
+        self.start.resize(bodies + 1, 0);
+        let ends = |(a, b): (usize, usize)| [Some(a), (b != a).then_some(b)];
+        for (a, b) in pairs.clone() {
+            for i in ends((a, b)).into_iter().flatten().filter(|&i| i < bodies) {
+                self.start[i + 1] += 1;
+            }
+        }
+        for i in 0..bodies {
+            self.start[i + 1] += self.start[i];
+        }
+        self.items.clear();
+        self.items.resize(self.start[bodies] as usize, 0);
+        // Fill each body's row in item order.
+        self.next.clear();
+        self.next.extend_from_slice(&self.start[..bodies]);
+        for (k, pair) in pairs.enumerate() {
+            for i in ends(pair).into_iter().flatten().filter(|&i| i < bodies) {
+                self.items[self.next[i] as usize] = k as u32;
+                self.next[i] += 1;
+            }
+        }
+    }
+
+    fn of(&self, i: usize) -> &[u32] {
+        match (self.start.get(i), self.start.get(i + 1)) {
+            (Some(&a), Some(&b)) => &self.items[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}
+
+/// The indices in two ascending lists, merged ascending, each once.
+pub(crate) fn merged<'a>(a: &'a [u32], b: &'a [u32]) -> impl Iterator<Item = usize> + 'a {
+    let (mut i, mut j) = (0, 0);
+    std::iter::from_fn(move || {
+        let next = match (a.get(i), b.get(j)) {
+            (Some(&x), Some(&y)) if x == y => {
+                i += 1;
+                j += 1;
+                x
+            }
+            (Some(&x), Some(&y)) if x < y => {
+                i += 1;
+                x
+            }
+            (_, Some(&y)) => {
+                j += 1;
+                y
+            }
+            (Some(&x), None) => {
+                i += 1;
+                x
+            }
+            (None, None) => return None,
+        };
+        Some(next as usize)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_hold_each_body_items_in_order() {
+        let mut a = Adjacency::default();
+        a.rebuild(4, [(0, 1), (1, 2), (0, 2), (3, 3)].into_iter());
+        assert_eq!(a.of(0), &[0, 2]);
+        assert_eq!(a.of(1), &[0, 1]);
+        assert_eq!(a.of(2), &[1, 2]);
+        assert_eq!(a.of(3), &[3]);
+        assert_eq!(a.of(9), &[] as &[u32]);
+    }
+
+    #[test]
+    fn merging_keeps_order_and_drops_repeats() {
+        let m: Vec<usize> = merged(&[0, 2, 5], &[1, 2, 7]).collect();
+        assert_eq!(m, vec![0, 1, 2, 5, 7]);
+        assert_eq!(merged(&[], &[3]).collect::<Vec<_>>(), vec![3]);
+    }
+}
