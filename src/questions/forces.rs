@@ -99,7 +99,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             (comp(engine), analysis)
         }
         Quantity::ContactForce(b) => {
-            let i = s.body_index(b)?;
+            let i = m.body_index(s, b)?;
             if s.is_initial() {
                 return None;
             }
@@ -119,7 +119,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             (total.length() / s.dt, None)
         }
         Quantity::ContactNormalForce { body: b, other } => {
-            let (i, o) = (s.body_index(b)?, s.body_index(other)?);
+            let (i, o) = (m.body_index(s, b)?, m.body_index(s, other)?);
             let n = f.centered(|x| Some(DVec2::new(pair_normal_impulse(x, i, Some(o)), 0.0)))?;
             (n.x, None)
         }

@@ -29,7 +29,7 @@ pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
 /// Follows the rebound's apex over the step that led to `s` (`event`: what the pair did then).
 pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
     if let Quantity::ReboundHeight { body, .. } = &m.q {
-        if let Some(i) = s.body_index(body) {
+        if let Some(i) = m.body_index(s, body) {
             let phase = m.pair.as_ref().map_or(ContactPhase::Before, |p| p.phase);
             // A flicker of the contact: the flight has not begun yet.
             if event == Some(PairEvent::Resumed) {
@@ -48,7 +48,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     let p = m.pair.as_ref();
     Some(match &m.q {
         Quantity::ReboundHeight { body: b, .. } => {
-            let i = s.body_index(b)?;
+            let i = m.body_index(s, b)?;
             let p = p?;
             let engine = if p.ended() { m.rebound_apex } else { f64::NAN };
             // The apex of free flight from the state right after the impact (IM-13).
@@ -85,7 +85,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             (e, Some(m.facts.restitution(imp.i1, imp.i2)))
         }
         Quantity::EnergyLost { body: b, other } => {
-            let (i, o) = (s.body_index(b)?, s.body_index(other)?);
+            let (i, o) = (m.body_index(s, b)?, m.body_index(s, other)?);
             let p = p?;
             let (pre, post) = (p.pre.as_ref()?, p.release.as_ref()?);
             let e = |snap: &Snapshot| {

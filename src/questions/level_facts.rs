@@ -4,7 +4,9 @@
 //! them; the engine's state comes from the snapshots.
 
 use crate::level::{Effect, JointKind, Level, Shape};
+use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
+use std::collections::HashMap;
 
 /// A body's declared contact coefficients and shape, as far as the questions use them.
 #[derive(Debug, Clone)]
@@ -35,6 +37,8 @@ pub struct LevelFacts {
     pub(super) bodies: Vec<BodyInfo>,
     /// The level's joints (empty without the `joints` effect).
     pub(super) joints: Vec<JointInfo>,
+    /// Each body's index by name, in the level's order (which the run's snapshots keep).
+    names: HashMap<String, usize>,
 }
 
 impl LevelFacts {
@@ -78,7 +82,30 @@ impl LevelFacts {
             } else {
                 Vec::new()
             },
+            names: {
+                let mut names = HashMap::with_capacity(level.bodies.len());
+                for (i, b) in level.bodies.iter().enumerate() {
+                    // The first of a name, as a scan finds it.
+                    names.entry(b.name.clone()).or_insert(i);
+                }
+                names
+            },
         }
+    }
+
+    /// Body `name`'s index in `s`, as `Snapshot::body_index` finds it: the level's index when
+    /// the snapshot has that body there (a question reads its body every step, and a scan of
+    /// every name per question made 100 questions on 100 bodies cost O(N^2) a step), else a scan.
+    pub fn body_index(&self, s: &Snapshot, name: &str) -> Option<usize> {
+        match self.names.get(name) {
+            Some(&i) if s.bodies.get(i).is_some_and(|b| b.name == name) => Some(i),
+            _ => s.body_index(name),
+        }
+    }
+
+    /// Body `name` of `s` with its index (see [`LevelFacts::body_index`]).
+    pub fn named_body<'a>(&self, s: &'a Snapshot, name: &str) -> Option<(usize, &'a BodyState)> {
+        self.body_index(s, name).map(|i| (i, &s.bodies[i]))
     }
 
     /// The pair's restitution as rapier combines it (the larger of the two, see `sim::build`).

@@ -4,7 +4,7 @@
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
-use super::snapshot_reading::{joint_index, named_body};
+use super::snapshot_reading::joint_index;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::analysis::kinematics::{instantaneous_center_from_two_points, omega_about_center};
 use crate::level::{BodyKind, Quantity};
@@ -16,7 +16,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     Some(match &m.q {
         Quantity::LinkOmega { link, known, other } => {
-            let (_, l) = named_body(s, link)?;
+            let (_, l) = m.named_body(s, link)?;
             let ic = link_center(s, link, known, other);
             (l.omega, ic.map(|(w, _)| w))
         }
@@ -26,7 +26,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             other,
             pin,
         } => {
-            let (li, l) = named_body(s, link)?;
+            let (li, l) = m.named_body(s, link)?;
             let k = joint_index(s, pin)?;
             let j = &s.joints[k];
             let p = if j.body2 == li { j.anchor } else { j.anchor1 };

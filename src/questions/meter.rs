@@ -8,7 +8,7 @@ use super::periods::Crossings;
 use super::sample::{Occasion, Reading, Sample};
 use super::{forces, impacts, linkages, motion, periods, rolling, work_and_power};
 use crate::level::{Quantity, QuantityFamily};
-use crate::snapshot::Snapshot;
+use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 use std::sync::Arc;
 
@@ -43,6 +43,16 @@ pub(super) struct Meter {
 }
 
 impl Meter {
+    /// Body `name`'s index in `s` (`LevelFacts::body_index`: no scan of every name).
+    pub fn body_index(&self, s: &Snapshot, name: &str) -> Option<usize> {
+        self.facts.body_index(s, name)
+    }
+
+    /// Body `name` of `s` with its index.
+    pub fn named_body<'a>(&self, s: &'a Snapshot, name: &str) -> Option<(usize, &'a BodyState)> {
+        self.facts.named_body(s, name)
+    }
+
     pub fn new(q: &Quantity, facts: Arc<LevelFacts>) -> Self {
         Meter {
             q: q.clone(),

@@ -8,7 +8,6 @@
 use super::free_body::newton_euler;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
-use super::snapshot_reading::named_body;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::analysis::kinematics::point_acceleration;
 use crate::level::Quantity;
@@ -18,7 +17,7 @@ use glam::DVec2;
 /// Accumulates the distance travelled over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     if let Quantity::Distance(b) = &m.q {
-        if let Some(i) = s.body_index(b) {
+        if let Some(i) = m.body_index(s, b) {
             m.engine_sum += (s.bodies[i].com - prev.bodies[i].com).length();
         }
     }
@@ -27,7 +26,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
 /// The quantity at the sample.
 pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
     let s = f.cur;
-    let body = |name: &str| named_body(s, name);
+    let body = |name: &str| m.named_body(s, name);
     let solved = |i: usize| occ.solved_state(i, s);
     Some(match &m.q {
         Quantity::X(b) => (body(b)?.1.com.x, None),
@@ -57,7 +56,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         Quantity::Distance(_) => (m.engine_sum, None),
         Quantity::Time => (s.time, None),
         Quantity::Ax(b) | Quantity::Ay(b) | Quantity::Accel(b) => {
-            let i = s.body_index(b)?;
+            let i = m.body_index(s, b)?;
             let ax = f.rate(|x| Some(x.bodies[i].velocity.x))?;
             let ay = f.rate(|x| Some(x.bodies[i].velocity.y))?;
             let newton = newton_euler(f, i).map(|(a, _)| a);
@@ -69,7 +68,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             (pick(DVec2::new(ax, ay)), newton.map(pick))
         }
         Quantity::Alpha(b) => {
-            let i = s.body_index(b)?;
+            let i = m.body_index(s, b)?;
             let alpha = f.rate(|x| Some(x.bodies[i].omega))?;
             (alpha, newton_euler(f, i).map(|(_, al)| al))
         }

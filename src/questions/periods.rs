@@ -51,7 +51,7 @@ impl Crossings {
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     match &m.q {
         Quantity::PendulumPeriod { body, .. } => {
-            if let Some(i) = s.body_index(body) {
+            if let Some(i) = m.body_index(s, body) {
                 if m.crossings.last.is_none() {
                     m.crossings.add(prev.time, prev.bodies[i].omega);
                 }
@@ -59,7 +59,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             }
         }
         Quantity::SpringPeriod(body) => {
-            if let Some(i) = s.body_index(body) {
+            if let Some(i) = m.body_index(s, body) {
                 if m.spring_axis.is_none() {
                     let init: &Snapshot = m.init.as_deref().unwrap_or(prev);
                     let sp = init
@@ -88,7 +88,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             (m.crossings.period(), pendulum_theory(m, s, b, joint))
         }
         Quantity::SpringPeriod(b) => {
-            let i = s.body_index(b)?;
+            let i = m.body_index(s, b)?;
             // Each spring's k = 2 V_e / x^2, from the first snapshot where it is stretched.
             let k: f64 = m
                 .init
@@ -120,7 +120,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
 /// The exact large-amplitude period of a body swinging about the joint's fixed anchor,
 /// from the engine's initial state.
 fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f64> {
-    let i = s.body_index(body)?;
+    let i = m.body_index(s, body)?;
     let j = &s.joints[joint_index(s, joint)?];
     let o = if j.body2 == i { j.anchor1 } else { j.anchor };
     let b0 = &m.init.as_ref()?.bodies[i];

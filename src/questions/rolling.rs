@@ -22,7 +22,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     else {
         unreachable!("{:?} is not a rolling quantity", m.q)
     };
-    let (i, o) = (s.body_index(b)?, s.body_index(ground)?);
+    let (i, o) = (m.body_index(s, b)?, m.body_index(s, ground)?);
     let roll = rolling_contact(f, i, o)?;
     let x = &s.bodies[i];
     let g = s.gravity.length();

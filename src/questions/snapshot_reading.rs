@@ -60,8 +60,3 @@ pub(super) fn pair_normal_impulse(s: &Snapshot, body: usize, other: Option<usize
         .map(|p| p.normal_impulse.max(0.0))
         .sum()
 }
-
-/// The named body of the snapshot, with its index.
-pub(super) fn named_body<'a>(s: &'a Snapshot, name: &str) -> Option<(usize, &'a BodyState)> {
-    s.body_index(name).map(|i| (i, &s.bodies[i]))
-}

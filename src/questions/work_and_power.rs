@@ -7,7 +7,7 @@
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
-use super::snapshot_reading::{named_body, to_local};
+use super::snapshot_reading::to_local;
 use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::level::Quantity;
@@ -19,7 +19,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     let dt = s.time - prev.time;
     match &m.q {
         Quantity::GravityWork(b) => {
-            if let Some(i) = s.body_index(b) {
+            if let Some(i) = m.body_index(s, b) {
                 let (b0, b1) = (&prev.bodies[i], &s.bodies[i]);
                 m.engine_sum += b1.mass * s.gravity.dot(0.5 * (b0.velocity + b1.velocity)) * dt;
             }
@@ -50,7 +50,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             }
         }
         Quantity::FrictionWork { body, other } => {
-            if let (Some(i), Some(o)) = (s.body_index(body), s.body_index(other)) {
+            if let (Some(i), Some(o)) = (m.body_index(s, body), m.body_index(s, other)) {
                 let mu = m.facts.friction(i, o);
                 let mid = |k: usize| {
                     let mut b = s.bodies[k].clone();
@@ -79,7 +79,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             }
         }
         Quantity::KineticEnergy(b) => {
-            if let Some(i) = s.body_index(b) {
+            if let Some(i) = m.body_index(s, b) {
                 // Ground springs enter the analysis through their exact potential instead.
                 m.analysis_sum += path_work(prev, s, i, false);
             }
@@ -94,7 +94,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
     let init = m.init.as_ref();
     Some(match &m.q {
         Quantity::KineticEnergy(b) => {
-            let (i, x) = named_body(s, b)?;
+            let (i, x) = m.named_body(s, b)?;
             let analysis = init.map(|s0| {
                 let b0 = &s0.bodies[i];
                 let springs: f64 = s
@@ -116,7 +116,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             (kinetic_energy(x), analysis)
         }
         Quantity::GravityWork(b) => {
-            let (i, x) = named_body(s, b)?;
+            let (i, x) = m.named_body(s, b)?;
             let g0 = init?.bodies[i].com;
             (m.engine_sum, Some(x.mass * s.gravity.dot(x.com - g0)))
         }

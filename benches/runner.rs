@@ -1,0 +1,180 @@
+//! What the run loop costs over a plain simulation loop (issue 15: at most 1.05x).
+//!
+//!     CARGO_TARGET_DIR=... cargo bench --no-default-features --bench runner
+//!
+//! The runner is `runner::run_scene`: the simulation plus its observers (the level's checks and
+//! questions, `runner::Observers`), as `rigidlab check` runs a level. The plain loop is
+//! `Simulation::new` and `Simulation::run` over the same level with nothing observing. Both
+//! include building the simulation; neither includes parsing the file. The two take turns run by
+//! run (this 2-core machine is noisy), and each ratio is the median over pairs of (runner time /
+//! plain time):
+//! 1. the 100-body scene of benches/analysis.rs with its scene checks, 250 per-body checks and
+//!    100 questions (each body's speed at t = 2 s);
+//!    (information: with its checks only, with its questions only);
+//! 2. the same scene with every per-body check kind on every body (1,050 checks, information:
+//!    the checks' own cost, bench analysis C);
+//! 3. every level of the library (levels/), one after another: a round is the sum over levels.
+
+#[path = "common/hundred_bodies.rs"]
+mod hundred_bodies;
+
+use rigidlab::level::{self, Scene};
+use rigidlab::runner;
+use rigidlab::sim::{Options, Simulation};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Seconds to run `scene` plainly (`runner = false`) or through the runner.
+fn time_run(scene: &Scene, runner: bool) -> f64 {
+    let opts = Options::default();
+    let t0 = Instant::now();
+    if runner {
+        let report = runner::run_scene(scene, &opts, &HashMap::new(), |_| {}).expect("it runs");
+        std::hint::black_box(report);
+    } else {
+        let mut sim = Simulation::new(scene, &opts);
+        let mut steps = 0u64;
+        sim.run(|s| steps += s.step).expect("it runs");
+        std::hint::black_box(steps);
+    }
+    t0.elapsed().as_secs_f64()
+}
+
+/// Median of runner / plain over `pairs` pairs of runs, the order alternating within pairs.
+fn ratio(scenes: &[Scene], pairs: usize) -> (f64, f64, f64) {
+    let (mut ratios, mut plain_s, mut runner_s) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..pairs {
+        let (mut plain, mut run) = (0.0, 0.0);
+        for scene in scenes {
+            if k % 2 == 0 {
+                plain += time_run(scene, false);
+                run += time_run(scene, true);
+            } else {
+                run += time_run(scene, true);
+                plain += time_run(scene, false);
+            }
+        }
+        ratios.push(run / plain);
+        plain_s.push(plain);
+        runner_s.push(run);
+    }
+    (
+        median(&mut ratios),
+        median(&mut plain_s),
+        median(&mut runner_s),
+    )
+}
+
+fn library_levels(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("levels/ is readable")
+        .map(|e| e.expect("a directory entry").path())
+        .collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            library_levels(&p, out);
+        } else if p.extension().is_some_and(|e| e == "ron") {
+            out.push(p);
+        }
+    }
+}
+
+fn main() {
+    let mut hundred = level::parse(Path::new("bench.ron"), &hundred_bodies::scene_ron())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let questions: Vec<String> = hundred
+        .level
+        .bodies
+        .iter()
+        .filter(|b| b.kind == level::BodyKind::Dynamic)
+        .map(|b| {
+            format!(
+                r#"(id: "v_{0}", ask: "speed", unit: "m/s", expected: 1.0, tolerance: 1e9, quantity: Speed("{0}"), at: Time(2.0), why: "bench")"#,
+                b.name
+            )
+        })
+        .collect();
+    let text = hundred_bodies::scene_ron().replacen(
+        "checks: [",
+        &format!("questions: [{}], checks: [", questions.join(",\n")),
+        1,
+    );
+    hundred = level::parse(Path::new("bench.ron"), &text).unwrap_or_else(|e| panic!("{e}"));
+    // Information: the same scene with only its checks, and with only its questions.
+    let mut checks_only = hundred.clone();
+    checks_only.level.questions.clear();
+    let mut questions_only = hundred.clone();
+    questions_only.level.checks.clear();
+    let every = level::parse(
+        Path::new("bench-every-kind.ron"),
+        &hundred_bodies::every_kind_ron(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let mut files = Vec::new();
+    library_levels(Path::new("levels"), &mut files);
+    let library: Vec<Scene> = files
+        .iter()
+        .map(|p| level::load(p).unwrap_or_else(|e| panic!("{e}")))
+        .collect();
+
+    println!("runner::run_scene against a plain Simulation::run, median of runner/plain over pairs of runs:");
+    // RIGIDLAB_BENCH_CASE=1: only the first case (2, 3, ...: the others, in order), to profile it.
+    let only: Option<usize> = std::env::var("RIGIDLAB_BENCH_CASE")
+        .ok()
+        .and_then(|c| c.parse().ok());
+    for (case, (label, scenes, pairs)) in [
+        (
+            format!(
+                "100 bodies, {} checks, {} questions",
+                hundred.level.checks.len(),
+                hundred.level.questions.len()
+            ),
+            std::slice::from_ref(&hundred),
+            15,
+        ),
+        (
+            "  the same, its checks only".to_string(),
+            std::slice::from_ref(&checks_only),
+            9,
+        ),
+        (
+            "  the same, its questions only".to_string(),
+            std::slice::from_ref(&questions_only),
+            9,
+        ),
+        (
+            format!(
+                "100 bodies, every per-body check kind ({} checks)",
+                every.level.checks.len()
+            ),
+            std::slice::from_ref(&every),
+            9,
+        ),
+        (
+            format!("the library, {} levels", library.len()),
+            &library[..],
+            5,
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        if only.is_some_and(|c| c != case + 1) {
+            continue;
+        }
+        let (r, plain, run) = ratio(scenes, pairs);
+        println!(
+            "  {label:<52} {r:.3}x  (plain {:.1} ms, runner {:.1} ms; {pairs} pairs){}",
+            plain * 1e3,
+            run * 1e3,
+            if r <= 1.05 { "" } else { "  over 1.05x" }
+        );
+    }
+}
