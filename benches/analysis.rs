@@ -25,7 +25,7 @@
 
 use rigidlab::analysis::frame::FrameAnalysis;
 use rigidlab::checks::CheckSet;
-use rigidlab::level::parse;
+use rigidlab::level::{parse, Scene};
 use rigidlab::sim::{Options, Simulation};
 use std::path::Path;
 use std::time::Instant;
@@ -38,6 +38,45 @@ const STEPS: usize = 300;
 const REPEATS: usize = 7;
 /// Steps per timing block.
 const BLOCK: usize = 10;
+
+/// One block of `BLOCK` steps: physics and checks time per step, us; the scene at its end.
+struct Block {
+    step_us: f64,
+    checks_us: f64,
+    contacts: usize,
+    rows: usize,
+}
+
+/// Runs `scene` for `STEPS` steps, timing each step (`Instant` around `sim.step()` and around
+/// `CheckSet::observe`, as `rigidlab check` calls them), summed over blocks of `BLOCK` steps.
+fn time_blocks(scene: &Scene) -> Vec<Block> {
+    let mut sim = Simulation::new(scene, &Options::default());
+    let mut checks = CheckSet::new(&scene.level);
+    checks.observe(sim.snapshot());
+    let (mut t_step, mut t_checks, mut rows) = (0.0, 0.0, 0);
+    let mut blocks = Vec::new();
+    for k in 0..STEPS {
+        let t0 = Instant::now();
+        let s = sim.step().expect("the bench scene runs");
+        t_step += t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        checks.observe(s);
+        t_checks += t0.elapsed().as_secs_f64();
+        rows += s.bodies.len();
+        if (k + 1) % BLOCK == 0 {
+            let per_step = 1e6 / BLOCK as f64;
+            blocks.push(Block {
+                step_us: t_step * per_step,
+                checks_us: t_checks * per_step,
+                contacts: s.contacts.len(),
+                rows,
+            });
+            (t_step, t_checks, rows) = (0.0, 0.0, 0);
+        }
+    }
+    assert_eq!(checks.finish().len(), scene.level.checks.len());
+    blocks
+}
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -73,68 +112,31 @@ fn main() {
     // that configuration alone, and all see the same machine noise.
     // RIGIDLAB_BENCH_KIND=restitution: only that kind's runs below (to profile it).
     let profiling = std::env::var("RIGIDLAB_BENCH_KIND").is_ok();
-    for k in 0..3 * REPEATS {
-        if profiling {
-            break;
-        }
+    for k in 0..if profiling { 0 } else { 3 * REPEATS } {
         let c = k % 3;
-        let run = configs[c];
-        let mut sim = Simulation::new(run, &Options::default());
-        let mut checks = CheckSet::new(&run.level);
-        checks.observe(sim.snapshot());
-        let (mut t_step, mut t_checks) = (0.0, 0.0);
-        for k in 0..STEPS {
-            let t0 = Instant::now();
-            let s = sim.step().expect("the bench scene runs");
-            t_step += t0.elapsed().as_secs_f64();
-            contacts = s.contacts.len();
-            let t0 = Instant::now();
-            checks.observe(s);
-            t_checks += t0.elapsed().as_secs_f64();
-            rows += s.bodies.len();
-            if (k + 1) % BLOCK == 0 {
-                let per_step = 1e6 / BLOCK as f64;
-                step_us.push(t_step * per_step);
-                ratios[c].push(t_checks / t_step);
-                check_us[c].push(t_checks * per_step);
-                (t_step, t_checks) = (0.0, 0.0);
-            }
+        for block in time_blocks(configs[c]) {
+            step_us.push(block.step_us);
+            ratios[c].push(block.checks_us / block.step_us);
+            check_us[c].push(block.checks_us);
+            (contacts, rows) = (block.contacts, rows + block.rows);
         }
-        assert_eq!(checks.finish().len(), run.level.checks.len());
     }
     // Information: C's cost kind by kind (each kind's probes alone, the runs taking turns).
-    let kinds: Vec<_> = {
-        let mut v: Vec<_> = every.level.checks.iter().map(|c| c.kind).collect();
-        v.dedup();
-        v.sort_by_key(|k| k.name());
-        v.dedup();
-        if let Ok(only) = std::env::var("RIGIDLAB_BENCH_KIND") {
-            v.retain(|k| k.name() == only);
-        }
-        v
-    };
+    let mut kinds: Vec<_> = every.level.checks.iter().map(|c| c.kind).collect();
+    kinds.sort_by_key(|k| k.name());
+    kinds.dedup();
+    if let Ok(only) = std::env::var("RIGIDLAB_BENCH_KIND") {
+        kinds.retain(|k| k.name() == only);
+    }
     let mut by_kind: Vec<Vec<f64>> = vec![Vec::new(); kinds.len()];
     for k in 0..REPEATS * kinds.len() {
-        let kind = kinds[k % kinds.len()];
         let mut only = every.clone();
-        only.level.checks.retain(|c| c.kind == kind);
-        let mut sim = Simulation::new(&only, &Options::default());
-        let mut checks = CheckSet::new(&only.level);
-        checks.observe(sim.snapshot());
-        let (mut t_step, mut t_checks) = (0.0, 0.0);
-        for n in 0..STEPS {
-            let t0 = Instant::now();
-            let s = sim.step().expect("the bench scene runs");
-            t_step += t0.elapsed().as_secs_f64();
-            let t0 = Instant::now();
-            checks.observe(s);
-            t_checks += t0.elapsed().as_secs_f64();
-            if (n + 1) % BLOCK == 0 {
-                by_kind[k % kinds.len()].push(t_checks / t_step);
-                (t_step, t_checks) = (0.0, 0.0);
-            }
+        only.level
+            .checks
+            .retain(|c| c.kind == kinds[k % kinds.len()]);
+        for block in time_blocks(&only) {
+            by_kind[k % kinds.len()].push(block.checks_us / block.step_us);
         }
-        std::hint::black_box(checks.finish());
     }
     // The shared frame pass alone, on the same steps (information: how much of A it is).
     let mut frame_us = Vec::new();

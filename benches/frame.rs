@@ -112,7 +112,7 @@ fn main() {
         sink += energy::system_kinetic_energy(s, energy::engine_mass)
             + energy::system_gravity_potential(s, energy::engine_mass);
         sink += quantities::angular_momentum_about(s, glam::DVec2::ZERO);
-        sink += quantities::free_body(None, s, ov.selected.unwrap()).1;
+        sink += quantities::free_body_arrows(None, s, ov.selected.unwrap()).1;
         let t3 = Instant::now();
         drawing.clear(view.m_per_px);
         view::scene_lines(

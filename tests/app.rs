@@ -143,7 +143,7 @@ fn plugin_steps_match_the_core_runner_bit_for_bit_bouncing_ball() {
 /// solved per substep (the level's own questions allow 1 % on the speed for the same reasons).
 #[test]
 fn free_body_diagram_of_a_sliding_block_shows_n_and_mu_n() {
-    use rigidlab::app::quantities::{free_body, ForceKind};
+    use rigidlab::app::quantities::{free_body_arrows, ForceKind};
     let scene = level::load(Path::new("levels/kinetics/incline_friction.ron")).unwrap();
     let mut phys = Physics::new(scene, Options::default(), false);
     let mut prev = phys.snapshot().clone();
@@ -153,7 +153,7 @@ fn free_body_diagram_of_a_sliding_block_shows_n_and_mu_n() {
     }
     let s = phys.snapshot();
     let i = s.body_index("block").unwrap();
-    let (forces, _) = free_body(Some(&prev), s, i);
+    let (forces, _) = free_body_arrows(Some(&prev), s, i);
     let sum = |k: ForceKind| -> glam::DVec2 {
         forces.iter().filter(|f| f.kind == k).map(|f| f.force).sum()
     };

@@ -326,11 +326,12 @@ pub fn build(
             if b.kind != BodyKind::Dynamic {
                 continue;
             }
-            // Mean forces over the last frame's steps when the step is short (see free_body_mean).
+            // Mean forces over the last frame's steps when the step is short
+            // (see free_body_arrows_mean).
             let (forces, couple) = if phys.recent.len() > 1 {
-                quantities::free_body_mean(quantities::with_previous(&phys.recent), i)
+                quantities::free_body_arrows_mean(quantities::with_previous(&phys.recent), i)
             } else {
-                quantities::free_body(None, s, i)
+                quantities::free_body_arrows(None, s, i)
             };
             if ov.free_body {
                 for f in &forces {

@@ -83,7 +83,7 @@ pub struct Force {
 /// Body `i`'s free-body diagram over the step that led to `s` (`prev`: the snapshot before it,
 /// when kept), as arrows: mean forces (impulse / dt) and the sum of its couples, N m. Before the
 /// first step it shows the forces known without a step: weight, springs and loads.
-pub fn free_body(prev: Option<&Snapshot>, s: &Snapshot, i: usize) -> (Vec<Force>, f64) {
+pub fn free_body_arrows(prev: Option<&Snapshot>, s: &Snapshot, i: usize) -> (Vec<Force>, f64) {
     if s.is_initial() {
         // analysis reads a step's impulses; over a nominal 1 s step a held force's impulse is
         // the force itself (contacts and joints carry no impulse yet).
@@ -91,9 +91,9 @@ pub fn free_body(prev: Option<&Snapshot>, s: &Snapshot, i: usize) -> (Vec<Force>
             dt: 1.0,
             ..s.clone()
         };
-        return free_body_mean([(None, &nominal)], i);
+        return free_body_arrows_mean([(None, &nominal)], i);
     }
-    free_body_mean([(prev, s)], i)
+    free_body_arrows_mean([(prev, s)], i)
 }
 
 /// The free-body diagram averaged over consecutive snapshots (each with the one before it, if
@@ -101,7 +101,7 @@ pub fn free_body(prev: Option<&Snapshot>, s: &Snapshot, i: usize) -> (Vec<Force>
 /// impulse-weighted mean point; couples likewise. With a step much shorter than a frame, rapier
 /// delivers contact impulses in bursts (many steps carry none); the mean over a frame is what the
 /// eye can follow.
-pub fn free_body_mean<'a>(
+pub fn free_body_arrows_mean<'a>(
     steps: impl IntoIterator<Item = (Option<&'a Snapshot>, &'a Snapshot)>,
     i: usize,
 ) -> (Vec<Force>, f64) {

@@ -87,6 +87,11 @@ impl QuestionProbe {
         &self.def.id
     }
 
+    /// Whether the question has been read for good (later snapshots change nothing).
+    pub fn is_done(&self) -> bool {
+        self.done
+    }
+
     /// Observes a snapshot of its own (the window's single-question use).
     pub fn observe(&mut self, s: &Snapshot) {
         let own = if s.is_initial() {
@@ -100,6 +105,12 @@ impl QuestionProbe {
     /// Observes a snapshot shared with the run's other questions; the initial one must have
     /// been passed through [`initial_in_f64`].
     pub fn observe_shared(&mut self, s: &Arc<Snapshot>) {
+        if self.done {
+            // Read once, the question is settled (nothing after its moment changes its result):
+            // it keeps no history and does no work for the rest of the run.
+            self.hist.clear();
+            return;
+        }
         if s.step == 1 {
             // The averaging window in steps, each side.
             self.lag = ((0.5 * self.window / s.dt).round() as usize).max(1);

@@ -33,7 +33,7 @@ fn engine_ke(b: &BodyState) -> f64 {
 /// count). Each sample needs the steps either side, so the last step is not compared, and steps
 /// with an event impulse on the body (a velocity jump) are skipped.
 /// Scale: the largest kinetic energy of the run.
-pub(super) fn kinetic_energy_g(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+pub(super) fn kinetic_energy_g_probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     match dynamic_body(level, def) {
         Ok(b) => Box::new(KineticEnergyG {
             def: def.clone(),
@@ -149,7 +149,7 @@ enum Center {
 /// Engine: 6/9 with rapier's v_G, omega, m and I_G. The two agree only if the engine's motion has
 /// its instantaneous center where the textbook puts it: no slip at the contact, no drift at the pivot.
 /// Scale: the largest kinetic energy of the run. The note gives the largest slip velocity.
-pub(super) fn kinetic_energy_ic(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+pub(super) fn kinetic_energy_ic_probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let b = match dynamic_body(level, def) {
         Ok(b) => b,
         Err(e) => return misconfigured(def, e),

@@ -91,8 +91,8 @@ pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             Box::new(constant::ConstantAcceleration::new(level, def))
         }
         CheckKind::MassProperties => mass::probe(level, def),
-        CheckKind::KineticEnergyG => energy::kinetic_energy_g(level, def),
-        CheckKind::KineticEnergyIc => energy::kinetic_energy_ic(level, def),
+        CheckKind::KineticEnergyG => energy::kinetic_energy_g_probe(level, def),
+        CheckKind::KineticEnergyIc => energy::kinetic_energy_ic_probe(level, def),
         CheckKind::WorkEnergy => energy::work_energy(level, def),
         CheckKind::AngularMomentumFixedPoint => momentum::angular_momentum_fixed_point(level, def),
         CheckKind::ImpulseMomentum => momentum::impulse_momentum(level, def),
