@@ -13,7 +13,11 @@
 //!    (information: with its checks only, with its questions only);
 //! 2. the same scene with every per-body check kind on every body (1,050 checks, information:
 //!    the checks' own cost, bench analysis C);
-//! 3. every level of the library (levels/), one after another: a round is the sum over levels.
+//! 3. every level of the library (levels/), one after another: a round is the sum over levels;
+//! 4. the 100-body scene with no checks and no questions (what the runner costs by itself);
+//! 5. a typical library level, levels/kinetics/physical_pendulum.ron (3 checks, 2 questions, a
+//!    few ms a run), run 10 times a round (information: with its checks only, with its question
+//!    only).
 
 #[path = "common/hundred_bodies.rs"]
 mod hundred_bodies;
@@ -24,6 +28,9 @@ use rigidlab::sim::{Options, Simulation};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// The typical library level of case 5.
+const TYPICAL: &str = "levels/kinetics/physical_pendulum.ron";
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -117,6 +124,27 @@ fn main() {
         &hundred_bodies::every_kind_ron(),
     )
     .unwrap_or_else(|e| panic!("{e}"));
+    let mut bare = hundred.clone();
+    bare.level.checks.clear();
+    bare.level.questions.clear();
+    let typical = vec![level::load(Path::new(TYPICAL)).unwrap_or_else(|e| panic!("{e}")); 10];
+    // Information: the typical level with only its checks, and with only its questions.
+    let typical_checks: Vec<Scene> = typical
+        .iter()
+        .map(|s| {
+            let mut s = s.clone();
+            s.level.questions.clear();
+            s
+        })
+        .collect();
+    let typical_questions: Vec<Scene> = typical
+        .iter()
+        .map(|s| {
+            let mut s = s.clone();
+            s.level.checks.clear();
+            s
+        })
+        .collect();
     let mut files = Vec::new();
     library_levels(Path::new("levels"), &mut files);
     let library: Vec<Scene> = files
@@ -161,6 +189,30 @@ fn main() {
             format!("the library, {} levels", library.len()),
             &library[..],
             5,
+        ),
+        (
+            "100 bodies, no checks, no questions".to_string(),
+            std::slice::from_ref(&bare),
+            15,
+        ),
+        (
+            format!(
+                "{TYPICAL} ({} checks, {} questions) x 10",
+                typical[0].level.checks.len(),
+                typical[0].level.questions.len()
+            ),
+            &typical[..],
+            15,
+        ),
+        (
+            "  the same, its checks only".to_string(),
+            &typical_checks[..],
+            9,
+        ),
+        (
+            "  the same, its questions only".to_string(),
+            &typical_questions[..],
+            9,
         ),
     ]
     .into_iter()
