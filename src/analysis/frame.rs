@@ -17,7 +17,7 @@ use super::kinetics::contact_arms_at_start;
 use super::links::BodyLinks;
 use super::momentum::{angular_momentum_g, linear_momentum};
 use super::{cross, Motion};
-use crate::snapshot::{BodyKind, Coordinate, Snapshot};
+use crate::snapshot::{BodyKind, Snapshot};
 use glam::DVec2;
 use std::cell::{Cell, Ref, RefCell};
 
@@ -503,16 +503,10 @@ impl Pass<'_> {
             }
         }
         for c in &snap.couplings {
-            for &(i, coordinate, ratio) in &c.terms {
+            for (i, j, couple) in c.body_impulses() {
                 if !self.has_mass(i) {
                     continue;
                 }
-                let x = ratio * c.impulse;
-                let (j, couple) = match coordinate {
-                    Coordinate::X => (DVec2::new(x, 0.0), 0.0),
-                    Coordinate::Y => (DVec2::new(0.0, x), 0.0),
-                    Coordinate::Angle => (DVec2::ZERO, x),
-                };
                 let at = self.g_point(i);
                 let work = Some((Slot::Other, true));
                 self.add(i, j, at, DVec2::ZERO, couple, false, work);

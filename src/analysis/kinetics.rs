@@ -18,7 +18,8 @@
 //!   point, with the row solver's angular impulse about G (which carries any constraint couple and
 //!   motor torque), each substep's about G where it began (`sim::Settings`, split substeps);
 //! - couplings (pulleys, cables, gears): `ratio * lambda` along x or y at G, or as a couple for an
-//!   angle term. A coupling is never internal to a set: its ground (the pulley's axle) takes load.
+//!   angle term, and the reaction the body the cable runs over bears at its G (`over`, delivered
+//!   one rapier call late). Each is listed on its own body, never cancelled inside a set.
 
 use super::links::{merged, BodyLinks};
 use super::{cross, Motion};
@@ -432,18 +433,12 @@ fn couplings(
     g_point: &impl Fn(usize) -> DVec2,
     visit: &mut impl FnMut(StepImpulse),
 ) {
-    use crate::snapshot::Coordinate;
     for (k, c) in snap.couplings.iter().enumerate() {
-        for (q, &(body, coordinate, ratio)) in c.terms.iter().enumerate() {
+        // Term q for q < terms.len(); q = terms.len() is the body the cable runs over.
+        for (q, (body, impulse, couple)) in c.body_impulses().enumerate() {
             if !member(body) {
                 continue;
             }
-            let x = ratio * c.impulse;
-            let (impulse, couple) = match coordinate {
-                Coordinate::X => (DVec2::new(x, 0.0), 0.0),
-                Coordinate::Y => (DVec2::new(0.0, x), 0.0),
-                Coordinate::Angle => (DVec2::ZERO, x),
-            };
             visit(StepImpulse {
                 body,
                 source: Source::Coupling(k, q),

@@ -324,6 +324,12 @@ pub struct CouplingDef {
     pub name: String,
     /// At least two terms.
     pub terms: Vec<CouplingTerm>,
+    /// The body the cable runs over (a pulley), which carries it: the cable is massless, so the
+    /// pull it exerts on the bodies of its x and y terms is borne by this body's axle, at its
+    /// mass center (Newton's third law through the cable). Without it the cable's pull on the
+    /// carrier is not applied (a massless peg on the ground).
+    #[serde(default)]
+    pub over: Option<String>,
 }
 
 /// One term `ratio * q` of a coupling.

@@ -2,9 +2,10 @@
 //! by projecting velocities and positions, and the impulses that took.
 
 use super::rapier::prelude::*;
-use super::world::{wrap_pi, Simulation};
+use super::world::{vd, wrap_pi, Simulation};
 use crate::level::*;
 use crate::snapshot::*;
+use glam::DVec2;
 
 impl Simulation {
     pub(super) fn coordinate(&self, body: usize, c: Coordinate) -> (f64, f64, f64) {
@@ -148,7 +149,46 @@ impl Simulation {
         lambdas
     }
 
-    pub(super) fn coupling_states(&self, lambdas: &[f64]) -> Vec<CouplingState> {
+    /// Gives each cable's carrier (the pulley it runs over) the reaction it is owed as a force
+    /// held over the coming rapier call of length `h`, so rapier's joints carry it to the
+    /// axle, and adds it to `carried` (the step's impulse on each carrier).
+    ///
+    /// Why one call late: the cable's pull is known only after rapier's call (the coupling is
+    /// projected after it), and a velocity kick to the carrier then would show in its velocity
+    /// until the next call's joint removed it. Held as a force, the reaction enters rapier's
+    /// solver with the carrier's joints: in steady motion (a constant tension) the axle load is
+    /// exact, and in a transient it lags the cable by one call (dt / substeps when joint readings
+    /// split the step, else dt), the integrator's own order.
+    pub(super) fn load_carriers(&mut self, h: f64, carried: &mut [DVec2]) {
+        for (k, carrier) in self.carriers.iter().enumerate() {
+            let Some((i, due)) = *carrier else { continue };
+            let rb = &mut self.world.bodies[self.bodies[i]];
+            rb.add_force(vd(due / h), true);
+            carried[k] += due;
+        }
+    }
+
+    /// Records what each carrier is owed after a rapier call whose couplings took `lambdas`:
+    /// the opposite of the cable's pull on its x and y terms (the cable is massless).
+    pub(super) fn owe_carriers(&mut self, lambdas: &[f64]) {
+        for (k, c) in self.level.couplings.iter().enumerate() {
+            let Some((_, due)) = self.carriers[k].as_mut() else {
+                continue;
+            };
+            let pull: DVec2 = c
+                .terms
+                .iter()
+                .map(|t| match t.coordinate {
+                    Coordinate::X => DVec2::new(t.ratio * lambdas[k], 0.0),
+                    Coordinate::Y => DVec2::new(0.0, t.ratio * lambdas[k]),
+                    Coordinate::Angle => DVec2::ZERO,
+                })
+                .sum();
+            *due = -pull;
+        }
+    }
+
+    pub(super) fn coupling_states(&self, lambdas: &[f64], carried: &[DVec2]) -> Vec<CouplingState> {
         self.level
             .couplings
             .iter()
@@ -165,6 +205,7 @@ impl Simulation {
                     impulse: lambdas[k],
                     value,
                     drift: value - self.coupling_rest[k],
+                    carrier: self.carriers[k].map(|(i, _)| (i, carried[k])),
                 }
             })
             .collect()

@@ -26,6 +26,9 @@ pub struct Simulation {
     pub(super) snapshot: Snapshot,
     /// Initial value of each coupling's sum.
     pub(super) coupling_rest: Vec<f64>,
+    /// Per coupling: the body it runs over (`CouplingDef::over`) and the impulse that body is
+    /// still owed, delivered during the next rapier call (see `sim/couplings.rs`).
+    pub(super) carriers: Vec<Option<(usize, DVec2)>>,
     /// Welds still waiting for their first contact: (event name, body1, body2).
     pub(super) pending_welds: Vec<(String, usize, usize)>,
     /// Bodies that loads or springs act on (their forces are reset every step).
@@ -97,6 +100,7 @@ impl Simulation {
             joint_defs: Vec::new(),
             body_index,
             coupling_rest: Vec::new(),
+            carriers: Vec::new(),
             pending_welds: Vec::new(),
             forced_bodies: Vec::new(),
             energy: EnergyGuard::default(),
@@ -127,6 +131,13 @@ impl Simulation {
             forced.push(sim.body_index[&s.body1]);
             forced.extend(s.body2.as_ref().map(|b| sim.body_index[b]));
         }
+        sim.carriers = sim
+            .level
+            .couplings
+            .iter()
+            .map(|c| c.over.as_ref().map(|b| (sim.body_index[b], DVec2::ZERO)))
+            .collect();
+        forced.extend(sim.carriers.iter().flatten().map(|c| c.0));
         forced.sort_unstable();
         forced.dedup();
         sim.forced_bodies = forced;
@@ -138,7 +149,8 @@ impl Simulation {
             .iter()
             .map(|c| sim.coupling_value(c))
             .collect();
-        sim.snapshot.couplings = sim.coupling_states(&vec![0.0; sim.level.couplings.len()]);
+        let none = vec![0.0; sim.level.couplings.len()];
+        sim.snapshot.couplings = sim.coupling_states(&none, &vec![DVec2::ZERO; none.len()]);
         sim.energy = EnergyGuard::new(&sim.snapshot);
         sim
     }
@@ -249,6 +261,7 @@ impl Simulation {
         let calls = if split { n } else { 1 };
         let h = dt / calls as f64;
         let mut lambdas = vec![0.0; self.level.couplings.len()];
+        let mut carried = vec![DVec2::ZERO; self.level.couplings.len()];
         let mut springs: Vec<SpringState> = Vec::new();
         let mut joint_sum: Vec<JointState> = Vec::new();
         let mut contact_sum: Vec<ContactState> = Vec::new();
@@ -259,6 +272,7 @@ impl Simulation {
         }
         for call in 0..calls {
             self.apply_forces(&loads);
+            self.load_carriers(h, &mut carried);
             let mut now = self.spring_states(true);
             for s in &now {
                 let rb1 = &mut self.world.bodies[self.bodies[s.body1]];
@@ -286,7 +300,9 @@ impl Simulation {
             // acted on.
             let rows_from = split.then(|| self.joint_poses());
             self.world.step();
-            for (l, x) in lambdas.iter_mut().zip(self.solve_couplings()) {
+            let call_lambdas = self.solve_couplings();
+            self.owe_carriers(&call_lambdas);
+            for (l, x) in lambdas.iter_mut().zip(call_lambdas) {
                 *l += x;
             }
             if let Some(poses) = rows_from {
@@ -320,7 +336,7 @@ impl Simulation {
         } else {
             self.read_joints();
         }
-        self.snapshot.couplings = self.coupling_states(&lambdas);
+        self.snapshot.couplings = self.coupling_states(&lambdas, &carried);
         // Spring state: forces held during the step, length and energy at its end.
         let end = self.spring_states(false);
         self.snapshot.springs = springs

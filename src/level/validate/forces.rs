@@ -40,6 +40,36 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
             "include a dynamic body's free coordinate",
         ));
     }
+    if let Some(over) = &c.over {
+        v.body_ref(over, "couplings", &c.name, "over")?;
+        let pulled = c
+            .terms
+            .iter()
+            .any(|t| t.body == *over && t.coordinate != Coordinate::Angle);
+        if pulled {
+            return Err(v.err(
+                v.loc.field_pos("couplings", &c.name, "over"),
+                format!(
+                    "coupling \"{}\" runs over \"{over}\", which one of its x or y terms also pulls",
+                    c.name
+                ),
+                "`over` names the pulley that carries the cable (it bears the pull on the other \
+                 bodies); a pulley that moves with the cable (block and tackle) takes an x or y \
+                 term instead: drop `over`",
+            ));
+        }
+        if !c.terms.iter().any(|t| t.coordinate != Coordinate::Angle) {
+            return Err(v.err(
+                v.loc.field_pos("couplings", &c.name, "over"),
+                format!(
+                    "coupling \"{}\" runs over \"{over}\" but pulls along no x or y term",
+                    c.name
+                ),
+                "`over` is for a cable whose strands pull bodies along x or y; a gear pair \
+                 (angle terms only) exerts no net pull: drop `over`",
+            ));
+        }
+    }
     Ok(())
 }
 
