@@ -528,10 +528,10 @@ fn a_bad_check_window_is_rejected() {
         )
     };
     for (check, needle) in [
-        // Only impulse_momentum takes a window.
+        // Mass properties do not change in time.
         (
-            "(kind: work_energy, window: (0.0, 0.5), tolerance: 1e-3, why: \"w\")",
-            "only impulse_momentum",
+            "(kind: mass_properties, body: \"ball\", window: (0.0, 0.5), tolerance: 1e-3, why: \"w\")",
+            "do not change in time",
         ),
         // Ends before it starts.
         (

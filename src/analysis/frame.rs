@@ -28,6 +28,10 @@ pub struct ImpulseSums {
     pub impulse: DVec2,
     /// Sum of angular impulses about the world origin, sum (r_P x J)_z + couples (IM-7).
     pub moment_origin: f64,
+    /// The largest single impulse |J_i| and couple |C_i| of the diagram: the size of the forces
+    /// that balance, where their sum (a body at rest, a static mechanism) says nothing of it.
+    pub largest_impulse: f64,
+    pub largest_couple: f64,
 }
 
 impl ImpulseSums {
@@ -36,9 +40,11 @@ impl ImpulseSums {
         self.moment_origin - cross(o, self.impulse)
     }
 
-    fn add(&mut self, j: DVec2, moment_origin: f64) {
+    fn add(&mut self, j: DVec2, moment_origin: f64, couple: f64) {
         self.impulse += j;
         self.moment_origin += moment_origin;
+        self.largest_impulse = self.largest_impulse.max(j.length());
+        self.largest_couple = self.largest_couple.max(couple.abs());
     }
 }
 
@@ -367,9 +373,9 @@ impl Pass<'_> {
         let u = work.map(|_| self.work_of(i, j, arm, couple));
         let acc = &mut self.bodies[i];
         acc.moment_g += cross(arm, j) + couple;
-        acc.impulses.add(j, m_origin);
+        acc.impulses.add(j, m_origin, couple);
         if !internal {
-            self.external.add(j, m_origin);
+            self.external.add(j, m_origin, couple);
         }
         if let (Some((slot, scene)), Some(u)) = (work, u) {
             acc.work.add(slot, u);
@@ -400,6 +406,8 @@ impl Pass<'_> {
             bf.impulses = ImpulseSums {
                 impulse: j,
                 moment_origin: m_origin,
+                largest_impulse: j.length(),
+                largest_couple: 0.0,
             };
             bf.moment_g = 0.0;
             bf.work = StepWork::default();
@@ -408,6 +416,7 @@ impl Pass<'_> {
         }
         self.external.impulse += weight;
         self.external.moment_origin += weight_moment;
+        self.external.largest_impulse = self.external.largest_impulse.max(weight.length());
         // A force held over the step: rapier applies it at G plus the couple of its start-of-step
         // arm, so its line of action moves with G (`kinetics` module doc).
         for l in &snap.loads {

@@ -1,6 +1,7 @@
 //! The closed-form constant-acceleration check (free fall, projectile).
 
 use super::super::{kind_name, CheckResult, ErrorTrack, Probe};
+use super::{in_window, window_of, window_note};
 use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -8,6 +9,9 @@ use glam::DVec2;
 /// Closed-form motion under a constant force (free fall, projectile: MK 2/x, HA 11.x):
 /// r(t) = r0 + v0 t + 1/2 a t^2 with a = g + F/m. Theory is the closed form from the initial
 /// state; engine is the mass center's position. Scale: the largest displacement |r - r0| of the run.
+///
+/// With a `window` (t1, t2) the closed form starts from the state at the window's first step
+/// (the flight of a ball after it leaves a hand, before it lands) and is compared up to t2.
 ///
 /// Error budget: symplectic Euler over substeps of h = dt/substeps gives x_n = x0 + v0 t + 1/2 a t (t + h),
 /// so the position error grows as 1/2 |a| h t: relative to 1/2 |a| t^2 it is h / t.
@@ -17,6 +21,10 @@ pub(super) struct ConstantAcceleration {
     index: Option<usize>,
     r0: DVec2,
     v0: DVec2,
+    /// Time and step of the state the closed form starts from.
+    t0: f64,
+    step0: u64,
+    window: (f64, f64),
     track: ErrorTrack,
     max_disp: f64,
     accel: DVec2,
@@ -33,6 +41,9 @@ impl ConstantAcceleration {
             index: None,
             r0: DVec2::ZERO,
             v0: DVec2::ZERO,
+            t0: 0.0,
+            step0: 0,
+            window: window_of(def),
             track: ErrorTrack::default(),
             max_disp: 0.0,
             accel: DVec2::ZERO,
@@ -42,6 +53,9 @@ impl ConstantAcceleration {
 
 impl Probe for ConstantAcceleration {
     fn observe(&mut self, s: &Snapshot) {
+        if !in_window(self.window, s.time) {
+            return;
+        }
         let Some(i) = self.index.or_else(|| s.body_index(&self.body)) else {
             return;
         };
@@ -50,14 +64,16 @@ impl Probe for ConstantAcceleration {
             self.index = Some(i);
             self.r0 = b.com;
             self.v0 = b.velocity;
+            self.t0 = s.time;
+            self.step0 = s.step;
             self.accel = constant_acceleration(s, i);
             return;
         }
-        if s.step == 1 && b.mass > 0.0 {
-            // Loads are known only once the first step applied them.
+        if s.step == self.step0 + 1 && b.mass > 0.0 {
+            // Loads are known only once a step applied them.
             self.accel = constant_acceleration(s, i);
         }
-        let t = s.time;
+        let t = s.time - self.t0;
         let theory = self.r0 + self.v0 * t + 0.5 * self.accel * t * t;
         let err = (b.com - theory).length();
         self.max_disp = self.max_disp.max((theory - self.r0).length());
@@ -69,8 +85,9 @@ impl Probe for ConstantAcceleration {
 
     fn finish(self: Box<Self>) -> CheckResult {
         let note = format!(
-            "position error |r_engine - r_theory|; displacement scale {:.4} m",
-            self.max_disp
+            "position error |r_engine - r_theory|; displacement scale {:.4} m{}",
+            self.max_disp,
+            window_note(&self.def)
         );
         self.track.result(
             &self.def,

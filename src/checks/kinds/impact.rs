@@ -112,6 +112,8 @@ impl MassOf {
 }
 
 struct Done {
+    /// When the impact began (the start of its first step), s.
+    start_time: f64,
     eccentric: bool,
     e: f64,
     e_set: f64,
@@ -212,6 +214,7 @@ impl Restitution {
             );
         }
         self.impacts.push(Done {
+            start_time: o.start_time,
             eccentric,
             e: m.e,
             e_set,
@@ -332,6 +335,23 @@ impl FrameProbe for Restitution {
                 subject,
                 Summary {
                     note: "no impact was detected (no step with an impulsive contact between the pair)".into(),
+                    max_rel: f64::INFINITY,
+                    ..Summary::default()
+                },
+            );
+        }
+        // With a `window`, only the impacts that begin inside it.
+        let window = super::window_of(&self.def);
+        self.impacts
+            .retain(|d| super::in_window(window, d.start_time));
+        if self.impacts.is_empty() {
+            return result(
+                &self.def,
+                subject,
+                Summary {
+                    note: format!(
+                        "no impact began inside the window {window:?} s (the run's impacts are outside it)"
+                    ),
                     max_rel: f64::INFINITY,
                     ..Summary::default()
                 },

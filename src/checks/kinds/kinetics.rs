@@ -26,9 +26,11 @@ use glam::DVec2;
 /// forces as impulse / dt. Engine: m a_G and I_G alpha with a_G and alpha by finite differences of
 /// rapier's velocities over the step (`FD`), rapier's m and I_G.
 /// Error, step by step: the force residual |sum F - m a_G| relative to the step's force level
-/// F_s = max(|sum F|, m |a_G|, m |g|) (so one impulsive step does not hide the others); the moment
-/// residual relative to F_s k_G; the largest of these over the run. The reported scale is F_s at
-/// the worst step.
+/// F_s = max(|sum F|, m |a_G|, m |g|, max |F_i|, max |C_i| / k_G) over the diagram's forces F_i
+/// and couples C_i (so one impulsive step does not hide the others, and a mechanism at rest,
+/// where sum F and m a_G vanish, is measured against the forces that balance); the moment
+/// residual relative to F_s k_G; the largest of these over the run (or its `window`). The
+/// reported scale is F_s at the worst step.
 ///
 /// With `point` P: the moment equation about P instead, as the textbook takes it to eliminate a
 /// reaction: sum M_P = I_G alpha + (r_{G/P} x m a_G)_z (6/2), and when P is the body's fixed pivot
@@ -54,11 +56,11 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             substeps: 1,
             pivot: None,
             index: None,
-            f: Worst::default(),
-            m: Worst::default(),
-            mp: Worst::default(),
+            f: Worst::over(def),
+            m: Worst::over(def),
+            mp: Worst::over(def),
             f_scale: 0.0,
-            rel: Worst::default(),
+            rel: Worst::over(def),
             k_g: 0.0,
             last: (0.0, 0.0),
         }),
@@ -132,13 +134,18 @@ impl FrameProbe for NewtonEuler {
             s.dt,
         );
         let beyond = |r: f64, res: f64| (r - res).max(0.0);
+        // The force level: the largest of the sum, m a_G, the weight and the largest single
+        // force of the diagram (in statics the sum and m a_G vanish while a piston's force and
+        // the pin's reaction balancing it do not), and a couple's size over k_G.
+        let k = self.k_g.max(1e-9);
         let fs = sum_f
             .length()
             .max(ma.length())
             .max(b.mass * s.gravity.length())
+            .max(sums.largest_impulse / s.dt)
+            .max(sums.largest_couple / s.dt / k)
             .max(res_f)
             .max(1e-12);
-        let k = self.k_g.max(1e-9);
         let rel = match self.p {
             None => {
                 // 6/1: the body's free-body diagram over the step, from the shared frame.
@@ -179,7 +186,7 @@ impl FrameProbe for NewtonEuler {
                 beyond(worst, res_p) / (fs * k.max((b.com - p).length()))
             }
         };
-        if rel > self.rel.max || self.rel.samples == 0 {
+        if self.rel.covers(s.time) && (rel > self.rel.max || self.rel.samples == 0) {
             self.f_scale = fs;
         }
         self.rel.add(rel, s.time);

@@ -162,17 +162,66 @@ pub(super) fn result(def: &CheckDef, subject: String, s: Summary) -> CheckResult
     }
 }
 
-/// Largest-error bookkeeping with a scale known only at the end of the run.
-#[derive(Debug, Clone, Default)]
+/// Largest-error bookkeeping with a scale known only at the end of the run, over the check's
+/// `window` (every kind takes one): samples outside it are not counted.
+#[derive(Debug, Clone)]
 pub(super) struct Worst {
     pub max: f64,
     pub last: f64,
     pub at_time: f64,
     pub samples: u64,
+    /// [t1, t2] in s; the whole run by default.
+    window: (f64, f64),
+    /// For a running balance (the work-energy ledger): errors are taken from the balance's
+    /// value at the window's first sample, so a window measures the balance over [t1', t] as
+    /// the textbook writes it between two positions (T1 + V1 + U'12 = T2 + V2), not what
+    /// happened before it.
+    from_window_start: Option<Option<f64>>,
+}
+
+impl Default for Worst {
+    fn default() -> Self {
+        Worst {
+            max: 0.0,
+            last: 0.0,
+            at_time: 0.0,
+            samples: 0,
+            window: (f64::NEG_INFINITY, f64::INFINITY),
+            from_window_start: None,
+        }
+    }
 }
 
 impl Worst {
+    /// Bookkeeping over the check's `window` (the whole run without one).
+    pub fn over(def: &CheckDef) -> Self {
+        Worst {
+            window: window_of(def),
+            ..Worst::default()
+        }
+    }
+
+    /// As [`Worst::over`], for a running balance whose error is counted from the window's start.
+    pub fn over_from_start(def: &CheckDef) -> Self {
+        Worst {
+            from_window_start: def.window.map(|_| None),
+            ..Worst::over(def)
+        }
+    }
+
+    /// Whether time `t` (a step's end) lies in the window.
+    pub fn covers(&self, t: f64) -> bool {
+        in_window(self.window, t)
+    }
+
     pub fn add(&mut self, err: f64, time: f64) {
+        if !self.covers(time) {
+            return;
+        }
+        let err = match &mut self.from_window_start {
+            Some(base) => err - *base.get_or_insert(err),
+            None => err,
+        };
         let err = if err.is_nan() {
             f64::INFINITY
         } else {
@@ -185,6 +234,24 @@ impl Worst {
         self.last = err;
         self.samples += 1;
     }
+}
+
+/// A check's window [t1, t2] in s, the whole run without one.
+pub(super) fn window_of(def: &CheckDef) -> (f64, f64) {
+    def.window.unwrap_or((f64::NEG_INFINITY, f64::INFINITY))
+}
+
+/// Whether a step ending at `t` is inside `window`; a window's ends are step times typed in
+/// decimal, so they carry a nanosecond of slack for the float sum of the steps.
+pub(super) fn in_window(window: (f64, f64), t: f64) -> bool {
+    t >= window.0 - 1e-9 && t <= window.1 + 1e-9
+}
+
+/// " over the window [t1, t2] s" for a note, or nothing.
+pub(super) fn window_note(def: &CheckDef) -> String {
+    def.window
+        .map(|(a, b)| format!("; compared over the window [{a}, {b}] s"))
+        .unwrap_or_default()
 }
 
 /// A positive scale: the given one, or `fallback` when it is zero or not finite.

@@ -68,8 +68,8 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
         index: None,
         set: BodySet::default(),
         set_joints: Vec::new(),
-        worst: Worst::default(),
-        rel: Worst::default(),
+        worst: Worst::over(def),
+        rel: Worst::over(def),
         scale_at_worst: 0.0,
         max_moment: 0.0,
         max_reaction_moment: 0.0,
@@ -242,6 +242,7 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         index: None,
         resolved: false,
         ledger: None,
+        // Its own windows (every [t1', t2'] inside `window`, see `ImpulseMomentumLedger`).
         g_worst: Worst::default(),
         h_worst: Worst::default(),
         g_scale: 0.0,

@@ -77,7 +77,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         o: def.point.map(v2),
         index: None,
         before: None,
-        worst: Worst::default(),
+        worst: Worst::over(def),
         blow: 0.0,
         max_moment: 0.0,
         q: 0.0,

@@ -30,14 +30,11 @@ pub(super) fn check(v: &V, i: usize, c: &CheckDef) -> R {
         ));
     }
     if let Some((t1, t2)) = c.window {
-        if c.kind != CheckKind::ImpulseMomentum {
+        if c.kind == CheckKind::MassProperties {
             return Err(v.err(
                 pos,
-                format!(
-                    "check {} has a `window`; only impulse_momentum takes one",
-                    c.kind.name()
-                ),
-                "remove `window`, or make the check `kind: impulse_momentum`",
+                "check mass_properties has a `window`: mass properties do not change in time",
+                "remove `window`",
             ));
         }
         v.non_negative(t1, "check window start", "s", pos)?;
