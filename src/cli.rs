@@ -84,6 +84,18 @@ pub struct SolverArgs {
     /// (runner::COST_BUDGET), which otherwise refuses the run.
     #[arg(long)]
     pub allow_long: bool,
+    /// The engine's floating point: f32 (rapier2d) or f64 (rapier2d-f64); default: the
+    /// level's world.precision.
+    #[arg(long, value_parser = parse_precision)]
+    pub precision: Option<level::Precision>,
+}
+
+fn parse_precision(s: &str) -> Result<level::Precision, String> {
+    match s {
+        "f32" => Ok(level::Precision::F32),
+        "f64" => Ok(level::Precision::F64),
+        _ => Err(format!("\"{s}\": write f32 or f64")),
+    }
 }
 
 impl SolverArgs {
@@ -120,6 +132,7 @@ impl SolverArgs {
             solver_iterations: self.iterations,
             all_effects: self.all_effects,
             substepping: None,
+            precision: self.precision,
         })
     }
 }

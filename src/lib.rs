@@ -25,6 +25,7 @@ pub mod questions;
 pub mod report;
 pub mod runner;
 pub mod sim;
+pub mod simulation;
 pub mod snapshot;
 pub mod study;
 

@@ -8,7 +8,8 @@ use crate::checks::{CheckResult, CheckSet};
 use crate::level::{self, Level, LevelError, Scene};
 use crate::questions::{initial_in_f64, LevelFacts, QuestionProbe, QuestionResult};
 use crate::report::LevelReport;
-use crate::sim::{Options, SimError, Simulation};
+use crate::sim::{Options, SimError};
+use crate::simulation::AnySimulation;
 use crate::snapshot::Snapshot;
 use std::collections::HashMap;
 use std::path::Path;
@@ -152,7 +153,7 @@ pub fn run_scene(
     answers: &HashMap<String, f64>,
     mut each: impl FnMut(&Snapshot),
 ) -> Result<LevelReport, RunError> {
-    let mut sim = Simulation::new(scene, opts);
+    let mut sim = AnySimulation::new(scene, opts);
     let mut observers = Observers::new(&sim.level);
     let start = Instant::now();
     let mut steps = 0;

@@ -60,34 +60,7 @@ fn f32_precision() -> Precision {
     Precision::F32
 }
 
-/// Floating-point precision of the engine (rapier2d or rapier2d-f64).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Precision {
-    F32,
-    F64,
-}
-
-impl Precision {
-    /// Machine epsilon: the relative spacing of numbers near 1. A velocity v held in this
-    /// precision changes in steps of about |v| epsilon, so a force read from velocity
-    /// differences over a step is resolved only to m |v| epsilon / dt per rounding.
-    pub fn epsilon(self) -> f64 {
-        match self {
-            Precision::F32 => f32::EPSILON as f64,
-            Precision::F64 => f64::EPSILON,
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Precision::F32 => "f32",
-            Precision::F64 => "f64",
-        }
-    }
-}
-
-pub use crate::level::{BodyKind, Coordinate};
+pub use crate::level::{BodyKind, Coordinate, Precision};
 
 /// One rigid body.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

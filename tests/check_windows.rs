@@ -69,7 +69,11 @@ fn constant_acceleration_covers_only_the_flight_in_its_window() {
             !r[0].passed && r[0].max_rel_error > 0.3,
             "{world}: the whole run includes the landing: {r:?}"
         );
-        assert!(r[1].passed, "{world}: the flight before landing: {:?}", r[1]);
+        assert!(
+            r[1].passed,
+            "{world}: the flight before landing: {:?}",
+            r[1]
+        );
         // From t1 = 0.2 s the closed form restarts from the state there: still the same fall.
         assert!(r[2].passed, "{world}: the flight from 0.2 s: {:?}", r[2]);
         assert!(r[1].note.contains("window [0, 0.6]"), "{}", r[1].note);
@@ -89,7 +93,11 @@ fn a_window_with_nothing_to_compare_fails_and_says_so() {
     );
     let r = checks(&text, &Options::default());
     assert!(!r[0].passed, "{r:?}");
-    assert!(r[0].note.contains("no impact began inside the window"), "{}", r[0].note);
+    assert!(
+        r[0].note.contains("no impact began inside the window"),
+        "{}",
+        r[0].note
+    );
 }
 
 /// A weightless bar 1 m long, pinned at its left end O = (0, 0), held at rest by two loads:
@@ -114,11 +122,21 @@ const STATIC_BAR: &str = r#"Level(title: "static bar", effects: [joints],
 
 #[test]
 fn newton_euler_measures_a_mechanism_at_rest_against_the_forces_that_balance() {
-    let report = runner::run_scene(&scene(STATIC_BAR), &Options::default(), &HashMap::new(), |_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    let report = runner::run_scene(
+        &scene(STATIC_BAR),
+        &Options::default(),
+        &HashMap::new(),
+        |_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let c = &report.checks[0];
     assert!(c.passed, "{c:?}");
     // The scale is the largest force of the diagram, Q = 200 N (rapier's f32 loads: 1e-6).
-    assert!((c.scale - 200.0).abs() < 1e-3, "scale {} (note {})", c.scale, c.note);
+    assert!(
+        (c.scale - 200.0).abs() < 1e-3,
+        "scale {} (note {})",
+        c.scale,
+        c.note
+    );
     assert!(report.questions[0].passed, "{:?}", report.questions[0]);
 }

@@ -1,4 +1,4 @@
-//! The physics plugin: the core [`Simulation`] stepped in `FixedUpdate` at the level's dt.
+//! The physics plugin: the core simulation ([`AnySimulation`], f32 or f64 as the level asks) stepped in `FixedUpdate` at the level's dt.
 //!
 //! One `FixedUpdate` = one `Simulation::step`, with `Time<Fixed>` set to the level's dt, so the
 //! window computes exactly the numbers `rigidlab check` computes (tests/app.rs asserts it bit for
@@ -12,7 +12,8 @@ use crate::checks::CheckResult;
 use crate::level::Scene;
 use crate::questions::QuestionResult;
 use crate::runner::Observers;
-use crate::sim::{Options, Simulation};
+use crate::sim::Options;
+use crate::simulation::AnySimulation;
 use crate::snapshot::Snapshot;
 use bevy::prelude::*;
 use glam::DVec2;
@@ -102,7 +103,7 @@ pub struct Physics {
     /// The level as played (spawned bodies and solver changes included).
     pub scene: Scene,
     pub options: Options,
-    pub sim: Simulation,
+    pub sim: AnySimulation,
     /// Bumped by every reset/rebuild, so views and checks know to start over.
     pub generation: u64,
     /// Bumped when the camera should refit: a new level, not a reset, a solver change or a
@@ -147,7 +148,7 @@ const SERIES_MAX: usize = 4000;
 
 impl Physics {
     pub fn new(scene: Scene, options: Options, paused: bool) -> Self {
-        let sim = Simulation::new(&scene, &options);
+        let sim = AnySimulation::new(&scene, &options);
         let initial = sim.snapshot().clone();
         let sim_initial = &initial;
         let mut p = Physics {
@@ -196,7 +197,7 @@ impl Physics {
 
     /// Back to t = 0 with the current scene and options.
     pub fn reset(&mut self) {
-        self.sim = Simulation::new(&self.scene, &self.options);
+        self.sim = AnySimulation::new(&self.scene, &self.options);
         self.generation += 1;
         self.error = None;
         self.steps_requested = 0;

@@ -5,7 +5,8 @@ use super::draw::{si, Drawing, Prim};
 use super::geometry::{self, Bounds, Outline};
 use super::physics::Physics;
 use crate::level::{JointKind, Level, Scene, Shape};
-use crate::sim::{Options, Simulation};
+use crate::sim::Options;
+use crate::simulation::AnySimulation;
 use crate::snapshot::{BodyKind, Snapshot};
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Viewport;
@@ -189,7 +190,7 @@ pub fn motion_bounds(scene: &Scene, options: &Options) -> Bounds {
         .map(|b| b.shape.as_ref().map(Outline::of).unwrap_or_default())
         .collect();
     let mut moving = Bounds::empty();
-    let mut sim = Simulation::new(scene, options);
+    let mut sim = AnySimulation::new(scene, options);
     let steps = sim
         .total_steps()
         .min((200_000 / level.bodies.len().max(1)) as u64)

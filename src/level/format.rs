@@ -114,6 +114,43 @@ impl Effect {
     }
 }
 
+/// Floating-point precision of the engine (rapier2d or rapier2d-f64).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Precision {
+    F32,
+    F64,
+}
+
+impl Precision {
+    /// Machine epsilon: the relative spacing of numbers near 1. A velocity v held in this
+    /// precision changes in steps of about |v| epsilon, so a force read from velocity
+    /// differences over a step is resolved only to m |v| epsilon / dt per rounding.
+    pub fn epsilon(self) -> f64 {
+        match self {
+            Precision::F32 => f32::EPSILON as f64,
+            Precision::F64 => f64::EPSILON,
+        }
+    }
+
+    pub fn is_f32(&self) -> bool {
+        *self == Precision::F32
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F64 => "f64",
+        }
+    }
+}
+
+impl Default for Precision {
+    fn default() -> Self {
+        Precision::F32
+    }
+}
+
 /// World and solver settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -136,6 +173,10 @@ pub struct World {
     /// that rapier puts on |omega| (off by default, like rapier).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub allow_fast_rotation: bool,
+    /// The engine's floating point: `f32` (rapier2d, the default, what games ship) or `f64`
+    /// (rapier2d-f64), for small motions far from the origin (docs/levels.md).
+    #[serde(skip_serializing_if = "Precision::is_f32")]
+    pub precision: Precision,
 }
 
 impl Default for World {
@@ -148,6 +189,7 @@ impl Default for World {
             duration: 2.0,
             contact_hz: None,
             allow_fast_rotation: false,
+            precision: Precision::F32,
         }
     }
 }

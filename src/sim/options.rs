@@ -13,6 +13,9 @@ pub struct Options {
     pub all_effects: bool,
     /// How substeps are taken (None: split where springs or joints need it, see `Settings`).
     pub substepping: Option<crate::sim::Substepping>,
+    /// The engine's floating point (None: the level's `world.precision`). Read by
+    /// [`crate::simulation::AnySimulation`], which builds the engine of that precision.
+    pub precision: Option<crate::level::Precision>,
 }
 
 /// The set of effects a world was built with.

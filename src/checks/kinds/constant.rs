@@ -1,7 +1,7 @@
 //! The closed-form constant-acceleration check (free fall, projectile).
 
 use super::super::{kind_name, CheckResult, ErrorTrack, Probe};
-use super::{in_window, window_of, window_note};
+use super::{in_window, window_note, window_of};
 use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;

@@ -58,6 +58,8 @@ impl Setting {
             solver_iterations: Some(self.iterations),
             all_effects: self.all_effects,
             substepping: None,
+            // The study builds each precision's engine itself (`with_engine!`).
+            precision: None,
         }
     }
 
