@@ -273,10 +273,16 @@ impl QuestionProbe {
             }
             When::ContactEnds { .. } => match event {
                 Some(PairEvent::Quiet) => {
-                    let imp = self.pair.as_ref().and_then(|p| p.impact.clone());
-                    let occ = match &imp {
-                        Some(i) => Occasion::PostImpact(i),
-                        None => {
+                    let pair = self.pair.as_ref();
+                    let imp = pair.and_then(|p| p.impact.clone());
+                    let lasting = pair.and_then(|p| p.not_impulsive());
+                    let occ = match (&imp, lasting) {
+                        (Some(i), None) => Occasion::PostImpact(i),
+                        (Some(_), Some(why)) => {
+                            self.note = why;
+                            Occasion::Plain
+                        }
+                        (None, _) => {
                             self.note = NO_IMPACT.into();
                             Occasion::Plain
                         }
