@@ -30,7 +30,7 @@ fn run_check(
     def: &CheckDef,
     mut tamper: impl FnMut(&mut Snapshot),
 ) -> CheckResult {
-    let mut sim = Simulation::new(sim_scene, &Options::default());
+    let mut sim = rigidlab::simulation::AnySimulation::new(sim_scene, &Options::default());
     let mut probe = probe_for(probe_level, def);
     sim.run(|s| {
         let mut s = s.clone();
@@ -368,4 +368,35 @@ fn newton_euler_about_the_pin_drops_the_reaction_and_fails_on_a_wrong_inertia() 
     let mut wrong = sc.level.clone();
     wrong.bodies[1].radius_of_gyration = Some(1.05 * (0.1669333f64 / 2.0).sqrt());
     assert_fails(&run_check(&sc, &wrong, &def, |_| {}));
+}
+
+const STATIC_CRANK: &str = "levels/virtual-work/zh_slider_crank_static_servo.ron";
+
+#[test]
+fn virtual_work_fails_when_the_gas_force_it_reads_is_not_the_one_the_servo_held() {
+    // Honest: the servo's torque is what virtual work gives for the gas force at the pose.
+    let sc = scene(STATIC_CRANK);
+    let def = check_of(&sc.level, CheckKind::VirtualWork);
+    assert_passes(&run_check(&sc, &sc.level, &def, |_| {}));
+    // The snapshot tells the probe the gas force was 10% smaller than the engine applied: the
+    // virtual power of the load falls 10% while the servo kept holding the real one.
+    let r = run_check(&sc, &sc.level, &def, |s| {
+        for l in s.loads.iter_mut() {
+            l.force *= 0.9;
+        }
+    });
+    assert_fails(&r);
+    assert!(r.max_rel_error > 0.05, "{}", r.max_rel_error);
+}
+
+#[test]
+fn virtual_work_passes_on_the_moving_mechanisms_of_the_library() {
+    for path in [
+        "levels/kinematics/classic_slider_crank.ron",
+        "levels/kinematics/classic_four_bar.ron",
+        "levels/virtual-work/zh_slider_slotted_arm.ron",
+        "levels/virtual-work/zh_four_bar_inverse_dynamics.ron",
+    ] {
+        assert_passes(&honest(path, CheckKind::VirtualWork));
+    }
 }

@@ -34,6 +34,7 @@ pub mod links;
 pub mod mass;
 pub mod momentum;
 pub mod percussion;
+pub mod virtual_work;
 
 use crate::snapshot::BodyState;
 use glam::DVec2;

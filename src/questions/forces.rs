@@ -149,12 +149,12 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                             next: Some(&w[i + 1]),
                             window: std::slice::from_ref(&w[i]),
                         };
-                        power_balance(m, &g, k)
+                        motor_effort(m, &g, k)
                     })
                     .collect();
                 (!vals.is_empty()).then(|| vals.iter().sum::<f64>() / vals.len() as f64)
             } else {
-                power_balance(m, f, k)
+                motor_effort(m, f, k)
             };
             (torque.x, analysis)
         }
@@ -254,6 +254,44 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
     let omega = w2.max(0.0).sqrt() * if b.omega < 0.0 { -1.0 } else { 1.0 };
     let a_g = r.perp() * alpha - r * omega * omega;
     Some(b.mass * a_g - force)
+}
+
+/// The motor's effort from the textbook: virtual work with the inertia forces (VW-2, VW-5; MK
+/// 6/11a), which holds at rest as in motion; where the joints do not make a one-degree-of-freedom
+/// mechanism of what the motor drives (a contact, a coupling, a free body), the power balance.
+fn motor_effort(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
+    virtual_work_effort(m, f, k).or_else(|| power_balance(m, f, k))
+}
+
+/// Virtual work for the motor of joint k (`analysis::virtual_work`): the virtual velocities of the
+/// mechanism at the sample for a unit rate of the joint, a_G and alpha by central differences of
+/// the engine's velocities, the applied forces held over the two steps around the sample.
+fn virtual_work_effort(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
+    use crate::analysis::virtual_work::{
+        actuator_effort, applied_forces, links_of, not_a_mechanism, virtual_velocities,
+    };
+    let s = f.cur;
+    let kinds: Vec<(JointKind, DVec2)> = m.facts.joints.iter().map(|j| (j.kind, j.axis)).collect();
+    let links = links_of(s, &kinds);
+    let field = virtual_velocities(&s.bodies, &links, k).ok()?;
+    if not_a_mechanism(s, &field).is_some() {
+        return None;
+    }
+    let mut acc = Vec::with_capacity(s.bodies.len());
+    for (i, b) in s.bodies.iter().enumerate() {
+        acc.push(if is_massive(b) {
+            let ax = f.rate(|x| Some(x.bodies[i].velocity.x))?;
+            let ay = f.rate(|x| Some(x.bodies[i].velocity.y))?;
+            (DVec2::new(ax, ay), f.rate(|x| Some(x.bodies[i].omega))?)
+        } else {
+            (DVec2::ZERO, 0.0)
+        });
+    }
+    let efforts: Vec<f64> = f
+        .steps()
+        .map(|x| actuator_effort(&s.bodies, &field, applied_forces(x, &links, k), Some(&acc)))
+        .collect();
+    (!efforts.is_empty()).then(|| efforts.iter().sum::<f64>() / efforts.len() as f64)
 }
 
 /// The one-degree-of-freedom power balance (RE-11): the motor's torque (force) times the

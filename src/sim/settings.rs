@@ -118,6 +118,7 @@ fn reads_joint_impulses(level: &Level) -> bool {
                 | K::AngularMomentumFixedPoint
                 | K::CenterOfPercussion
                 | K::WorkEnergy
+                | K::VirtualWork
         )
     }) || level.questions.iter().any(|q| {
         matches!(

@@ -17,6 +17,7 @@
 //! | `work_energy` | E(0) + U' (non-conservative work) | T + V_g + V_e of rapier's state | energy that flows |
 //! | `impulse_momentum` | G(0) + integral sum F dt (and H_O) | G, H_O of rapier's state | max G, H_O |
 //! | `restitution` | e set in the level (or H_C conserved when eccentric) | e from velocities (or H_C after) | 1 (or H_C before) |
+//! | `virtual_work` | the actuator effort by virtual work with inertia forces (VW-2, VW-5) | the motor's impulse / dt | max motor effort |
 
 mod constant;
 mod energy;
@@ -25,6 +26,7 @@ mod kinetics;
 mod mass;
 mod momentum;
 mod percussion;
+mod virtual_work;
 
 use super::{kind_name, CheckResult, Probe};
 use crate::analysis::frame::FrameAnalysis;
@@ -99,6 +101,7 @@ pub fn probe_for(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         CheckKind::NewtonEuler => kinetics::probe(level, def),
         CheckKind::CenterOfPercussion => percussion::probe(level, def),
         CheckKind::Restitution => impact::probe(level, def),
+        CheckKind::VirtualWork => virtual_work::probe(level, def),
     }
 }
 

@@ -44,6 +44,8 @@ pub enum CheckKind {
     WorkEnergy,
     ImpulseMomentum,
     Restitution,
+    /// A one-degree-of-freedom mechanism's motor against virtual work (VW-2, VW-5).
+    VirtualWork,
 }
 
 impl CheckKind {
@@ -60,6 +62,7 @@ impl CheckKind {
             CheckKind::WorkEnergy => "work_energy",
             CheckKind::ImpulseMomentum => "impulse_momentum",
             CheckKind::Restitution => "restitution",
+            CheckKind::VirtualWork => "virtual_work",
         }
     }
 }
