@@ -224,6 +224,14 @@ pub struct SpringState {
     /// Where the force acted on body1 / body2 during the step (start-of-step positions), m.
     pub applied_at1: DVec2,
     pub applied_at2: DVec2,
+    /// A torsion spring (`Level::torsion_springs`): then `length` is the relative angle
+    /// theta = angle1 - angle2 (rad), `extension` its deflection from rest, `tension` the
+    /// spring's moment k x + c dx/dt (N m), `couple_on_body1` = -tension the couple held on
+    /// body1 during the step (body2 gets the opposite), and there is no force.
+    #[serde(default)]
+    pub torsion: bool,
+    #[serde(default)]
+    pub couple_on_body1: f64,
 }
 
 /// An applied load held constant over the step.

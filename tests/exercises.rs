@@ -11,7 +11,8 @@
 
 use rigidlab::level::{self, Scene};
 use rigidlab::questions::{QuestionProbe, QuestionResult};
-use rigidlab::sim::{Options, Simulation};
+use rigidlab::sim::Options;
+use rigidlab::simulation::AnySimulation;
 use std::path::{Path, PathBuf};
 
 fn level_files(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -43,7 +44,7 @@ fn all_levels() -> Vec<PathBuf> {
 
 /// Runs a level and returns its question probes, ready to be finished.
 fn run(scene: &Scene) -> Vec<QuestionProbe> {
-    let mut sim = Simulation::new(scene, &Options::default());
+    let mut sim = AnySimulation::new(scene, &Options::default());
     let mut probes: Vec<QuestionProbe> = scene
         .level
         .questions

@@ -10,7 +10,7 @@ const G: f64 = 9.81;
 
 fn run(path: &str, opts: &Options) -> Vec<Snapshot> {
     let scene = level::load(Path::new(path)).unwrap_or_else(|e| panic!("{e}"));
-    let mut sim = Simulation::new(&scene, opts);
+    let mut sim = rigidlab::simulation::AnySimulation::new(&scene, opts);
     let mut out = Vec::new();
     sim.run(|s| out.push(s.clone())).unwrap();
     out

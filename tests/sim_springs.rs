@@ -137,3 +137,43 @@ fn per_substep_springs_cost() {
         a / b
     );
 }
+
+/// Two free discs joined by a torsion spring (no gravity): the couples are equal and opposite,
+/// so H = I1 w1 + I2 w2 stays 0, and the relative angle theta = a1 - a2 swings as
+/// theta0 cos(w_n t) with w_n = sqrt(k (1/I1 + 1/I2)) (two-rotor torsional vibration).
+#[test]
+fn a_torsion_spring_between_two_discs_swings_at_the_two_rotor_frequency_and_keeps_h() {
+    let (i1, i2, k, th0) = (0.04f64, 0.01f64, 4.0f64, 0.3f64);
+    let text = format!(
+        r#"Level(title: "two rotors", effects: [springs],
+        world: (dt: 0.0005, substeps: 4, duration: 0.2),
+        bodies: [
+            (name: "a", shape: Circle(radius: 0.2), mass: 2.0, angle: {th0}),
+            (name: "b", shape: Circle(radius: 0.1), mass: 2.0, position: (1.0, 0.0)),
+        ],
+        torsion_springs: [(name: "shaft", body1: "a", body2: "b", stiffness: {k}, rest_angle: Some(0.0))])"#
+    );
+    let scene = rigidlab::level::parse(std::path::Path::new("t.ron"), &text).unwrap();
+    let mut sim = rigidlab::sim::Simulation::new(&scene, &rigidlab::sim::Options::default());
+    let w_n = (k * (1.0 / i1 + 1.0 / i2)).sqrt();
+    let quarter = std::f64::consts::FRAC_PI_2 / w_n;
+    let (mut prev_theta, mut prev_t, mut crossing) = (th0, 0.0, None);
+    sim.run(|s| {
+        let (a, b) = (&s.bodies[0], &s.bodies[1]);
+        let h = a.inertia * a.omega + b.inertia * b.omega;
+        // rapier's f32 velocities: H holds to their rounding, 1e-6 of I1 w_max.
+        assert!(h.abs() < 1e-6 * i1 * th0 * w_n, "t = {}: H = {h}", s.time);
+        let theta = a.angle - b.angle;
+        if crossing.is_none() && prev_theta > 0.0 && theta <= 0.0 {
+            crossing = Some(prev_t + (s.time - prev_t) * prev_theta / (prev_theta - theta));
+        }
+        (prev_theta, prev_t) = (theta, s.time);
+    })
+    .unwrap();
+    let t = crossing.expect("theta crosses 0");
+    // Symplectic Euler's phase error at w_n h = 22.4 x 1.25e-4 = 2.8e-3: under 1e-3 of T/4.
+    assert!(
+        (t - quarter).abs() < 1e-3 * quarter,
+        "first zero at {t}, expected {quarter}"
+    );
+}

@@ -429,16 +429,24 @@ impl Pass<'_> {
             }
         }
         for sp in &snap.springs {
+            // A linear spring's force at each end, or a torsion spring's couple.
             let ends = [
-                (sp.body1, sp.body2, sp.applied_at1, sp.force_on_body1),
+                (
+                    sp.body1,
+                    sp.body2,
+                    sp.applied_at1,
+                    sp.force_on_body1,
+                    sp.couple_on_body1,
+                ),
                 (
                     sp.body2.unwrap_or(usize::MAX),
                     Some(sp.body1),
                     sp.applied_at2,
                     -sp.force_on_body1,
+                    -sp.couple_on_body1,
                 ),
             ];
-            for (i, other, p, force) in ends {
+            for (i, other, p, force, couple) in ends {
                 if i == usize::MAX || !self.has_mass(i) {
                     continue;
                 }
@@ -449,7 +457,7 @@ impl Pass<'_> {
                 let work = (!ground).then_some((Slot::Other, !internal));
                 let arm = p - start(self, i);
                 let at = self.g_point(i) + arm;
-                self.add(i, force * dt, at, arm, 0.0, internal, work);
+                self.add(i, force * dt, at, arm, couple * dt, internal, work);
             }
         }
         for e in &snap.impulses {

@@ -263,7 +263,7 @@ fn visit_impulses(
                 Source::Spring(k),
                 s.applied_at1,
                 s.force_on_body1,
-                0.0,
+                s.couple_on_body1,
                 s.body2,
             ));
         }
@@ -274,7 +274,7 @@ fn visit_impulses(
                 Source::Spring(k),
                 s.applied_at2,
                 -s.force_on_body1,
-                0.0,
+                -s.couple_on_body1,
                 Some(s.body1),
             ));
         }

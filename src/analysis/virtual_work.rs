@@ -267,14 +267,14 @@ pub fn applied_forces(snap: &Snapshot, links: &[Link], driver: usize) -> Vec<App
             body: sp.body1,
             force: sp.force_on_body1,
             point: sp.applied_at1,
-            couple: 0.0,
+            couple: sp.couple_on_body1,
         });
         if let Some(b2) = sp.body2 {
             out.push(Applied {
                 body: b2,
                 force: -sp.force_on_body1,
                 point: sp.applied_at2,
-                couple: 0.0,
+                couple: -sp.couple_on_body1,
             });
         }
     }

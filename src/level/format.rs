@@ -43,6 +43,9 @@ pub struct Level {
     pub joints: Vec<JointDef>,
     #[serde(default)]
     pub springs: Vec<SpringDef>,
+    /// Torsion springs (rotational spring-dampers between two bodies or a body and the ground).
+    #[serde(default)]
+    pub torsion_springs: Vec<TorsionSpringDef>,
     /// Ratio constraints: pulleys, cables on drums, gears, racks (need `joints`).
     #[serde(default)]
     pub couplings: Vec<CouplingDef>,
@@ -415,6 +418,28 @@ pub struct SpringDef {
     /// Rest (unstretched) length, m.
     pub rest_length: f64,
     /// Viscous damping c, N s/m (needs `damping`).
+    #[serde(default)]
+    pub damping: f64,
+}
+
+/// A torsion spring-damper applied as couples by rigidlab: on body1 the couple
+/// -k (theta - theta_rest) - c dtheta/dt, theta = angle1 - angle2 (angle2 = 0 for the ground);
+/// body2 gets the opposite. V_e = 1/2 k (theta - theta_rest)^2.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TorsionSpringDef {
+    pub name: String,
+    pub body1: String,
+    /// None: the spring's other end is held by the ground.
+    #[serde(default)]
+    pub body2: Option<String>,
+    /// Stiffness k, N m/rad.
+    pub stiffness: f64,
+    /// The relative angle theta at which it exerts no couple, rad (None: the one the level
+    /// starts with).
+    #[serde(default)]
+    pub rest_angle: Option<f64>,
+    /// Viscous damping c, N m s/rad (needs `damping`).
     #[serde(default)]
     pub damping: f64,
 }

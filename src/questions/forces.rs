@@ -233,10 +233,10 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
         for sp in &x.springs {
             if sp.body1 == mb {
                 fl += sp.force_on_body1;
-                ml += cross(sp.applied_at1 - o, sp.force_on_body1);
+                ml += cross(sp.applied_at1 - o, sp.force_on_body1) + sp.couple_on_body1;
             } else if sp.body2 == Some(mb) {
                 fl -= sp.force_on_body1;
-                ml += cross(sp.applied_at2 - o, -sp.force_on_body1);
+                ml += cross(sp.applied_at2 - o, -sp.force_on_body1) - sp.couple_on_body1;
             }
         }
         count += 1.0;
@@ -343,11 +343,13 @@ fn power_balance(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
         for sp in &x.springs {
             p_held += sp
                 .force_on_body1
-                .dot(point_velocity(&s.bodies[sp.body1], sp.point1));
+                .dot(point_velocity(&s.bodies[sp.body1], sp.point1))
+                + sp.couple_on_body1 * s.bodies[sp.body1].omega;
             if let Some(b2) = sp.body2 {
                 p_held -= sp
                     .force_on_body1
-                    .dot(point_velocity(&s.bodies[b2], sp.point2));
+                    .dot(point_velocity(&s.bodies[b2], sp.point2))
+                    + sp.couple_on_body1 * s.bodies[b2].omega;
             }
         }
         n += 1.0;

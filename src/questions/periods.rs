@@ -65,7 +65,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                     let sp = init
                         .springs
                         .iter()
-                        .find(|x| x.body1 == i || x.body2 == Some(i));
+                        .find(|x| !x.torsion && (x.body1 == i || x.body2 == Some(i)));
                     m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
                     if let Some(a) = m.spring_axis {
                         m.crossings.add(prev.time, prev.bodies[i].velocity.dot(a));
@@ -96,7 +96,9 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 .springs
                 .iter()
                 .chain(&s.springs)
-                .filter(|x| (x.body1 == i || x.body2 == Some(i)) && x.extension.abs() > 1e-9)
+                .filter(|x| {
+                    !x.torsion && (x.body1 == i || x.body2 == Some(i)) && x.extension.abs() > 1e-9
+                })
                 .map(|x| (x.name.clone(), 2.0 * x.energy / (x.extension * x.extension)))
                 .fold(Vec::<(String, f64)>::new(), |mut v, (n, k)| {
                     if !v.iter().any(|(m, _)| *m == n) {

@@ -26,10 +26,10 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         }
         Quantity::SpringWork(name) => {
             if let Some(sp) = s.springs.iter().find(|x| &x.name == name) {
-                m.engine_sum +=
-                    held_work(prev, s, sp.body1, sp.force_on_body1, sp.applied_at1, 0.0);
+                let c = sp.couple_on_body1;
+                m.engine_sum += held_work(prev, s, sp.body1, sp.force_on_body1, sp.applied_at1, c);
                 if let Some(b2) = sp.body2 {
-                    m.engine_sum += held_work(prev, s, b2, -sp.force_on_body1, sp.applied_at2, 0.0);
+                    m.engine_sum += held_work(prev, s, b2, -sp.force_on_body1, sp.applied_at2, -c);
                 }
             }
         }
@@ -173,9 +173,23 @@ pub(super) fn path_work(prev: &Snapshot, s: &Snapshot, i: usize, ground: bool) -
             continue;
         }
         if sp.body1 == i {
-            w += held_work(prev, s, i, sp.force_on_body1, sp.applied_at1, 0.0);
+            w += held_work(
+                prev,
+                s,
+                i,
+                sp.force_on_body1,
+                sp.applied_at1,
+                sp.couple_on_body1,
+            );
         } else if sp.body2 == Some(i) {
-            w += held_work(prev, s, i, -sp.force_on_body1, sp.applied_at2, 0.0);
+            w += held_work(
+                prev,
+                s,
+                i,
+                -sp.force_on_body1,
+                sp.applied_at2,
+                -sp.couple_on_body1,
+            );
         }
     }
     w

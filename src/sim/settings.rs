@@ -82,7 +82,8 @@ impl Settings {
     /// every substep) and joints or welds whose impulses a check or question reads (summed over
     /// every substep). Other scenes keep rapier's internal substeps, which cost less.
     fn substepping_for(level: &Level, effects: &Effects, substeps: usize) -> Substepping {
-        let springs = effects.has(Effect::Springs) && !level.springs.is_empty();
+        let springs = effects.has(Effect::Springs)
+            && !(level.springs.is_empty() && level.torsion_springs.is_empty());
         let welds = level
             .events
             .iter()

@@ -33,6 +33,8 @@ pub struct Simulation {
     pub(super) pending_welds: Vec<(String, usize, usize)>,
     /// Bodies that loads or springs act on (their forces are reset every step).
     pub(super) forced_bodies: Vec<usize>,
+    /// Each torsion spring's rest angle, rad (its own, or the relative angle at t = 0).
+    pub(super) torsion_rest: Vec<f64>,
     /// Energy-explosion guard (see `sim::energy`).
     pub energy: EnergyGuard,
 }
@@ -103,6 +105,7 @@ impl Simulation {
             carriers: Vec::new(),
             pending_welds: Vec::new(),
             forced_bodies: Vec::new(),
+            torsion_rest: Vec::new(),
             energy: EnergyGuard::default(),
         };
         sim.joint_defs = if sim.settings.effects.has(Effect::Joints) {
@@ -131,6 +134,10 @@ impl Simulation {
             forced.push(sim.body_index[&s.body1]);
             forced.extend(s.body2.as_ref().map(|b| sim.body_index[b]));
         }
+        for t in &sim.level.torsion_springs {
+            forced.push(sim.body_index[&t.body1]);
+            forced.extend(t.body2.as_ref().map(|b| sim.body_index[b]));
+        }
         sim.carriers = sim
             .level
             .couplings
@@ -142,6 +149,15 @@ impl Simulation {
         forced.dedup();
         sim.forced_bodies = forced;
         sim.read_bodies();
+        sim.torsion_rest = sim
+            .level
+            .torsion_springs
+            .iter()
+            .map(|t| {
+                t.rest_angle
+                    .unwrap_or_else(|| sim.relative_angle(&t.body1, t.body2.as_deref()).0)
+            })
+            .collect();
         sim.snapshot.springs = sim.spring_states(false);
         sim.coupling_rest = sim
             .level
@@ -276,16 +292,25 @@ impl Simulation {
             let mut now = self.spring_states(true);
             for s in &now {
                 let rb1 = &mut self.world.bodies[self.bodies[s.body1]];
-                rb1.add_force_at_point(vd(s.force_on_body1), vd(s.applied_at1), true);
+                if s.torsion {
+                    rb1.add_torque(s.couple_on_body1 as Real, true);
+                } else {
+                    rb1.add_force_at_point(vd(s.force_on_body1), vd(s.applied_at1), true);
+                }
                 if let Some(b2) = s.body2 {
                     let rb2 = &mut self.world.bodies[self.bodies[b2]];
-                    rb2.add_force_at_point(vd(-s.force_on_body1), vd(s.applied_at2), true);
+                    if s.torsion {
+                        rb2.add_torque(-s.couple_on_body1 as Real, true);
+                    } else {
+                        rb2.add_force_at_point(vd(-s.force_on_body1), vd(s.applied_at2), true);
+                    }
                 }
             }
             // The snapshot reports the mean force over the step (its impulse / dt).
             for sp in now.iter_mut() {
                 sp.force_on_body1 /= calls as f64;
                 sp.tension /= calls as f64;
+                sp.couple_on_body1 /= calls as f64;
             }
             if call == 0 {
                 springs = now;
@@ -293,6 +318,7 @@ impl Simulation {
                 for (a, b) in springs.iter_mut().zip(&now) {
                     a.force_on_body1 += b.force_on_body1;
                     a.tension += b.tension;
+                    a.couple_on_body1 += b.couple_on_body1;
                 }
             }
             // rapier builds a substep's joint rows from the poses it starts from: keep them,
@@ -345,6 +371,7 @@ impl Simulation {
             .map(|(held, now)| SpringState {
                 force_on_body1: held.force_on_body1,
                 tension: held.tension,
+                couple_on_body1: held.couple_on_body1,
                 applied_at1: held.applied_at1,
                 applied_at2: held.applied_at2,
                 ..now
@@ -486,9 +513,57 @@ impl Simulation {
                 force_on_body1: if with_force { u * tension } else { DVec2::ZERO },
                 applied_at1: p1,
                 applied_at2: p2,
+                torsion: false,
+                couple_on_body1: 0.0,
+            });
+        }
+        for (k, t) in self.level.torsion_springs.iter().enumerate() {
+            let (theta, rate) = self.relative_angle(&t.body1, t.body2.as_deref());
+            let x = theta - self.torsion_rest.get(k).copied().unwrap_or(theta);
+            let c = if self.settings.effects.has(Effect::Damping) {
+                t.damping
+            } else {
+                0.0
+            };
+            // The spring's moment M = k x + c dx/dt turns body1 back toward rest.
+            let moment = t.stiffness * x + c * rate;
+            let i1 = self.body_index[&t.body1];
+            let g1 = self.snapshot.bodies[i1].com;
+            out.push(SpringState {
+                name: t.name.clone(),
+                body1: i1,
+                body2: t.body2.as_ref().map(|b| self.body_index[b]),
+                point1: g1,
+                point2: g1,
+                length: theta,
+                extension: x,
+                tension: if with_force { moment } else { 0.0 },
+                energy: 0.5 * t.stiffness * x * x,
+                force_on_body1: DVec2::ZERO,
+                applied_at1: g1,
+                applied_at2: g1,
+                torsion: true,
+                couple_on_body1: if with_force { -moment } else { 0.0 },
             });
         }
         out
+    }
+
+    /// A torsion spring's relative angle theta = angle1 - angle2 (angle2 = 0 for the ground),
+    /// continuous from the last snapshot's angles, and its rate, from rapier's current state.
+    fn relative_angle(&self, body1: &str, body2: Option<&str>) -> (f64, f64) {
+        let angle = |name: &str| {
+            let i = self.body_index[name];
+            let rb = &self.world.bodies[self.bodies[i]];
+            let prev = self.snapshot.bodies.get(i).map_or(0.0, |b| b.angle);
+            (
+                prev + wrap_pi(rb.rotation().angle() as f64 - prev),
+                rb.angvel() as f64,
+            )
+        };
+        let (a1, w1) = angle(body1);
+        let (a2, w2) = body2.map_or((0.0, 0.0), angle);
+        (a1 - a2, w1 - w2)
     }
 }
 

@@ -248,7 +248,10 @@ pub(super) fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field
     let known = match kind {
         "body" => l.bodies.iter().any(|b| b.name == name),
         "joint" => l.joints.iter().any(|j| j.name == name),
-        "spring" => l.springs.iter().any(|s| s.name == name),
+        "spring" => {
+            l.springs.iter().any(|s| s.name == name)
+                || l.torsion_springs.iter().any(|t| t.name == name)
+        }
         "load" => l.loads.iter().any(|x| x.name == name),
         "coupling" => l.couplings.iter().any(|x| x.name == name),
         _ => l.events.iter().any(|e| e.name() == name),

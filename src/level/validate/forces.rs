@@ -121,6 +121,49 @@ pub(super) fn spring(v: &V, s: &SpringDef) -> R {
     Ok(())
 }
 
+pub(super) fn torsion_spring(v: &V, t: &TorsionSpringDef) -> R {
+    let at = |f: &str| v.loc.field_pos("torsion_springs", &t.name, f);
+    v.need(
+        Effect::Springs,
+        v.loc.item_pos("torsion_springs", &t.name),
+        &format!("torsion spring \"{}\" is defined", t.name),
+    )?;
+    v.body_ref(&t.body1, "torsion_springs", &t.name, "body1")?;
+    if let Some(b2) = &t.body2 {
+        v.body_ref(b2, "torsion_springs", &t.name, "body2")?;
+        if *b2 == t.body1 {
+            return Err(v.err(
+                at("body2"),
+                "a torsion spring joins a body to itself",
+                "name two different bodies, or leave body2 out to hold it by the ground",
+            ));
+        }
+    }
+    v.positive(
+        t.stiffness,
+        &format!("torsion spring \"{}\" stiffness", t.name),
+        "N m/rad",
+        at("stiffness"),
+    )?;
+    if let Some(r) = t.rest_angle {
+        v.finite(r, "torsion spring rest_angle", at("rest_angle"))?;
+    }
+    v.non_negative(
+        t.damping,
+        &format!("torsion spring \"{}\" damping", t.name),
+        "N m s/rad",
+        at("damping"),
+    )?;
+    if t.damping > 0.0 {
+        v.need(
+            Effect::Damping,
+            at("damping"),
+            &format!("torsion spring \"{}\" has damping", t.name),
+        )?;
+    }
+    Ok(())
+}
+
 pub(super) fn profile_times<T>(v: &V, p: &Profile<T>, pos: (usize, usize)) -> R {
     if let Profile::Table(rows) = p {
         if rows.is_empty() {

@@ -160,7 +160,15 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
     world(&v)?;
     v.unique("bodies", level.bodies.iter().map(|b| b.name.as_str()))?;
     v.unique("joints", level.joints.iter().map(|j| j.name.as_str()))?;
-    v.unique("springs", level.springs.iter().map(|s| s.name.as_str()))?;
+    // Linear and torsion springs share one name space: a quantity names either.
+    v.unique(
+        "springs",
+        level
+            .springs
+            .iter()
+            .map(|s| s.name.as_str())
+            .chain(level.torsion_springs.iter().map(|t| t.name.as_str())),
+    )?;
     v.unique("couplings", level.couplings.iter().map(|c| c.name.as_str()))?;
     v.unique("loads", level.loads.iter().map(|l| l.name.as_str()))?;
     v.unique("events", level.events.iter().map(|e| e.name()))?;
@@ -180,6 +188,9 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
     }
     for s in &level.springs {
         spring(&v, s)?;
+    }
+    for t in &level.torsion_springs {
+        torsion_spring(&v, t)?;
     }
     for c in &level.couplings {
         coupling(&v, c)?;
