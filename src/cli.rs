@@ -32,9 +32,11 @@ pub enum Command {
         /// Print the JSON report instead of the table.
         #[arg(long)]
         json: bool,
-        /// Grade a student's answer to a question: --answer ID=VALUE (repeatable).
+        /// Grade a student's answer to a question: --answer ID=VALUE, with or without a unit
+        /// (v_D=523.4in/s, omega=62rad/s, T=79.7ft*lb/s), converted to the question's unit
+        /// (repeatable).
         #[arg(long = "answer", value_parser = parse_answer)]
-        answers: Vec<(String, f64)>,
+        answers: Vec<(String, String)>,
         #[command(flatten)]
         solver: SolverArgs,
     },
@@ -137,16 +139,37 @@ impl SolverArgs {
     }
 }
 
-fn parse_answer(s: &str) -> Result<(String, f64), String> {
+fn parse_answer(s: &str) -> Result<(String, String), String> {
     let (id, v) = s.split_once('=').ok_or("write --answer ID=VALUE")?;
-    let v: f64 = v
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{v}` is not a number"))?;
-    if !v.is_finite() {
-        return Err("the answer must be a finite number".into());
+    // The number is read now (a typo fails before any run); its unit once the question is known.
+    crate::questions::units::answer_in(v, "1").or_else(|e| {
+        if e.contains("does not start with a number") || e.contains("finite") {
+            Err(e)
+        } else {
+            Ok(0.0)
+        }
+    })?;
+    Ok((id.trim().to_string(), v.trim().to_string()))
+}
+
+/// The students' answers for one level, each converted to its question's unit.
+fn answers_for(
+    scene: &level::Scene,
+    answers: &HashMap<String, String>,
+) -> Result<HashMap<String, f64>, String> {
+    let mut out = HashMap::new();
+    for q in &scene.level.questions {
+        if let Some(text) = answers.get(&q.id) {
+            let v = crate::questions::units::answer_in(text, &q.unit).map_err(|e| {
+                format!(
+                    "error: --answer {}={text}: {e}\n  help: give the answer in {} or a unit of the same kind",
+                    q.id, q.unit
+                )
+            })?;
+            out.insert(q.id.clone(), v);
+        }
     }
-    Ok((id.trim().to_string(), v))
+    Ok(out)
 }
 
 const BAD_INPUT: u8 = 2;
@@ -176,7 +199,7 @@ fn bad(e: impl std::fmt::Display) -> ExitCode {
 fn check(
     paths: &[PathBuf],
     json: bool,
-    answer_list: Vec<(String, f64)>,
+    answer_list: Vec<(String, String)>,
     solver: &SolverArgs,
 ) -> ExitCode {
     let opts = match solver.options() {
@@ -185,7 +208,7 @@ fn check(
     };
     let mut answers = HashMap::new();
     for (id, v) in answer_list {
-        if let Some(first) = answers.insert(id.clone(), v) {
+        if let Some(first) = answers.insert(id.clone(), v.clone()) {
             return bad(format!(
                 "error: --answer {id} is given twice ({first} and {v})\n  help: give one answer per question"
             ));
@@ -199,14 +222,23 @@ fn check(
         return bad("no level files (*.ron) found in the given paths");
     }
     let mut bad_input = false;
+    let mut bad_answer = false;
     let mut levels = Vec::new();
     for f in &files {
         let run = load_warned(f)
             .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
             .map_err(RunError::Level)
             .and_then(|scene| {
+                let graded = match answers_for(&scene, &answers) {
+                    Ok(a) => a,
+                    Err(e) => {
+                        stderr!("{e}");
+                        bad_answer = true;
+                        HashMap::new()
+                    }
+                };
                 let bar = progress_bar(&scene, &opts);
-                let r = runner::run_scene(&scene, &opts, &answers, |s| tick(&bar, s.step));
+                let r = runner::run_scene(&scene, &opts, &graded, |s| tick(&bar, s.step));
                 if let Some(b) = bar {
                     b.finish_and_clear();
                 }
@@ -248,7 +280,7 @@ fn check(
         passed: levels.iter().all(|l| l.passed),
         levels,
     };
-    let code = if bad_input {
+    let code = if bad_input || bad_answer {
         ExitCode::from(BAD_INPUT)
     } else if report.passed {
         ExitCode::SUCCESS

@@ -361,6 +361,39 @@ mod cli {
     }
 
     #[test]
+    fn answers_may_carry_a_unit_converted_to_the_questions() {
+        // free_fall asks speed in m/s: 32.15 ft/s = 9.79932 m/s (0.3048 m/ft), within 1% of 9.80.
+        let (code, out, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=32.15ft/s",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(out.contains("student answer 9.79932 -> correct"), "{out}");
+        // A force for a speed: exit 2 with both dimensions and the question's unit.
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=9.8 N",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("`N` is kg m s^-2 but the question asks for m/s"),
+            "{err}"
+        );
+        let (code, _, err) = rigidlab(&[
+            "check",
+            "levels/kinematics/free_fall.ron",
+            "--answer",
+            "speed=9.8 furlong/s",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("unknown unit `furlong`"), "{err}");
+    }
+
+    #[test]
     fn an_answer_to_a_missing_question_is_bad_input() {
         let (code, _, err) = rigidlab(&[
             "check",

@@ -228,6 +228,7 @@ fn empty_scene() -> Scene {
             bodies: Vec::new(),
             joints: Vec::new(),
             springs: Vec::new(),
+            torsion_springs: Vec::new(),
             couplings: Vec::new(),
             loads: Vec::new(),
             events: Vec::new(),

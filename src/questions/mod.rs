@@ -46,6 +46,7 @@ mod result;
 mod rolling;
 mod sample;
 mod snapshot_reading;
+pub mod units;
 mod work_and_power;
 
 pub use level_facts::LevelFacts;

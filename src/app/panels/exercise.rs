@@ -108,16 +108,10 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st:
     }
 }
 
-/// Grades a typed answer with the level's own rule (the core's [`crate::questions::grade_answer`]).
+/// Grades a typed answer with the level's own rule (the core's [`crate::questions::grade_answer`]),
+/// after converting a unit typed with it (`523.4 in/s`) to the question's (`questions::units`).
 pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Result<(f64, f64, bool), String> {
-    let v: f64 = text
-        .trim()
-        .replace(',', ".")
-        .parse()
-        .map_err(|_| format!("`{}` is not a number", text.trim()))?;
-    if !v.is_finite() {
-        return Err("give a finite number".into());
-    }
+    let v = crate::questions::units::answer_in(text, &q.unit)?;
     let g = crate::questions::grade_answer(q, v);
     Ok((g.answer, g.rel_error, g.passed))
 }
