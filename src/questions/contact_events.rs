@@ -102,7 +102,7 @@ impl PairTracker {
         // "Pushing": a normal impulse above a millionth of the largest one of this contact, so that
         // round-off and position correction between bodies left resting together do not count.
         let touching = j > 1e-6 * self.peak.max(f64::MIN_POSITIVE) && j > 0.0;
-        if matches!(self.phase, ContactPhase::Before | ContactPhase::Touching) && touching {
+        if touching && !matches!(self.phase, ContactPhase::Released | ContactPhase::Again) {
             let weight = |i: usize| f.cur.bodies[i].mass * f.cur.gravity.length();
             self.contact_impulse += j;
             self.weight_impulse += (weight(b) + o.map_or(0.0, weight)) * f.cur.dt;
@@ -167,6 +167,11 @@ impl PairTracker {
                 self.weight_impulse, self.contact_impulse
             )
         })
+    }
+
+    /// The normal impulse the contact has transmitted since the touch, N s.
+    pub fn contact_impulse(&self) -> f64 {
+        self.contact_impulse
     }
 
     /// The contact has ended (or is quiet and may be ending at the end of the run).

@@ -21,7 +21,8 @@ pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
     match q {
         Quantity::ReboundHeight { body, other }
         | Quantity::Restitution { body, other }
-        | Quantity::EnergyLost { body, other } => Some(PairTracker::new(body, Some(other))),
+        | Quantity::EnergyLost { body, other }
+        | Quantity::ContactImpulse { body, other } => Some(PairTracker::new(body, Some(other))),
         _ => None,
     }
 }
@@ -102,6 +103,19 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                     .sum::<f64>()
             });
             (e(pre) - e(post), analysis)
+        }
+        Quantity::ContactImpulse { body: b, .. } => {
+            let i = m.body_index(s, b)?;
+            let p = p?;
+            // The impact solution's impulse on the body, m |v' - v|, when nothing else acts on
+            // it impulsively (no joint).
+            let jointed = s.joints.iter().any(|j| j.body1 == i || j.body2 == i);
+            let analysis = p
+                .impact
+                .as_ref()
+                .filter(|_| !jointed && p.not_impulsive().is_none())
+                .map(|imp| imp.pre[i].mass * (imp.post[i].velocity - imp.pre[i].velocity).length());
+            (p.contact_impulse(), analysis)
         }
         q => unreachable!("{q:?} is not an impact quantity"),
     })

@@ -17,6 +17,8 @@ pub(super) struct BodyInfo {
     pub friction: f64,
     /// Radius of a disc centered on the body origin (for the exact line of centers of an impact).
     pub disc: Option<f64>,
+    /// The textbook mass properties (the shape's formula with the level's mass or density).
+    pub textbook: crate::analysis::mass::MassProps,
 }
 
 /// A joint's kind, bodies and geometry, in the level's order (the snapshots' order too).
@@ -65,6 +67,7 @@ impl LevelFacts {
                         Some(Shape::Circle { radius }) => Some(*radius),
                         _ => None,
                     },
+                    textbook: crate::analysis::mass::of_body(b, crate::level::DEFAULT_DENSITY),
                 })
                 .collect(),
             joints: if has(Effect::Joints) {

@@ -1,12 +1,14 @@
 //! Linkage quantities: a link's angular velocity and the speed of one of its pins, analysed
 //! through the link's instantaneous center (RK-11) found from the velocities the neighbouring
-//! bodies give two of its pins.
+//! bodies give two of its pins; and where a body on a pin has its center of percussion (CP-1).
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::joint_index;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::analysis::kinematics::{instantaneous_center_from_two_points, omega_about_center};
+use crate::analysis::mass::parallel_axis;
+use crate::analysis::percussion::center_of_percussion_distance;
 use crate::level::{BodyKind, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -35,6 +37,25 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 point_velocity(l, p).length(),
                 ic.map(|(w, c)| (w * (p - c).length()).abs()),
             )
+        }
+        Quantity::PercussionDistance { body, joint } => {
+            let (i, b) = m.named_body(s, body)?;
+            let j = &s.joints[joint_index(s, joint)?];
+            let pin = if j.body2 == i { j.anchor } else { j.anchor1 };
+            let r_bar = (b.com - pin).length();
+            let q = |i_g: f64, mass: f64| {
+                center_of_percussion_distance(parallel_axis(i_g, mass, r_bar), mass, r_bar)
+            };
+            // The textbook's G: the formula's mass center carried to the body's pose.
+            let t = &m.facts.bodies.get(i)?.textbook;
+            let g_text = b.world_point(t.com);
+            let r_text = (g_text - pin).length();
+            let analysis = center_of_percussion_distance(
+                parallel_axis(t.inertia, t.mass, r_text),
+                t.mass,
+                r_text,
+            );
+            (q(b.inertia, b.mass)?, analysis)
         }
         q => unreachable!("{q:?} is not a linkage quantity"),
     })

@@ -8,6 +8,7 @@
 use super::free_body::newton_euler;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
+use crate::analysis::k_cross;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::analysis::kinematics::point_acceleration;
 use crate::level::Quantity;
@@ -105,6 +106,20 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             ((body(b)?.1.velocity - body(a)?.1.velocity).length(), None)
         }
         Quantity::RelativeAngle(a, b) => (body(b)?.1.angle - body(a)?.1.angle, None),
+        Quantity::RelativePointSpeed {
+            body: b,
+            point,
+            of,
+            of_point,
+        } => {
+            let (x, y) = (body(b)?.1, body(of)?.1);
+            let p = x.world_point(DVec2::new(point.0, point.1));
+            let q = y.world_point(DVec2::new(of_point.0, of_point.1));
+            let engine = (point_velocity(x, p) - point_velocity(y, q)).length();
+            // Two points of one rigid body: v_P/Q = omega k x r_P/Q (RK-5).
+            let analysis = (b == of).then(|| k_cross(x.omega, p - q).length());
+            (engine, analysis)
+        }
         q => unreachable!("{q:?} is not a motion quantity"),
     })
 }

@@ -11,7 +11,7 @@ use super::snapshot_reading::to_local;
 use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::level::Quantity;
-use crate::snapshot::Snapshot;
+use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 
 /// Accumulates the works over the step from `prev` to `s`.
@@ -114,6 +114,29 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 _ => occ.solved_state(i, s).map(|y| kinetic_energy(&y)),
             };
             (kinetic_energy(x), analysis)
+        }
+        Quantity::GroupKineticEnergy(names) | Quantity::GroupMomentum(names) => {
+            let mut idx = Vec::with_capacity(names.len());
+            for n in names {
+                idx.push(m.body_index(s, n)?);
+            }
+            let momentum = matches!(m.q, Quantity::GroupMomentum(_));
+            // Sum over the group, of the engine's states or of the impulse solution's.
+            let total = |state: &dyn Fn(usize) -> Option<BodyState>| -> Option<f64> {
+                let (mut t, mut g) = (0.0, DVec2::ZERO);
+                for &i in &idx {
+                    let b = state(i)?;
+                    t += kinetic_energy(&b);
+                    g += b.mass * b.velocity;
+                }
+                Some(if momentum { g.length() } else { t })
+            };
+            let engine = total(&|i| Some(s.bodies[i].clone()))?;
+            let analysis = match occ {
+                Occasion::Plain => None,
+                _ => total(&|i| occ.solved_state(i, s)),
+            };
+            (engine, analysis)
         }
         Quantity::GravityWork(b) => {
             let (i, x) = m.named_body(s, b)?;

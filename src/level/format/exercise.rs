@@ -264,6 +264,30 @@ pub enum Quantity {
     /// Mechanical energy (T + V_g) the pair loses across its first contact, J. Analysis: the
     /// kinetic-energy loss of the impulse-momentum solution (IM-14).
     EnergyLost { body: String, other: String },
+    /// The normal impulse the first contact of `body` with `other` has transmitted, from the
+    /// touch to the sample (the whole impact when read at `ContactEnds`), N s. Analysis, when the
+    /// contact began as an impact and `body` has no joint: m |v' - v| of `body` from the
+    /// impulse-momentum solution (IM-9).
+    ContactImpulse { body: String, other: String },
+    /// Speed of point `point` of `body` relative to point `of_point` of `of` (points in their
+    /// body frames), |v_P - v_Q|, m/s (v_D/B of a connecting rod). Analysis, for two points of one
+    /// body: |omega| |r_P/Q| (RK-5), with the engine's omega.
+    RelativePointSpeed {
+        body: String,
+        point: V2,
+        of: String,
+        of_point: V2,
+    },
+    /// Distance from the pin of `joint` to the center of percussion of `body` (a body turning
+    /// about that pin), m: q = k_O^2 / r_bar = (I_G + m r_bar^2) / (m r_bar) (CP-1). Engine: with
+    /// rapier's m and I_G and the engine's pin and G; analysis: with the shape formula's.
+    PercussionDistance { body: String, joint: String },
+    /// Kinetic energy of a group of bodies, sum of 1/2 m v^2 + 1/2 I w^2, J (a bar with the
+    /// bullet welded into it). Analysis at impacts and blows: the impulse-momentum solution's.
+    GroupKineticEnergy(Vec<String>),
+    /// Magnitude of the linear momentum of a group of bodies, |sum m v_G|, N s (6/12). Analysis
+    /// at impacts and blows: the impulse-momentum solution's.
+    GroupMomentum(Vec<String>),
 }
 
 /// The family a quantity belongs to: the file of `src/questions/` that reads it, so that adding
@@ -313,7 +337,8 @@ impl Quantity {
             | Q::PointAccel { .. }
             | Q::RelativeDistance(..)
             | Q::RelativeSpeed(..)
-            | Q::RelativeAngle(..) => F::Motion,
+            | Q::RelativeAngle(..)
+            | Q::RelativePointSpeed { .. } => F::Motion,
             Q::JointForce(_)
             | Q::ContactForce(_)
             | Q::ContactNormalForce { .. }
@@ -327,13 +352,18 @@ impl Quantity {
             | Q::SpringExtension(_)
             | Q::LoadWork(_)
             | Q::LoadPower(_)
-            | Q::FrictionWork { .. } => F::WorkAndPower,
+            | Q::FrictionWork { .. }
+            | Q::GroupKineticEnergy(_)
+            | Q::GroupMomentum(_) => F::WorkAndPower,
             Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => F::Periods,
             Q::RollingAcceleration { .. }
             | Q::RollingFriction { .. }
             | Q::RollingFrictionNeeded { .. } => F::Rolling,
-            Q::ReboundHeight { .. } | Q::Restitution { .. } | Q::EnergyLost { .. } => F::Impacts,
-            Q::LinkOmega { .. } | Q::PinSpeed { .. } => F::Linkages,
+            Q::ReboundHeight { .. }
+            | Q::Restitution { .. }
+            | Q::EnergyLost { .. }
+            | Q::ContactImpulse { .. } => F::Impacts,
+            Q::LinkOmega { .. } | Q::PinSpeed { .. } | Q::PercussionDistance { .. } => F::Linkages,
         }
     }
 

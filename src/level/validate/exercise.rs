@@ -143,13 +143,15 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         | Quantity::FrictionWork { .. }
         | Quantity::ReboundHeight { .. }
         | Quantity::Restitution { .. }
-        | Quantity::EnergyLost { .. } => needs(Effect::Contacts, "a contact quantity")?,
+        | Quantity::EnergyLost { .. }
+        | Quantity::ContactImpulse { .. } => needs(Effect::Contacts, "a contact quantity")?,
         Quantity::PendulumPeriod { .. }
         | Quantity::LinkOmega { .. }
         | Quantity::PinSpeed { .. }
         | Quantity::JointReaction { .. }
         | Quantity::JointImpulse { .. }
-        | Quantity::JointForce(_) => needs(Effect::Joints, "a joint quantity")?,
+        | Quantity::JointForce(_)
+        | Quantity::PercussionDistance { .. } => needs(Effect::Joints, "a joint quantity")?,
         Quantity::MotorTorque { .. } => needs(Effect::Motors, "a motor torque")?,
         Quantity::SpringPeriod(_) | Quantity::SpringWork(_) | Quantity::SpringExtension(_) => {
             needs(Effect::Springs, "a spring quantity")?
@@ -159,6 +161,22 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
     match &q.quantity {
         Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
             v.non_negative(*window, "averaging window", "s", at("quantity"))?
+        }
+        _ => {}
+    }
+    match &q.quantity {
+        Quantity::GroupKineticEnergy(b) | Quantity::GroupMomentum(b) if b.is_empty() => {
+            return Err(v.err(
+                at("quantity"),
+                format!("question \"{}\" asks about a group of no bodies", q.id),
+                "list the bodies: GroupKineticEnergy([\"bar\", \"bullet\"])",
+            ));
+        }
+        Quantity::RelativePointSpeed {
+            point, of_point, ..
+        } => {
+            v.finite2(*point, "question point", at("quantity"))?;
+            v.finite2(*of_point, "question of_point", at("quantity"))?;
         }
         _ => {}
     }
@@ -211,7 +229,13 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         | Q::ContactNormalForce { body, other }
         | Q::ReboundHeight { body, other }
         | Q::Restitution { body, other }
-        | Q::EnergyLost { body, other } => vec![("body", body), ("body", other)],
+        | Q::EnergyLost { body, other }
+        | Q::ContactImpulse { body, other } => vec![("body", body), ("body", other)],
+        Q::RelativePointSpeed { body, of, .. } => vec![("body", body), ("body", of)],
+        Q::PercussionDistance { body, joint } => vec![("body", body), ("joint", joint)],
+        Q::GroupKineticEnergy(bodies) | Q::GroupMomentum(bodies) => {
+            bodies.iter().map(|b| ("body", b)).collect()
+        }
         Q::RollingAcceleration { body, ground }
         | Q::RollingFriction { body, ground }
         | Q::RollingFrictionNeeded { body, ground } => vec![("body", body), ("body", ground)],
