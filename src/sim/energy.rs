@@ -133,8 +133,9 @@ impl EnergyGuard {
             w += (e.angular_impulse * prev[e.body].2).abs();
         }
         for (j, p) in now.joints.iter().zip(&self.prev_coord) {
-            // Motor work: its generalized impulse times the joint coordinate's change.
-            w += (j.motor_impulse * (j.coordinate - p)).abs();
+            // Motor work: its generalized impulse times the joint coordinate's change (a pin's
+            // coordinate wraps at +-pi: the change is the short way round).
+            w += (j.motor_impulse * coordinate_change(j.coordinate, *p)).abs();
         }
         // Moving kinematic bodies push with their contact and joint impulses.
         let kinematic = |i: usize| now.bodies[i].kind == crate::level::BodyKind::Kinematic;
@@ -180,4 +181,10 @@ impl EnergyGuard {
             None
         }
     }
+}
+
+/// The change of a joint coordinate over a step: a pin's wraps to (-pi, pi], so a change is
+/// taken the short way round (a slider moves far less than pi metres in a step).
+pub fn coordinate_change(now: f64, before: f64) -> f64 {
+    super::world::wrap_pi(now - before)
 }

@@ -167,10 +167,12 @@ impl Simulation {
             let frame1 = *rb1.position() * j.data.local_frame1;
             let frame2 = *rb2.position() * j.data.local_frame2;
             let coordinate = match def.kind {
-                JointKind::Revolute | JointKind::Fixed => {
+                // As rapier's motor measures it: body2's turn relative to body1 since t = 0,
+                // counter-clockwise positive, wrapped to (-pi, pi].
+                JointKind::Revolute | JointKind::Fixed => super::world::wrap_pi(
                     (rb2.rotation().angle() - rb1.rotation().angle()) as f64
-                        - (self.level.bodies[i2].angle - self.level.bodies[i1].angle)
-                }
+                        - (self.level.bodies[i2].angle - self.level.bodies[i1].angle),
+                ),
                 JointKind::Prismatic | JointKind::PinSlot => {
                     let axis = frame1.rotation * Vector::X;
                     (frame2.translation - frame1.translation).dot(axis) as f64

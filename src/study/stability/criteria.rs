@@ -141,7 +141,9 @@ pub fn motor_work(prev_coords: &[f64], s: &Snapshot) -> f64 {
     s.joints
         .iter()
         .zip(prev_coords)
-        .map(|(j, c0)| j.motor_impulse * (j.coordinate - c0) / s.dt)
+        .map(|(j, c0)| {
+            j.motor_impulse * crate::sim::energy::coordinate_change(j.coordinate, *c0) / s.dt
+        })
         .sum()
 }
 
