@@ -7,6 +7,7 @@ use super::impact_solution::Impact;
 use super::level_facts::LevelFacts;
 use super::sample::Sample;
 use super::snapshot_reading::pair_normal_impulse;
+use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::snapshot::Snapshot;
 use std::sync::Arc;
 
@@ -68,6 +69,11 @@ pub(super) struct PairTracker {
     pub impact: Option<Impact>,
     /// The first snapshot without force (the post-impact state), while quiet or released.
     pub release: Option<Arc<Snapshot>>,
+    /// The end of the contact's impulsive phase (for a contact that lasts, such as a ram driving
+    /// a pile into sand, the post-impact state): the first snapshot in which the bodies no longer
+    /// approach along the impact's normal (within 1% of the approach speed); without an impact,
+    /// the last one before the contact impulse fell to twice what the weights give in a step.
+    pub impulsive_end: Option<Arc<Snapshot>>,
 }
 
 impl PairTracker {
@@ -81,6 +87,7 @@ impl PairTracker {
             peak: 0.0,
             contact_impulse: 0.0,
             weight_impulse: 0.0,
+            impulsive_end: None,
             pre: None,
             impact: None,
             release: None,
@@ -102,10 +109,27 @@ impl PairTracker {
         // "Pushing": a normal impulse above a millionth of the largest one of this contact, so that
         // round-off and position correction between bodies left resting together do not count.
         let touching = j > 1e-6 * self.peak.max(f64::MIN_POSITIVE) && j > 0.0;
+        let weight = |i: usize| f.cur.bodies[i].mass * f.cur.gravity.length();
+        let weights_step = (weight(b) + o.map_or(0.0, weight)) * f.cur.dt;
         if touching && !matches!(self.phase, ContactPhase::Released | ContactPhase::Again) {
-            let weight = |i: usize| f.cur.bodies[i].mass * f.cur.gravity.length();
             self.contact_impulse += j;
-            self.weight_impulse += (weight(b) + o.map_or(0.0, weight)) * f.cur.dt;
+            self.weight_impulse += weights_step;
+        }
+        if self.phase != ContactPhase::Before && self.impulsive_end.is_none() {
+            if let Some(imp) = &self.impact {
+                // The impact is over once the bodies no longer approach along its normal: then
+                // they move together (e = 0) or apart (the restitution phase is done).
+                let rel = |x: &Snapshot| {
+                    let v = |i: usize| point_velocity(&x.bodies[i], imp.point);
+                    (v(imp.i2) - v(imp.i1)).dot(imp.normal)
+                };
+                let approach = rel(self.pre.as_deref().unwrap_or(f.cur));
+                if rel(f.cur) >= -1e-2 * approach.abs() {
+                    self.impulsive_end = Some(f.cur.clone());
+                }
+            } else if j <= 2.0 * weights_step {
+                self.impulsive_end = f.prev.cloned();
+            }
         }
         match self.phase {
             ContactPhase::Before if touching => {

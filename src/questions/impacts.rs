@@ -88,7 +88,16 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
         Quantity::EnergyLost { body: b, other } => {
             let (i, o) = (m.body_index(s, b)?, m.body_index(s, other)?);
             let p = p?;
-            let (pre, post) = (p.pre.as_ref()?, p.release.as_ref()?);
+            // After the impact: where the contact let go, or, for a contact that lasts (it never
+            // ends, or forces other than the impact's worked while it lasted), the end of its
+            // impulsive phase, so the work done after the blow (a pile in sand) is not counted.
+            let lasting = p.release.is_none() || p.not_impulsive().is_some();
+            let post = if lasting {
+                p.impulsive_end.as_ref()
+            } else {
+                p.release.as_ref()
+            };
+            let (pre, post) = (p.pre.as_ref()?, post?);
             let e = |snap: &Snapshot| {
                 [i, o]
                     .iter()
