@@ -293,3 +293,34 @@ fn angular_momentum_moves_with_the_linear_momentum() {
         4.5
     );
 }
+
+/// A ledger given per-step rounding bounds discounts them window by window: a steady leak of
+/// 1e-3 N s per step (a rounding bias) inside a bound of 1e-3 per step is no residual, a leak of
+/// 3e-3 is 2e-3 per step beyond it, over the whole run (10 steps: 2e-2 N s).
+#[test]
+fn a_ledger_discounts_rounding_window_by_window() {
+    for (leak, beyond) in [(1e-3, 0.0), (3e-3, 2e-2)] {
+        let mut ledger = ImpulseMomentumLedger::new(0.0, DVec2::ZERO, 0.0);
+        let mut g = DVec2::ZERO;
+        for k in 1..=10 {
+            // Impulse 0.1 N s per step along x; the momentum gains it plus the leak.
+            g += DVec2::new(0.1 + leak, 0.0);
+            ledger.record_rounded(
+                0.1 * k as f64,
+                DVec2::new(0.1, 0.0),
+                0.0,
+                g,
+                0.0,
+                (1e-3, 0.0),
+            );
+        }
+        let w = ledger.worst_windows_beyond_rounding().linear;
+        assert!(
+            (w.linear_beyond_rounding() - beyond).abs() < 1e-12,
+            "leak {leak}: {w:?}"
+        );
+        // Without the bounds, the whole run's residual is 10 leaks.
+        let raw = ledger.worst_windows().linear.linear_residual().length();
+        assert!((raw - 10.0 * leak).abs() < 1e-12, "{raw}");
+    }
+}

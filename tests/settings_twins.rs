@@ -77,19 +77,12 @@ fn twins(scene: &Scene) -> Vec<(String, Options)> {
 
 /// Pass-to-fail cases found by this test and not fixed yet, each with its numbers (open issues,
 /// named in the README's known gaps); the test fails on any other.
-const LISTED: &[(&str, &str)] = &[
-    // The block's G balance over a window: 8.5e-6 at 4 substeps, 1.36e-4 at 16 or at dt/4 against
-    // 1e-4 (1.1e-3 N s of 8 N s over [0.06, 0.82] s, while the block slides to rest). Diagnosis:
-    // f32 rounding of v at every substep, where the decrement mu g h is a few ulps of v and is
-    // rounded the same way step after step (a bias, not a random walk); the bound m |v| eps per
-    // substep sums to 2.98e-3 N s over the run at 16 substeps (7.45e-4 at 4). Discounting that
-    // bound (tried) would also swallow 9e-5 of the level's 1e-4 at its own settings; a per-window
-    // bound is the fix still to write.
-    (
-        "levels/energy/block_friction_work.ron",
-        "check impulse_momentum",
-    ),
-];
+/// Open cases, each with its numbers (none now). The sliding block's G balance over a window
+/// read 1.36e-4 against 1e-4 at 16 substeps and at dt/4: f32 rounding of v at every substep,
+/// where the decrement mu g h is a few ulps of v and is rounded the same way step after step
+/// (in f64 3e-15). `impulse_momentum` now discounts, window by window, what the engine's
+/// precision may round away (2.8e-8 beyond it at 16 substeps).
+const LISTED: &[(&str, &str)] = &[];
 
 #[test]
 fn more_accuracy_never_turns_a_pass_into_a_failure() {

@@ -101,6 +101,10 @@ pub struct WindowBalance {
     pub angular_impulse: f64,
     /// H_O(t2) - H_O(t1), N m s.
     pub delta_h: f64,
+    /// What the engine's floating point may have rounded away over the window, at most, in G
+    /// (N s) and H_O (N m s): the sums of the per-step bounds the ledger was given.
+    pub rounding_g: f64,
+    pub rounding_h: f64,
 }
 
 impl WindowBalance {
@@ -112,6 +116,16 @@ impl WindowBalance {
     /// `H_O(t2) - H_O(t1) - integral of sum M_O dt` (IM-7).
     pub fn angular_residual(&self) -> f64 {
         self.delta_h - self.angular_impulse
+    }
+
+    /// How far the linear residual goes beyond what rounding can explain (0 when within).
+    pub fn linear_beyond_rounding(&self) -> f64 {
+        (self.linear_residual().length() - self.rounding_g).max(0.0)
+    }
+
+    /// How far the angular residual goes beyond what rounding can explain (0 when within).
+    pub fn angular_beyond_rounding(&self) -> f64 {
+        (self.angular_residual().abs() - self.rounding_h).max(0.0)
     }
 }
 
@@ -125,6 +139,9 @@ struct LedgerEntry {
     j: DVec2,
     /// integral of sum M_O dt from the first instant to t.
     m: f64,
+    /// The rounding bounds summed from the first instant to t, N s and N m s.
+    rg: f64,
+    rh: f64,
 }
 
 /// A running impulse-momentum ledger about a fixed point O (IM-2, IM-7, 6/12 and 6/17
@@ -159,6 +176,8 @@ impl ImpulseMomentumLedger {
                 h: h0,
                 j: DVec2::ZERO,
                 m: 0.0,
+                rg: 0.0,
+                rh: 0.0,
             }],
         }
     }
@@ -171,6 +190,20 @@ impl ImpulseMomentumLedger {
     /// Records the end of a step at time `t`: the step's external impulse and its moment about O,
     /// and the momenta G and H_O at t.
     pub fn record(&mut self, t: f64, impulse: DVec2, moment_o: f64, g: DVec2, h_o: f64) {
+        self.record_rounded(t, impulse, moment_o, g, h_o, (0.0, 0.0));
+    }
+
+    /// [`Self::record`], with `rounding`: how much the engine's floating point may have rounded
+    /// away from G and H_O in this step, at most (N s, N m s).
+    pub fn record_rounded(
+        &mut self,
+        t: f64,
+        impulse: DVec2,
+        moment_o: f64,
+        g: DVec2,
+        h_o: f64,
+        rounding: (f64, f64),
+    ) {
         let last = *self.entries.last().expect("a ledger starts with one entry");
         self.entries.push(LedgerEntry {
             t,
@@ -178,6 +211,8 @@ impl ImpulseMomentumLedger {
             h: h_o,
             j: last.j + impulse,
             m: last.m + moment_o,
+            rg: last.rg + rounding.0,
+            rh: last.rh + rounding.1,
         });
     }
 
@@ -204,6 +239,8 @@ impl ImpulseMomentumLedger {
             delta_g: e2.g - e1.g,
             angular_impulse: e2.m - e1.m,
             delta_h: e2.h - e1.h,
+            rounding_g: e2.rg - e1.rg,
+            rounding_h: e2.rh - e1.rh,
         }
     }
 
@@ -224,6 +261,40 @@ impl ImpulseMomentumLedger {
     /// The balance over every window [first, t]: one per recorded instant after the first.
     pub fn from_start(&self) -> impl Iterator<Item = WindowBalance> + '_ {
         (1..self.entries.len()).map(|k| self.between(0, k))
+    }
+
+    /// The windows whose residuals go furthest beyond the rounding the ledger was given (see
+    /// [`WindowBalance::linear_beyond_rounding`]): every pair of instants is tried, so a long
+    /// run (over 20,000 instants) falls back to [`Self::worst_windows`], which ignores rounding.
+    pub fn worst_windows_beyond_rounding(&self) -> WorstWindows {
+        let n = self.entries.len();
+        let rounded = self
+            .entries
+            .last()
+            .is_some_and(|e| e.rg > 0.0 || e.rh > 0.0);
+        if n < 2 || !rounded || n > 20_000 {
+            return self.worst_windows();
+        }
+        let (mut lin, mut ang) = ((0, 0, f64::NEG_INFINITY), (0, 0, f64::NEG_INFINITY));
+        for a in 0..n {
+            for b in a + 1..n {
+                let w = self.between(a, b);
+                let (l, r) = (
+                    w.linear_residual().length() - w.rounding_g,
+                    w.angular_residual().abs() - w.rounding_h,
+                );
+                if l > lin.2 {
+                    lin = (a, b, l);
+                }
+                if r > ang.2 {
+                    ang = (a, b, r);
+                }
+            }
+        }
+        WorstWindows {
+            linear: self.between(lin.0, lin.1),
+            angular: self.between(ang.0, ang.1),
+        }
     }
 
     /// The worst windows over all pairs of recorded instants. The window residual is
