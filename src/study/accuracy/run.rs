@@ -1,0 +1,292 @@
+//! Running a study: the error runs (in parallel across levels), then the cost runs (one at a
+//! time), then everything written out.
+
+use super::*;
+
+/// The error part of a level's study (runs in parallel with other levels).
+pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> LevelStudy {
+    let level = &scene.level;
+    let name = level_name(&scene.file);
+    let pts = points(level, plan);
+    let exact = has_exact(level);
+    let conserved = metrics::conserved(level);
+    let base = Setting::of_level(level);
+    // The reference steps at least 4 times finer than the finest swept dt.
+    let finest = sweep_dts(level, plan)
+        .into_iter()
+        .fold(level.world.dt, f64::min);
+    let ref_setting = Setting {
+        dt: plan.reference.0.min(finest / 4.0),
+        substeps: plan.reference.1,
+        iterations: plan.reference.2.max(level.world.solver_iterations),
+        precision: Precision::F64,
+        all_effects: false,
+    };
+    let mut notes = Vec::new();
+    let duration = level.world.duration;
+
+    // Budget: time a short run at the level's settings, then size the window so that the f64
+    // reference fits its budget. Levels with an exact answer always run their whole duration
+    // (questions may be asked at its end).
+    let probe = duration.min(0.25);
+    let unit = measure::unit_cost(scene, &base, probe).unwrap_or(1e-6);
+    let ref_per_s = measure::predicted(&ref_setting, 1.0, unit);
+    let piece_s = plan.piece_s.min(duration / 4.0);
+    let window = (plan.reference_budget_s / ref_per_s)
+        .max(piece_s)
+        .min(duration);
+    if window < duration {
+        notes.push(format!(
+            "self-consistency{} over the first {window:.3} s of {duration} s (the f64 reference costs about {ref_per_s:.1} s of wall time per simulated second)",
+            if exact { "" } else { ", joint drift and cost" }
+        ));
+    }
+    let windowed = measure::with_duration(scene, window);
+    // Questions may be asked at the end: levels with an exact answer run their whole duration.
+    let studied = if exact {
+        scene.clone()
+    } else {
+        windowed.clone()
+    };
+    let run_span = if exact { duration } else { window };
+    let reference = measure::reference(&windowed, &ref_setting);
+    if let Some(e) = &reference.stopped {
+        notes.push(format!(
+            "the f64 reference ({}) stopped: {e}; self-consistency uses the {:.3} s before",
+            ref_setting.label(),
+            reference.duration()
+        ));
+    }
+    // Light levels run their conservation variant for longer (several periods).
+    let span = if window < duration {
+        window
+    } else {
+        duration.max(plan.conservation_s)
+    };
+    let mut rows = Vec::new();
+    let mut timeable = Vec::new();
+    for p in &pts {
+        let s = &p.setting;
+        let mut status = Vec::new();
+        let over = |what: &str, t: f64, status: &mut Vec<String>| {
+            let over = t > plan.run_cap_s;
+            if over {
+                status.push(format!(
+                    "{what} not run: predicted {t:.1} s > {:.1} s cap",
+                    plan.run_cap_s
+                ));
+            }
+            over
+        };
+        let full = if over("run", measure::predicted(s, run_span, unit), &mut status) {
+            measure::FullRun::default()
+        } else {
+            measure::full_run(&studied, s)
+        };
+        let pos = if over(
+            "pieces",
+            plan.pieces as f64 * measure::predicted(s, piece_s, unit),
+            &mut status,
+        ) {
+            Err(String::new())
+        } else {
+            measure::self_consistency(&windowed, s, &reference, plan.pieces, piece_s)
+        };
+        let cons = if conserved.any()
+            && !over(
+                "conservation run",
+                measure::predicted(s, span, unit),
+                &mut status,
+            ) {
+            Some(measure::conservation(scene, s, conserved, span))
+        } else {
+            None
+        };
+        if let Some(e) = &full.stopped {
+            status.push(format!("run stopped: {e}"));
+        }
+        timeable.push(full.ran && full.stopped.is_none());
+        if let Err(e) = &pos {
+            if !e.is_empty() {
+                status.push(format!("piece stopped: {e}"));
+            }
+        }
+        if let Some(e) = cons.as_ref().and_then(|c| c.stopped.clone()) {
+            status.push(format!("{span} s run stopped: {e}"));
+        }
+        let position_error_m = pos.ok();
+        let error = if exact {
+            match (full.question_error, full.closed_form_error) {
+                (Some(a), Some(b)) => Some(a.max(b)),
+                (a, b) => a.or(b),
+            }
+        } else {
+            position_error_m
+        };
+        let cons = cons.unwrap_or_default();
+        let knob = if p.baseline {
+            "baseline".to_string()
+        } else {
+            let mut k: Vec<&str> = p.knobs.iter().map(|k| k.name()).collect();
+            if p.rapier_default {
+                k.push("rapier_default");
+            }
+            k.join("+")
+        };
+        rows.push(Row {
+            level: name.clone(),
+            class: class(level).into(),
+            knob,
+            dt: s.dt,
+            dt_label: s.dt_label(),
+            substeps: s.substeps,
+            pgs_iterations: s.iterations,
+            precision: s.precision.name().into(),
+            effects: s.effects_name().into(),
+            status: if status.is_empty() {
+                "ok".into()
+            } else {
+                status.join("; ")
+            },
+            window_s: run_span,
+            error,
+            error_kind: if exact {
+                "exact_rel".into()
+            } else {
+                "self_consistency_m".into()
+            },
+            meets_tolerance: full.meets_tolerance,
+            tolerance_ratio: full.tolerance_ratio,
+            question_error: full.question_error,
+            closed_form_error: full.closed_form_error,
+            position_error_m,
+            energy_drift_per_s: cons.energy_drift_per_s,
+            energy_drift_per_period: cons.energy_drift_per_period,
+            energy_gain: cons.energy_drift_per_s.map(|d| d > gain_floor(s.precision)),
+            momentum_drift_per_s: cons.momentum_drift_per_s,
+            angular_momentum_drift_per_s: cons.angular_momentum_drift_per_s,
+            joint_drift_m: full.joint_drift_m,
+            cost_us_per_sim_s: None,
+            cost_min_us_per_sim_s: None,
+            cost_spread: None,
+            cost_rounds: None,
+        });
+        tick();
+    }
+    if !exact {
+        notes.push(
+            "no textbook answer or closed-form check: the error is self-consistency against the f64 reference".into(),
+        );
+    }
+    LevelStudy {
+        name,
+        title: level.title.clone(),
+        class: class(level),
+        scene: studied,
+        points: pts,
+        rows,
+        has_exact: exact,
+        conserved,
+        notes,
+        reference: ref_setting,
+        window_s: run_span,
+        timeable,
+        load: None,
+    }
+}
+
+/// The cost part, one run at a time: `plan.rounds` rounds, each timing every setting of every
+/// level once (round-robin), then the median per setting. Settings whose error run was not run
+/// (over the cap) or stopped are not timed.
+pub fn measure_costs(studies: &mut [LevelStudy], plan: &Plan, tick: &dyn Fn()) {
+    let mut samples: Vec<Vec<Vec<f64>>> = studies
+        .iter()
+        .map(|st| vec![Vec::new(); st.points.len()])
+        .collect();
+    let mut dead: Vec<Vec<bool>> = studies
+        .iter()
+        .map(|st| st.timeable.iter().map(|t| !t).collect())
+        .collect();
+    for _ in 0..plan.rounds {
+        for (si, st) in studies.iter().enumerate() {
+            for (pi, p) in st.points.iter().enumerate() {
+                if !dead[si][pi] {
+                    match measure::cost_sample(&st.scene, &p.setting, plan.sample_time) {
+                        Some(x) => samples[si][pi].push(x),
+                        None => dead[si][pi] = true,
+                    }
+                }
+                tick();
+            }
+        }
+    }
+    for (si, st) in studies.iter_mut().enumerate() {
+        for (pi, row) in st.rows.iter_mut().enumerate() {
+            let mut v = std::mem::take(&mut samples[si][pi]);
+            if v.is_empty() || dead[si][pi] {
+                continue;
+            }
+            v.sort_by(f64::total_cmp);
+            let median = v[v.len() / 2];
+            row.cost_us_per_sim_s = Some(median);
+            row.cost_min_us_per_sim_s = Some(v[0]);
+            row.cost_spread = Some((v[v.len() - 1] - v[0]) / median);
+            row.cost_rounds = Some(v.len());
+        }
+    }
+}
+
+/// Runs the whole study; returns the studies and the files skipped (with why).
+pub fn run_study(
+    files: &[PathBuf],
+    plan: &Plan,
+    progress: &ProgressBar,
+) -> (Vec<LevelStudy>, Vec<(String, String)>) {
+    let mut skipped = Vec::new();
+    let mut scenes = Vec::new();
+    for f in files {
+        match level::load(f) {
+            Ok(s) => match nothing_to_measure(&s.level) {
+                Some(why) => skipped.push((level_name(f), why)),
+                None => scenes.push(s),
+            },
+            Err(e) => {
+                progress.suspend(|| stderr!("{e}"));
+                skipped.push((level_name(f), format!("does not load: {}", e.message)));
+            }
+        }
+    }
+    let jobs: u64 = scenes
+        .iter()
+        .map(|s| (1 + plan.rounds as u64) * points(&s.level, plan).len() as u64)
+        .sum();
+    progress.set_length(jobs);
+    progress.set_message("errors (parallel across levels)");
+    let tick = || progress.inc(1);
+    let mut studies: Vec<LevelStudy> = scenes
+        .par_iter()
+        .map(|s| measure_errors(s, plan, &tick))
+        .collect();
+    // Timings only now, one run at a time, so that nothing of ours disturbs them.
+    progress.set_message("timing (one run at a time)");
+    let before = load_average();
+    measure_costs(&mut studies, plan, &tick);
+    let after = load_average();
+    progress.finish_with_message("done");
+    if let (Some(b), Some(a)) = (before, after) {
+        for st in studies.iter_mut() {
+            st.load = Some((b, a));
+        }
+    }
+    (studies, skipped)
+}
+
+/// The machine's 1-minute load average (Linux), to judge how disturbed the timings were.
+fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
