@@ -64,8 +64,9 @@ pub fn energy_scale(s: &Snapshot) -> f64 {
 
 /// A body point's velocity v_G + w x r for the guard's work sums (see [`energy_scale`] for
 /// why it is not the analysis layer's).
+/// The velocity of point p of a body (RK-6, `analysis::k_cross`: the one definition).
 fn velocity_at((com, v, w): (DVec2, DVec2, f64), p: DVec2) -> DVec2 {
-    v + w * (p - com).perp()
+    v + crate::analysis::k_cross(w, p - com)
 }
 
 fn kin(s: &Snapshot, i: usize) -> (DVec2, DVec2, f64) {
