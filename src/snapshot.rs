@@ -179,16 +179,17 @@ pub struct CouplingState {
     /// Current value of the sum, and its drift from the initial value (m or rad).
     pub value: f64,
     pub drift: f64,
-    /// The body the cable runs over (`CouplingDef::over`) and the impulse (N s) it received at
-    /// its mass center over the step: the reaction to the cable's pull on the x and y terms,
-    /// delivered one rapier call late (see `sim/couplings.rs`).
+    /// The bodies that carry the coupling and the impulse (N s) each received at its mass
+    /// center over the step, delivered one rapier call late (see `sim/couplings.rs`): the pulley
+    /// a cable runs over (`CouplingDef::over`) bears the cable's pull on the x and y terms;
+    /// meshing gears (`gears`) bear the tooth force on their axles.
     #[serde(default)]
-    pub carrier: Option<(usize, DVec2)>,
+    pub carriers: Vec<(usize, DVec2)>,
 }
 
 impl CouplingState {
     /// Every impulse the coupling gave over the step: (body, impulse at the mass center (N s),
-    /// couple (N m s)), its terms' first (term i received `ratio_i * impulse`), then the carrier's.
+    /// couple (N m s)), its terms' first (term i received `ratio_i * impulse`), then the carriers'.
     pub fn body_impulses(&self) -> impl Iterator<Item = (usize, DVec2, f64)> + '_ {
         let terms = self.terms.iter().map(|&(body, coordinate, ratio)| {
             let x = ratio * self.impulse;
@@ -198,7 +199,7 @@ impl CouplingState {
                 Coordinate::Angle => (body, DVec2::ZERO, x),
             }
         });
-        terms.chain(self.carrier.map(|(body, j)| (body, j, 0.0)))
+        terms.chain(self.carriers.iter().map(|&(body, j)| (body, j, 0.0)))
     }
 }
 

@@ -232,3 +232,68 @@ fn a_coupling_needs_the_joints_effect() {
     let e = parse(Path::new("a.ron"), &text).unwrap_err();
     assert!(e.to_string().contains("add `joints`"), "{e}");
 }
+
+/// Two meshing gears on fixed axles 0.3 m apart, no gravity: gear 1 (pitch radius 0.1 m,
+/// I1 = 0.01) driven by a couple M = 1 N m, gear 2 (0.2 m, I2 = 0.08). The coupling
+/// 0.1 angle1 + 0.2 angle2 = const (they counter-rotate). Gear 1: I1 a1 = M - r1 F; gear 2:
+/// I2 a2 = r2 F with r1 a1 = -r2 a2, so a1 = M / (I1 + I2 (r1/r2)^2) = 1 / 0.03 rad/s^2 and the
+/// tooth force F = (M - I1 a1) / r1 = 6.667 N, across the line of centers: each axle bears F.
+#[test]
+fn meshing_gears_load_both_axles_with_the_tooth_force() {
+    let (r1, r2, i1, i2, m) = (0.1f64, 0.2f64, 0.01f64, 0.08f64, 1.0f64);
+    let a1 = m / (i1 + i2 * (r1 / r2).powi(2));
+    let f = (m - i1 * a1) / r1;
+    for world in [
+        "dt: 0.016666666666666666, duration: 0.5",
+        "dt: 0.004166666666666667, substeps: 16, duration: 0.5",
+    ] {
+        let text = format!(
+            r#"Level(title: "gears", effects: [joints],
+            world: ({world}),
+            bodies: [
+                (name: "ground", kind: fixed),
+                (name: "g1", shape: Circle(radius: {r1}), mass: 1.0, inertia: {i1}),
+                (name: "g2", shape: Circle(radius: {r2}), mass: 2.0, inertia: {i2}, position: (0.3, 0.0)),
+            ],
+            joints: [
+                (name: "a1", kind: revolute, body1: "ground", body2: "g1"),
+                (name: "a2", kind: revolute, body1: "ground", body2: "g2", anchor1: (0.3, 0.0)),
+            ],
+            loads: [(name: "M", body: "g1", torque: Constant({m}))],
+            couplings: [(name: "mesh", terms: [(body: "g1", coordinate: angle, ratio: {r1}), (body: "g2", coordinate: angle, ratio: {r2})], gears: true)])"#
+        );
+        let mut sim = Simulation::new(&scene(&text), &Options::default());
+        for k in 0..sim.total_steps() {
+            let s = sim.step().unwrap();
+            assert!(
+                (s.bodies[1].omega - a1 * s.time).abs() < 1e-3 * a1 * s.time,
+                "{world}"
+            );
+            if k == 0 {
+                continue; // the tooth force reaches the axles one rapier call late
+            }
+            // Each axle bears the tooth force: equal and opposite, across the line of centers.
+            let (ax1, ax2) = (
+                s.joints[0].impulse_on_body2 / s.dt,
+                s.joints[1].impulse_on_body2 / s.dt,
+            );
+            assert!(
+                (ax1.length() - f).abs() < 1e-3 * f && (ax2.length() - f).abs() < 1e-3 * f,
+                "{world}, step {}: axles {ax1:?} {ax2:?}, expected {f} N each",
+                k + 1
+            );
+            assert!(
+                (ax1 + ax2).length() < 1e-3 * f,
+                "equal and opposite: {ax1:?} {ax2:?}"
+            );
+            assert!(
+                ax1.x.abs() < 1e-3 * f,
+                "across the line of centers: {ax1:?}"
+            );
+        }
+    }
+    // The ratios must be the pitch radii.
+    let bad = "Level(title: \"g\", effects: [joints], bodies: [(name: \"g1\", shape: Circle(radius: 0.1), mass: 1.0), (name: \"g2\", shape: Circle(radius: 0.2), mass: 1.0, position: (0.5, 0.0))], couplings: [(name: \"mesh\", terms: [(body: \"g1\", coordinate: angle, ratio: 0.1), (body: \"g2\", coordinate: angle, ratio: 0.2)], gears: true)])";
+    let e = parse(Path::new("g.ron"), bad).unwrap_err().to_string();
+    assert!(e.contains("but their centers are 0.5 m apart"), "{e}");
+}

@@ -375,6 +375,11 @@ pub struct CouplingDef {
     /// carrier is not applied (a massless peg on the ground).
     #[serde(default)]
     pub over: Option<String>,
+    /// The two angle terms are meshing external gears whose ratios are their pitch radii (m,
+    /// the same sign): the tooth force, at the pitch point on the line of centers and across
+    /// it, loads both axles.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub gears: bool,
 }
 
 /// One term `ratio * q` of a coupling.

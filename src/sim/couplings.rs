@@ -2,7 +2,7 @@
 //! by projecting velocities and positions, and the impulses that took.
 
 use super::rapier::prelude::*;
-use super::world::{vd, wrap_pi, Simulation};
+use super::world::{to_d, vd, wrap_pi, Simulation};
 use crate::level::*;
 use crate::snapshot::*;
 use glam::DVec2;
@@ -159,22 +159,35 @@ impl Simulation {
     /// solver with the carrier's joints: in steady motion (a constant tension) the axle load is
     /// exact, and in a transient it lags the cable by one call (dt / substeps when joint readings
     /// split the step, else dt), the integrator's own order.
-    pub(super) fn load_carriers(&mut self, h: f64, carried: &mut [DVec2]) {
-        for (k, carrier) in self.carriers.iter().enumerate() {
-            let Some((i, due)) = *carrier else { continue };
-            let rb = &mut self.world.bodies[self.bodies[i]];
-            rb.add_force(vd(due / h), true);
-            carried[k] += due;
+    pub(super) fn load_carriers(&mut self, h: f64, carried: &mut [Vec<DVec2>]) {
+        for (k, carriers) in self.carriers.iter().enumerate() {
+            for (n, &(i, due)) in carriers.iter().enumerate() {
+                let rb = &mut self.world.bodies[self.bodies[i]];
+                rb.add_force(vd(due / h), true);
+                carried[k][n] += due;
+            }
         }
     }
 
-    /// Records what each carrier is owed after a rapier call whose couplings took `lambdas`:
-    /// the opposite of the cable's pull on its x and y terms (the cable is massless).
+    /// Records what each carrier is owed after a rapier call whose couplings took `lambdas`.
+    /// Over a pulley: the opposite of the cable's pull on its x and y terms (the cable is
+    /// massless). Meshing gears: the tooth force. Gear i's angle term took the couple r_i lambda;
+    /// with r_i its pitch radius, that is a force lambda across the line of centers at the pitch
+    /// point, sign(r_1) lambda perp(u) on gear 1 (u from gear 1's center to gear 2's) and its
+    /// opposite on gear 2, whose linear parts act at the centers: the axles' loads.
     pub(super) fn owe_carriers(&mut self, lambdas: &[f64]) {
         for (k, c) in self.level.couplings.iter().enumerate() {
-            let Some((_, due)) = self.carriers[k].as_mut() else {
+            if self.carriers[k].is_empty() {
                 continue;
-            };
+            }
+            if c.gears {
+                let g = |n: usize| self.snapshot_com(self.carriers[k][n].0);
+                let u = (g(1) - g(0)).normalize_or(DVec2::X);
+                let f1 = c.terms[0].ratio.signum() * lambdas[k] * u.perp();
+                self.carriers[k][0].1 = f1;
+                self.carriers[k][1].1 = -f1;
+                continue;
+            }
             let pull: DVec2 = c
                 .terms
                 .iter()
@@ -184,11 +197,21 @@ impl Simulation {
                     Coordinate::Angle => DVec2::ZERO,
                 })
                 .sum();
-            *due = -pull;
+            self.carriers[k][0].1 = -pull;
         }
     }
 
-    pub(super) fn coupling_states(&self, lambdas: &[f64], carried: &[DVec2]) -> Vec<CouplingState> {
+    /// Body i's mass center in rapier's current state.
+    fn snapshot_com(&self, i: usize) -> DVec2 {
+        let rb = &self.world.bodies[self.bodies[i]];
+        to_d(*rb.position() * rb.mass_properties().local_mprops.local_com)
+    }
+
+    pub(super) fn coupling_states(
+        &self,
+        lambdas: &[f64],
+        carried: &[Vec<DVec2>],
+    ) -> Vec<CouplingState> {
         self.level
             .couplings
             .iter()
@@ -205,7 +228,11 @@ impl Simulation {
                     impulse: lambdas[k],
                     value,
                     drift: value - self.coupling_rest[k],
-                    carrier: self.carriers[k].map(|(i, _)| (i, carried[k])),
+                    carriers: self.carriers[k]
+                        .iter()
+                        .zip(&carried[k])
+                        .map(|(&(i, _), &j)| (i, j))
+                        .collect(),
                 }
             })
             .collect()

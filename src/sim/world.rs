@@ -26,9 +26,10 @@ pub struct Simulation {
     pub(super) snapshot: Snapshot,
     /// Initial value of each coupling's sum.
     pub(super) coupling_rest: Vec<f64>,
-    /// Per coupling: the body it runs over (`CouplingDef::over`) and the impulse that body is
-    /// still owed, delivered during the next rapier call (see `sim/couplings.rs`).
-    pub(super) carriers: Vec<Option<(usize, DVec2)>>,
+    /// Per coupling: the bodies that carry it (the pulley a cable runs `over`, or both meshing
+    /// `gears`) and the impulse each is still owed, delivered during the next rapier call (see
+    /// `sim/couplings.rs`).
+    pub(super) carriers: Vec<Vec<(usize, DVec2)>>,
     /// Welds still waiting for their first contact: (event name, body1, body2).
     pub(super) pending_welds: Vec<(String, usize, usize)>,
     /// Bodies that loads or springs act on (their forces are reset every step).
@@ -142,9 +143,19 @@ impl Simulation {
             .level
             .couplings
             .iter()
-            .map(|c| c.over.as_ref().map(|b| (sim.body_index[b], DVec2::ZERO)))
+            .map(|c| {
+                let over = c.over.iter().map(|b| (sim.body_index[b], DVec2::ZERO));
+                let gears = c
+                    .terms
+                    .iter()
+                    .filter(|_| c.gears)
+                    .map(|t| (sim.body_index[&t.body], DVec2::ZERO));
+                over.chain(gears).collect()
+            })
             .collect();
         forced.extend(sim.carriers.iter().flatten().map(|c| c.0));
+        forced.sort_unstable();
+        forced.dedup();
         forced.sort_unstable();
         forced.dedup();
         sim.forced_bodies = forced;
@@ -166,7 +177,12 @@ impl Simulation {
             .map(|c| sim.coupling_value(c))
             .collect();
         let none = vec![0.0; sim.level.couplings.len()];
-        sim.snapshot.couplings = sim.coupling_states(&none, &vec![DVec2::ZERO; none.len()]);
+        let carried: Vec<Vec<DVec2>> = sim
+            .carriers
+            .iter()
+            .map(|c| vec![DVec2::ZERO; c.len()])
+            .collect();
+        sim.snapshot.couplings = sim.coupling_states(&none, &carried);
         sim.energy = EnergyGuard::new(&sim.snapshot);
         sim
     }
@@ -277,7 +293,11 @@ impl Simulation {
         let calls = if split { n } else { 1 };
         let h = dt / calls as f64;
         let mut lambdas = vec![0.0; self.level.couplings.len()];
-        let mut carried = vec![DVec2::ZERO; self.level.couplings.len()];
+        let mut carried: Vec<Vec<DVec2>> = self
+            .carriers
+            .iter()
+            .map(|c| vec![DVec2::ZERO; c.len()])
+            .collect();
         let mut springs: Vec<SpringState> = Vec::new();
         let mut joint_sum: Vec<JointState> = Vec::new();
         let mut contact_sum: Vec<ContactState> = Vec::new();

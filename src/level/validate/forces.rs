@@ -40,6 +40,39 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
             "include a dynamic body's free coordinate",
         ));
     }
+    if c.gears {
+        let at = v.loc.field_pos("couplings", &c.name, "gears");
+        let both_angles = c.terms.len() == 2
+            && c.terms.iter().all(|t| t.coordinate == Coordinate::Angle)
+            && c.terms[0].body != c.terms[1].body;
+        if !both_angles || c.terms[0].ratio.signum() != c.terms[1].ratio.signum() {
+            return Err(v.err(
+                at,
+                format!("coupling \"{}\" has `gears` but is not two angle terms of two bodies with ratios of one sign", c.name),
+                "a pair of external gears is r1 angle1 + r2 angle2 = const with r1, r2 their pitch radii (m, the same sign)",
+            ));
+        }
+        let pos = |n: &str| {
+            v.level
+                .bodies
+                .iter()
+                .find(|b| b.name == n)
+                .map_or((0.0, 0.0), |b| b.position)
+        };
+        let (p1, p2) = (pos(&c.terms[0].body), pos(&c.terms[1].body));
+        let d = ((p2.0 - p1.0).powi(2) + (p2.1 - p1.1).powi(2)).sqrt();
+        let sum = c.terms[0].ratio.abs() + c.terms[1].ratio.abs();
+        if (sum - d).abs() > 1e-2 * d.max(1e-9) {
+            return Err(v.err(
+                at,
+                format!(
+                    "coupling \"{}\": the gears' pitch radii add up to {sum} m but their centers are {d} m apart",
+                    c.name
+                ),
+                "with `gears` the ratios are the pitch radii: make |r1| + |r2| the distance between the gears' positions (within 1%)",
+            ));
+        }
+    }
     if let Some(over) = &c.over {
         v.body_ref(over, "couplings", &c.name, "over")?;
         let pulled = c
