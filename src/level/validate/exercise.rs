@@ -172,6 +172,22 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
                 "list the bodies: GroupKineticEnergy([\"bar\", \"bullet\"])",
             ));
         }
+        Quantity::GroupKineticEnergy(b) | Quantity::GroupMomentum(b) => {
+            if let Some(twice) = b
+                .iter()
+                .enumerate()
+                .find_map(|(k, n)| b[..k].contains(n).then_some(n))
+            {
+                return Err(v.err(
+                    at("quantity"),
+                    format!(
+                        "question \"{}\" lists body \"{twice}\" twice in its group",
+                        q.id
+                    ),
+                    "name each body of the group once",
+                ));
+            }
+        }
         Quantity::RelativePointSpeed {
             point, of_point, ..
         } => {
