@@ -223,6 +223,8 @@ fn check(
     }
     let mut bad_input = false;
     let mut bad_answer = false;
+    // Questions of levels not run because an answer to them could not be read.
+    let mut asked_elsewhere: Vec<String> = Vec::new();
     let mut levels = Vec::new();
     for f in &files {
         let run = load_warned(f)
@@ -232,9 +234,12 @@ fn check(
                 let graded = match answers_for(&scene, &answers) {
                     Ok(a) => a,
                     Err(e) => {
+                        // Not run: a report of a level whose answer could not be read must not
+                        // say it passed (the table, the JSON and the exit code agree).
                         stderr!("{e}");
                         bad_answer = true;
-                        HashMap::new()
+                        asked_elsewhere.extend(scene.level.questions.iter().map(|q| q.id.clone()));
+                        return Ok(failed(f, e.trim_start_matches("error: ")));
                     }
                 };
                 let bar = progress_bar(&scene, &opts);
@@ -261,6 +266,7 @@ fn check(
     let asked: Vec<&str> = levels
         .iter()
         .flat_map(|l| l.questions.iter().map(|q| q.id.as_str()))
+        .chain(asked_elsewhere.iter().map(String::as_str))
         .collect();
     let mut unknown: Vec<&str> = answers
         .keys()

@@ -371,8 +371,9 @@ mod cli {
         ]);
         assert_eq!(code, 0, "{err}");
         assert!(out.contains("student answer 9.79932 -> correct"), "{out}");
-        // A force for a speed: exit 2 with both dimensions and the question's unit.
-        let (code, _, err) = rigidlab(&[
+        // A force for a speed: exit 2 with both dimensions and the question's unit, and the
+        // level is not reported as passed (it is not run).
+        let (code, out, err) = rigidlab(&[
             "check",
             "levels/kinematics/free_fall.ron",
             "--answer",
@@ -383,6 +384,7 @@ mod cli {
             err.contains("`N` is kg m s^-2 but the question asks for m/s"),
             "{err}"
         );
+        assert!(out.contains("0/1 levels passed"), "{out}");
         let (code, _, err) = rigidlab(&[
             "check",
             "levels/kinematics/free_fall.ron",

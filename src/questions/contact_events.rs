@@ -115,23 +115,7 @@ impl PairTracker {
             self.contact_impulse += j;
             self.weight_impulse += weights_step;
         }
-        if self.phase != ContactPhase::Before && self.impulsive_end.is_none() {
-            if let Some(imp) = &self.impact {
-                // The impact is over once the bodies no longer approach along its normal: then
-                // they move together (e = 0) or apart (the restitution phase is done).
-                let rel = |x: &Snapshot| {
-                    let v = |i: usize| point_velocity(&x.bodies[i], imp.point);
-                    (v(imp.i2) - v(imp.i1)).dot(imp.normal)
-                };
-                let approach = rel(self.pre.as_deref().unwrap_or(f.cur));
-                if rel(f.cur) >= -1e-2 * approach.abs() {
-                    self.impulsive_end = Some(f.cur.clone());
-                }
-            } else if j <= 2.0 * weights_step {
-                self.impulsive_end = f.prev.cloned();
-            }
-        }
-        match self.phase {
+        let event = match self.phase {
             ContactPhase::Before if touching => {
                 self.phase = ContactPhase::Touching;
                 self.peak = j;
@@ -175,7 +159,26 @@ impl PairTracker {
                 Some(PairEvent::Again)
             }
             _ => None,
+        };
+        // Checked from the touch on, the touch's own step included: rapier often completes an
+        // impact within that one step.
+        if self.phase != ContactPhase::Before && self.impulsive_end.is_none() {
+            if let Some(imp) = &self.impact {
+                // The impact is over once the bodies no longer approach along its normal: then
+                // they move together (e = 0) or apart (the restitution phase is done).
+                let rel = |x: &Snapshot| {
+                    let v = |i: usize| point_velocity(&x.bodies[i], imp.point);
+                    (v(imp.i2) - v(imp.i1)).dot(imp.normal)
+                };
+                let approach = rel(self.pre.as_deref().unwrap_or(f.cur));
+                if rel(f.cur) >= -1e-2 * approach.abs() {
+                    self.impulsive_end = Some(f.cur.clone());
+                }
+            } else if j <= 2.0 * weights_step {
+                self.impulsive_end = f.prev.cloned();
+            }
         }
+        event
     }
 
     /// Why the state at the end of the contact is not the impact's post-impact state, when it is

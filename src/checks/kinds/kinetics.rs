@@ -48,7 +48,15 @@ use glam::DVec2;
 /// About the pin (`point`) the reaction drops out altogether.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     match dynamic_body(level, def) {
+        Ok(b) if b.lock_rotation && def.point.is_some() => misconfigured(
+            def,
+            format!(
+                "body \"{}\" has lock_rotation: the couple that keeps it from turning is not in its free-body diagram, so a moment equation (`point`) cannot be checked; drop `point` to check sum F = m a_G",
+                b.name
+            ),
+        ),
         Ok(b) => framed(NewtonEuler {
+            locked: b.lock_rotation,
             def: def.clone(),
             name: b.name.clone(),
             p: def.point.map(v2),
@@ -70,6 +78,9 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
 
 struct NewtonEuler {
     def: CheckDef,
+    /// The body's rotation is locked (`lock_rotation`): the locking couple is not in the diagram,
+    /// so only sum F = m a_G is checked.
+    locked: bool,
     name: String,
     p: Option<DVec2>,
     /// The level's m, G and I_G (shape formula): the kinetic side of 6/2 and 6/4.
@@ -160,9 +171,14 @@ impl FrameProbe for NewtonEuler {
                     s.dt,
                 );
                 self.f.add(df.length(), s.time);
-                self.m.add(dm, s.time);
                 self.last = (sum_f.length(), ma.length());
-                (beyond(df.length(), res_f) / fs).max(beyond(dm.abs(), res_m) / (fs * k))
+                let force = beyond(df.length(), res_f) / fs;
+                if self.locked {
+                    force
+                } else {
+                    self.m.add(dm, s.time);
+                    force.max(beyond(dm.abs(), res_m) / (fs * k))
+                }
             }
             Some(p) => {
                 // 6/2 about P (and 6/4 about the pivot) with the textbook m and I_G.

@@ -62,6 +62,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         worst: Worst::over(def),
         scale: 0.0,
         resolution: 0.0,
+        raw_max: 0.0,
         last: (0.0, 0.0),
         why_not: None,
     })
@@ -79,6 +80,8 @@ struct VirtualWork {
     scale: f64,
     /// The largest effort the engine's precision cannot resolve in a step (see `observe`).
     resolution: f64,
+    /// The largest |Q - motor| before that discount.
+    raw_max: f64,
     last: (f64, f64),
     /// Why virtual work did not apply, the first time it did not.
     why_not: Option<String>,
@@ -149,6 +152,9 @@ impl Probe for VirtualWork {
             self.resolution = self.resolution.max(resolution);
         }
         let err = theory - engine;
+        if self.worst.covers(s.time) {
+            self.raw_max = self.raw_max.max(err.abs());
+        }
         self.worst
             .add(err.signum() * (err.abs() - resolution).max(0.0), s.time);
         self.last = (theory, engine);
@@ -162,8 +168,16 @@ impl Probe for VirtualWork {
         );
         if self.resolution > 0.0 {
             note += &format!(
-                "; discounted per step: the engine's rounding of velocities, up to {:.3e}",
-                self.resolution
+                "; discounted per step: the engine's rounding of velocities, up to {:.3e} ({:.2}% of the effort; before the discount |Q - motor| reached {:.3e}, {:.2e} of the effort){}",
+                self.resolution,
+                100.0 * self.resolution / scale,
+                self.raw_max,
+                self.raw_max / scale,
+                if self.worst.max == 0.0 && self.raw_max > 0.0 {
+                    ": every step within the rounding, so the check could fail only above it (world.precision: f64 resolves it)"
+                } else {
+                    ""
+                }
             );
         }
         // Mostly rounding: nothing was compared.
