@@ -80,6 +80,8 @@ pub struct Locator<'a> {
     line_starts: Vec<usize>,
     /// Offsets of the quoted value of every `name:` or `id:` field, by value, in file order.
     items: HashMap<&'a str, Vec<usize>>,
+    /// Where each item of a list section begins, by section, found on first use.
+    sections: std::cell::RefCell<HashMap<String, Vec<usize>>>,
 }
 
 /// Byte offset of `key:` (as a field name, not inside a longer word) in `text[from..]`.
@@ -129,6 +131,7 @@ impl<'a> Locator<'a> {
             text,
             line_starts,
             items,
+            sections: Default::default(),
         }
     }
 
@@ -188,56 +191,64 @@ impl<'a> Locator<'a> {
     }
 
     /// Position of the `index`-th occurrence of `Variant(` after `section:` (for unnamed items).
+    /// The section's items are found in one walk, the first time it is asked about, so locating
+    /// every item of a long list costs one pass (it walked the list again for every item).
     pub fn nth_in_section(&self, section: &str, index: usize) -> (usize, usize) {
         let Some(s) = find_key(self.text, section, 0) else {
             return (1, 1);
         };
-        let body = &self.text[s..];
-        let Some(open) = body.find('[') else {
-            return self.pos(s);
-        };
-        // Walk the list counting top-level items.
-        let bytes = body.as_bytes();
-        let mut depth = 0i32;
-        let mut count = 0usize;
-        let mut item_start = None;
-        for (i, &b) in bytes.iter().enumerate().skip(open + 1) {
-            match b {
-                b'(' | b'[' => {
-                    if depth == 0 && item_start.is_none() {
-                        item_start = Some(i);
-                    }
-                    depth += 1;
-                }
-                b')' | b']' => {
-                    if depth == 0 {
-                        break;
-                    }
-                    depth -= 1;
-                }
-                b',' if depth == 0 => {
-                    if let Some(st) = item_start.take() {
-                        if count == index {
-                            return self.pos(s + st);
-                        }
-                        count += 1;
-                    }
-                }
-                c if depth == 0 && item_start.is_none() && !c.is_ascii_whitespace() => {
-                    item_start = Some(i)
-                }
-                _ => {}
-            }
-        }
-        match item_start {
-            Some(st) if count == index => {
-                // The item starts at its variant name: back up over identifier characters.
-                let ident = body[..st]
-                    .trim_end_matches(|c: char| c.is_alphanumeric() || c == '_')
-                    .len();
-                self.pos(s + ident.min(st))
-            }
-            _ => self.pos(s),
+        let mut cache = self.sections.borrow_mut();
+        let starts = cache
+            .entry(section.to_string())
+            .or_insert_with(|| item_starts(&self.text[s..]));
+        match starts.get(index) {
+            Some(&st) => self.pos(s + st),
+            None => self.pos(s),
         }
     }
+}
+
+/// Offsets (within `body`, which starts at a section's key) where each top-level item of the
+/// section's list begins: its `(` or its variant name.
+fn item_starts(body: &str) -> Vec<usize> {
+    let mut out = Vec::new();
+    let Some(open) = body.find('[') else {
+        return out;
+    };
+    let bytes = body.as_bytes();
+    let mut depth = 0i32;
+    let mut item_start = None;
+    for (i, &b) in bytes.iter().enumerate().skip(open + 1) {
+        match b {
+            b'(' | b'[' => {
+                if depth == 0 && item_start.is_none() {
+                    item_start = Some(i);
+                }
+                depth += 1;
+            }
+            b')' | b']' => {
+                if depth == 0 {
+                    break;
+                }
+                depth -= 1;
+            }
+            b',' if depth == 0 => {
+                if let Some(st) = item_start.take() {
+                    out.push(st);
+                }
+            }
+            c if depth == 0 && item_start.is_none() && !c.is_ascii_whitespace() => {
+                item_start = Some(i)
+            }
+            _ => {}
+        }
+    }
+    if let Some(st) = item_start {
+        // The item starts at its variant name: back up over identifier characters.
+        let ident = body[..st]
+            .trim_end_matches(|c: char| c.is_alphanumeric() || c == '_')
+            .len();
+        out.push(ident.min(st));
+    }
+    out
 }
