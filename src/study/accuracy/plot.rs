@@ -2,13 +2,18 @@
 
 use plotters::prelude::*;
 use std::path::Path;
-use std::sync::Once;
 
 /// The bundled font (pure Rust text rendering: no fontconfig).
-static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 
+/// plotters registers fonts only off the web (the studies are not built into the web page's
+/// work, but the core they live in is).
+#[cfg(target_arch = "wasm32")]
+fn register_font() {}
+
+#[cfg(not(target_arch = "wasm32"))]
 fn register_font() {
-    static ONCE: Once = Once::new();
+    static FONT: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+    static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         for style in [FontStyle::Normal, FontStyle::Bold] {
             // The bytes are a valid TrueType font shipped with the crate.
