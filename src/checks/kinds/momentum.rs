@@ -354,11 +354,29 @@ impl FrameProbe for ImpulseMomentum {
         let from_t1 = ledger.since_start();
         let theory_g = g - from_t1.delta_g + from_t1.linear_impulse;
         self.g_worst.add(from_t1.linear_beyond_rounding(), s.time);
-        self.g_scale = self.g_scale.max(g.length()).max(theory_g.length());
+        // Scales: the set's G and H_O, and the momenta its bodies carry one by one (two discs
+        // swapping H through a torsion spring have H_O = 0 throughout, yet each carries some).
+        let (mut g_bodies, mut h_bodies) = (0.0, 0.0);
+        for i in self
+            .index
+            .map_or_else(|| (0..s.bodies.len()).collect(), |i| vec![i])
+        {
+            let b = &s.bodies[i];
+            if b.mass > 0.0 {
+                g_bodies += linear_momentum(b.mass, b.velocity).length();
+                h_bodies +=
+                    angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, o).abs();
+            }
+        }
+        self.g_scale = self
+            .g_scale
+            .max(g.length())
+            .max(theory_g.length())
+            .max(g_bodies);
         if self.o.is_some() {
             let theory_h = h - from_t1.delta_h + from_t1.angular_impulse;
             self.h_worst.add(from_t1.angular_beyond_rounding(), s.time);
-            self.h_scale = self.h_scale.max(h.abs()).max(theory_h.abs());
+            self.h_scale = self.h_scale.max(h.abs()).max(theory_h.abs()).max(h_bodies);
             self.last = (theory_h, h);
         } else {
             self.last = (theory_g.length(), g.length());
