@@ -337,19 +337,7 @@ fn tick(bar: &Option<ProgressBar>, step: u64) {
 }
 
 fn failed(file: &std::path::Path, error: &str) -> LevelReport {
-    LevelReport {
-        file: file.display().to_string(),
-        title: String::new(),
-        passed: false,
-        steps: 0,
-        sim_time: 0.0,
-        wall_ms: 0.0,
-        effects: Vec::new(),
-        settings: None,
-        checks: Vec::new(),
-        questions: Vec::new(),
-        error: Some(error.to_string()),
-    }
+    LevelReport::failed(file, error)
 }
 
 fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> ExitCode {

@@ -19,6 +19,7 @@ macro_rules! stderr {
 
 pub mod analysis;
 pub mod checks;
+pub mod clock;
 pub mod cli;
 pub mod level;
 pub mod questions;

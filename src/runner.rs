@@ -14,7 +14,7 @@ use crate::snapshot::Snapshot;
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
-use std::time::Instant;
+use crate::clock::Instant;
 
 /// Why a level could not be run to the end.
 #[derive(Debug, thiserror::Error)]

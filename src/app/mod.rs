@@ -15,7 +15,10 @@ pub mod physics;
 pub mod quantities;
 pub mod render;
 pub mod tools;
+pub mod user_files;
 pub mod view;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 
 pub use physics::{LiveChecks, Physics, PhysicsPlugin, PhysicsStep};
 
@@ -213,7 +216,7 @@ fn paint_legend(mut contexts: EguiContexts, phys: Res<Physics>, ov: Res<Overlays
 }
 
 /// The scene the sandbox opens with when there is no level to show.
-fn empty_scene() -> Scene {
+pub(crate) fn empty_scene() -> Scene {
     Scene {
         file: PathBuf::from("untitled.ron"),
         level: Level {
@@ -281,17 +284,7 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
             why.lock().unwrap().lines().next().unwrap_or("no reason given")
         ));
     }
-    app.add_plugins(bevy_egui::EguiPlugin::default());
-    app.insert_resource(ClearColor(palette::BACKGROUND));
-    app.add_plugins(PhysicsPlugin {
-        scene,
-        options: Options::default(),
-        paused: true,
-    });
-    app.add_plugins(ScenePlugin { legend: false });
-    app.insert_resource(browser);
-    app.add_plugins((panels::PanelsPlugin, tools::ToolsPlugin));
-    app.add_systems(Startup, panels::spawn_cameras);
+    add_sandbox(&mut app, scene, browser, true);
     if std::env::var_os("RIGIDLAB_CONTINUOUS").is_some() {
         // Xvfb has no window manager: the window never gets focus and Bevy would throttle.
         app.insert_resource(bevy::winit::WinitSettings::continuous());
@@ -301,6 +294,22 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
         return Err("the sandbox window closed with an error".into());
     }
     Ok(())
+}
+
+/// The sandbox over an app that has its window: egui, the physics of `scene`, the drawing, the
+/// panels and tools, and the level browser. The native window and the web page share this.
+pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused: bool) {
+    app.add_plugins(bevy_egui::EguiPlugin::default());
+    app.insert_resource(ClearColor(palette::BACKGROUND));
+    app.add_plugins(PhysicsPlugin {
+        scene,
+        options: Options::default(),
+        paused,
+    });
+    app.add_plugins(ScenePlugin { legend: false });
+    app.insert_resource(browser);
+    app.add_plugins((panels::PanelsPlugin, tools::ToolsPlugin));
+    app.add_systems(Startup, panels::spawn_cameras);
 }
 
 /// Renders `scene` at simulated time `time` into a PNG at `out`.

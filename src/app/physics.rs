@@ -18,7 +18,8 @@ use crate::snapshot::Snapshot;
 use bevy::prelude::*;
 use glam::DVec2;
 use std::collections::VecDeque;
-use std::time::{Duration, Instant};
+use crate::clock::Instant;
+use std::time::Duration;
 
 /// The set the physics step runs in (in `FixedUpdate`, and in `Update` for single steps).
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]

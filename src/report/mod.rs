@@ -36,6 +36,25 @@ pub struct LevelReport {
     pub error: Option<String>,
 }
 
+impl LevelReport {
+    /// The report of a level that could not be loaded or run: failed, with why.
+    pub fn failed(file: &std::path::Path, error: &str) -> LevelReport {
+        LevelReport {
+            file: file.display().to_string(),
+            title: String::new(),
+            passed: false,
+            steps: 0,
+            sim_time: 0.0,
+            wall_ms: 0.0,
+            effects: Vec::new(),
+            settings: None,
+            checks: Vec::new(),
+            questions: Vec::new(),
+            error: Some(error.to_string()),
+        }
+    }
+}
+
 /// The terminal table: one line per level, then one per failing or noted check/question.
 pub fn table(report: &Report) -> String {
     let mut out = String::new();

@@ -28,7 +28,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use crate::clock::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {

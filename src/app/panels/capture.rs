@@ -163,8 +163,8 @@ pub fn save(phys: &Physics, path: &Path) -> Result<String, String> {
     if back.level != level {
         return Err("not saved: the level read back differs from the scene".into());
     }
-    std::fs::write(path, &text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    Ok(format!("saved {} (loads back identically)", path.display()))
+    let done = super::super::user_files::deliver(path, text.as_bytes(), "text/plain")?;
+    Ok(format!("{done} (loads back identically)"))
 }
 
 /// The file name the save field starts with: the level's own stem with `-saved`.

@@ -42,41 +42,15 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st:
                 ui.label(&q.unit);
                 let submit = ui.button("Check").clicked()
                     || (edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)));
+                st.answer_boxes[k] = Some(edit.rect);
                 if submit {
                     st.grades[k] = Some(grade(q, &st.answers[k]));
                 }
             });
-            match &st.grades[k] {
-                Some(Ok((_, err, true))) => {
-                    ui.label(rich(
-                        format!(
-                            "✔ correct: off by {:.2}% (tolerance {:.2}%)",
-                            err * 100.0,
-                            q.tolerance * 100.0
-                        ),
-                        palette::GRAVITY,
-                    ));
-                }
-                Some(Ok((_, err, false))) => {
-                    // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
-                    let sign = if (err - 2.0).abs() <= q.tolerance {
-                        "; the magnitude is right: check the sign"
-                    } else {
-                        ""
-                    };
-                    ui.label(rich(
-                        format!(
-                            "✘ not yet: off by {:.2}% (tolerance {:.2}%){sign}",
-                            err * 100.0,
-                            q.tolerance * 100.0
-                        ),
-                        palette::NORMAL,
-                    ));
-                }
-                Some(Err(e)) => {
-                    ui.label(rich(e.clone(), palette::NORMAL));
-                }
-                None => {}
+            if let Some(g) = &st.grades[k] {
+                let (text, right) = grade_message(q, g);
+                let color = if right { palette::GRAVITY } else { palette::NORMAL };
+                ui.label(rich(text, color));
             }
             if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {
                 let show = st.grades[k]
@@ -105,6 +79,40 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st:
                 }
             }
         });
+    }
+}
+
+/// What the student reads after submitting an answer, and whether it was right.
+pub fn grade_message(
+    q: &crate::level::QuestionDef,
+    g: &Result<(f64, f64, bool), String>,
+) -> (String, bool) {
+    match g {
+        Ok((_, err, true)) => (
+            format!(
+                "✔ correct: off by {:.2}% (tolerance {:.2}%)",
+                err * 100.0,
+                q.tolerance * 100.0
+            ),
+            true,
+        ),
+        Ok((_, err, false)) => {
+            // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
+            let sign = if (err - 2.0).abs() <= q.tolerance {
+                "; the magnitude is right: check the sign"
+            } else {
+                ""
+            };
+            (
+                format!(
+                    "✘ not yet: off by {:.2}% (tolerance {:.2}%){sign}",
+                    err * 100.0,
+                    q.tolerance * 100.0
+                ),
+                false,
+            )
+        }
+        Err(e) => (e.clone(), false),
     }
 }
 

@@ -9,6 +9,7 @@ use bevy::prelude::*;
 use bevy_egui::egui;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// One level file in the browser.
 #[derive(Debug, Clone)]
@@ -18,6 +19,18 @@ pub struct Entry {
     pub statement: String,
     /// Why it does not load (shown instead of opening it).
     pub error: Option<String>,
+    /// The file's text when it is compiled in (the web page has no file system).
+    pub source: Option<Arc<str>>,
+}
+
+impl Entry {
+    /// The level: parsed from the compiled-in text, or read from its file.
+    pub fn load(&self) -> Result<Scene, level::LevelError> {
+        match &self.source {
+            Some(text) => level::parse(&self.path, text),
+            None => level::load(&self.path),
+        }
+    }
 }
 
 /// The levels folder, grouped by topic (sub-folder).
@@ -26,9 +39,33 @@ pub struct Browser {
     pub root: PathBuf,
     pub groups: BTreeMap<String, Vec<Entry>>,
     pub error: Option<String>,
+    /// The levels are compiled in (the web page): nothing to rescan.
+    pub embedded: bool,
 }
 
 impl Browser {
+    /// The browser over levels compiled into the program: `(path, text)` with paths under `root`.
+    pub fn embedded(root: &Path, files: Vec<(PathBuf, Arc<str>)>) -> Browser {
+        let mut b = Browser {
+            root: root.to_path_buf(),
+            embedded: true,
+            ..Default::default()
+        };
+        for (path, text) in files {
+            let entry = Entry::from_load(path.clone(), level::parse(&path, &text), Some(text));
+            b.groups.entry(group_of(root, &path)).or_default().push(entry);
+        }
+        for entries in b.groups.values_mut() {
+            entries.sort_by(|a, b| a.path.cmp(&b.path));
+        }
+        b
+    }
+
+    /// The entry for `path` (as written in the browser, e.g. `levels/kinetics/x.ron`).
+    pub fn find(&self, path: &Path) -> Option<&Entry> {
+        self.groups.values().flatten().find(|e| e.path == path)
+    }
+
     pub fn scan(root: &Path) -> Browser {
         let mut b = Browser {
             root: root.to_path_buf(),
@@ -42,30 +79,8 @@ impl Browser {
             }
         };
         for f in files {
-            let group = f
-                .parent()
-                .and_then(|p| p.strip_prefix(root).ok())
-                .map(|p| p.display().to_string())
-                .filter(|s| !s.is_empty())
-                .unwrap_or_else(|| "(top)".into());
-            let entry = match level::load(&f) {
-                Ok(s) => Entry {
-                    path: f.clone(),
-                    title: s.level.title,
-                    statement: s.level.statement,
-                    error: None,
-                },
-                Err(e) => Entry {
-                    path: f.clone(),
-                    title: f
-                        .file_stem()
-                        .map(|s| s.to_string_lossy().to_string())
-                        .unwrap_or_default(),
-                    statement: String::new(),
-                    error: Some(e.to_string()),
-                },
-            };
-            b.groups.entry(group).or_default().push(entry);
+            let entry = Entry::from_load(f.clone(), level::load(&f), None);
+            b.groups.entry(group_of(root, &f)).or_default().push(entry);
         }
         b
     }
@@ -75,8 +90,45 @@ impl Browser {
             .values()
             .flatten()
             .filter(|e| e.error.is_none())
-            .find_map(|e| level::load(&e.path).ok())
+            .find_map(|e| e.load().ok())
     }
+}
+
+impl Entry {
+    fn from_load(
+        path: PathBuf,
+        loaded: Result<Scene, level::LevelError>,
+        source: Option<Arc<str>>,
+    ) -> Entry {
+        match loaded {
+            Ok(s) => Entry {
+                path,
+                title: s.level.title,
+                statement: s.level.statement,
+                error: None,
+                source,
+            },
+            Err(e) => Entry {
+                title: path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().to_string())
+                    .unwrap_or_default(),
+                path,
+                statement: String::new(),
+                error: Some(e.to_string()),
+                source,
+            },
+        }
+    }
+}
+
+/// The topic a level is listed under: its folder below the root.
+fn group_of(root: &Path, f: &Path) -> String {
+    f.parent()
+        .and_then(|p| p.strip_prefix(root).ok())
+        .map(|p| p.display().to_string())
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "(top)".into())
 }
 
 /// Draws the panel; a clicked level that loads is put in `load` for the layout to open.
@@ -88,10 +140,11 @@ pub(super) fn level_browser(
 ) {
     ui.horizontal(|ui| {
         ui.heading("Levels");
-        if ui
-            .small_button("⟳")
-            .on_hover_text("rescan the levels folder")
-            .clicked()
+        if !browser.embedded
+            && ui
+                .small_button("⟳")
+                .on_hover_text("rescan the levels folder")
+                .clicked()
         {
             *browser = Browser::scan(&browser.root.clone());
         }
@@ -122,7 +175,7 @@ pub(super) fn level_browser(
                         None => r,
                     };
                     if r.clicked() && e.error.is_none() {
-                        match level::load(&e.path) {
+                        match e.load() {
                             Ok(s) => *load = Some(s),
                             Err(err) => {
                                 ui.label(rich(err.to_string(), palette::NORMAL));

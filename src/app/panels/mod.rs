@@ -17,7 +17,7 @@ mod solver;
 mod tool_controls;
 
 pub use capture::{capture, save};
-pub use exercise::grade;
+pub use exercise::{grade, grade_message};
 pub use level_browser::{Browser, Entry};
 pub use overlay_controls::legend_entries;
 pub use solver::study_error;
@@ -52,6 +52,12 @@ pub struct UiState {
     pub answers: Vec<String>,
     /// A student's grade per question: (answer, relative error, passed).
     pub grades: Vec<Option<Result<(f64, f64, bool), String>>>,
+    /// Where each answer box was drawn last frame (egui points = CSS pixels in the page; the web
+    /// page publishes them so a browser test can click into a box and type).
+    pub answer_boxes: Vec<Option<egui::Rect>>,
+    /// A level opened from outside the panels (the web page's file picker), opened next frame as
+    /// a click in the level browser is.
+    pub pending_open: Option<Scene>,
     pub time_scale: f64,
     pub save_path: String,
     pub message: Option<(String, bool)>,
@@ -64,6 +70,8 @@ impl Default for UiState {
         UiState {
             answers: Vec::new(),
             grades: Vec::new(),
+            answer_boxes: Vec::new(),
+            pending_open: None,
             time_scale: 1.0,
             save_path: String::new(),
             message: None,
@@ -89,10 +97,19 @@ impl Plugin for PanelsPlugin {
 /// The world camera and, over it, the egui camera (full window, draws only the UI).
 pub fn spawn_cameras(mut commands: Commands, mut settings: ResMut<EguiGlobalSettings>) {
     settings.auto_create_primary_context = false;
-    commands.spawn((Camera2d, WorldCamera, Msaa::Sample4));
+    // In a web page WebGL2 often runs on the CPU (SwiftShader where there is no GPU), where the
+    // frame's cost grows with the samples drawn: 4x MSAA is left to native windows.
+    let msaa = if cfg!(target_arch = "wasm32") {
+        Msaa::Off
+    } else {
+        Msaa::Sample4
+    };
+    commands.spawn((Camera2d, WorldCamera, msaa));
     commands.spawn((
         PrimaryEguiContext,
         Camera2d,
+        // egui feathers its own edges: multisampling the UI would cost without showing.
+        Msaa::Off,
         RenderLayers::none(),
         Camera {
             order: 1,
@@ -144,6 +161,7 @@ fn panels(
             st.answers = vec![String::new(); n];
         }
         st.grades = vec![None; n];
+        st.answer_boxes = vec![None; n];
         if st.save_path.is_empty() {
             st.save_path = default_save_path(&phys.scene);
         }
@@ -211,6 +229,9 @@ fn panels(
     let _ = windows;
     view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
 
+    if load.is_none() {
+        load = st.pending_open.take();
+    }
     if let Some(scene) = load {
         st.save_path = default_save_path(&scene);
         st.message = Some((format!("opened {}", scene.file.display()), true));

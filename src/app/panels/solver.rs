@@ -47,6 +47,11 @@ pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
         phys.reset();
     }
     match phys.step_times.median_ms() {
+        // A web page's clock ticks in 0.1 ms steps (browsers coarsen `performance.now()`): a
+        // faster step reads 0, which is no measurement.
+        Some(ms) if ms == 0.0 => {
+            ui.label("step time: under the clock's resolution (0.1 ms in a web page)");
+        }
         Some(ms) => {
             // The cost as `rigidlab study accuracy` reports it: wall µs per simulated second.
             ui.label(format!(

@@ -9,7 +9,8 @@ use crate::questions::QuestionResult;
 use crate::runner::Observers;
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
-use std::time::{Duration, Instant};
+use crate::clock::Instant;
+use std::time::Duration;
 
 /// The engine precision the sweep varies: the simulation stage's own.
 pub use crate::sim::Precision;

@@ -1,0 +1,290 @@
+//! The sandbox in a web page (wasm32, WebGL2): the same plugins as the native window
+//! ([`super::add_sandbox`]) drawn into the page's `<canvas id="rigidlab">`, with the level library
+//! compiled in (a page has no file system).
+//!
+//! The page's URL chooses what opens (`web/index.html` documents it):
+//! - `?level=kinetics/simple_pendulum.ron` opens that library level (default: the first one);
+//! - `&play=1` starts it running (default: paused, as the native window opens);
+//! - `?check=1` runs the checks and questions headless instead of opening the window, the level's
+//!   or the whole library's, and writes the report `rigidlab check --json` writes into
+//!   `<pre id="rigidlab-report">`: the numbers in the page are the core's.
+//!
+//! Every frame the app writes its state as JSON into `<pre id="rigidlab-status">` (level, time,
+//! paused, frame rate, the view's mapping from metres to CSS pixels, each question's answer box
+//! and grade): what a screen reader, a teacher's script or the browser test reads.
+
+use super::panels::{self, Browser, UiState};
+use super::physics::Physics;
+use super::view::View;
+use crate::level::Scene;
+use bevy::prelude::*;
+use include_dir::{include_dir, Dir};
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use wasm_bindgen::JsCast;
+
+/// The level library, compiled in.
+static LEVELS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/levels");
+
+/// The library as `(levels/<topic>/<file>.ron, text)`, the paths `rigidlab check levels` prints.
+pub fn library() -> Vec<(PathBuf, Arc<str>)> {
+    fn walk(d: &Dir<'static>, out: &mut Vec<(PathBuf, Arc<str>)>) {
+        for f in d.files() {
+            if f.path().extension().is_some_and(|e| e == "ron") {
+                if let Some(text) = f.contents_utf8() {
+                    out.push((Path::new("levels").join(f.path()), Arc::from(text)));
+                }
+            }
+        }
+        for sub in d.dirs() {
+            walk(sub, out);
+        }
+    }
+    let mut out = Vec::new();
+    walk(&LEVELS, &mut out);
+    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out
+}
+
+/// What the page's URL asks for.
+#[derive(Debug, Default, Clone)]
+struct PageQuery {
+    level: Option<PathBuf>,
+    play: bool,
+    check: bool,
+}
+
+impl PageQuery {
+    fn from_page() -> PageQuery {
+        let mut q = PageQuery::default();
+        let Some(search) = web_sys::window().and_then(|w| w.location().search().ok()) else {
+            return q;
+        };
+        let Ok(params) = web_sys::UrlSearchParams::new_with_str(&search) else {
+            return q;
+        };
+        if let Some(l) = params.get("level").filter(|l| !l.is_empty()) {
+            // Both `kinetics/x.ron` and `levels/kinetics/x.ron` name the same level.
+            let l = l.trim_start_matches('/');
+            let l = l.strip_prefix("levels/").unwrap_or(l);
+            q.level = Some(Path::new("levels").join(l));
+        }
+        let yes = |k: &str| params.get(k).is_some_and(|v| v != "0" && v != "false");
+        q.play = yes("play");
+        q.check = yes("check");
+        q
+    }
+}
+
+/// The page's entry point (`main` of the wasm build).
+pub fn start() {
+    let query = PageQuery::from_page();
+    let browser = Browser::embedded(Path::new("levels"), library());
+    let (scene, note) = match &query.level {
+        Some(p) => match browser.find(p).map(|e| e.load()) {
+            Some(Ok(s)) => (s, None),
+            Some(Err(e)) => (first_or_empty(&browser), Some(e.to_string())),
+            None => (
+                first_or_empty(&browser),
+                Some(format!(
+                    "no level {} in the library: the URL's ?level= is a path under levels/, e.g. kinetics/simple_pendulum.ron",
+                    p.display()
+                )),
+            ),
+        },
+        None => (first_or_empty(&browser), None),
+    };
+    if query.check {
+        let scenes: Vec<Scene> = match (&query.level, note.is_none()) {
+            (Some(_), true) => vec![scene],
+            _ => browser
+                .groups
+                .values()
+                .flatten()
+                .filter_map(|e| e.load().ok())
+                .collect(),
+        };
+        let report = check(&scenes, note);
+        set_text("rigidlab-report", &crate::report::json(&report));
+        set_text("rigidlab-status", r#"{"check": "done"}"#);
+        return;
+    }
+    let mut app = App::new();
+    app.add_plugins(DefaultPlugins.set(WindowPlugin {
+        primary_window: Some(Window {
+            title: "rigidlab".into(),
+            canvas: Some("#rigidlab".into()),
+            fit_canvas_to_parent: true,
+            ..default()
+        }),
+        ..default()
+    }));
+    super::add_sandbox(&mut app, scene, browser, !query.play);
+    app.insert_resource(PageState {
+        note,
+        ..default()
+    });
+    app.add_systems(Update, open_picked_file);
+    app.add_systems(Last, publish_status);
+    app.run();
+}
+
+fn first_or_empty(browser: &Browser) -> Scene {
+    browser.first_loadable().unwrap_or_else(super::empty_scene)
+}
+
+/// Runs `scenes` with the core's runner and default settings, as `rigidlab check` does.
+fn check(scenes: &[Scene], note: Option<String>) -> crate::report::Report {
+    let opts = crate::sim::Options::default();
+    let mut levels = Vec::new();
+    for scene in scenes {
+        match crate::runner::run_scene(scene, &opts, &Default::default(), |_| {}) {
+            Ok(r) => levels.push(r),
+            Err(e) => {
+                let mut r = crate::report::LevelReport::failed(&scene.file, &e.to_string());
+                r.title = scene.level.title.clone();
+                levels.push(r)
+            }
+        }
+    }
+    if let Some(n) = note {
+        levels.push(crate::report::LevelReport::failed(Path::new("?level="), &n));
+    }
+    crate::report::Report {
+        passed: levels.iter().all(|l| l.passed),
+        levels,
+    }
+}
+
+/// Frame times, for the frame rate the status reports (median over the last two seconds).
+#[derive(Resource, Default)]
+struct PageState {
+    note: Option<String>,
+    frame_ms: VecDeque<f64>,
+    frames: u64,
+}
+
+fn publish_status(
+    phys: Res<Physics>,
+    view: Res<View>,
+    st: Res<UiState>,
+    time: Res<Time<Real>>,
+    mut page: ResMut<PageState>,
+) {
+    page.frames += 1;
+    let ms = time.delta_secs_f64() * 1e3;
+    if ms > 0.0 {
+        page.frame_ms.push_back(ms);
+        if page.frame_ms.len() > 120 {
+            page.frame_ms.pop_front();
+        }
+    }
+    let mut sorted: Vec<f64> = page.frame_ms.iter().copied().collect();
+    sorted.sort_by(f64::total_cmp);
+    let median_ms = sorted.get(sorted.len() / 2).copied();
+    let s = phys.snapshot();
+    let answers: Vec<serde_json::Value> = phys
+        .sim
+        .level
+        .questions
+        .iter()
+        .enumerate()
+        .map(|(k, q)| {
+            let rect = st.answer_boxes.get(k).copied().flatten();
+            let grade = st.grades.get(k).cloned().flatten();
+            let (message, right) = match &grade {
+                Some(g) => {
+                    let (m, r) = panels::grade_message(q, g);
+                    (Some(m), Some(r))
+                }
+                None => (None, None),
+            };
+            serde_json::json!({
+                "id": q.id,
+                "box": rect.map(|r| [r.min.x, r.min.y, r.width(), r.height()]),
+                "typed": st.answers.get(k),
+                "grade": message,
+                "right": right,
+            })
+        })
+        .collect();
+    let status = serde_json::json!({
+        "level": phys.scene.file.display().to_string(),
+        "title": phys.sim.level.title,
+        "t": s.time,
+        "step": s.step,
+        "paused": phys.paused,
+        "at_end": s.time >= phys.sim.level.world.duration - 0.5 * phys.sim.dt(),
+        "frames": page.frames,
+        "frame_ms_median": median_ms,
+        "fps": median_ms.map(|m| 1e3 / m),
+        "view": {
+            "center": [view.center.x, view.center.y],
+            "m_per_px": view.m_per_px,
+            "viewport": [view.viewport.min.x, view.viewport.min.y, view.viewport.max.x, view.viewport.max.y],
+        },
+        "answers": answers,
+        "error": phys.error,
+        "note": page.note,
+    });
+    set_text("rigidlab-status", &status.to_string());
+}
+
+/// A level file the user picked in the page (`web/index.html` puts its text into
+/// `<textarea id="rigidlab-open" data-name="...">`): parsed and opened like a click in the level
+/// browser, or its error (with line and column) shown in the panel's message line.
+fn open_picked_file(mut st: ResMut<UiState>) {
+    let Some(el) = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id("rigidlab-open"))
+    else {
+        return;
+    };
+    let text = el.text_content().unwrap_or_default();
+    if text.is_empty() {
+        return;
+    }
+    let name = el.get_attribute("data-name").unwrap_or_else(|| "picked.ron".into());
+    el.set_text_content(None);
+    match crate::level::parse(Path::new(&name), &text) {
+        Ok(scene) => st.pending_open = Some(scene),
+        Err(e) => st.message = Some((format!("{name} did not open:\n{e}"), false)),
+    }
+}
+
+/// Sets the text of the page element `id` (absent: nothing to do; the page may not have it).
+fn set_text(id: &str, text: &str) {
+    if let Some(el) = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id(id))
+    {
+        el.set_text_content(Some(text));
+    }
+}
+
+/// Offers `bytes` to the user as a download named `name` (a saved scene, an exported table).
+pub fn download(name: &str, bytes: &[u8], mime: &str) -> Result<(), String> {
+    let fail = |what: &str| format!("cannot download {name}: {what}");
+    let array = js_sys::Uint8Array::from(bytes);
+    let parts = js_sys::Array::of1(&array);
+    let props = web_sys::BlobPropertyBag::new();
+    props.set_type(mime);
+    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &props)
+        .map_err(|_| fail("the browser refused to make a Blob"))?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob)
+        .map_err(|_| fail("the browser refused an object URL"))?;
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or_else(|| fail("no document"))?;
+    let a: web_sys::HtmlAnchorElement = document
+        .create_element("a")
+        .map_err(|_| fail("cannot create a link"))?
+        .dyn_into()
+        .map_err(|_| fail("not a link"))?;
+    a.set_href(&url);
+    a.set_download(name);
+    a.click();
+    web_sys::Url::revoke_object_url(&url).ok();
+    Ok(())
+}

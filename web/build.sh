@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Builds the web page of the sandbox into web/dist (index.html, rigidlab.js, rigidlab_bg.wasm):
+# a static folder any web server can serve (web/serve.sh serves it locally).
+#
+# Installs what it needs: the wasm32-unknown-unknown target (rustup) and wasm-bindgen-cli at the
+# version of the wasm-bindgen crate in Cargo.lock (the two must match exactly).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+target_dir="${CARGO_TARGET_DIR:-target}"
+out=web/dist
+
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  echo "web/build.sh: installing the wasm32-unknown-unknown target"
+  rustup target add wasm32-unknown-unknown
+fi
+
+want=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
+have=$(wasm-bindgen --version 2>/dev/null | awk '{ print $2 }' || true)
+if [ "$have" != "$want" ]; then
+  echo "web/build.sh: installing wasm-bindgen-cli $want (have: ${have:-none}; about 3 min)"
+  # Not --locked: the lock file it ships names a webpki-roots this registry no longer serves.
+  cargo install wasm-bindgen-cli --version "$want"
+fi
+
+# The `web` profile (Cargo.toml): release, optimised for size except the physics.
+cargo build --profile web --target wasm32-unknown-unknown --bin rigidlab
+
+rm -rf "$out"
+mkdir -p "$out"
+# The name section (23 of 67 MB) only names functions in stack traces; the panic message stays.
+wasm-bindgen --target web --no-typescript --remove-name-section --remove-producers-section --out-dir "$out" --out-name rigidlab \
+  "$target_dir/wasm32-unknown-unknown/web/rigidlab.wasm"
+cp web/index.html "$out/"
+
+wasm="$out/rigidlab_bg.wasm"
+raw=$(stat -c %s "$wasm")
+gz=$(gzip -9 -c "$wasm" | wc -c)
+echo "web/build.sh: $out ready; rigidlab_bg.wasm $((raw / 1024)) KiB, $((gz / 1024)) KiB gzipped"

@@ -1,0 +1,130 @@
+// The browser test's driver: serves web/dist, opens it in headless Chromium (Debian's, through
+// playwright-core) as a student would, and records what it saw into OUT (default
+// target/web-test) for tests/web_page.rs to judge against the core:
+//   check.json      the page's own `?check=1` report of the levels in CHECK_LEVELS;
+//   pendulum.png    the simple pendulum played to its end (t = 0.8 s), as the page drew it;
+//   status.json     the page's status at that moment (time, view mapping, frame rate);
+//   answered.png / answered.json   after typing an answer into the first question's box;
+//   browser.json    timings: page open to first frame, frame rate while playing.
+// Usage: node web/test/browser.mjs [OUT]   (exit 1 with the reason when a step fails)
+import { chromium } from "playwright-core";
+import { spawn } from "node:child_process";
+import { mkdirSync, writeFileSync, existsSync } from "node:fs";
+import { dirname, join, resolve } from "node:path";
+import { fileURLToPath } from "node:url";
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), "../..");
+const dist = join(root, "web/dist");
+const out = resolve(process.argv[2] ?? join(root, "target/web-test"));
+const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
+// Levels whose numbers the page must reproduce (tests/web_page.rs compares them with the core).
+const CHECK_LEVELS = [
+  "kinetics/simple_pendulum.ron",
+  "kinetics/physical_pendulum.ron",
+  "impact/jh_P9.11.1_oblique_spheres.ron",
+  "energy/torsion_spring_flywheel.ron",
+  "kinematics/classic_four_bar.ron",
+];
+const ANSWER = process.env.ANSWER ?? "3.13"; // v_bottom = sqrt(g L) = 3.1321 m/s (the level's comment)
+
+function fail(why) {
+  console.error(`browser test: ${why}`);
+  process.exit(1);
+}
+if (!existsSync(join(dist, "index.html"))) fail(`no ${dist}/index.html: run web/build.sh first`);
+if (!existsSync(chromiumPath)) fail(`no Chromium at ${chromiumPath} (apt-get install chromium, or set CHROMIUM)`);
+mkdirSync(out, { recursive: true });
+
+// Python's server sends .wasm as application/wasm (what WebAssembly.instantiateStreaming needs).
+const port = 8000 + Math.floor(Math.random() * 1000);
+const server = spawn("python3", ["-m", "http.server", "--bind", "127.0.0.1", "--directory", dist, String(port)], { stdio: "ignore" });
+const base = `http://127.0.0.1:${port}/`;
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// The flags this machine needs (no network, no GPU): WebGL2 through SwiftShader, on the CPU.
+const browser = await chromium.launch({
+  executablePath: chromiumPath,
+  headless: true,
+  args: [
+    "--no-sandbox", "--no-first-run", "--disable-background-networking", "--disable-component-update",
+    "--disable-sync", "--disable-quic", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+    "--ignore-gpu-blocklist",
+  ],
+});
+const summary = {};
+try {
+  for (let i = 0; i < 50; i++) {
+    try { await fetch(base); break; } catch { await sleep(100); }
+  }
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const logs = [];
+  page.on("console", (m) => logs.push(`${m.type()}: ${m.text()}`));
+  page.on("pageerror", (e) => logs.push(`pageerror: ${e}`));
+  const status = async () => JSON.parse((await page.textContent("#rigidlab-status")) || "null");
+  const waitStatus = async (what, ok, seconds) => {
+    const t0 = Date.now();
+    for (;;) {
+      let s = null;
+      try { s = await status(); } catch {}
+      if (s && ok(s)) return s;
+      if (Date.now() - t0 > seconds * 1000) {
+        writeFileSync(join(out, "console.log"), logs.join("\n"));
+        fail(`${what} did not happen within ${seconds} s; last status ${JSON.stringify(s)}; console in ${out}/console.log`);
+      }
+      await sleep(50);
+    }
+  };
+
+  // 1. The numbers: the page runs the levels with the core and prints the report.
+  const checks = [];
+  for (const level of CHECK_LEVELS) {
+    await page.goto(`${base}?check=1&level=${level}`);
+    await waitStatus(`the page's check of ${level}`, (s) => s.check === "done", 120);
+    checks.push(...JSON.parse(await page.textContent("#rigidlab-report")).levels);
+  }
+  writeFileSync(join(out, "check.json"), JSON.stringify({ passed: checks.every((l) => l.passed), levels: checks }, null, 1));
+
+  // 2. A student opens the pendulum and plays it to its end.
+  const t0 = Date.now();
+  await page.goto(`${base}?level=kinetics/simple_pendulum.ron&play=1`);
+  const first = await waitStatus("the first frame", (s) => s.frames >= 1, 60);
+  summary.open_to_first_frame_s = (Date.now() - t0) / 1000;
+  const end = await waitStatus("the pendulum's end (t = 0.8 s)", (s) => s.paused && s.at_end, 120);
+  summary.frames_while_playing = end.frames - first.frames;
+  summary.fps_median = end.fps;
+  await sleep(300); // a few more frames of the paused state on screen
+  const still = await status();
+  writeFileSync(join(out, "status.json"), JSON.stringify(still, null, 1));
+  await page.screenshot({ path: join(out, "pendulum.png") });
+
+  // 3. The student types an answer into the first question's box and presses Enter.
+  // The questions sit under the statement in the left panel: scroll it until the box shows.
+  let q = still.answers[0];
+  for (let i = 0; i < 20 && q && q.box && q.box[1] + q.box[3] > 780; i++) {
+    await page.mouse.move(150, 600);
+    await page.mouse.wheel(0, 200);
+    const f = (await status()).frames;
+    await waitStatus("a frame after scrolling", (s) => s.frames >= f + 2, 30);
+    q = (await status()).answers[0];
+  }
+  if (!q || !q.box) fail(`no answer box in the status: ${JSON.stringify(still.answers)}`);
+  const [x, y, w, h] = q.box;
+  if (y + h > 800) fail(`the answer box stays below the page (${q.box}) after scrolling`);
+  await page.mouse.click(x + w / 2, y + h / 2);
+  // Keys typed before egui has seen the click would go nowhere: let it focus the box first.
+  const f0 = (await status()).frames;
+  await waitStatus("two frames after the click", (s) => s.frames >= f0 + 2, 30);
+  await page.keyboard.type(ANSWER, { delay: 100 });
+  await page.keyboard.press("Enter");
+  const graded = await waitStatus("the grade of the typed answer", (s) => s.answers[0].grade, 30);
+  writeFileSync(join(out, "answered.json"), JSON.stringify(graded, null, 1));
+  await page.screenshot({ path: join(out, "answered.png") });
+  summary.grade = graded.answers[0].grade;
+  summary.typed = graded.answers[0].typed;
+  writeFileSync(join(out, "console.log"), logs.join("\n"));
+  writeFileSync(join(out, "browser.json"), JSON.stringify(summary, null, 1));
+  console.log(`browser test: ${JSON.stringify(summary)}`);
+} finally {
+  await browser.close();
+  server.kill();
+}
