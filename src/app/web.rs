@@ -225,6 +225,7 @@ fn publish_status(
             "viewport": [view.viewport.min.x, view.viewport.min.y, view.viewport.max.x, view.viewport.max.y],
         },
         "answers": answers,
+        "message": st.message.as_ref().map(|(m, ok)| serde_json::json!({"text": m, "ok": ok})),
         "error": phys.error,
         "note": page.note,
     });

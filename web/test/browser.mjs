@@ -5,7 +5,8 @@
 //   pendulum.png    the simple pendulum played to its end (t = 0.8 s), as the page drew it;
 //   status.json     the page's status at that moment (time, view mapping, frame rate);
 //   answered.png / answered.json   after typing an answer into the first question's box;
-//   browser.json    timings: page open to first frame, frame rate while playing.
+//   pyramid.png     the 210-box pyramid playing with every overlay on;
+//   browser.json    timings: page open to first frame, frame rates while playing.
 // Usage: node web/test/browser.mjs [OUT]   (exit 1 with the reason when a step fails)
 import { chromium } from "playwright-core";
 import { spawn } from "node:child_process";
@@ -24,6 +25,9 @@ const CHECK_LEVELS = [
   "impact/jh_P9.11.1_oblique_spheres.ron",
   "energy/torsion_spring_flywheel.ron",
   "kinematics/classic_four_bar.ron",
+  "momentum/bar_struck_at_percussion.ron",
+  "virtual-work/zh_slider_crank_static_servo.ron",
+  "kinetics/classic_atwood_massive_pulley.ron",
 ];
 const ANSWER = process.env.ANSWER ?? "3.13"; // v_bottom = sqrt(g L) = 3.1321 m/s (the level's comment)
 
@@ -90,8 +94,7 @@ try {
   const first = await waitStatus("the first frame", (s) => s.frames >= 1, 60);
   summary.open_to_first_frame_s = (Date.now() - t0) / 1000;
   const end = await waitStatus("the pendulum's end (t = 0.8 s)", (s) => s.paused && s.at_end, 120);
-  summary.frames_while_playing = end.frames - first.frames;
-  summary.fps_median = end.fps;
+  summary.pendulum_end = { t: end.t, step: end.step };
   await sleep(300); // a few more frames of the paused state on screen
   const still = await status();
   writeFileSync(join(out, "status.json"), JSON.stringify(still, null, 1));
@@ -121,6 +124,46 @@ try {
   await page.screenshot({ path: join(out, "answered.png") });
   summary.grade = graded.answers[0].grade;
   summary.typed = graded.answers[0].typed;
+
+  // 4. The student opens level files from their computer: a good one opens, a broken one says
+  //    where it is broken and leaves the open level alone.
+  writeFileSync(join(out, "broken.ron"), "(title: \"broken\", bodies: [ (name: \"a\" ]");
+  await page.setInputFiles("#pick", join(root, "levels/impact/central_impact.ron"));
+  const opened = await waitStatus("the picked level to open", (s) => s.level.endsWith("central_impact.ron"), 30);
+  await page.setInputFiles("#pick", join(out, "broken.ron"));
+  const refused = await waitStatus("the broken file's error", (s) => s.message && !s.message.ok, 30);
+  if (!refused.level.endsWith("central_impact.ron")) fail(`a broken file replaced the open level: ${refused.level}`);
+  if (!/broken\.ron:\d+:\d+/.test(refused.message.text)) fail(`the error does not locate the fault: ${refused.message.text}`);
+  summary.picked = { opened: opened.title, refused: refused.message.text.split("\n").slice(0, 2).join(" / ") };
+
+  // 5. Frame rate while playing, with every overlay on (keys A C F K H join the default V T L):
+  //    frames counted over 2.5 s after a 1 s warm-up (shaders compiled; the pendulum's 3.6 s
+  //    run does not end inside the window if the page keeps real time).
+  const playFps = async (level) => {
+    await page.goto(`${base}?level=${level}`);
+    await waitStatus(`${level}'s first frame`, (s) => s.frames >= 2, 60);
+    await page.mouse.click(450, 700); // focus the canvas (an empty spot of the scene)
+    const f = (await status()).frames;
+    await waitStatus("two frames after the click", (s) => s.frames >= f + 2, 30);
+    for (const k of ["a", "c", "f", "k", "h", " "]) await page.keyboard.press(k);
+    await waitStatus(`${level} playing`, (s) => !s.paused, 30);
+    await sleep(1000);
+    const a = await status();
+    const t0 = Date.now();
+    await sleep(2500);
+    const b = await status();
+    return {
+      fps: (b.frames - a.frames) / ((Date.now() - t0) / 1000),
+      frame_ms_median: b.frame_ms_median,
+      // Simulated seconds per real second (1 = real time); null when the level ended inside.
+      sim_rate: b.paused ? null : (b.t - a.t) / ((Date.now() - t0) / 1000),
+    };
+  };
+  summary.playing = {
+    "kinetics/physical_pendulum.ron": await playFps("kinetics/physical_pendulum.ron"),
+    "stress/pyramid_20.ron": await playFps("stress/pyramid_20.ron"),
+  };
+  await page.screenshot({ path: join(out, "pyramid.png") });
   writeFileSync(join(out, "console.log"), logs.join("\n"));
   writeFileSync(join(out, "browser.json"), JSON.stringify(summary, null, 1));
   console.log(`browser test: ${JSON.stringify(summary)}`);
