@@ -12,6 +12,7 @@ pub mod geometry;
 pub mod overlays;
 pub mod panels;
 pub mod physics;
+pub mod playback;
 pub mod quantities;
 pub mod render;
 pub mod tools;

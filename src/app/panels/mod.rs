@@ -197,7 +197,7 @@ fn panels(
         .size_range(260.0..=520.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                playback(ui, &mut phys, st, &mut view);
+                playback(ui, &mut phys, st, &mut view, &mut tools);
                 ui.separator();
                 overlay_controls(ui, &mut ov, &phys);
                 ui.separator();

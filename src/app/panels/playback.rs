@@ -4,12 +4,19 @@
 
 use super::super::physics::Physics;
 use super::super::view::{palette, View};
-use super::shortcuts::toggle_play;
+use super::super::playback::{restart, toggle_play};
+use super::super::tools::ToolState;
 use super::{rich, UiState};
 use bevy_egui::egui;
 
 /// Draws the panel.
-pub(super) fn playback(ui: &mut egui::Ui, phys: &mut Physics, st: &mut UiState, view: &mut View) {
+pub(super) fn playback(
+    ui: &mut egui::Ui,
+    phys: &mut Physics,
+    st: &mut UiState,
+    view: &mut View,
+    tools: &mut ToolState,
+) {
     let s = phys.snapshot();
     let duration = phys.sim.level.world.duration;
     ui.heading("Playback");
@@ -21,7 +28,7 @@ pub(super) fn playback(ui: &mut egui::Ui, phys: &mut Physics, st: &mut UiState, 
     ui.horizontal(|ui| {
         let label = if phys.paused { "▶ Play" } else { "⏸ Pause" };
         if ui.button(label).clicked() {
-            toggle_play(phys);
+            toggle_play(phys, tools);
         }
         if ui
             .button("⏭ Step")
@@ -31,8 +38,12 @@ pub(super) fn playback(ui: &mut egui::Ui, phys: &mut Physics, st: &mut UiState, 
             phys.paused = true;
             phys.steps_requested += 1;
         }
-        if ui.button("⟲ Reset").clicked() {
-            phys.reset();
+        if ui
+            .button("⟲ Reset")
+            .on_hover_text("back to t = 0 as the level opened (R)")
+            .clicked()
+        {
+            restart(phys, tools);
         }
         if ui
             .button("Fit")

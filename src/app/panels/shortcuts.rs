@@ -3,6 +3,7 @@
 
 use super::super::overlays::Overlays;
 use super::super::physics::Physics;
+use super::super::playback::{restart, toggle_play};
 use super::super::tools::{Tool, ToolState};
 use super::super::view::View;
 use super::UiState;
@@ -25,14 +26,14 @@ pub(super) fn keys(
         return;
     }
     if keys.just_pressed(KeyCode::Space) {
-        toggle_play(&mut phys);
+        toggle_play(&mut phys, &mut tools);
     }
     if keys.just_pressed(KeyCode::KeyS) || keys.just_pressed(KeyCode::ArrowRight) {
         phys.paused = true;
         phys.steps_requested += 1;
     }
     if keys.just_pressed(KeyCode::KeyR) {
-        phys.reset();
+        restart(&mut phys, &mut tools);
     }
     if keys.just_pressed(KeyCode::Home) {
         view.fit = true;
@@ -63,13 +64,4 @@ pub(super) fn keys(
             .spawn(Screenshot::primary_window())
             .observe(save_to_disk(name));
     }
-}
-
-/// Play or pause; playing past the exercise's end turns the run into a free sandbox.
-pub(super) fn toggle_play(phys: &mut Physics) {
-    if phys.paused && phys.at_end() && phys.stop_at_end {
-        // Past the exercise's end: keep going as a free sandbox.
-        phys.stop_at_end = false;
-    }
-    phys.paused = !phys.paused;
 }
