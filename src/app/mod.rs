@@ -8,6 +8,7 @@
 //! - [`render`]: the same scene drawn into a PNG without a window.
 
 pub mod draw;
+pub mod frame_rate;
 pub mod geometry;
 pub mod overlays;
 pub mod panels;
@@ -309,7 +310,11 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
     });
     app.add_plugins(ScenePlugin { legend: false });
     app.insert_resource(browser);
-    app.add_plugins((panels::PanelsPlugin, tools::ToolsPlugin));
+    app.add_plugins((
+        panels::PanelsPlugin,
+        tools::ToolsPlugin,
+        frame_rate::FrameRatePlugin,
+    ));
     app.add_systems(Startup, panels::spawn_cameras);
 }
 

@@ -34,7 +34,9 @@ pub mod palette {
     pub const GRAVITY: Color = Color::srgb(0.0, 0.50, 0.20);
     pub const NORMAL: Color = Color::srgb(0.85, 0.05, 0.10);
     pub const FRICTION: Color = Color::srgb(0.95, 0.50, 0.0);
-    pub const REACTION: Color = Color::srgb(0.50, 0.10, 0.70);
+    /// Joint reactions: dark gold, apart from every other force and from the instantaneous
+    /// center's purple (they met at a pin, where R's arrow starts on the IC's dot).
+    pub const REACTION: Color = Color::srgb(0.60, 0.48, 0.0);
     pub const LOAD: Color = Color::srgb(0.80, 0.0, 0.50);
     pub const TRAIL: Color = Color::srgba(0.20, 0.35, 0.65, 0.55);
     pub const MOMENTUM: Color = Color::srgb(0.0, 0.55, 0.55);

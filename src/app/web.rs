@@ -14,12 +14,12 @@
 //! and grade): what a screen reader, a teacher's script or the browser test reads.
 
 use super::panels::{self, Browser, UiState};
+use super::frame_rate::FrameRate;
 use super::physics::Physics;
 use super::view::View;
 use crate::level::Scene;
 use bevy::prelude::*;
 use include_dir::{include_dir, Dir};
-use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use wasm_bindgen::JsCast;
@@ -121,10 +121,7 @@ pub fn start() {
         ..default()
     }));
     super::add_sandbox(&mut app, scene, browser, !query.play);
-    app.insert_resource(PageState {
-        note,
-        ..default()
-    });
+    app.insert_resource(PageState { note });
     app.add_systems(Update, open_picked_file);
     app.add_systems(Last, publish_status);
     app.run();
@@ -157,32 +154,19 @@ fn check(scenes: &[Scene], note: Option<String>) -> crate::report::Report {
     }
 }
 
-/// Frame times, for the frame rate the status reports (median over the last two seconds).
+/// What the page adds to the app's state: why the URL's level did not open.
 #[derive(Resource, Default)]
 struct PageState {
     note: Option<String>,
-    frame_ms: VecDeque<f64>,
-    frames: u64,
 }
 
 fn publish_status(
     phys: Res<Physics>,
     view: Res<View>,
     st: Res<UiState>,
-    time: Res<Time<Real>>,
-    mut page: ResMut<PageState>,
+    rate: Res<FrameRate>,
+    page: Res<PageState>,
 ) {
-    page.frames += 1;
-    let ms = time.delta_secs_f64() * 1e3;
-    if ms > 0.0 {
-        page.frame_ms.push_back(ms);
-        if page.frame_ms.len() > 120 {
-            page.frame_ms.pop_front();
-        }
-    }
-    let mut sorted: Vec<f64> = page.frame_ms.iter().copied().collect();
-    sorted.sort_by(f64::total_cmp);
-    let median_ms = sorted.get(sorted.len() / 2).copied();
     let s = phys.snapshot();
     let answers: Vec<serde_json::Value> = phys
         .sim
@@ -216,9 +200,9 @@ fn publish_status(
         "step": s.step,
         "paused": phys.paused,
         "at_end": s.time >= phys.sim.level.world.duration - 0.5 * phys.sim.dt(),
-        "frames": page.frames,
-        "frame_ms_median": median_ms,
-        "fps": median_ms.map(|m| 1e3 / m),
+        "frames": rate.frames,
+        "frame_ms_median": rate.median_ms(),
+        "fps": rate.fps(),
         "view": {
             "center": [view.center.x, view.center.y],
             "m_per_px": view.m_per_px,

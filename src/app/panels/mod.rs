@@ -8,6 +8,7 @@
 mod capture;
 mod checks;
 mod exercise;
+mod help;
 mod level_browser;
 mod overlay_controls;
 mod playback;
@@ -23,6 +24,7 @@ pub use overlay_controls::legend_entries;
 pub use solver::study_error;
 
 use super::color32;
+use super::frame_rate::FrameRate;
 use super::overlays::Overlays;
 use super::physics::{LiveChecks, Physics};
 use super::tools::ToolState;
@@ -58,6 +60,8 @@ pub struct UiState {
     /// A level opened from outside the panels (the web page's file picker), opened next frame as
     /// a click in the level browser is.
     pub pending_open: Option<Scene>,
+    /// The help window is open (F1 or ?).
+    pub help: bool,
     pub time_scale: f64,
     pub save_path: String,
     pub message: Option<(String, bool)>,
@@ -72,6 +76,7 @@ impl Default for UiState {
             grades: Vec::new(),
             answer_boxes: Vec::new(),
             pending_open: None,
+            help: false,
             time_scale: 1.0,
             save_path: String::new(),
             message: None,
@@ -147,7 +152,9 @@ fn panels(
     mut browser: ResMut<Browser>,
     mut time: ResMut<Time<Virtual>>,
     windows: Query<&Window>,
+    rate: Option<Res<FrameRate>>,
 ) -> Result {
+    let rate = rate.map(|r| r.clone()).unwrap_or_default();
     let ctx = contexts.ctx_mut()?.clone();
     let st = &mut *ui_state;
     if st.generation.is_none() {
@@ -217,9 +224,17 @@ fn panels(
                 ui.label(rich(m.clone(), if *ok { palette::GRAVITY } else { palette::NORMAL }));
                 ui.separator();
             }
+            if ui.small_button("? help").on_hover_text("F1 or ?").clicked() {
+                st.help = !st.help;
+            }
+            if let Some(ms) = rate.median_ms() {
+                ui.label(rich(format!("{:.0} fps ({ms:.0} ms a frame)", 1e3 / ms), palette::OUTLINE))
+                    .on_hover_text("median over the last 120 frames");
+                ui.separator();
+            }
             ui.label(
                 "Space play/pause · S step · R reset · −/= time scale · wheel zoom · right-drag pan · Home fit · \
-                 1 select/drag · 2 impulse · 3 set O · V A C F K H T L overlays · F12 screenshot",
+                 1 select/drag · 2 impulse · 3 set O · V A C F K H T L overlays · F12 screenshot · F1 help",
             );
         });
     });
@@ -229,6 +244,7 @@ fn panels(
     let _ = windows;
     view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
 
+    help::help(&ctx, &mut st.help);
     if load.is_none() {
         load = st.pending_open.take();
     }

@@ -57,6 +57,10 @@ pub(super) fn keys(
         ov.selected = None;
         ov.point = None;
     }
+    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
+    if keys.just_pressed(KeyCode::F1) || (shift && keys.just_pressed(KeyCode::Slash)) {
+        ui.help = !ui.help;
+    }
     if keys.just_pressed(KeyCode::F12) {
         let name = format!("rigidlab-{:.3}s.png", phys.snapshot().time);
         ui.message = Some((format!("screenshot saved to {name}"), true));

@@ -1,0 +1,86 @@
+//! The help window (F1 or ?): every key, overlay, tool and what the colors mean.
+
+use super::super::view::palette;
+use super::rich;
+use bevy_egui::egui;
+
+/// Draws the help window while `open`; its close button clears `open`.
+pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
+    egui::Window::new("Help (F1 or ?)")
+        .open(open)
+        .collapsible(false)
+        .resizable(true)
+        .default_width(520.0)
+        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+        .show(ctx, |ui| {
+            egui::ScrollArea::vertical().max_height(560.0).show(ui, |ui| {
+                ui.label(
+                    "A level is an exercise: a scene, a question, its textbook answer and a tolerance. \
+                     Read the statement on the left, play the scene, type your answer into a question's box \
+                     and press Enter: it is graded with the level's own rule, and rigidlab's measured value \
+                     shows once your answer is right.",
+                );
+                ui.add_space(6.0);
+                ui.strong("Keys");
+                egui::Grid::new("help-keys").striped(true).show(ui, |ui| {
+                    for (k, what) in KEYS {
+                        ui.monospace(*k);
+                        ui.label(*what);
+                        ui.end_row();
+                    }
+                });
+                ui.add_space(6.0);
+                ui.strong("Overlays (keys toggle them; click a body to draw its diagrams)");
+                egui::Grid::new("help-overlays").striped(true).show(ui, |ui| {
+                    for (k, what, color) in overlays() {
+                        ui.monospace(k);
+                        ui.label(rich(what, color));
+                        ui.end_row();
+                    }
+                });
+                ui.add_space(6.0);
+                ui.strong("Mouse");
+                ui.label(
+                    "Wheel zooms about the cursor; right or middle drag pans. Tool 1 selects a body and a point \
+                     on it (v_P, lines to the instantaneous center) and drags it on a spring; tool 2 strikes: \
+                     click-drag on a body, the arrow is the impulse; tool 3 sets O, the point angular momentum \
+                     H_O is taken about.",
+                );
+                ui.add_space(6.0);
+                ui.strong("Headless");
+                ui.label(
+                    "Every level also runs without the window: `rigidlab check LEVEL --answer ID=VALUE` grades \
+                     the same answers, and `rigidlab check levels` runs the whole library.",
+                );
+            });
+        });
+}
+
+const KEYS: &[(&str, &str)] = &[
+    ("Space", "play / pause (at the level's end: start over)"),
+    ("S or →", "one physics step"),
+    ("R", "reset to t = 0 as the level opened"),
+    ("− / =", "time scale ÷ 2 / × 2"),
+    ("Home", "fit the view to the scene"),
+    ("1 2 3", "tools: select and drag · impulse · set O"),
+    ("Esc", "clear the selection"),
+    ("F12", "screenshot (a PNG; downloaded in a web page)"),
+    ("F1 or ?", "this help"),
+];
+
+fn overlays() -> Vec<(&'static str, &'static str, bevy::color::Color)> {
+    vec![
+        ("V", "velocity of G and of the chosen point", palette::VELOCITY),
+        ("A", "acceleration of G", palette::ACCEL),
+        ("C", "instantaneous center of zero velocity", palette::CENTER),
+        ("F", "free-body diagram: weight", palette::GRAVITY),
+        ("", "contact normal force N", palette::NORMAL),
+        ("", "friction F", palette::FRICTION),
+        ("", "joint reaction R", palette::REACTION),
+        ("", "applied loads", palette::LOAD),
+        ("K", "kinetic diagram: m a_G and I_G alpha beside the body", palette::ACCEL),
+        ("H", "angular momentum about O", palette::MOMENTUM),
+        ("T", "trails of G", palette::TRAIL),
+        ("L", "labels with magnitudes", palette::TEXT),
+    ]
+}
