@@ -400,7 +400,7 @@ pub fn build(
                     _ => acc.as_ref().map(|acc| acc[i]),
                 };
                 if let Some(a) = a {
-                    kinetic_diagram(i, s, outlines, a, &forces, scales, labels, d);
+                    kinetic_diagram(i, s, outlines, a, (&forces, couple), scales, labels, d);
                 }
             }
         }
@@ -471,7 +471,7 @@ fn kinetic_diagram(
     s: &Snapshot,
     outlines: &[Outline],
     (a, alpha): (DVec2, f64),
-    forces: &[quantities::Force],
+    (forces, couple): (&[quantities::Force], f64),
     scales: &Scales,
     labels: bool,
     d: &mut Drawing,
@@ -489,17 +489,12 @@ fn kinetic_diagram(
     } else {
         aabb.size().x
     };
-    let mut shift = DVec2::new(width + 90.0 * px, 0.0);
-    // To the left when the copy would leave the view on the right by more than a corner (20 px)
-    // and fits on the left (a body near the viewport's right edge, e.g. when the panel is wide).
-    if let Some((lo, hi)) = scales.visible {
-        if !aabb.is_empty()
-            && aabb.max.x + shift.x > hi.x + 20.0 * px
-            && aabb.min.x - shift.x >= lo.x
-        {
-            shift = -shift;
-        }
-    }
+    let height = if aabb.is_empty() {
+        2.0 * r
+    } else {
+        aabb.size().y
+    };
+    let shift = free_side(i, s, outlines, &aabb, width, height, scales.visible, px);
     let to_world = geometry::place(o, b.position + shift, b.angle);
     for poly in &o.filled {
         d.prims.push(Prim::Poly(
@@ -520,6 +515,13 @@ fn kinetic_diagram(
         d.prims.push(Prim::Curl(g, 14.0, ia, palette::ACCEL));
     }
     let sum: DVec2 = forces.iter().map(|f| f.force).sum();
+    // Sum of moments about G of the free-body diagram's forces and couples (PL-1, MK eq. 6/1's
+    // sum M_G = I_G alpha, the rotational half of "FBD = KD").
+    let sum_m: f64 = forces
+        .iter()
+        .map(|f| crate::analysis::energy::moment_about(b.com, f.point, f.force))
+        .sum::<f64>()
+        + couple;
     d.label(b.com + 0.5 * shift, Vec2::ZERO, "=", palette::TEXT);
     if labels {
         d.tip_label(
@@ -528,13 +530,94 @@ fn kinetic_diagram(
             format!("m a_G = {}", si(ma.length(), "N")),
             palette::ACCEL,
         );
+        // Under the "=" between the two diagrams: free space by construction (free_side).
         d.label(
-            g,
-            Vec2::new(0.0, 22.0 + (r / px) as f32),
-            format!("ΣF = {}   I_G α = {}", si(sum.length(), "N"), si(ia, "N m")),
+            b.com + 0.5 * shift,
+            Vec2::new(0.0, 30.0),
+            format!(
+                "ΣF = {} · m a_G = {}\nΣM_G = {} · I_G α = {}",
+                si(sum.length(), "N"),
+                si(ma.length(), "N"),
+                si(sum_m, "N m"),
+                si(ia, "N m")
+            ),
             palette::TEXT,
         );
     }
+}
+
+/// Where the kinetic diagram of body `i` goes: beside the body (right, left, below, above, in
+/// that order of preference), a gap of 90 px away, at the first side where the copy lies inside
+/// the view and over no other body; failing that, the side that overlaps least (bodies first,
+/// then the view's edge). Returns the shift from the body to its copy, m.
+#[allow(clippy::too_many_arguments)]
+fn free_side(
+    i: usize,
+    s: &Snapshot,
+    outlines: &[Outline],
+    aabb: &geometry::Bounds,
+    width: f64,
+    height: f64,
+    visible: Option<(DVec2, DVec2)>,
+    px: f64,
+) -> DVec2 {
+    let gap = 90.0 * px;
+    let sides = [
+        DVec2::new(width + gap, 0.0),
+        DVec2::new(-(width + gap), 0.0),
+        DVec2::new(0.0, -(height + gap)),
+        DVec2::new(0.0, height + gap),
+    ];
+    if aabb.is_empty() {
+        return sides[0];
+    }
+    // The other bodies' boxes (ground and walls included: a diagram inside the incline is the
+    // issue this avoids).
+    let others: Vec<geometry::Bounds> = s
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k != i)
+        .filter_map(|(k, b)| {
+            let o = outlines.get(k)?;
+            let here = geometry::place(o, b.position, b.angle);
+            let mut bb = geometry::Bounds::empty();
+            o.points().for_each(|p| bb.add(here(p)));
+            (!bb.is_empty()).then_some(bb)
+        })
+        .collect();
+    let overlap = |a: &geometry::Bounds, b: &geometry::Bounds| -> f64 {
+        let w = (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).max(0.0);
+        let h = (a.max.y.min(b.max.y) - a.min.y.max(b.min.y)).max(0.0);
+        w * h
+    };
+    let cost = |shift: DVec2| -> (f64, f64) {
+        let copy = geometry::Bounds {
+            min: aabb.min + shift,
+            max: aabb.max + shift,
+        };
+        let on_bodies: f64 = others.iter().map(|o| overlap(&copy, o)).sum();
+        let outside = match visible {
+            Some((lo, hi)) => {
+                let view = geometry::Bounds { min: lo, max: hi };
+                (copy.size().x * copy.size().y - overlap(&copy, &view)).max(0.0)
+            }
+            None => 0.0,
+        };
+        (on_bodies, outside)
+    };
+    let mut best = (sides[0], (f64::INFINITY, f64::INFINITY));
+    for side in sides {
+        let c = cost(side);
+        if c.0 <= 0.0 && c.1 <= 0.0 {
+            return side;
+        }
+        // Least area over the view's edge first (a clipped diagram cannot be read), then over bodies.
+        if (c.1, c.0) < (best.1 .1, best.1 .0) {
+            best = (side, c);
+        }
+    }
+    best.0
 }
 
 /// Keys: V A C F K H T L toggle the overlays.
