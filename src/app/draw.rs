@@ -49,6 +49,8 @@ pub struct Label {
 pub struct Drawing {
     pub prims: Vec<Prim>,
     pub labels: Vec<Label>,
+    /// The bodies' filled convex parts, world coordinates: labels are kept off them.
+    pub bodies: Vec<Vec<DVec2>>,
     /// Meters per logical pixel of the view the drawing was built for.
     pub m_per_px: f64,
 }
@@ -57,6 +59,7 @@ impl Drawing {
     pub fn clear(&mut self, m_per_px: f64) {
         self.prims.clear();
         self.labels.clear();
+        self.bodies.clear();
         self.m_per_px = m_per_px;
     }
     pub fn label(&mut self, at: DVec2, offset: Vec2, text: impl Into<String>, color: Color) {

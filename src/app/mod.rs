@@ -10,6 +10,7 @@
 pub mod draw;
 pub mod frame_rate;
 pub mod geometry;
+pub mod labels;
 pub mod overlays;
 pub mod panels;
 pub mod physics;
@@ -141,46 +142,48 @@ fn paint_labels(mut contexts: EguiContexts, d: Res<Drawing>, view: Res<View>) ->
         ))
         .with_clip_rect(egui_rect(view.viewport));
     let bg = color32(palette::BACKGROUND.with_alpha(0.8));
-    let mut placed: Vec<egui::Rect> = Vec::new();
-    for l in &d.labels {
-        let galley = painter.layout_no_wrap(
-            l.text.clone(),
-            egui::FontId::proportional(l.size),
-            color32(l.color),
-        );
-        let size = galley.size();
-        // Centered on the point, or pushed out along `dir` until its box clears the point.
-        let push = 5.0 + 0.5 * (l.dir.x.abs() * size.x + l.dir.y.abs() * size.y);
-        let p = view.to_screen(l.at) + l.offset + l.dir * push;
-        let home = egui::pos2(p.x - 0.5 * size.x, p.y - 0.5 * size.y);
-        // A label that would cover another moves to the nearest free spot: a line down or up, or
-        // to either side.
-        let step = size.y + 3.0;
-        let candidates = [
-            (0.0, 0.0),
-            (0.0, 1.0),
-            (0.0, -1.0),
-            (1.0, 0.0),
-            (-1.0, 0.0),
-            (0.0, 2.0),
-            (0.0, -2.0),
-            (1.0, 1.0),
-            (-1.0, 1.0),
-        ];
-        let min = candidates
-            .iter()
-            .map(|(cx, cy)| home + egui::vec2(cx * (size.x + 6.0), cy * step))
-            .find(|m| {
-                let r = egui::Rect::from_min_size(*m, size).expand(1.5);
-                !placed.iter().any(|q| q.intersects(r))
-            })
-            .unwrap_or(home);
-        let rect = egui::Rect::from_min_size(min, size).expand(1.5);
-        placed.push(rect);
-        painter.rect_filled(rect, 2.0, bg);
-        painter.galley(min, galley, color32(l.color));
+    let galleys: Vec<_> = d
+        .labels
+        .iter()
+        .map(|l| {
+            painter.layout_no_wrap(
+                l.text.clone(),
+                egui::FontId::proportional(l.size),
+                color32(l.color),
+            )
+        })
+        .collect();
+    let wants: Vec<labels::Want> = d
+        .labels
+        .iter()
+        .zip(&galleys)
+        .map(|(l, g)| label_want(l, Vec2::new(g.size().x, g.size().y), &view))
+        .collect();
+    let rects = labels::place(&wants, &screen_bodies(&d, &view), view.viewport);
+    for ((l, galley), r) in d.labels.iter().zip(galleys).zip(rects) {
+        painter.rect_filled(egui_rect(r).expand(1.5), 2.0, bg);
+        painter.galley(egui::pos2(r.min.x, r.min.y), galley, color32(l.color));
     }
     Ok(())
+}
+
+/// Where a label wants to be: centered on its point (plus its offset), or pushed out along
+/// `dir` until its box clears the point (labels at arrow tips).
+pub fn label_want(l: &draw::Label, size: Vec2, view: &View) -> labels::Want {
+    let push = 5.0 + 0.5 * (l.dir.x.abs() * size.x + l.dir.y.abs() * size.y);
+    let p = view.to_screen(l.at) + l.offset + l.dir * push;
+    labels::Want {
+        home: p - 0.5 * size,
+        size,
+    }
+}
+
+/// The drawing's bodies in screen coordinates, for the label placer.
+pub fn screen_bodies(d: &Drawing, view: &View) -> Vec<Vec<Vec2>> {
+    d.bodies
+        .iter()
+        .map(|poly| poly.iter().map(|p| view.to_screen(*p)).collect())
+        .collect()
 }
 
 /// Title, time and the color key (renders).

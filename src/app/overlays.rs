@@ -321,6 +321,8 @@ pub fn build(
     }
 
     if ov.free_body || ov.kinetic {
+        // Kinetic diagrams already placed this frame: the next one keeps off them too.
+        let mut copies: Vec<geometry::Bounds> = Vec::new();
         for &i in &few {
             let b = &s.bodies[i];
             if b.kind != BodyKind::Dynamic {
@@ -400,7 +402,17 @@ pub fn build(
                     _ => acc.as_ref().map(|acc| acc[i]),
                 };
                 if let Some(a) = a {
-                    kinetic_diagram(i, s, outlines, a, (&forces, couple), scales, labels, d);
+                    kinetic_diagram(
+                        i,
+                        s,
+                        outlines,
+                        a,
+                        (&forces, couple),
+                        scales,
+                        labels,
+                        &mut copies,
+                        d,
+                    );
                 }
             }
         }
@@ -474,6 +486,7 @@ fn kinetic_diagram(
     (forces, couple): (&[quantities::Force], f64),
     scales: &Scales,
     labels: bool,
+    copies: &mut Vec<geometry::Bounds>,
     d: &mut Drawing,
 ) {
     let b = &s.bodies[i];
@@ -494,7 +507,13 @@ fn kinetic_diagram(
     } else {
         aabb.size().y
     };
-    let shift = free_side(i, s, outlines, &aabb, width, height, scales.visible, px);
+    let shift = free_side(i, s, outlines, copies, &aabb, width, height, scales.visible, px);
+    if !aabb.is_empty() {
+        copies.push(geometry::Bounds {
+            min: aabb.min + shift,
+            max: aabb.max + shift,
+        });
+    }
     let to_world = geometry::place(o, b.position + shift, b.angle);
     for poly in &o.filled {
         d.prims.push(Prim::Poly(
@@ -555,6 +574,7 @@ fn free_side(
     i: usize,
     s: &Snapshot,
     outlines: &[Outline],
+    copies: &[geometry::Bounds],
     aabb: &geometry::Bounds,
     width: f64,
     height: f64,
@@ -573,7 +593,7 @@ fn free_side(
     }
     // The other bodies' boxes (ground and walls included: a diagram inside the incline is the
     // issue this avoids).
-    let others: Vec<geometry::Bounds> = s
+    let mut others: Vec<geometry::Bounds> = s
         .bodies
         .iter()
         .enumerate()
@@ -586,6 +606,7 @@ fn free_side(
             (!bb.is_empty()).then_some(bb)
         })
         .collect();
+    others.extend_from_slice(copies);
     let overlap = |a: &geometry::Bounds, b: &geometry::Bounds| -> f64 {
         let w = (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).max(0.0);
         let h = (a.max.y.min(b.max.y) - a.min.y.max(b.min.y)).max(0.0);

@@ -514,11 +514,9 @@ pub fn scene_lines(
         let to_world = geometry::place(o, b.position, b.angle);
         let color = palette::OUTLINE;
         for poly in &o.filled {
-            d.prims.push(Prim::Poly(
-                poly.iter().map(|p| to_world(*p)).collect(),
-                true,
-                color,
-            ));
+            let world: Vec<DVec2> = poly.iter().map(|p| to_world(*p)).collect();
+            d.bodies.push(world.clone());
+            d.prims.push(Prim::Poly(world, true, color));
         }
         // A spoke on each circle shows the rotation.
         for (c, r) in &o.circles {

@@ -238,6 +238,19 @@ fn open_picked_file(mut st: ResMut<UiState>) {
     }
 }
 
+/// Opens the page's file chooser (`<input id="pick" type="file">`; its change handler in
+/// `web/index.html` hands the text to [`open_picked_file`]). Called on a button click: the
+/// browser allows it within the click's user activation.
+pub fn pick_file() {
+    if let Some(input) = web_sys::window()
+        .and_then(|w| w.document())
+        .and_then(|d| d.get_element_by_id("pick"))
+        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
+    {
+        input.click();
+    }
+}
+
 /// Sets the text of the page element `id` (absent: nothing to do; the page may not have it).
 fn set_text(id: &str, text: &str) {
     if let Some(el) = web_sys::window()

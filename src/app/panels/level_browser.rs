@@ -148,6 +148,14 @@ pub(super) fn level_browser(
         {
             *browser = Browser::scan(&browser.root.clone());
         }
+        #[cfg(target_arch = "wasm32")]
+        if ui
+            .small_button("open a file…")
+            .on_hover_text("open a .ron level file from this computer")
+            .clicked()
+        {
+            super::super::web::pick_file();
+        }
     });
     if let Some(e) = &browser.error {
         ui.label(rich(e.clone(), palette::NORMAL));

@@ -1,0 +1,124 @@
+//! Where the overlays' labels go on screen: a greedy placer over rectangles, so that with every
+//! overlay on the labels stay off each other, off the bodies and inside the view.
+//!
+//! Each label has a home (where its overlay wants it: beside an arrow's tip, under a point) and
+//! a size. Labels are placed in order; each takes the nearest candidate spot around its home (a
+//! spiral of offsets of one label height and width) that is inside the view and covers no label
+//! placed before it and no body. When no spot is free, it takes the one that covers the least:
+//! other labels first, then bodies (a label must be readable; one over a body still is). Pure
+//! geometry in logical pixels (y down), so it is tested on the library's levels without a window.
+
+use bevy::math::{Rect, Vec2};
+
+/// A label to place: its preferred top-left corner and its size, logical pixels.
+#[derive(Debug, Clone, Copy)]
+pub struct Want {
+    pub home: Vec2,
+    pub size: Vec2,
+}
+
+/// Places `wants` in order inside `view`, avoiding each other and the convex `bodies` (screen
+/// polygons). Returns each label's rectangle.
+pub fn place(wants: &[Want], bodies: &[Vec<Vec2>], view: Rect) -> Vec<Rect> {
+    let mut placed: Vec<Rect> = Vec::with_capacity(wants.len());
+    for w in wants {
+        // A home past the view's edge is first brought inside: the spots around it then lie in
+        // the view instead of collapsing onto the edge.
+        let home = inside(Rect::from_corners(w.home, w.home + w.size), view).min;
+        let mut best: Option<(Rect, (f32, f32, f32))> = None;
+        for (k, off) in candidates(w.size).enumerate() {
+            let r = inside(Rect::from_corners(home + off, home + off + w.size), view);
+            let on_labels: f32 = placed.iter().map(|p| overlap_area(p, &r.inflate(MARGIN))).sum();
+            let on_bodies = bodies.iter().filter(|b| rect_hits_polygon(&r, b)).count() as f32;
+            let cost = (on_labels, on_bodies, k as f32);
+            if on_labels == 0.0 && on_bodies == 0.0 {
+                best = Some((r, cost));
+                break;
+            }
+            if best.as_ref().is_none_or(|(_, c)| cost < *c) {
+                best = Some((r, cost));
+            }
+        }
+        placed.push(
+            best.map(|(r, _)| r)
+                .unwrap_or_else(|| Rect::from_corners(home, home + w.size)),
+        );
+    }
+    placed
+}
+
+/// Clear space kept between two labels, px.
+pub const MARGIN: f32 = 1.5;
+
+/// Offsets from home to try, nearest first: home, then rings of one label height up and down
+/// and one label width left and right, out to four rings.
+fn candidates(size: Vec2) -> impl Iterator<Item = Vec2> {
+    let (dx, dy) = (size.x + 6.0, size.y + 3.0);
+    let mut offs = vec![Vec2::ZERO];
+    for ring in 1..=4 {
+        let r = ring as f32;
+        offs.extend([
+            Vec2::new(0.0, r * dy),
+            Vec2::new(0.0, -r * dy),
+            Vec2::new(r * dx, 0.0),
+            Vec2::new(-r * dx, 0.0),
+            Vec2::new(r * dx, r * dy),
+            Vec2::new(-r * dx, r * dy),
+            Vec2::new(r * dx, -r * dy),
+            Vec2::new(-r * dx, -r * dy),
+        ]);
+        // Half steps sideways find the gaps between neighbours.
+        offs.extend([Vec2::new(0.5 * r * dx, r * dy), Vec2::new(-0.5 * r * dx, -r * dy)]);
+    }
+    offs.into_iter()
+}
+
+/// `r` moved (not resized) to lie inside `view` where it fits.
+fn inside(r: Rect, view: Rect) -> Rect {
+    let size = r.size();
+    let min_x = r.min.x.clamp(view.min.x, (view.max.x - size.x).max(view.min.x));
+    let min_y = r.min.y.clamp(view.min.y, (view.max.y - size.y).max(view.min.y));
+    Rect::from_corners(Vec2::new(min_x, min_y), Vec2::new(min_x, min_y) + size)
+}
+
+pub fn overlap_area(a: &Rect, b: &Rect) -> f32 {
+    let i = a.intersect(*b);
+    if i.is_empty() {
+        0.0
+    } else {
+        i.width() * i.height()
+    }
+}
+
+/// Whether rectangle `r` and convex polygon `poly` overlap (separating axes: the rectangle's two
+/// and the polygon's edge normals). A polygon thinner than a pixel counts as a segment.
+pub fn rect_hits_polygon(r: &Rect, poly: &[Vec2]) -> bool {
+    if poly.is_empty() {
+        return false;
+    }
+    let corners = [r.min, Vec2::new(r.max.x, r.min.y), r.max, Vec2::new(r.min.x, r.max.y)];
+    let separated = |axis: Vec2| {
+        if axis.length_squared() == 0.0 {
+            return false;
+        }
+        let (a0, a1) = corners
+            .iter()
+            .map(|c| c.dot(axis))
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let (b0, b1) = poly
+            .iter()
+            .map(|c| c.dot(axis))
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        a1 <= b0 || b1 <= a0
+    };
+    if separated(Vec2::X) || separated(Vec2::Y) {
+        return false;
+    }
+    for k in 0..poly.len() {
+        let e = poly[(k + 1) % poly.len()] - poly[k];
+        if separated(Vec2::new(-e.y, e.x)) {
+            return false;
+        }
+    }
+    true
+}

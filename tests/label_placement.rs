@@ -1,0 +1,162 @@
+//! The label placer (src/app/labels.rs) on the library's levels with every overlay on: labels
+//! never cover each other and stay inside the view; how many still touch a body is counted and
+//! held low. Text sizes are estimated (7.2 px a character, 16 px a line: egui's 13 px
+//! proportional font measures 5.5 to 7.5 px a character), so the test needs no window.
+#![cfg(feature = "app")]
+
+use bevy::math::{Rect, Vec2};
+use rigidlab::app::draw::Drawing;
+use rigidlab::app::labels::{self, overlap_area, rect_hits_polygon};
+use rigidlab::app::overlays::{self, Overlays, Scales};
+use rigidlab::app::view::{self, View};
+use rigidlab::app::Physics;
+use rigidlab::level;
+use rigidlab::sim::Options;
+use std::path::PathBuf;
+
+/// The labels of `file` at mid-run with every overlay on, in a 650 x 762 px view (the sandbox's
+/// scene area in a 1280 x 800 window), placed. Returns (labels, bodies on screen, view).
+fn placed(file: &PathBuf) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
+    let scene = level::load(file).unwrap();
+    let mut phys = Physics::new(scene.clone(), Options::default(), false);
+    phys.stop_at_end = false;
+    let steps = (phys.sim.total_steps() / 2).min(600);
+    for _ in 0..steps {
+        if !phys.advance() {
+            break;
+        }
+    }
+    let mut v = View {
+        viewport: Rect::new(300.0, 0.0, 950.0, 762.0),
+        ..Default::default()
+    };
+    v.fit_to(&view::motion_bounds(&scene, &Options::default()));
+    let ov = Overlays {
+        velocity: true,
+        acceleration: true,
+        instant_center: true,
+        free_body: true,
+        kinetic: true,
+        momentum: true,
+        trails: true,
+        labels: true,
+        ..Default::default()
+    };
+    let outlines = view::body_outlines(&phys.sim.level);
+    let index = view::SceneIndex::of(&phys.sim.level);
+    let mut d = Drawing::default();
+    d.clear(v.m_per_px);
+    view::scene_lines(&phys.sim.level, &outlines, &index, phys.snapshot(), v.m_per_px, &mut d);
+    let mut scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
+    let vp = v.viewport;
+    let (a, b) = (
+        v.to_world(Vec2::new(vp.min.x, vp.max.y)),
+        v.to_world(Vec2::new(vp.max.x, vp.min.y)),
+    );
+    scales.visible = Some((a.min(b), a.max(b)));
+    overlays::build(&ov, &phys, &outlines, &scales, &mut d);
+    let wants: Vec<labels::Want> = d
+        .labels
+        .iter()
+        .map(|l| {
+            let lines = l.text.lines().count().max(1) as f32;
+            let chars = l.text.lines().map(|s| s.chars().count()).max().unwrap_or(0) as f32;
+            let size = Vec2::new(7.2 * chars, 16.0 * lines);
+            rigidlab::app::label_want(l, size, &v)
+        })
+        .collect();
+    let bodies = rigidlab::app::screen_bodies(&d, &v);
+    (labels::place(&wants, &bodies, v.viewport), bodies, v.viewport)
+}
+
+fn library_exercises() -> Vec<PathBuf> {
+    let mut files = level::collect_files(&[PathBuf::from("levels")]).unwrap();
+    // The stress cases are piles of up to 900 bodies: no diagrams are drawn for them.
+    files.retain(|f| !f.starts_with("levels/stress"));
+    files
+}
+
+#[test]
+fn labels_never_cover_each_other_and_stay_in_view() {
+    let mut total = 0;
+    let mut on_bodies = 0;
+    let mut worst: (usize, String) = (0, String::new());
+    for f in library_exercises() {
+        let (rects, bodies, view) = placed(&f);
+        total += rects.len();
+        for (k, r) in rects.iter().enumerate() {
+            assert!(
+                r.min.x >= view.min.x - 0.01
+                    && r.min.y >= view.min.y - 0.01
+                    && r.max.x <= view.max.x + 0.01
+                    && r.max.y <= view.max.y + 0.01,
+                "{}: label {k} at {r:?} leaves the view {view:?}",
+                f.display()
+            );
+            for (j, q) in rects.iter().enumerate().take(k) {
+                assert!(
+                    overlap_area(r, q) == 0.0,
+                    "{}: labels {j} and {k} overlap ({q:?}, {r:?})",
+                    f.display()
+                );
+            }
+        }
+        let n = rects
+            .iter()
+            .filter(|r| bodies.iter().any(|b| rect_hits_polygon(r, b)))
+            .count();
+        on_bodies += n;
+        if n > worst.0 {
+            worst = (n, f.display().to_string());
+        }
+    }
+    println!(
+        "{total} labels on {} levels: none overlapping, all in view; {on_bodies} touch a body (most: {} on {})",
+        library_exercises().len(),
+        worst.0,
+        worst.1
+    );
+    // Measured 2026-11-24: 784 labels on 66 levels, 5 on a body (0.6%). A label may sit on a
+    // body only where no free spot
+    // is within four label sizes of its point (a pile of blocks, a ground that fills the view).
+    // The bound, 2%, is three times the measured share.
+    assert!(
+        (on_bodies as f64) <= 0.02 * total as f64,
+        "{on_bodies} of {total} labels on bodies"
+    );
+}
+
+/// The placer's own rules on a constructed case: three labels wanting one spot beside a body.
+#[test]
+fn crowded_labels_fan_out_around_their_point_and_off_the_body() {
+    let view = Rect::new(0.0, 0.0, 400.0, 300.0);
+    let body = vec![
+        Vec2::new(100.0, 100.0),
+        Vec2::new(200.0, 100.0),
+        Vec2::new(200.0, 200.0),
+        Vec2::new(100.0, 200.0),
+    ];
+    let want = labels::Want {
+        home: Vec2::new(150.0, 140.0),
+        size: Vec2::new(60.0, 16.0),
+    };
+    let rects = labels::place(&[want, want, want], &[body.clone()], view);
+    for (k, r) in rects.iter().enumerate() {
+        assert!(!rect_hits_polygon(r, &body), "label {k} on the body: {r:?}");
+        for q in &rects[..k] {
+            assert_eq!(overlap_area(r, q), 0.0);
+        }
+        // Near home: within two label widths.
+        assert!((r.min - want.home).length() < 2.0 * 66.0 + 1.0, "label {k} far away: {r:?}");
+    }
+    // A label wanting to leave the view is moved back in.
+    let edge = labels::place(
+        &[labels::Want {
+            home: Vec2::new(380.0, -10.0),
+            size: Vec2::new(60.0, 16.0),
+        }],
+        &[],
+        view,
+    );
+    assert!(edge[0].max.x <= 400.0 && edge[0].min.y >= 0.0, "{:?}", edge[0]);
+}
