@@ -7,6 +7,7 @@
 //! - [`panels`] and [`tools`]: the egui panels and the mouse tools of the sandbox window;
 //! - [`render`]: the same scene drawn into a PNG without a window.
 
+pub mod blows;
 pub mod draw;
 pub mod frame_rate;
 pub mod geometry;

@@ -418,6 +418,8 @@ pub fn build(
         }
     }
 
+    blows(phys, scales, labels, d);
+
     if ov.momentum {
         let o = ov.origin;
         let h = quantities::angular_momentum_about(s, o);
@@ -435,6 +437,47 @@ pub fn build(
                 format!("H_O = {}", si(h, "N m s")),
                 palette::MOMENTUM,
             );
+        }
+    }
+}
+
+/// The level's blows from their time on: the impulse as an arrow ending where it struck (fixed
+/// length: a blow has no force scale) and, at each joint of the struck body, the joint's impulsive
+/// response over the blow's step.
+fn blows(phys: &Physics, scales: &Scales, labels: bool, d: &mut Drawing) {
+    let now = phys.snapshot().time;
+    let len = (0.2 * scales.size).max(30.0 * d.m_per_px);
+    for blow in phys.blows.iter().filter(|b| b.time <= now + 1e-12) {
+        let u = blow.impulse.normalize_or_zero();
+        d.prims.push(Prim::Arrow(blow.point - u * len, blow.point, palette::TOOL));
+        if labels {
+            d.label(
+                blow.point - u * len,
+                Vec2::new(0.0, -12.0),
+                format!("P = {} at t = {:.3} s", si(blow.impulse.length(), "N s"), blow.time),
+                palette::TOOL,
+            );
+        }
+        for j in &blow.joints {
+            let imp = j.impulsive();
+            if imp.length() * 1e3 < blow.impulse.length() {
+                // Under a thousandth of the blow: the joint felt none of it (a strike at the
+                // center of percussion). Say so rather than draw nothing.
+                if labels {
+                    d.label(j.anchor, Vec2::new(0.0, 18.0), format!("{}: no impulsive reaction", j.joint), palette::REACTION);
+                }
+                continue;
+            }
+            let v = imp.normalize_or_zero() * len * (imp.length() / blow.impulse.length()).min(1.0);
+            d.prims.push(Prim::Arrow(j.anchor - v, j.anchor, palette::REACTION));
+            if labels {
+                d.label(
+                    j.anchor - v,
+                    Vec2::new(0.0, 18.0),
+                    format!("{}: ∫R dt = {}", j.joint, si(imp.length(), "N s")),
+                    palette::REACTION,
+                );
+            }
         }
     }
 }

@@ -138,6 +138,8 @@ pub struct Physics {
     pub recent: VecDeque<Snapshot>,
     /// The state at t = 0 (checks start from it even when the first step ran before they looked).
     pub initial: Snapshot,
+    /// The level's impulse events so far in this run, with the joints' share (drawn and listed).
+    pub blows: Vec<super::blows::Blow>,
 }
 
 /// Beyond this many bodies, diagrams are not averaged over a frame (the copies would cost).
@@ -173,6 +175,7 @@ impl Physics {
             frame_ms: 0.0,
             behind: false,
             initial: Snapshot::clone(sim_initial),
+            blows: Vec::new(),
         };
         p.start_records();
         p
@@ -186,6 +189,7 @@ impl Physics {
         self.series_every = 1;
         self.prev_velocities = None;
         self.recent.clear();
+        self.blows.clear();
     }
 
     /// How many steps one displayed frame (1/60 s) spans: the window of the averaged diagrams.
@@ -241,6 +245,9 @@ impl Physics {
             .iter()
             .map(|b| (b.velocity, b.omega))
             .collect();
+        // The joints' impulses of the step before, for a blow's steady part (cheap: only kept
+        // when the level has impulse events).
+        let before_blow = (!self.scene.level.events.is_empty()).then(|| self.sim.snapshot().clone());
         let t0 = Instant::now();
         let result = self.sim.step().map(|_| ());
         self.step_times.push(t0.elapsed().as_secs_f64() * 1e3);
@@ -248,6 +255,10 @@ impl Physics {
             self.error = Some(format!("the simulation stopped at {e}"));
             self.paused = true;
             return false;
+        }
+        if let Some(before) = before_blow {
+            let new = super::blows::in_step(&before, self.sim.snapshot());
+            self.blows.extend(new);
         }
         let window = self.frame_window();
         if window > 1 {

@@ -6,7 +6,7 @@ use super::super::physics::Physics;
 use super::super::view::{palette, View};
 use super::super::playback::{restart, toggle_play};
 use super::super::tools::ToolState;
-use super::{rich, UiState};
+use super::{fmt, rich, UiState};
 use bevy_egui::egui;
 
 /// Draws the panel.
@@ -65,6 +65,37 @@ pub(super) fn playback(
         &mut phys.stop_at_end,
         "stop at the level's end (where `rigidlab check` stops)",
     );
+    for b in &phys.blows {
+        ui.label(rich(
+            format!(
+                "{} (step ending t = {:.3} s): P = {} N s ({}, {}) on {}",
+                b.name,
+                b.time,
+                fmt(b.impulse.length()),
+                fmt(b.impulse.x),
+                fmt(b.impulse.y),
+                phys.snapshot().bodies.get(b.body).map(|x| x.name.as_str()).unwrap_or("?")
+            ),
+            palette::TOOL,
+        ));
+        for j in &b.joints {
+            let imp = j.impulsive();
+            let steady = match j.steady {
+                Some(s) => format!(" + steady {} N s", fmt(s.length())),
+                None => " (first step: steady part unknown)".into(),
+            };
+            ui.label(rich(
+                format!(
+                    "   joint {}: impulsive {} N s ({}, {}){steady}",
+                    j.joint,
+                    fmt(imp.length()),
+                    fmt(imp.x),
+                    fmt(imp.y)
+                ),
+                palette::REACTION,
+            ));
+        }
+    }
     if let Some(e) = &phys.error {
         ui.label(rich(e.clone(), palette::NORMAL));
     }
