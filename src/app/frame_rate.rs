@@ -52,6 +52,26 @@ impl Plugin for FrameRatePlugin {
     }
 }
 
-fn count_frame(time: Res<Time<Real>>, mut rate: ResMut<FrameRate>) {
+fn count_frame(
+    time: Res<Time<Real>>,
+    mut rate: ResMut<FrameRate>,
+    mut exit: MessageWriter<AppExit>,
+) {
     rate.record(time.delta_secs_f64() * 1e3);
+    // RIGIDLAB_EXIT_AFTER_FRAMES=N closes the window after N frames (the window test's clean end).
+    if let Some(n) = std::env::var("RIGIDLAB_EXIT_AFTER_FRAMES")
+        .ok()
+        .and_then(|v| v.parse::<u64>().ok())
+    {
+        if rate.frames >= n {
+            exit.write(AppExit::Success);
+        }
+    }
+    // RIGIDLAB_FPS_LOG=1 prints the rate every 120 frames: how the README's figures for a
+    // software-rendered window were measured, and a way to check a school computer.
+    if rate.frames % WINDOW as u64 == 0 && std::env::var_os("RIGIDLAB_FPS_LOG").is_some() {
+        if let Some(ms) = rate.median_ms() {
+            info!("frame rate: {:.1} fps (median frame {ms:.1} ms)", 1e3 / ms);
+        }
+    }
 }

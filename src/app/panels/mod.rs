@@ -113,8 +113,10 @@ pub fn spawn_cameras(mut commands: Commands, mut settings: ResMut<EguiGlobalSett
     commands.spawn((
         PrimaryEguiContext,
         Camera2d,
-        // egui feathers its own edges: multisampling the UI would cost without showing.
-        Msaa::Off,
+        // Cameras drawing into one window must agree on the sample count (wgpu refuses a pass
+        // with a 4x color and a 1x depth attachment: the native window went blank when they did
+        // not).
+        msaa,
         RenderLayers::none(),
         Camera {
             order: 1,
