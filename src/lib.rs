@@ -20,6 +20,7 @@ macro_rules! stderr {
 pub mod analysis;
 pub mod checks;
 pub mod clock;
+pub mod editor;
 pub mod cli;
 pub mod level;
 pub mod questions;

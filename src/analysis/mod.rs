@@ -33,6 +33,7 @@ pub mod kinetics;
 pub mod links;
 pub mod mass;
 pub mod momentum;
+pub mod oscillation;
 pub mod percussion;
 pub mod virtual_work;
 

@@ -9,6 +9,7 @@
 
 pub mod blows;
 pub mod draw;
+pub mod editor;
 pub mod frame_rate;
 pub mod geometry;
 pub mod labels;
@@ -317,6 +318,7 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
     app.add_plugins((
         panels::PanelsPlugin,
         tools::ToolsPlugin,
+        editor::EditorPlugin,
         frame_rate::FrameRatePlugin,
     ));
     app.add_systems(Startup, panels::spawn_cameras);

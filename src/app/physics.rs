@@ -92,6 +92,26 @@ pub struct SeriesPoint {
     pub h_o: f64,
 }
 
+/// One sample of a body's plots (the graphs' choice and the CSV export).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodySample {
+    pub t: f64,
+    /// Mass center, m.
+    pub g: DVec2,
+    /// Angle, rad (unwrapped: it keeps counting past a turn).
+    pub angle: f64,
+    pub omega: f64,
+    /// Velocity of G, m/s.
+    pub v: DVec2,
+    /// The joints' reaction on the body, N: their impulses over the step / dt (the free-body
+    /// diagram's R, summed over its joints).
+    pub reaction: DVec2,
+}
+
+/// Every body's plots are kept in scenes up to this many bodies; beyond, only the selected one's
+/// from when it was selected (4,000 samples of 64 bytes: 8 MB at this many bodies).
+pub const BODY_SERIES_MAX_BODIES: usize = 32;
+
 impl SeriesPoint {
     pub fn total(&self) -> f64 {
         self.kinetic + self.gravity + self.elastic
@@ -140,6 +160,10 @@ pub struct Physics {
     pub initial: Snapshot,
     /// The level's impulse events so far in this run, with the joints' share (drawn and listed).
     pub blows: Vec<super::blows::Blow>,
+    /// Per body, its samples on the energy series' times (empty for a body not recorded).
+    pub body_series: Vec<Vec<BodySample>>,
+    /// The body the user selected (always recorded, whatever the scene's size).
+    pub tracked: Option<usize>,
 }
 
 /// Beyond this many bodies, diagrams are not averaged over a frame (the copies would cost).
@@ -176,6 +200,8 @@ impl Physics {
             behind: false,
             initial: Snapshot::clone(sim_initial),
             blows: Vec::new(),
+            body_series: Vec::new(),
+            tracked: None,
         };
         p.start_records();
         p
@@ -186,10 +212,59 @@ impl Physics {
         let s = self.sim.snapshot();
         self.trails = s.bodies.iter().map(|b| VecDeque::from([b.com])).collect();
         self.series = vec![series_point(s)];
+        self.body_series = vec![Vec::new(); s.bodies.len()];
         self.series_every = 1;
+        self.record_bodies();
         self.prev_velocities = None;
         self.recent.clear();
         self.blows.clear();
+    }
+
+    /// Selects the body whose plots are kept whatever the scene's size (in a small scene every
+    /// body's already are).
+    pub fn track(&mut self, body: Option<usize>) {
+        if self.tracked != body {
+            self.tracked = body;
+            self.record_bodies();
+        }
+    }
+
+    /// A sample of each recorded body at the current snapshot.
+    fn record_bodies(&mut self) {
+        let s = self.sim.snapshot();
+        let all = s.bodies.len() <= BODY_SERIES_MAX_BODIES;
+        for (i, b) in s.bodies.iter().enumerate() {
+            if !(all || self.tracked == Some(i)) || b.kind != crate::snapshot::BodyKind::Dynamic {
+                continue;
+            }
+            let (arrows, _) = quantities::free_body_arrows(None, s, i);
+            let reaction = arrows
+                .iter()
+                .filter(|f| f.kind == quantities::ForceKind::Joint)
+                .map(|f| f.force)
+                .sum();
+            let series = &mut self.body_series[i];
+            // Unwrapped angle: the snapshot's angle is in (-pi, pi]; add the turns since the last sample.
+            let angle = match series.last() {
+                Some(last) => {
+                    let d = (b.angle - last.angle).rem_euclid(std::f64::consts::TAU);
+                    let d = if d > std::f64::consts::PI { d - std::f64::consts::TAU } else { d };
+                    last.angle + d
+                }
+                None => b.angle,
+            };
+            if series.last().is_some_and(|l| l.t == s.time) {
+                continue;
+            }
+            series.push(BodySample {
+                t: s.time,
+                g: b.com,
+                angle,
+                omega: b.omega,
+                v: b.velocity,
+                reaction,
+            });
+        }
     }
 
     /// How many steps one displayed frame (1/60 s) spans: the window of the averaged diagrams.
@@ -284,10 +359,14 @@ impl Physics {
         if s.step % self.series_every == 0 {
             let p = series_point(s);
             self.series.push(p);
+            self.record_bodies();
             if self.series.len() >= SERIES_MAX {
                 // Keep every other point: the plot stays within SERIES_MAX over any run length.
                 let thinned: Vec<SeriesPoint> = self.series.iter().step_by(2).copied().collect();
                 self.series = thinned;
+                for b in self.body_series.iter_mut() {
+                    *b = b.iter().step_by(2).copied().collect();
+                }
                 self.series_every *= 2;
             }
         }

@@ -1,7 +1,12 @@
-//! Mouse tools of the sandbox: select a body and a point on it, drag a body with a mouse spring,
-//! strike it with an impulse at the clicked point, set the point O for H_O.
+//! Mouse tools of the sandbox: select a body and a point on it, drag a body with a mouse spring
+//! (or, paused at t = 0, move it), strike it with an impulse at the clicked point, set the point O
+//! for H_O; and the build tools, which send edits to the editor: place a body, join two bodies,
+//! hang a spring.
 
 use super::draw::{si, Drawing, Prim};
+use super::editor::{EditorCommand, Placeable};
+use crate::editor::{Edit, Property};
+use crate::level::JointKind;
 use super::overlays::{Overlays, Scales};
 use super::physics::{Physics, PhysicsStep};
 use super::view::{self, palette, Outlines, View};
@@ -18,6 +23,14 @@ pub enum Tool {
     Impulse,
     /// Click: the point O about which H_O is drawn.
     SetOrigin,
+    /// Click: a new body (or ground, or wall) there.
+    Place(Placeable),
+    /// Click: a joint there, between the bodies under the point (or one body and the ground).
+    Join(JointKind),
+    /// Drag: a spring from a point on a body to a point on another body or on the ground.
+    Spring,
+    /// Drag: a length and its angle, kept on screen.
+    Ruler,
 }
 
 /// A body held by the mouse.
@@ -47,6 +60,12 @@ pub struct ToolState {
     pub aim: Option<Aim>,
     /// The last impulse applied (point, impulse, sim time), drawn for a while.
     pub last_impulse: Option<(DVec2, DVec2, f64)>,
+    /// The ruler's last measurement (from, to), world.
+    pub ruler: Option<(DVec2, DVec2)>,
+    /// The mouse in the world, this frame.
+    pub cursor: Option<DVec2>,
+    /// A spring being drawn: the body and the world point it starts from.
+    pub spring_from: Option<(usize, DVec2)>,
     press: Option<Vec2>,
 }
 
@@ -81,6 +100,7 @@ fn mouse_tools(
     buttons: Res<ButtonInput<MouseButton>>,
     windows: Query<&Window>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+    mut edits: MessageWriter<EditorCommand>,
 ) {
     let Some(window) = windows.iter().next() else {
         return;
@@ -89,6 +109,7 @@ fn mouse_tools(
     let cursor = view::scene_cursor(&view, window);
     let world = cursor.map(|c| view.to_world(c));
     let tol = 4.0 * view.m_per_px;
+    state.cursor = world;
 
     if buttons.just_pressed(MouseButton::Left) && !over_ui {
         if let (Some(c), Some(p)) = (cursor, world) {
@@ -127,6 +148,18 @@ fn mouse_tools(
                     }
                 }
                 Tool::SetOrigin => ov.origin = p,
+                Tool::Place(what) => {
+                    edits.write(EditorCommand::Apply(what.edit_at(p, view.scene_size())));
+                }
+                Tool::Join(kind) => {
+                    if let Some(e) = join_at(&phys, &outlines, p, tol, kind) {
+                        edits.write(EditorCommand::Apply(e));
+                    }
+                }
+                Tool::Ruler => state.ruler = Some((p, p)),
+                Tool::Spring => {
+                    state.spring_from = view::body_at(&outlines.bodies, s, p, tol, true).map(|i| (i, p));
+                }
             }
         }
     }
@@ -143,11 +176,44 @@ fn mouse_tools(
             if let Some(a) = state.aim.as_mut() {
                 a.end = p;
             }
+            if state.tool == Tool::Ruler {
+                if let Some((_, to)) = state.ruler.as_mut() {
+                    *to = p;
+                }
+            }
         }
     }
     if buttons.just_released(MouseButton::Left) {
-        state.grab = None;
+        let grab = state.grab.take();
         state.press = None;
+        // Paused at t = 0 the scene is being set up: a drag moves the body (an edit, undoable).
+        if let (Some(g), Some(p)) = (grab.filter(|g| g.pulling), world) {
+            if phys.paused && phys.snapshot().is_initial() {
+                if let Some(def) = phys.scene.level.bodies.get(g.body) {
+                    let b = &phys.snapshot().bodies[g.body];
+                    let d = p - b.world_point(g.local);
+                    edits.write(EditorCommand::Apply(Edit::Set {
+                        body: def.name.clone(),
+                        property: Property::Position((def.position.0 + d.x, def.position.1 + d.y)),
+                    }));
+                }
+            }
+        }
+        if let (Some((i, from)), Some(to)) = (state.spring_from.take(), world) {
+            let s = phys.snapshot();
+            let level = &phys.scene.level;
+            let other = bodies_at(&outlines, s, to, tol).into_iter().find(|&k| k != i);
+            if from.distance(to) > tol {
+                let m = s.bodies[i].mass;
+                edits.write(EditorCommand::Apply(Edit::AddSpring {
+                    body1: level.bodies[i].name.clone(),
+                    at1: (from.x, from.y),
+                    body2: other.map(|k| level.bodies[k].name.clone()),
+                    at2: (to.x, to.y),
+                    stiffness: spring_stiffness(m),
+                }));
+            }
+        }
         if let Some(a) = state.aim.take() {
             let s = phys.snapshot();
             if let Some(b) = s.bodies.get(a.body) {
@@ -161,6 +227,41 @@ fn mouse_tools(
             }
         }
     }
+}
+
+/// Every body under `p`, topmost first.
+fn bodies_at(outlines: &Outlines, s: &crate::snapshot::Snapshot, p: DVec2, tol: f64) -> Vec<usize> {
+    (0..s.bodies.len())
+        .rev()
+        .filter(|&i| {
+            let b = &s.bodies[i];
+            let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
+            outlines.bodies.get(i).is_some_and(|o| o.contains(local, tol))
+        })
+        .collect()
+}
+
+/// The joint the join tool makes at `p`: between the topmost moving body there and the next body
+/// under it, or that body and the ground (a fixed point made there) when it is alone.
+fn join_at(phys: &Physics, outlines: &Outlines, p: DVec2, tol: f64, kind: JointKind) -> Option<Edit> {
+    let s = phys.snapshot();
+    let under = bodies_at(outlines, s, p, tol);
+    let moving = *under.iter().find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
+    let other = under.iter().copied().find(|&i| i != moving);
+    let name = |i: usize| phys.scene.level.bodies[i].name.clone();
+    Some(Edit::AddJoint {
+        kind,
+        body1: other.map(name),
+        body2: name(moving),
+        at: (p.x, p.y),
+    })
+}
+
+/// A new spring's stiffness: the body on it oscillates at about 1 Hz (k = m (2 pi)^2), rounded to
+/// a number a level file reads well.
+fn spring_stiffness(m: f64) -> f64 {
+    let k = m * std::f64::consts::TAU.powi(2);
+    super::editor::nice_length(k, 1.0)
 }
 
 /// Applies an impulse `j` (N s) at world point `at` to body `i`, between steps: J on the mass
@@ -201,6 +302,21 @@ fn apply_grab(state: Res<ToolState>, mut phys: ResMut<Physics>) {
 /// What the tools draw: the mouse spring, the aimed impulse, the last impulse.
 pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawing) {
     let s = phys.snapshot();
+    if let (Some((_, from)), Some(g)) = (state.spring_from, state.cursor) {
+        d.prims.push(Prim::Dashed(from, g, palette::TOOL));
+    }
+    if let Some((a, b)) = state.ruler.filter(|(a, b)| a != b) {
+        d.prims.push(Prim::Line(a, b, palette::TOOL));
+        d.prims.push(Prim::Dot(a, 3.0, palette::TOOL));
+        d.prims.push(Prim::Dot(b, 3.0, palette::TOOL));
+        let v = b - a;
+        d.label(
+            (a + b) / 2.0,
+            Vec2::new(0.0, -12.0),
+            format!("{} at {:.1}°", si(v.length(), "m"), v.y.atan2(v.x).to_degrees()),
+            palette::TOOL,
+        );
+    }
     if let Some(g) = state.grab.filter(|g| g.pulling) {
         if let Some(b) = s.bodies.get(g.body) {
             let p = b.world_point(g.local);

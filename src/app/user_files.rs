@@ -4,12 +4,20 @@
 
 use std::path::Path;
 
+/// Where the window saves levels (and the level browser lists them): a folder of the working
+/// directory, apart from the library in levels/ that the tests run.
+pub const SAVED_LEVELS: &str = "saved-levels";
+
 /// Writes `bytes` as `path` (native) or offers them as a download named after `path`'s file name
 /// (web). Returns what happened, for the status line.
 pub fn deliver(path: &Path, bytes: &[u8], mime: &str) -> Result<String, String> {
     #[cfg(not(target_arch = "wasm32"))]
     {
         let _ = mime;
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("cannot make the folder {}: {e}", dir.display()))?;
+        }
         std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         Ok(format!("saved {}", path.display()))
     }

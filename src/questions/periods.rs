@@ -9,50 +9,17 @@ use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::joint_index;
 use crate::analysis::closed_forms::{pendulum_period, spring_mass_period};
+pub(super) use crate::analysis::oscillation::Crossings;
 use crate::level::Quantity;
 use crate::snapshot::Snapshot;
 use glam::DVec2;
-
-/// Crossings of a signal through zero, by direction, at interpolated times.
-#[derive(Debug, Clone, Default)]
-pub(super) struct Crossings {
-    last: Option<(f64, f64)>,
-    down: Vec<f64>,
-    up: Vec<f64>,
-}
-
-impl Crossings {
-    fn add(&mut self, t: f64, x: f64) {
-        if let Some((t0, x0)) = self.last {
-            if x0 > 0.0 && x <= 0.0 && x0 != x {
-                self.down.push(t0 + (t - t0) * x0 / (x0 - x));
-            } else if x0 < 0.0 && x >= 0.0 && x0 != x {
-                self.up.push(t0 + (t - t0) * x0 / (x0 - x));
-            }
-        }
-        self.last = Some((t, x));
-    }
-
-    /// Mean interval between successive crossings of the same direction: the period.
-    fn period(&self) -> f64 {
-        let diffs: Vec<f64> = [&self.down, &self.up]
-            .iter()
-            .flat_map(|v| v.windows(2).map(|w| w[1] - w[0]))
-            .collect();
-        if diffs.is_empty() {
-            f64::NAN
-        } else {
-            diffs.iter().sum::<f64>() / diffs.len() as f64
-        }
-    }
-}
 
 /// Follows the oscillating velocity over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     match &m.q {
         Quantity::PendulumPeriod { body, .. } => {
             if let Some(i) = m.body_index(s, body) {
-                if m.crossings.last.is_none() {
+                if m.crossings.is_empty() {
                     m.crossings.add(prev.time, prev.bodies[i].omega);
                 }
                 m.crossings.add(s.time, s.bodies[i].omega);

@@ -47,6 +47,17 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
                      H_O is taken about.",
                 );
                 ui.add_space(6.0);
+                ui.strong("Building a scene (the Build panel)");
+                ui.label(
+                    "New scene starts from a ground line. Place puts a box, disc, bar (1 kg each), ground or wall \
+                     where you click; join makes a pin, slider or weld where two bodies overlap (on one body alone, \
+                     to a fixed point there); spring is a drag from a body to another body or the ground. Select a \
+                     body to edit its mass, size, position, angle, velocity, friction and restitution; paused at \
+                     t = 0, drag it to move it. Each edit is checked like a level file (a refused one says why and \
+                     changes nothing), declares the effects it needs, and restarts the run. Save writes a level \
+                     that `rigidlab check` runs, into saved-levels/, which the level browser lists.",
+                );
+                ui.add_space(6.0);
                 ui.strong("Headless");
                 ui.label(
                     "Every level also runs without the window: `rigidlab check LEVEL --answer ID=VALUE` grades \
@@ -64,7 +75,10 @@ const KEYS: &[(&str, &str)] = &[
     ("Home", "fit the view to the scene"),
     ("1 2 3", "tools: select and drag · impulse · set O"),
     ("Esc", "clear the selection"),
-    ("F12", "screenshot (a PNG; downloaded in a web page)"),
+    ("Delete", "delete the selected body (with its joints and the questions about it)"),
+    ("Ctrl+Z", "undo an edit"),
+    ("Ctrl+Y, Ctrl+Shift+Z", "redo"),
+    ("F12", "screenshot into screenshots/ (downloaded in a web page)"),
     ("F1 or ?", "this help"),
 ];
 

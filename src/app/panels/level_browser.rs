@@ -82,6 +82,16 @@ impl Browser {
             let entry = Entry::from_load(f.clone(), level::load(&f), None);
             b.groups.entry(group_of(root, &f)).or_default().push(entry);
         }
+        // The levels the user saved from the window, listed apart from the library.
+        let saved = Path::new(crate::app::user_files::SAVED_LEVELS);
+        if saved.is_dir() {
+            if let Ok(files) = level::collect_files(&[saved.to_path_buf()]) {
+                for f in files {
+                    let entry = Entry::from_load(f.clone(), level::load(&f), None);
+                    b.groups.entry(format!("saved ({}/)", saved.display())).or_default().push(entry);
+                }
+            }
+        }
         b
     }
 

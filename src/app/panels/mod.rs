@@ -5,14 +5,16 @@
 //! This file lays the panels out (the [`PanelsPlugin`]'s one egui system) and holds the state
 //! they share ([`UiState`]); each panel's file says what it shows.
 
-mod capture;
+pub(crate) mod capture;
 mod checks;
 mod exercise;
 mod help;
 mod level_browser;
 mod overlay_controls;
 mod playback;
-mod plots;
+pub mod measure;
+pub mod plots;
+mod scene_editor;
 mod shortcuts;
 mod solver;
 mod tool_controls;
@@ -47,6 +49,8 @@ use plots::plots;
 use shortcuts::keys;
 use solver::solver;
 use tool_controls::tool_controls;
+use scene_editor::scene_editor;
+use super::editor::{Editor, EditorCommand};
 
 /// Panel state that is not the simulation's.
 #[derive(Resource, Debug, Clone)]
@@ -66,7 +70,12 @@ pub struct UiState {
     pub save_path: String,
     pub message: Option<(String, bool)>,
     pub generation: Option<u64>,
-    pub spawned: usize,
+    /// The title and statement being typed in the build panel (read from the level when it changes).
+    pub edit_title: Option<(String, String)>,
+    /// The measuring panel's stopwatch.
+    pub stopwatch: measure::Stopwatch,
+    /// What the selected body's plot shows.
+    pub body_plot: plots::BodyPlot,
 }
 
 impl Default for UiState {
@@ -81,7 +90,9 @@ impl Default for UiState {
             save_path: String::new(),
             message: None,
             generation: None,
-            spawned: 0,
+            edit_title: None,
+            body_plot: Default::default(),
+            stopwatch: Default::default(),
         }
     }
 }
@@ -155,6 +166,7 @@ fn panels(
     mut time: ResMut<Time<Virtual>>,
     windows: Query<&Window>,
     rate: Option<Res<FrameRate>>,
+    (mut editor, mut edits): (ResMut<Editor>, MessageWriter<EditorCommand>),
 ) -> Result {
     let rate = rate.map(|r| r.clone()).unwrap_or_default();
     let ctx = contexts.ctx_mut()?.clone();
@@ -171,6 +183,7 @@ fn panels(
         }
         st.grades = vec![None; n];
         st.answer_boxes = vec![None; n];
+        st.edit_title = None;
         if st.save_path.is_empty() {
             st.save_path = default_save_path(&phys.scene);
         }
@@ -210,11 +223,21 @@ fn panels(
                 ui.separator();
                 overlay_controls(ui, &mut ov, &phys);
                 ui.separator();
-                tool_controls(ui, &mut tools, &mut phys, &view, st);
+                tool_controls(ui, &mut tools, &mut phys, st);
+                ui.separator();
+                let mut out = Vec::new();
+                scene_editor(ui, &phys, &editor, &mut tools, ov.selected, st, &mut out);
+                for c in out {
+                    edits.write(c);
+                }
                 ui.separator();
                 solver(ui, &mut phys, &live);
                 ui.separator();
-                plots(ui, &phys);
+                measure::measure(ui, &phys, &mut tools, &mut st.stopwatch, ov.selected);
+                ui.separator();
+                plots(ui, &phys, &mut st.message);
+                ui.add_space(4.0);
+                plots::body_plot(ui, &phys, ov.selected, &mut st.body_plot, &mut st.message);
                 ui.separator();
                 checks(ui, &phys, &live);
             });
@@ -247,6 +270,14 @@ fn panels(
     view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
 
     help::help(&ctx, &mut st.help);
+    phys.track(ov.selected);
+    if let Some(saved) = editor.just_saved.take() {
+        // A level saved into the folder the browser lists shows there at once.
+        if !browser.embedded {
+            *browser = Browser::scan(&browser.root.clone());
+        }
+        st.save_path = saved.display().to_string();
+    }
     if load.is_none() {
         load = st.pending_open.take();
     }

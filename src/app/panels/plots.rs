@@ -1,15 +1,162 @@
-//! The energy and momentum panel: the current kinetic, potential and total energy and H about
-//! the world origin, and their small line plots against time.
+//! The plots panel: the current kinetic, potential and total energy and H about the world origin
+//! with their line plots against time, and a plot of the selected body's quantity of choice
+//! (theta, omega, x_G, y_G, |v_G|, the joints' reaction |R|), each with a cursor readout and a
+//! CSV export.
 
 use super::super::color32;
-use super::super::physics::{Physics, SeriesPoint};
+use super::super::physics::{BodySample, Physics, SeriesPoint};
 use super::super::view::palette;
 use super::{fmt, rich};
 use bevy::prelude::*;
 use bevy_egui::egui;
 
+/// A quantity of a body to plot against time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BodyPlot {
+    Angle,
+    #[default]
+    Omega,
+    X,
+    Y,
+    Speed,
+    Reaction,
+}
+
+impl BodyPlot {
+    const ALL: [BodyPlot; 6] = [
+        BodyPlot::Angle,
+        BodyPlot::Omega,
+        BodyPlot::X,
+        BodyPlot::Y,
+        BodyPlot::Speed,
+        BodyPlot::Reaction,
+    ];
+
+    fn label(self) -> &'static str {
+        match self {
+            BodyPlot::Angle => "θ, rad",
+            BodyPlot::Omega => "ω, rad/s",
+            BodyPlot::X => "x_G, m",
+            BodyPlot::Y => "y_G, m",
+            BodyPlot::Speed => "|v_G|, m/s",
+            BodyPlot::Reaction => "joints' reaction |R|, N",
+        }
+    }
+
+    fn unit(self) -> &'static str {
+        match self {
+            BodyPlot::Angle => "rad",
+            BodyPlot::Omega => "rad/s",
+            BodyPlot::X | BodyPlot::Y => "m",
+            BodyPlot::Speed => "m/s",
+            BodyPlot::Reaction => "N",
+        }
+    }
+
+    fn of(self, p: &BodySample) -> f64 {
+        match self {
+            BodyPlot::Angle => p.angle,
+            BodyPlot::Omega => p.omega,
+            BodyPlot::X => p.g.x,
+            BodyPlot::Y => p.g.y,
+            BodyPlot::Speed => p.v.length(),
+            BodyPlot::Reaction => p.reaction.length(),
+        }
+    }
+}
+
+/// A body's samples as CSV: one row per sample, SI units, a header naming each column.
+pub fn body_csv(samples: &[BodySample]) -> String {
+    let mut out = String::from("t_s,x_G_m,y_G_m,theta_rad,omega_rad_s,vx_m_s,vy_m_s,Rx_N,Ry_N\n");
+    for p in samples {
+        out += &format!(
+            "{},{},{},{},{},{},{},{},{}\n",
+            p.t, p.g.x, p.g.y, p.angle, p.omega, p.v.x, p.v.y, p.reaction.x, p.reaction.y
+        );
+    }
+    out
+}
+
+/// The energy series as CSV.
+pub fn energy_csv(series: &[SeriesPoint]) -> String {
+    let mut out = String::from("t_s,T_J,V_gravity_J,V_elastic_J,E_J,H_O_Nms\n");
+    for p in series {
+        out += &format!(
+            "{},{},{},{},{},{}\n",
+            p.t,
+            p.kinetic,
+            p.gravity,
+            p.elastic,
+            p.total(),
+            p.h_o
+        );
+    }
+    out
+}
+
+/// The selected body's plot: a choice of quantity, the plot, and its CSV.
+pub(super) fn body_plot(
+    ui: &mut egui::Ui,
+    phys: &Physics,
+    selected: Option<usize>,
+    choice: &mut BodyPlot,
+    message: &mut Option<(String, bool)>,
+) {
+    let Some(i) = selected else {
+        ui.label(rich("select a body to plot its θ, ω, x, y, v or R against time", palette::OUTLINE).small());
+        return;
+    };
+    let Some(samples) = phys.body_series.get(i).filter(|s| !s.is_empty()) else {
+        ui.label(rich("a fixed body: nothing to plot", palette::OUTLINE).small());
+        return;
+    };
+    let name = phys.scene.level.bodies.get(i).map_or("body", |b| b.name.as_str());
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new(name).strong());
+        egui::ComboBox::from_id_salt("body-plot")
+            .selected_text(choice.label())
+            .show_ui(ui, |ui| {
+                for q in BodyPlot::ALL {
+                    ui.selectable_value(choice, q, q.label());
+                }
+            });
+    });
+    let q = *choice;
+    let points: Vec<SeriesPoint> = samples
+        .iter()
+        .map(|p| SeriesPoint {
+            t: p.t,
+            kinetic: q.of(p),
+            gravity: 0.0,
+            elastic: 0.0,
+            h_o: 0.0,
+        })
+        .collect();
+    line_plot(ui, &points, &[(&|p: &SeriesPoint| p.kinetic, palette::VELOCITY)], q.unit());
+    if samples[0].t > 0.0 {
+        ui.label(rich(format!("recorded from t = {:.3} s, when it was selected", samples[0].t), palette::OUTLINE).small());
+    }
+    if ui.button("export CSV").on_hover_text("t, x_G, y_G, θ, ω, v_G, R of this body, SI units").clicked() {
+        let stem = phys.scene.file.file_stem().map_or("scene".into(), |s| s.to_string_lossy().to_string());
+        let path = export_path(&format!("{stem}-{name}.csv"));
+        *message = Some(match super::super::user_files::deliver(&path, body_csv(samples).as_bytes(), "text/csv") {
+            Ok(m) => (m, true),
+            Err(e) => (e, false),
+        });
+    }
+}
+
+/// Where an export goes: `exports/` of the working directory in the window, a download in the page.
+fn export_path(name: &str) -> std::path::PathBuf {
+    if cfg!(target_arch = "wasm32") {
+        name.into()
+    } else {
+        std::path::Path::new("exports").join(name)
+    }
+}
+
 /// Draws the panel from the run's energy and momentum series.
-pub(super) fn plots(ui: &mut egui::Ui, phys: &Physics) {
+pub(super) fn plots(ui: &mut egui::Ui, phys: &Physics, message: &mut Option<(String, bool)>) {
     ui.heading("Energy and momentum");
     let series = &phys.series;
     if let Some(p) = series.last() {
@@ -44,6 +191,14 @@ pub(super) fn plots(ui: &mut egui::Ui, phys: &Physics) {
         &[(&|p: &SeriesPoint| p.h_o, palette::MOMENTUM)],
         "N m s",
     );
+    if ui.button("export CSV").on_hover_text("t, T, V, E and H_O of the run, SI units").clicked() {
+        let stem = phys.scene.file.file_stem().map_or("scene".into(), |s| s.to_string_lossy().to_string());
+        let path = export_path(&format!("{stem}-energy.csv"));
+        *message = Some(match super::super::user_files::deliver(&path, energy_csv(series).as_bytes(), "text/csv") {
+            Ok(m) => (m, true),
+            Err(e) => (e, false),
+        });
+    }
 }
 
 type Pick<'a> = &'a dyn Fn(&SeriesPoint) -> f64;
@@ -51,7 +206,7 @@ type Pick<'a> = &'a dyn Fn(&SeriesPoint) -> f64;
 /// A small line plot against time, with the value range and time range written on it.
 fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)], unit: &str) {
     let width = ui.available_width().min(320.0);
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 110.0), egui::Sense::hover());
+    let (rect, hover) = ui.allocate_exact_size(egui::vec2(width, 110.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, egui::Color32::from_gray(250));
     painter.rect_stroke(
@@ -107,6 +262,24 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
     }
     let font = egui::FontId::proportional(10.0);
     let gray = egui::Color32::from_gray(90);
+    // The cursor readout: the sample nearest the pointer's time, each line's value there.
+    if let Some(pos) = hover.hover_pos() {
+        let t = t0 + ((pos.x - inner.min.x) / inner.width()).clamp(0.0, 1.0) as f64 * (t1 - t0);
+        let k = series.partition_point(|p| p.t < t).min(series.len() - 1);
+        let p = &series[k];
+        painter.line_segment(
+            [egui::pos2(map(p.t, lo).x, inner.min.y), egui::pos2(map(p.t, lo).x, inner.max.y)],
+            egui::Stroke::new(1.0, egui::Color32::from_gray(150)),
+        );
+        let values: Vec<String> = lines.iter().map(|(f, _)| format!("{} {unit}", fmt(f(p)))).collect();
+        painter.text(
+            rect.right_top() + egui::vec2(-3.0, 1.0),
+            egui::Align2::RIGHT_TOP,
+            format!("t = {:.3} s: {}", p.t, values.join(", ")),
+            font.clone(),
+            egui::Color32::from_gray(30),
+        );
+    }
     painter.text(
         rect.left_top() + egui::vec2(3.0, 1.0),
         egui::Align2::LEFT_TOP,

@@ -1,10 +1,11 @@
 //! The keyboard shortcuts (listed in the status bar): play/pause, step, reset, time scale, fit,
-//! the mouse tools, clearing the selection, and screenshots.
+//! the mouse tools, clearing the selection, undo/redo/delete for the editor, and screenshots.
 
 use super::super::overlays::Overlays;
 use super::super::physics::Physics;
 use super::super::playback::{restart, toggle_play};
 use super::super::tools::{Tool, ToolState};
+use super::super::editor::EditorCommand;
 use super::super::view::View;
 use super::UiState;
 use bevy::prelude::*;
@@ -20,6 +21,7 @@ pub(super) fn keys(
     mut tools: ResMut<ToolState>,
     mut ov: ResMut<Overlays>,
     mut commands: Commands,
+    mut edits: MessageWriter<EditorCommand>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
 ) {
     if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
@@ -61,11 +63,40 @@ pub(super) fn keys(
     if keys.just_pressed(KeyCode::F1) || (shift && keys.just_pressed(KeyCode::Slash)) {
         ui.help = !ui.help;
     }
+    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
+    if ctrl && keys.just_pressed(KeyCode::KeyZ) {
+        edits.write(if shift { EditorCommand::Redo } else { EditorCommand::Undo });
+    }
+    if ctrl && keys.just_pressed(KeyCode::KeyY) {
+        edits.write(EditorCommand::Redo);
+    }
+    if keys.just_pressed(KeyCode::Delete) {
+        if let Some(b) = ov.selected.and_then(|i| phys.scene.level.bodies.get(i)) {
+            edits.write(EditorCommand::Apply(crate::editor::Edit::Delete {
+                body: b.name.clone(),
+            }));
+            ov.selected = None;
+            ov.point = None;
+        }
+    }
     if keys.just_pressed(KeyCode::F12) {
-        let name = format!("rigidlab-{:.3}s.png", phys.snapshot().time);
+        let name = screenshot_path(phys.snapshot().time);
         ui.message = Some((format!("screenshot saved to {name}"), true));
         commands
             .spawn(Screenshot::primary_window())
             .observe(save_to_disk(name));
+    }
+}
+
+/// Where F12 puts a screenshot: `screenshots/` of the working directory in the window (made if
+/// missing), a download in the web page.
+fn screenshot_path(t: f64) -> String {
+    let name = format!("rigidlab-{t:.3}s.png");
+    if cfg!(target_arch = "wasm32") {
+        return name;
+    }
+    match std::fs::create_dir_all("screenshots") {
+        Ok(()) => format!("screenshots/{name}"),
+        Err(_) => name,
     }
 }

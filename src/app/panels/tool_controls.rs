@@ -1,10 +1,10 @@
-//! The tools panel: the mouse tool (select and drag, impulse, set O), spawning a body into the
-//! scene, and saving the current state as a level file.
+//! The tools panel: the mouse tool (select and drag, impulse, set O) and saving the current state
+//! (mid-run) as a level file; building scenes is the build panel's (scene_editor.rs).
 
 use super::super::physics::Physics;
 use super::super::tools::{Tool, ToolState};
-use super::super::view::{palette, View};
-use super::capture::{save, spawn, Spawn};
+use super::super::view::palette;
+use super::capture::save;
 use super::{rich, UiState};
 use bevy_egui::egui;
 use std::path::Path;
@@ -14,7 +14,6 @@ pub(super) fn tool_controls(
     ui: &mut egui::Ui,
     tools: &mut ToolState,
     phys: &mut Physics,
-    view: &View,
     st: &mut UiState,
 ) {
     ui.heading("Tools");
@@ -31,38 +30,21 @@ pub(super) fn tool_controls(
             "click-drag on a body: J = m × drag / 0.5 s at the clicked point, applied on release"
         }
         Tool::SetOrigin => "click: the point O for the angular momentum H_O",
+        _ => "a build tool (see Build below)",
     };
     ui.label(rich(help, palette::OUTLINE).small());
-    ui.horizontal(|ui| {
-        ui.label("spawn");
-        for (name, what) in [
-            ("box", Spawn::Box),
-            ("disc", Spawn::Disc),
-            ("bar", Spawn::Bar),
-        ] {
-            if ui.button(name).clicked() {
-                let (scene, note) = spawn(&phys.scene, phys.snapshot(), what, view, st.spawned);
-                st.spawned += 1;
-                st.message = Some((note, true));
-                let paused = phys.paused;
-                // Keep the camera where the user put it: the new body appears in view.
-                phys.load_keep_view(scene);
-                phys.paused = paused;
-            }
-        }
-    });
-    ui.horizontal(|ui| {
-        ui.label("save as");
-        ui.add(egui::TextEdit::singleline(&mut st.save_path).desired_width(170.0));
-        if ui
-            .button("Save")
-            .on_hover_text("the current state as a level file (checked by loading it back)")
+    let t = phys.snapshot().time;
+    if t > 0.0
+        && ui
+            .button(format!("save this moment (t = {t:.3} s) as a level"))
+            .on_hover_text("the bodies' poses and velocities now become the new level's start")
             .clicked()
-        {
-            st.message = Some(match save(phys, Path::new(&st.save_path)) {
-                Ok(m) => (m, true),
-                Err(e) => (e, false),
-            });
-        }
-    });
+    {
+        let stem = st.save_path.trim_end_matches(".ron").to_string();
+        let path = format!("{stem}-at-{t:.3}s.ron");
+        st.message = Some(match save(phys, Path::new(&path)) {
+            Ok(m) => (m, true),
+            Err(e) => (e, false),
+        });
+    }
 }

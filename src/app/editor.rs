@@ -1,0 +1,203 @@
+//! The scene editor in the window: [`EditorCommand`] messages (from the editor panel and the
+//! mouse tools, or from a test) applied through the core's [`crate::editor`], with undo and redo.
+//!
+//! Every edit changes the scene as it starts (t = 0) and the run starts over from it, paused, with
+//! the camera left where the user put it; an edit the validator refuses leaves the scene as it was
+//! and says why in the panel.
+
+use super::physics::Physics;
+use crate::editor::{self, Edit, History, NewShape};
+use crate::level::{JointKind, Scene};
+use bevy::prelude::*;
+use glam::DVec2;
+use std::path::PathBuf;
+
+/// What the editor is asked to do.
+#[derive(Message, Debug, Clone, PartialEq)]
+pub enum EditorCommand {
+    Apply(Edit),
+    Undo,
+    Redo,
+    /// A new scene: a ground line and nothing else.
+    New,
+    /// Writes the scene as a level file (a download in the browser), checked by loading it back.
+    Save(PathBuf),
+}
+
+/// The edit history of the scene on screen and the last edit's note (shown in the panel).
+#[derive(Resource, Debug, Default)]
+pub struct Editor {
+    pub history: History,
+    /// What the last command did, and whether it worked.
+    pub note: Option<(String, bool)>,
+    /// The level the history belongs to (`Physics::view_generation`: a newly opened level
+    /// starts a new history).
+    level_generation: u64,
+    /// The file just saved (the level browser rescans).
+    pub just_saved: Option<PathBuf>,
+}
+
+/// Registers the commands and applies them before the physics step of the frame.
+pub struct EditorPlugin;
+
+impl Plugin for EditorPlugin {
+    fn build(&self, app: &mut App) {
+        app.add_message::<EditorCommand>()
+            .init_resource::<Editor>()
+            .add_systems(Update, run_commands.before(super::PhysicsStep));
+    }
+}
+
+fn run_commands(
+    mut commands: MessageReader<EditorCommand>,
+    mut ed: ResMut<Editor>,
+    mut phys: ResMut<Physics>,
+) {
+    for c in commands.read() {
+        if ed.level_generation != phys.view_generation {
+            ed.history.clear();
+            ed.level_generation = phys.view_generation;
+        }
+        let next: Result<(Scene, String), String> = match c {
+            EditorCommand::Apply(e) => ed.history.apply(&phys.scene, e),
+            EditorCommand::Undo => ed
+                .history
+                .undo(&phys.scene)
+                .map(|s| (s, "undone".to_string()))
+                .ok_or_else(|| "nothing to undo".to_string()),
+            EditorCommand::Redo => ed
+                .history
+                .redo(&phys.scene)
+                .map(|s| (s, "redone".to_string()))
+                .ok_or_else(|| "nothing to redo".to_string()),
+            EditorCommand::New => {
+                let fresh = editor::empty_scene(PathBuf::from("my-scene.ron"));
+                ed.history.apply(&phys.scene, &Edit::Replace(Box::new(fresh.level.clone())))
+                    .map(|(s, _)| (s, "a new scene: a ground line; add bodies with the tools".into()))
+            }
+            EditorCommand::Save(path) => {
+                ed.note = Some(match super::panels::capture::save_level(&phys.scene, path) {
+                    Ok(m) => {
+                        ed.just_saved = Some(path.clone());
+                        (m, true)
+                    }
+                    Err(e) => (e, false),
+                });
+                continue;
+            }
+        };
+        match next {
+            Ok((scene, note)) => {
+                // The scene as it starts: the run starts over, paused, the view kept.
+                phys.load_keep_view(scene);
+                phys.paused = true;
+                ed.note = Some((note, true));
+            }
+            Err(why) => ed.note = Some((why, false)),
+        }
+    }
+}
+
+/// A length for new things at the scale of the scene on screen: `fraction` of its size, rounded
+/// to 1, 2 or 5 times a power of ten (a 0.2 m box, not 0.1873 m).
+pub fn nice_length(scene_size: f64, fraction: f64) -> f64 {
+    let x = (scene_size * fraction).max(1e-3);
+    let p = 10f64.powf(x.log10().floor());
+    let m = x / p;
+    let n = if m < 1.5 {
+        1.0
+    } else if m < 3.5 {
+        2.0
+    } else if m < 7.5 {
+        5.0
+    } else {
+        10.0
+    };
+    n * p
+}
+
+/// What the place tool puts where the user clicks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Placeable {
+    Box,
+    Disc,
+    Bar,
+    Ground,
+    Wall,
+}
+
+impl Placeable {
+    pub const ALL: [Placeable; 5] = [
+        Placeable::Box,
+        Placeable::Disc,
+        Placeable::Bar,
+        Placeable::Ground,
+        Placeable::Wall,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Placeable::Box => "box",
+            Placeable::Disc => "disc",
+            Placeable::Bar => "bar",
+            Placeable::Ground => "ground",
+            Placeable::Wall => "wall",
+        }
+    }
+
+    /// The edit that places it at `p`, sized for a scene `size` m across; bodies are 1 kg (a
+    /// round mass, whatever their size: the sandbox used to fill them at 1000 kg/m^2).
+    pub fn edit_at(self, p: DVec2, size: f64) -> Edit {
+        let at = (round_to(p.x, size), round_to(p.y, size));
+        match self {
+            Placeable::Box => Edit::AddBody {
+                shape: NewShape::Box {
+                    width: nice_length(size, 0.08),
+                    height: nice_length(size, 0.05),
+                },
+                at,
+                mass: 1.0,
+            },
+            Placeable::Disc => Edit::AddBody {
+                shape: NewShape::Disc {
+                    radius: nice_length(size, 0.04),
+                },
+                at,
+                mass: 1.0,
+            },
+            Placeable::Bar => Edit::AddBody {
+                shape: NewShape::Bar {
+                    length: nice_length(size, 0.3),
+                    thickness: nice_length(size, 0.015),
+                },
+                at,
+                mass: 1.0,
+            },
+            Placeable::Ground => Edit::AddGround {
+                y: at.1,
+                width: nice_length(size, 3.0),
+            },
+            Placeable::Wall => Edit::AddWall {
+                x: at.0,
+                height: nice_length(size, 1.0),
+            },
+        }
+    }
+}
+
+/// Rounds a clicked coordinate to a step of a thousandth of the scene (1 mm in a 1 m scene), so
+/// a level file reads 0.25 and not 0.2487193.
+fn round_to(x: f64, size: f64) -> f64 {
+    let step = nice_length(size, 1e-3);
+    (x / step).round() * step
+}
+
+/// What the join tool makes.
+pub fn joint_name(kind: JointKind) -> &'static str {
+    match kind {
+        JointKind::Revolute => "pin",
+        JointKind::Prismatic => "slider",
+        JointKind::Fixed => "weld",
+        JointKind::PinSlot => "pin in slot",
+    }
+}

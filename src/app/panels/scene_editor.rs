@@ -1,0 +1,275 @@
+//! The build panel: new scene, undo and redo, the place / join / spring tools, an inspector for
+//! the selected body, the level's title and statement, and saving. Every change goes to the
+//! editor as an [`EditorCommand`] (app/editor.rs), which validates it and restarts the run.
+
+use super::super::editor::{joint_name, Editor, EditorCommand, Placeable};
+use super::super::physics::Physics;
+use super::super::tools::{Tool, ToolState};
+use super::super::view::palette;
+use super::{rich, UiState};
+use crate::editor::{Edit, Property};
+use crate::level::{BodyDef, BodyKind, JointKind, Shape};
+use bevy_egui::egui;
+use std::path::PathBuf;
+
+/// Draws the panel; the commands it sends are in `out`.
+pub(super) fn scene_editor(
+    ui: &mut egui::Ui,
+    phys: &Physics,
+    editor: &Editor,
+    tools: &mut ToolState,
+    selected: Option<usize>,
+    st: &mut UiState,
+    out: &mut Vec<EditorCommand>,
+) {
+    ui.heading("Build");
+    ui.horizontal(|ui| {
+        if ui.button("new scene").on_hover_text("a ground line and nothing else").clicked() {
+            out.push(EditorCommand::New);
+        }
+        if ui
+            .add_enabled(editor.history.can_undo(), egui::Button::new("⟲ undo"))
+            .on_hover_text("Ctrl+Z")
+            .clicked()
+        {
+            out.push(EditorCommand::Undo);
+        }
+        if ui
+            .add_enabled(editor.history.can_redo(), egui::Button::new("⟳ redo"))
+            .on_hover_text("Ctrl+Y or Ctrl+Shift+Z")
+            .clicked()
+        {
+            out.push(EditorCommand::Redo);
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.label("place");
+        for p in Placeable::ALL {
+            ui.selectable_value(&mut tools.tool, Tool::Place(p), p.name());
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.label("join");
+        for k in [JointKind::Revolute, JointKind::Prismatic, JointKind::Fixed] {
+            ui.selectable_value(&mut tools.tool, Tool::Join(k), joint_name(k));
+        }
+        ui.selectable_value(&mut tools.tool, Tool::Spring, "spring");
+    });
+    let hint = match tools.tool {
+        Tool::Place(_) => "click in the scene to place it (1 kg; set its mass below)",
+        Tool::Join(_) => {
+            "click where two bodies overlap to join them there; on one body alone, it is joined to the ground"
+        }
+        Tool::Spring => "drag from a point on a body to a point on another body or the ground",
+        _ => "select a body to edit it; while paused at t = 0, drag it to move it",
+    };
+    ui.label(rich(hint, palette::OUTLINE).small());
+    if let Some((note, ok)) = &editor.note {
+        ui.label(rich(note.clone(), if *ok { palette::GRAVITY } else { palette::NORMAL }));
+    }
+
+    let level = &phys.scene.level;
+    if let Some(b) = selected.and_then(|i| level.bodies.get(i)) {
+        ui.separator();
+        inspector(ui, b, out);
+    }
+
+    ui.separator();
+    egui::CollapsingHeader::new("title, statement, exercise").show(ui, |ui| {
+        if st.edit_title.is_none() {
+            st.edit_title = Some((level.title.clone(), level.statement.clone()));
+        }
+        if let Some((title, statement)) = st.edit_title.as_mut() {
+            ui.add(egui::TextEdit::singleline(title).hint_text("title"));
+            ui.add(
+                egui::TextEdit::multiline(statement)
+                    .hint_text("the problem as you would set it, givens with units")
+                    .desired_rows(3),
+            );
+            if ui.button("set title and statement").clicked() {
+                out.push(EditorCommand::Apply(Edit::SetText {
+                    title: title.clone(),
+                    statement: statement.clone(),
+                }));
+            }
+        }
+        let (nc, nq) = (level.checks.len(), level.questions.len());
+        if nc + nq > 0 {
+            ui.label(format!(
+                "{nq} questions and {nc} checks came with the level; their answers are for the scene as it was written"
+            ));
+            if ui.button("drop them").clicked() {
+                out.push(EditorCommand::Apply(Edit::DropExercise));
+            }
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.label("save as");
+        ui.add(egui::TextEdit::singleline(&mut st.save_path).desired_width(170.0));
+        if ui
+            .button("Save")
+            .on_hover_text("the scene as it starts (t = 0), as a level file that `rigidlab check` runs; checked by loading it back")
+            .clicked()
+        {
+            out.push(EditorCommand::Save(PathBuf::from(&st.save_path)));
+        }
+    });
+}
+
+/// Editable fields of one body; a changed field sends a `Set` (a run of changes to one field is
+/// one step to undo).
+fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
+    let name = b.name.clone();
+    let mut set = |p: Property| {
+        out.push(EditorCommand::Apply(Edit::Set {
+            body: name.clone(),
+            property: p,
+        }))
+    };
+    ui.label(egui::RichText::new(format!("{} ({})", b.name, kind_name(b.kind))).strong());
+    egui::Grid::new("inspector").num_columns(2).show(ui, |ui| {
+        if b.kind == BodyKind::Dynamic {
+            if let Some(m) = b.mass {
+                let mut m = m;
+                ui.label("mass, kg");
+                if drag(ui, &mut m, 0.01, 1e-6..=1e9) {
+                    set(Property::Mass(m));
+                }
+                ui.end_row();
+            } else {
+                let mut d = b.density.unwrap_or(crate::level::DEFAULT_DENSITY);
+                ui.label("density, kg/m²");
+                if drag(ui, &mut d, 1.0, 1e-6..=1e9) {
+                    set(Property::Density(d));
+                }
+                ui.end_row();
+            }
+        }
+        match &b.shape {
+            Some(Shape::Box { width, height }) => {
+                let (mut w, mut h) = (*width, *height);
+                ui.label("width × height, m");
+                ui.horizontal(|ui| {
+                    if drag(ui, &mut w, 0.005, 1e-4..=1e4) {
+                        set(Property::Width(w));
+                    }
+                    if drag(ui, &mut h, 0.005, 1e-4..=1e4) {
+                        set(Property::Height(h));
+                    }
+                });
+                ui.end_row();
+            }
+            Some(Shape::Circle { radius }) => {
+                let mut r = *radius;
+                ui.label("radius, m");
+                if drag(ui, &mut r, 0.005, 1e-4..=1e4) {
+                    set(Property::Radius(r));
+                }
+                ui.end_row();
+            }
+            _ => {}
+        }
+        let (mut x, mut y) = b.position;
+        ui.label("position, m");
+        ui.horizontal(|ui| {
+            let cx = drag(ui, &mut x, 0.01, -1e6..=1e6);
+            let cy = drag(ui, &mut y, 0.01, -1e6..=1e6);
+            if cx || cy {
+                set(Property::Position((x, y)));
+            }
+        });
+        ui.end_row();
+        let mut deg = b.angle.to_degrees();
+        ui.label("angle, degrees");
+        if drag(ui, &mut deg, 0.5, -3600.0..=3600.0) {
+            set(Property::Angle(deg.to_radians()));
+        }
+        ui.end_row();
+        if b.kind == BodyKind::Dynamic {
+            let (mut vx, mut vy) = b.velocity;
+            ui.label("velocity, m/s");
+            ui.horizontal(|ui| {
+                let cx = drag(ui, &mut vx, 0.01, -1e4..=1e4);
+                let cy = drag(ui, &mut vy, 0.01, -1e4..=1e4);
+                if cx || cy {
+                    set(Property::Velocity((vx, vy)));
+                }
+            });
+            ui.end_row();
+            let mut w = b.omega;
+            ui.label("ω, rad/s");
+            if drag(ui, &mut w, 0.01, -1e4..=1e4) {
+                set(Property::Omega(w));
+            }
+            ui.end_row();
+        }
+        if b.shape.is_some() {
+            let mut mu = b.friction.unwrap_or(0.0);
+            ui.label("friction μ");
+            if drag(ui, &mut mu, 0.01, 0.0..=10.0) {
+                set(Property::Friction(mu));
+            }
+            ui.end_row();
+            let mut e = b.restitution.unwrap_or(0.0);
+            ui.label("restitution e");
+            if drag(ui, &mut e, 0.01, 0.0..=1.0) {
+                set(Property::Restitution(e));
+            }
+            ui.end_row();
+        }
+        let mut kind = b.kind;
+        ui.label("kind");
+        egui::ComboBox::from_id_salt("kind")
+            .selected_text(kind_name(kind))
+            .show_ui(ui, |ui| {
+                for k in [BodyKind::Dynamic, BodyKind::Fixed, BodyKind::Kinematic] {
+                    ui.selectable_value(&mut kind, k, kind_name(k));
+                }
+            });
+        if kind != b.kind {
+            set(Property::Kind(kind));
+        }
+        ui.end_row();
+    });
+    ui.horizontal(|ui| {
+        if ui.button("duplicate").clicked() {
+            out.push(EditorCommand::Apply(Edit::Duplicate {
+                body: b.name.clone(),
+                offset: (0.0, duplicate_offset(b)),
+            }));
+        }
+        if ui.button("delete").on_hover_text("Delete key").clicked() {
+            out.push(EditorCommand::Apply(Edit::Delete {
+                body: b.name.clone(),
+            }));
+        }
+    });
+}
+
+/// A number field dragged or typed; true when it changed this frame.
+fn drag(ui: &mut egui::Ui, x: &mut f64, speed: f64, range: std::ops::RangeInclusive<f64>) -> bool {
+    ui.add(
+        egui::DragValue::new(x)
+            .speed(speed)
+            .range(range)
+            .max_decimals(6),
+    )
+    .changed()
+}
+
+fn kind_name(k: BodyKind) -> &'static str {
+    match k {
+        BodyKind::Dynamic => "dynamic",
+        BodyKind::Fixed => "fixed",
+        BodyKind::Kinematic => "kinematic",
+    }
+}
+
+/// A copy goes just above the original, clear of it.
+fn duplicate_offset(b: &BodyDef) -> f64 {
+    match &b.shape {
+        Some(Shape::Circle { radius }) => 2.5 * radius,
+        Some(Shape::Box { height, .. }) => 1.5 * height.max(0.01),
+        _ => 0.5,
+    }
+}

@@ -1,0 +1,447 @@
+//! The editor's verbs: what each edit does to a level, with the same steps in each (find the
+//! bodies it names, change the level, declare the effects it now relies on, say what it did).
+
+use crate::level::{
+    BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape, SpringDef, V2,
+};
+use glam::DVec2;
+
+/// A body the editor can make.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NewShape {
+    /// A box `width` x `height`, m.
+    Box { width: f64, height: f64 },
+    /// A disc of `radius`, m.
+    Disc { radius: f64 },
+    /// A slender bar `length` x `thickness`, m, along x.
+    Bar { length: f64, thickness: f64 },
+    /// A convex polygon, vertices about its center, m.
+    Polygon { points: Vec<V2> },
+}
+
+/// A property of a body the inspector edits.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Property {
+    /// kg (the density is dropped: a body has one or the other).
+    Mass(f64),
+    /// kg/m^2 (the mass is dropped).
+    Density(f64),
+    /// Box or bar width, m.
+    Width(f64),
+    /// Box or bar height, m.
+    Height(f64),
+    /// Disc radius, m.
+    Radius(f64),
+    /// Position of the body frame origin, m.
+    Position(V2),
+    /// rad, counter-clockwise.
+    Angle(f64),
+    /// Initial velocity of G, m/s.
+    Velocity(V2),
+    /// Initial angular velocity, rad/s.
+    Omega(f64),
+    /// Coulomb coefficient; `friction` is declared when it is above zero.
+    Friction(f64),
+    /// Coefficient of restitution; `restitution` is declared when it is above zero.
+    Restitution(f64),
+    Kind(BodyKind),
+}
+
+/// One edit of a level.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Edit {
+    /// A fixed ground line at height `y`, `width` wide, centered on x = 0.
+    AddGround { y: f64, width: f64 },
+    /// A fixed wall at `x`, from y = 0 up `height`.
+    AddWall { x: f64, height: f64 },
+    /// A dynamic body centered at `at`, of `mass` kg.
+    AddBody { shape: NewShape, at: V2, mass: f64 },
+    /// A joint at the world point `at` between `body1` (None: the ground, a fixed anchor body
+    /// made there) and `body2`; anchors are computed in each body's frame so they meet.
+    AddJoint { kind: JointKind, body1: Option<String>, body2: String, at: V2 },
+    /// A linear spring from `at1` on `body1` to `at2` on `body2` (None: the ground), world
+    /// points; its rest length is the distance between them (the scene starts unstretched).
+    AddSpring { body1: String, at1: V2, body2: Option<String>, at2: V2, stiffness: f64 },
+    /// A velocity motor on a joint (None removes it).
+    SetMotor { joint: String, target: Option<f64> },
+    /// A property of a body.
+    Set { body: String, property: Property },
+    /// Removes a body and everything attached to it or asking about it.
+    Delete { body: String },
+    /// A copy of a body moved by `offset`, m (not its joints).
+    Duplicate { body: String, offset: V2 },
+    /// The level's title and statement, as the user writes them.
+    SetText { title: String, statement: String },
+    /// Drops the exercise's checks and questions (their answers were for the scene as written).
+    DropExercise,
+    /// How long the run lasts, s.
+    SetDuration(f64),
+    /// A question of the exercise (a teacher's, with its expected answer).
+    AddQuestion(Box<QuestionDef>),
+    /// The whole level at once (a new scene), undoable like any edit.
+    Replace(Box<Level>),
+}
+
+impl Edit {
+    /// Changes `level`, or says why it cannot (a name that is not there, a bad value).
+    pub fn apply_to(&self, level: &mut Level) -> Result<String, String> {
+        match self {
+            Edit::AddGround { y, width } => {
+                let name = fresh_name(level, "ground");
+                level.bodies.push(ground_body(&name, *y, width / 2.0));
+                declare(level, &[Effect::Contacts]);
+                Ok(format!("added {name}, a ground line at y = {y} m"))
+            }
+            Edit::AddWall { x, height } => {
+                let name = fresh_name(level, "wall");
+                let mut b = ground_body(&name, 0.0, 0.0);
+                b.position = (*x, 0.0);
+                b.shape = Some(Shape::Segment { a: (0.0, 0.0), b: (0.0, *height) });
+                level.bodies.push(b);
+                declare(level, &[Effect::Contacts]);
+                Ok(format!("added {name}, a wall at x = {x} m"))
+            }
+            Edit::AddBody { shape, at, mass } => {
+                let (stem, shape) = match shape {
+                    NewShape::Box { width, height } => ("box", Shape::Box { width: *width, height: *height }),
+                    NewShape::Disc { radius } => ("disc", Shape::Circle { radius: *radius }),
+                    NewShape::Bar { length, thickness } => {
+                        ("bar", Shape::Box { width: *length, height: *thickness })
+                    }
+                    NewShape::Polygon { points } => ("polygon", Shape::Polygon { points: points.clone() }),
+                };
+                let name = fresh_name(level, stem);
+                let mut b = body(&name, BodyKind::Dynamic, Some(shape), *at);
+                b.mass = Some(*mass);
+                level.bodies.push(b);
+                let added = declare(level, &[Effect::Gravity, Effect::Contacts]);
+                Ok(format!("added {name} ({mass} kg) at ({:.3}, {:.3}) m{added}", at.0, at.1))
+            }
+            Edit::AddJoint { kind, body1, body2, at } => {
+                let b2 = find(level, body2)?.clone();
+                let (b1, note) = match body1 {
+                    Some(n) => (find(level, n)?.clone(), String::new()),
+                    None => {
+                        let name = fresh_name(level, "anchor");
+                        let b = body(&name, BodyKind::Fixed, None, *at);
+                        level.bodies.push(b.clone());
+                        (b, format!(" to {name}, a fixed point"))
+                    }
+                };
+                if b1.name == b2.name {
+                    return Err(format!("a joint needs two bodies; both ends are on {}", b1.name));
+                }
+                let name = fresh_name(level, joint_stem(*kind));
+                level.joints.push(JointDef {
+                    name: name.clone(),
+                    kind: *kind,
+                    body1: b1.name.clone(),
+                    body2: b2.name.clone(),
+                    anchor1: local_point(&b1, *at),
+                    anchor2: local_point(&b2, *at),
+                    axis: (1.0, 0.0),
+                    limits: None,
+                    motor: None,
+                    starts_apart: false,
+                });
+                let added = declare(level, &[Effect::Joints]);
+                Ok(format!("added {name} joining {} and {}{note}{added}", b1.name, b2.name))
+            }
+            Edit::AddSpring { body1, at1, body2, at2, stiffness } => {
+                let b1 = find(level, body1)?.clone();
+                let (p2, b2name) = match body2 {
+                    Some(n) => {
+                        let b2 = find(level, n)?;
+                        (local_point(b2, *at2), Some(b2.name.clone()))
+                    }
+                    None => (*at2, None),
+                };
+                let rest = DVec2::from(*at1).distance(DVec2::from(*at2));
+                let name = fresh_name(level, "spring");
+                level.springs.push(SpringDef {
+                    name: name.clone(),
+                    body1: b1.name.clone(),
+                    point1: local_point(&b1, *at1),
+                    body2: b2name,
+                    point2: p2,
+                    stiffness: *stiffness,
+                    rest_length: rest,
+                    damping: 0.0,
+                });
+                let added = declare(level, &[Effect::Springs]);
+                Ok(format!("added {name}, k = {stiffness} N/m, rest length {rest:.4} m{added}"))
+            }
+            Edit::SetMotor { joint, target } => {
+                let j = level
+                    .joints
+                    .iter_mut()
+                    .find(|j| &j.name == joint)
+                    .ok_or_else(|| format!("there is no joint named \"{joint}\""))?;
+                j.motor = target.map(|t| Motor::Velocity { target: t, max_force: None });
+                let added = if target.is_some() { declare(level, &[Effect::Motors]) } else { String::new() };
+                Ok(match target {
+                    Some(t) => format!("{joint} drives at {t} per second{added}"),
+                    None => format!("{joint} has no motor"),
+                })
+            }
+            Edit::Set { body: name, property } => set(level, name, property),
+            Edit::Delete { body: name } => delete(level, name),
+            Edit::Duplicate { body: name, offset } => {
+                let mut b = find(level, name)?.clone();
+                let copy = fresh_name(level, &format!("{name}_copy"));
+                b.name = copy.clone();
+                b.position = (b.position.0 + offset.0, b.position.1 + offset.1);
+                level.bodies.push(b);
+                Ok(format!("added {copy}, a copy of {name}"))
+            }
+            Edit::SetText { title, statement } => {
+                level.title = title.clone();
+                level.statement = statement.clone();
+                Ok("title and statement set".into())
+            }
+            Edit::DropExercise => {
+                let n = (level.checks.len(), level.questions.len());
+                level.checks.clear();
+                level.questions.clear();
+                Ok(format!("dropped the exercise's {} checks and {} questions", n.0, n.1))
+            }
+            Edit::AddQuestion(q) => {
+                if level.questions.iter().any(|x| x.id == q.id) {
+                    return Err(format!("a question \"{}\" is already there", q.id));
+                }
+                level.questions.push((**q).clone());
+                Ok(format!("asked {}: {}", q.id, q.ask))
+            }
+            Edit::Replace(new) => {
+                *level = (**new).clone();
+                Ok(format!("the scene is now \"{}\"", level.title))
+            }
+            Edit::SetDuration(d) => {
+                level.world.duration = *d;
+                Ok(format!("the run lasts {d} s"))
+            }
+        }
+    }
+}
+
+/// A fixed body holding a ground line `half_width` either side of x = 0 at height `y`.
+pub(crate) fn ground_body(name: &str, y: f64, half_width: f64) -> BodyDef {
+    let mut b = body(name, BodyKind::Fixed, None, (0.0, y));
+    if half_width > 0.0 {
+        b.shape = Some(Shape::Segment { a: (-half_width, 0.0), b: (half_width, 0.0) });
+    }
+    b
+}
+
+fn body(name: &str, kind: BodyKind, shape: Option<Shape>, at: V2) -> BodyDef {
+    BodyDef {
+        name: name.into(),
+        kind,
+        shape,
+        position: at,
+        angle: 0.0,
+        velocity: (0.0, 0.0),
+        omega: 0.0,
+        mass: None,
+        density: None,
+        inertia: None,
+        radius_of_gyration: None,
+        lock_rotation: false,
+        friction: None,
+        restitution: None,
+        linear_damping: None,
+        angular_damping: None,
+    }
+}
+
+fn joint_stem(kind: JointKind) -> &'static str {
+    match kind {
+        JointKind::Revolute => "pin",
+        JointKind::Prismatic => "slider",
+        JointKind::Fixed => "weld",
+        JointKind::PinSlot => "pin_slot",
+    }
+}
+
+/// `stem1`, `stem2`, ...: the first name no body, joint or spring of the level has.
+fn fresh_name(level: &Level, stem: &str) -> String {
+    let taken = |n: &str| {
+        level.bodies.iter().any(|b| b.name == n)
+            || level.joints.iter().any(|j| j.name == n)
+            || level.springs.iter().any(|s| s.name == n)
+    };
+    (1..)
+        .map(|i| format!("{stem}{i}"))
+        .find(|n| !taken(n))
+        .expect("an unused name exists")
+}
+
+fn find<'a>(level: &'a Level, name: &str) -> Result<&'a BodyDef, String> {
+    level
+        .bodies
+        .iter()
+        .find(|b| b.name == name)
+        .ok_or_else(|| format!("there is no body named \"{name}\""))
+}
+
+/// A world point in a body's frame (where a joint or spring is anchored on it).
+fn local_point(b: &BodyDef, world: V2) -> V2 {
+    let d = DVec2::from(world) - DVec2::from(b.position);
+    let local = DVec2::from_angle(-b.angle).rotate(d);
+    (local.x, local.y)
+}
+
+/// Declares the effects an edit relies on (promise 3: nothing undeclared runs, so the editor
+/// declares what the user adds) and says which were new.
+fn declare(level: &mut Level, effects: &[Effect]) -> String {
+    let mut added = Vec::new();
+    for e in effects {
+        if !level.effects.contains(e) {
+            level.effects.push(*e);
+            added.push(format!("`{}`", e.name()));
+        }
+    }
+    if added.is_empty() {
+        String::new()
+    } else {
+        format!(" (declared {})", added.join(", "))
+    }
+}
+
+fn set(level: &mut Level, name: &str, property: &Property) -> Result<String, String> {
+    let i = level
+        .bodies
+        .iter()
+        .position(|b| b.name == name)
+        .ok_or_else(|| format!("there is no body named \"{name}\""))?;
+    let mut effects = Vec::new();
+    {
+        let b = &mut level.bodies[i];
+        match property {
+            Property::Mass(m) => {
+                b.mass = Some(*m);
+                b.density = None;
+            }
+            Property::Density(d) => {
+                b.density = Some(*d);
+                b.mass = None;
+            }
+            Property::Width(w) => match &mut b.shape {
+                Some(Shape::Box { width, .. }) => *width = *w,
+                _ => return Err(format!("{name} is not a box or a bar: it has no width")),
+            },
+            Property::Height(h) => match &mut b.shape {
+                Some(Shape::Box { height, .. }) => *height = *h,
+                _ => return Err(format!("{name} is not a box or a bar: it has no height")),
+            },
+            Property::Radius(r) => match &mut b.shape {
+                Some(Shape::Circle { radius }) => *radius = *r,
+                _ => return Err(format!("{name} is not a disc: it has no radius")),
+            },
+            Property::Position(p) => b.position = *p,
+            Property::Angle(a) => b.angle = *a,
+            Property::Velocity(v) => b.velocity = *v,
+            Property::Omega(w) => b.omega = *w,
+            Property::Friction(mu) => {
+                b.friction = (*mu > 0.0).then_some(*mu);
+                effects.push(Effect::Friction);
+            }
+            Property::Restitution(e) => {
+                b.restitution = (*e > 0.0).then_some(*e);
+                effects.push(Effect::Restitution);
+            }
+            Property::Kind(k) => b.kind = *k,
+        }
+    }
+    // Declare an effect only while some body uses it; drop it when none does any more.
+    let used = |e: Effect, l: &Level| match e {
+        Effect::Friction => l.bodies.iter().any(|b| b.friction.is_some()),
+        _ => l.bodies.iter().any(|b| b.restitution.is_some()),
+    };
+    let mut note = format!("{name}: {}", describe(property));
+    for e in effects {
+        if used(e, level) {
+            note += &declare(level, &[e]);
+        } else if let Some(k) = level.effects.iter().position(|x| *x == e) {
+            level.effects.remove(k);
+            note += &format!(" (no body uses `{}` now: undeclared)", e.name());
+        }
+    }
+    Ok(note)
+}
+
+fn describe(p: &Property) -> String {
+    match p {
+        Property::Mass(m) => format!("mass {m} kg"),
+        Property::Density(d) => format!("density {d} kg/m^2"),
+        Property::Width(w) => format!("width {w} m"),
+        Property::Height(h) => format!("height {h} m"),
+        Property::Radius(r) => format!("radius {r} m"),
+        Property::Position(p) => format!("position ({:.4}, {:.4}) m", p.0, p.1),
+        Property::Angle(a) => format!("angle {:.4} rad", a),
+        Property::Velocity(v) => format!("velocity ({}, {}) m/s", v.0, v.1),
+        Property::Omega(w) => format!("omega {w} rad/s"),
+        Property::Friction(mu) => format!("friction {mu}"),
+        Property::Restitution(e) => format!("restitution {e}"),
+        Property::Kind(k) => format!("kind {k:?}").to_lowercase(),
+    }
+}
+
+/// Removes a body with its joints, springs, couplings, loads and events, and the checks and
+/// questions that name it (their answers were about it), listing what went.
+fn delete(level: &mut Level, name: &str) -> Result<String, String> {
+    find(level, name)?;
+    let quoted = format!("\"{name}\"");
+    // The exercise names bodies in many places (45 quantities, groups, partners); the
+    // serialized item is the one form where every such name appears, quoted.
+    let names = |s: String| s.contains(&quoted);
+    let before = (
+        level.joints.len() + level.springs.len() + level.torsion_springs.len(),
+        level.checks.len(),
+        level.questions.len(),
+    );
+    level.bodies.retain(|b| b.name != name);
+    let gone_joints: Vec<String> = level
+        .joints
+        .iter()
+        .filter(|j| j.body1 == name || j.body2 == name)
+        .map(|j| j.name.clone())
+        .collect();
+    level.joints.retain(|j| j.body1 != name && j.body2 != name);
+    level
+        .springs
+        .retain(|s| s.body1 != name && s.body2.as_deref() != Some(name));
+    let names_any = |s: String| s.contains(&quoted) || gone_joints.iter().any(|j| s.contains(&format!("\"{j}\"")));
+    level.torsion_springs.retain(|s| !names(ron_of(s)));
+    // A coupling is over joints' coordinates as well as bodies'.
+    level.couplings.retain(|c| !names_any(ron_of(c)));
+    level.loads.retain(|l| !names(ron_of(l)));
+    level.events.retain(|e| !names(ron_of(e)));
+    level.checks.retain(|c| !names_any(ron_of(c)));
+    level.questions.retain(|q| !names_any(ron_of(q)));
+    let after = (
+        level.joints.len() + level.springs.len() + level.torsion_springs.len(),
+        level.checks.len(),
+        level.questions.len(),
+    );
+    let mut note = format!("deleted {name}");
+    let lost = [
+        (before.0 - after.0, "joints and springs"),
+        (before.1 - after.1, "checks"),
+        (before.2 - after.2, "questions"),
+    ];
+    let lost: Vec<String> = lost
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+    if !lost.is_empty() {
+        note += &format!(" with its {}", lost.join(", "));
+    }
+    Ok(note)
+}
+
+/// An item of a level as RON text, for finding the names it mentions.
+fn ron_of<T: serde::Serialize>(item: &T) -> String {
+    ron::to_string(item).unwrap_or_default()
+}

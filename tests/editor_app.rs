@@ -1,0 +1,114 @@
+//! The editor in the app, headless (MinimalPlugins): a pendulum built from nothing with the
+//! editor's commands (ground, bar, pin), a property edited, undone and redone, the scene saved,
+//! and `rigidlab check` run on the saved level; the run restarts from each edit.
+#![cfg(feature = "app")]
+
+use bevy::app::ScheduleRunnerPlugin;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin, Placeable};
+use rigidlab::app::{Physics, PhysicsPlugin};
+use rigidlab::editor::{self, Edit, Property};
+use rigidlab::level::JointKind;
+use rigidlab::sim::Options;
+use std::path::PathBuf;
+use std::process::Command;
+use std::time::Duration;
+
+fn app() -> App {
+    let mut app = App::new();
+    app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
+        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+        .add_plugins(PhysicsPlugin {
+            scene: editor::empty_scene(PathBuf::from("my-scene.ron")),
+            options: Options::default(),
+            paused: true,
+        })
+        .add_plugins(EditorPlugin);
+    app.update();
+    app
+}
+
+/// Sends one command and runs a frame; returns the editor's note and whether it worked.
+fn send(app: &mut App, c: EditorCommand) -> (String, bool) {
+    app.world_mut().write_message(c);
+    app.update();
+    app.world().resource::<Editor>().note.clone().expect("the editor answers every command")
+}
+
+fn phys(app: &App) -> &Physics {
+    app.world().resource::<Physics>()
+}
+
+#[test]
+fn build_edit_undo_redo_save_and_check_a_pendulum() {
+    let mut app = app();
+    // Ground (the new scene has one; a second, lower), a bar placed where a click would put it
+    // in a 4 m scene, a pin at its left end to the ground.
+    let (note, ok) = send(&mut app, EditorCommand::Apply(Placeable::Ground.edit_at(glam::DVec2::new(0.0, -1.0), 4.0)));
+    assert!(ok, "{note}");
+    let bar = Placeable::Bar.edit_at(glam::DVec2::new(0.6, 2.0), 4.0);
+    let Edit::AddBody { shape: editor::NewShape::Bar { length, .. }, .. } = &bar else {
+        panic!("{bar:?}")
+    };
+    assert_eq!(*length, 1.0, "a bar is 0.3 of a 4 m scene, rounded to 1, 2 or 5: 1 m");
+    let (note, ok) = send(&mut app, EditorCommand::Apply(bar));
+    assert!(ok, "{note}");
+    let (note, ok) = send(
+        &mut app,
+        EditorCommand::Apply(Edit::AddJoint {
+            kind: JointKind::Revolute,
+            body1: None,
+            body2: "bar1".into(),
+            at: (0.1, 2.0),
+        }),
+    );
+    assert!(ok && note.contains("pin1"), "{note}");
+    assert_eq!(phys(&app).scene.level.joints.len(), 1);
+
+    // Play a few steps, then edit: the run starts over from the edited scene, paused.
+    app.world_mut().resource_mut::<Physics>().paused = false;
+    for _ in 0..5 {
+        app.update();
+    }
+    assert!(phys(&app).snapshot().step > 0);
+    let (note, ok) = send(
+        &mut app,
+        EditorCommand::Apply(Edit::Set {
+            body: "bar1".into(),
+            property: Property::Mass(3.0),
+        }),
+    );
+    assert!(ok, "{note}");
+    assert!(phys(&app).paused && phys(&app).snapshot().is_initial());
+    let mass = |app: &App| phys(app).snapshot().bodies.iter().find(|b| b.mass > 0.0).map(|b| b.mass);
+    assert!((mass(&app).unwrap() - 3.0).abs() < 1e-6, "the simulation has not the edited mass");
+    send(&mut app, EditorCommand::Undo);
+    assert!((mass(&app).unwrap() - 1.0).abs() < 1e-6);
+    send(&mut app, EditorCommand::Redo);
+    assert!((mass(&app).unwrap() - 3.0).abs() < 1e-6);
+
+    // A refused edit says why and changes nothing.
+    let before = phys(&app).scene.level.clone();
+    let (why, ok) = send(&mut app, EditorCommand::Apply(Edit::Delete { body: "nobody".into() }));
+    assert!(!ok && why.contains("nobody"));
+    assert_eq!(phys(&app).scene.level, before);
+
+    let dir = std::env::temp_dir().join(format!("rigidlab-editor-app-{}", std::process::id()));
+    let path = dir.join("saved-levels/pendulum.ron");
+    let (note, ok) = send(&mut app, EditorCommand::Save(path.clone()));
+    assert!(ok, "{note}");
+    let out = Command::new(env!("CARGO_BIN_EXE_rigidlab"))
+        .args(["check", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "rigidlab check refused the saved scene:\n{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let saved = rigidlab::level::load(&path).unwrap();
+    assert_eq!(saved.level, phys(&app).scene.level);
+    assert_eq!(saved.level.bodies.iter().find(|b| b.name == "bar1").unwrap().mass, Some(3.0));
+}
