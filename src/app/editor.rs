@@ -72,8 +72,13 @@ fn run_commands(
                 .ok_or_else(|| "nothing to redo".to_string()),
             EditorCommand::New => {
                 let fresh = editor::empty_scene(PathBuf::from("my-scene.ron"));
-                ed.history.apply(&phys.scene, &Edit::Replace(Box::new(fresh.level.clone())))
-                    .map(|(s, _)| (s, "a new scene: a ground line; add bodies with the tools".into()))
+                ed.history
+                    .apply(&phys.scene, &Edit::Replace(Box::new(fresh.level.clone())))
+                    .map(|(s, _)| {
+                        // Saved under its own name, not the level it replaced.
+                        let s = Scene { file: fresh.file.clone(), ..s };
+                        (s, "a new scene: a ground line; add bodies with the tools".into())
+                    })
             }
             EditorCommand::Save(path) => {
                 ed.note = Some(match super::panels::capture::save_level(&phys.scene, path) {
@@ -88,8 +93,14 @@ fn run_commands(
         };
         match next {
             Ok((scene, note)) => {
-                // The scene as it starts: the run starts over, paused, the view kept.
-                phys.load_keep_view(scene);
+                // The scene as it starts: the run starts over, paused, the view kept (a new
+                // scene is fitted: the old view may not even show its ground).
+                if *c == EditorCommand::New {
+                    phys.load(scene);
+                    ed.level_generation = phys.view_generation;
+                } else {
+                    phys.load_keep_view(scene);
+                }
                 phys.paused = true;
                 ed.note = Some((note, true));
             }
@@ -183,6 +194,11 @@ impl Placeable {
             },
         }
     }
+}
+
+/// A clicked point rounded like [`Placeable::edit_at`] rounds it.
+pub fn round_point(p: DVec2, size: f64) -> DVec2 {
+    DVec2::new(round_to(p.x, size), round_to(p.y, size))
 }
 
 /// Rounds a clicked coordinate to a step of a thousandth of the scene (1 mm in a 1 m scene), so

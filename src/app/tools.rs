@@ -152,7 +152,8 @@ fn mouse_tools(
                     edits.write(EditorCommand::Apply(what.edit_at(p, view.scene_size())));
                 }
                 Tool::Join(kind) => {
-                    if let Some(e) = join_at(&phys, &outlines, p, tol, kind) {
+                    let at = super::editor::round_point(p, view.scene_size());
+                    if let Some(e) = join_at(&phys, &outlines, at, tol, kind) {
                         edits.write(EditorCommand::Apply(e));
                     }
                 }

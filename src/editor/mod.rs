@@ -37,7 +37,8 @@ pub fn validated(scene: &Scene, level: Level) -> Result<Scene, String> {
     }
 }
 
-/// A new scene: a ground line 20 m wide at y = 0 and nothing else, gravity declared.
+/// A new scene: a ground line 8 m wide at y = 0 and nothing else, gravity declared (new bodies
+/// are sized for the scene: an 8 m ground gives a 2 m bar and a 0.5 m box).
 pub fn empty_scene(file: std::path::PathBuf) -> Scene {
     let level = Level {
         title: "My scene".into(),
@@ -48,7 +49,7 @@ pub fn empty_scene(file: std::path::PathBuf) -> Scene {
             duration: 5.0,
             ..Default::default()
         },
-        bodies: vec![edit::ground_body("ground", 0.0, 10.0)],
+        bodies: vec![edit::ground_body("ground", 0.0, 4.0)],
         joints: vec![],
         springs: vec![],
         torsion_springs: vec![],

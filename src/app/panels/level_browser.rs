@@ -74,8 +74,9 @@ impl Browser {
         let files = match level::collect_files(&[root.to_path_buf()]) {
             Ok(f) => f,
             Err(e) => {
+                // Still list the saved levels below.
                 b.error = Some(e.to_string());
-                return b;
+                Vec::new()
             }
         };
         for f in files {

@@ -32,6 +32,7 @@ use super::physics::{LiveChecks, Physics};
 use super::tools::ToolState;
 use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
+use std::path::PathBuf;
 use bevy::camera::visibility::RenderLayers;
 use bevy::camera::CameraOutputMode;
 use bevy::prelude::*;
@@ -72,6 +73,8 @@ pub struct UiState {
     pub generation: Option<u64>,
     /// The title and statement being typed in the build panel (read from the level when it changes).
     pub edit_title: Option<(String, String)>,
+    /// The level file the save field was filled for.
+    pub save_for: Option<PathBuf>,
     /// The measuring panel's stopwatch.
     pub stopwatch: measure::Stopwatch,
     /// What the selected body's plot shows.
@@ -93,6 +96,7 @@ impl Default for UiState {
             edit_title: None,
             body_plot: Default::default(),
             stopwatch: Default::default(),
+            save_for: None,
         }
     }
 }
@@ -175,6 +179,11 @@ fn panels(
         // The textbook look: dark ink on paper.
         ctx.set_visuals(egui::Visuals::light());
     }
+    if st.save_for.as_ref() != Some(&phys.scene.file) {
+        // A different level (opened, or a new scene): save it under its own name.
+        st.save_for = Some(phys.scene.file.clone());
+        st.save_path = default_save_path(&phys.scene);
+    }
     if st.generation != Some(phys.generation) {
         st.generation = Some(phys.generation);
         let n = phys.sim.level.questions.len();
@@ -228,6 +237,10 @@ fn panels(
                 let mut out = Vec::new();
                 scene_editor(ui, &phys, &editor, &mut tools, ov.selected, st, &mut out);
                 for c in out {
+                    if matches!(c, EditorCommand::Apply(crate::editor::Edit::Delete { .. })) {
+                        ov.selected = None;
+                        ov.point = None;
+                    }
                     edits.write(c);
                 }
                 ui.separator();
@@ -270,6 +283,19 @@ fn panels(
     view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
 
     help::help(&ctx, &mut st.help);
+    if ov.selected.is_some_and(|i| i >= phys.scene.level.bodies.len()) {
+        // An undo took the selected body away.
+        ov.selected = None;
+        ov.point = None;
+    }
+    // A clicked button keeps egui's keyboard focus, and egui then reports that it wants the
+    // keyboard: every shortcut went dead after any click in a panel (and Space pressed the
+    // focused button too). Once the pointer is back over the scene, only a text being typed
+    // keeps the focus (a number field clicked for typing takes it a frame before its text
+    // edit shows, while the pointer is still on it).
+    if !ctx.text_edit_focused() && !ctx.is_pointer_over_egui() {
+        ctx.memory_mut(|m| m.stop_text_input());
+    }
     phys.track(ov.selected);
     if let Some(saved) = editor.just_saved.take() {
         // A level saved into the folder the browser lists shows there at once.
