@@ -55,3 +55,69 @@ fn reset_restores_the_stop_and_clears_the_impulse_arrow() {
     assert!(phys.stop_at_end);
     assert!(tools.last_impulse.is_none());
 }
+
+/// Step back and the timeline: going back replays the run from t = 0 with the user's pushes at
+/// their steps, so the state reached is the run's own, bit for bit (rapier is deterministic), and
+/// the live checks see every step again.
+#[test]
+fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
+    let scene = level::load(Path::new("levels/kinetics/physical_pendulum.ron")).unwrap();
+    let mut phys = Physics::new(scene, Options::default(), false);
+    let bar = phys.scene.level.bodies.iter().position(|b| b.name == "bar").unwrap();
+    let mut kept = None;
+    for step in 0..120u64 {
+        if step == 40 {
+            let at = phys.snapshot().bodies[bar].com;
+            assert!(phys.apply_impulse(bar, at, DVec2::new(0.8, 0.0)));
+        }
+        if step == 70 {
+            kept = Some(phys.snapshot().clone());
+        }
+        assert!(phys.advance());
+    }
+    let kept = kept.unwrap();
+    phys.seek = Some(70);
+    let mut observed = 0;
+    let mut done = false;
+    while !done {
+        done = phys.seek_steps(f64::INFINITY, |_| observed += 1);
+    }
+    let s = phys.snapshot();
+    assert_eq!(s.step, 70);
+    assert!(phys.paused && phys.interfered, "the push is still part of this run");
+    for (a, b) in s.bodies.iter().zip(&kept.bodies) {
+        assert_eq!((a.com, a.angle, a.velocity, a.omega), (b.com, b.angle, b.velocity, b.omega));
+    }
+    // The initial state and each of the 70 steps.
+    assert_eq!(observed, 71);
+    assert_eq!(phys.series.last().unwrap().t, s.time);
+
+    // Back before the push: the push is dropped once the run goes on from there.
+    phys.seek = Some(20);
+    while !phys.seek_steps(f64::INFINITY, |_| {}) {}
+    assert!(phys.interventions.is_empty() && !phys.interfered);
+}
+
+/// A budget-limited seek goes on next frame from where it stopped and ends at the same state.
+#[test]
+fn a_seek_within_a_frames_budget_resumes_next_frame() {
+    let scene = level::load(Path::new("levels/kinetics/physical_pendulum.ron")).unwrap();
+    let mut phys = Physics::new(scene.clone(), Options::default(), false);
+    for _ in 0..200 {
+        assert!(phys.advance());
+    }
+    let want = phys.snapshot().bodies.clone();
+    for _ in 0..10 {
+        assert!(phys.advance());
+    }
+    phys.seek = Some(200);
+    let mut frames = 0;
+    while !phys.seek_steps(0.0, |_| {}) {
+        frames += 1;
+        assert!(frames < 1000);
+    }
+    assert!(frames > 1, "a zero budget should take one step a frame");
+    for (a, b) in phys.snapshot().bodies.iter().zip(&want) {
+        assert_eq!((a.com, a.omega), (b.com, b.omega));
+    }
+}

@@ -46,7 +46,7 @@ impl Plugin for PhysicsPlugin {
         );
         app.add_systems(
             Update,
-            (manual_steps, observe_checks, sync_fixed_timestep)
+            (seek, manual_steps, observe_checks, sync_fixed_timestep)
                 .chain()
                 .in_set(PhysicsStep),
         );
@@ -164,7 +164,27 @@ pub struct Physics {
     pub body_series: Vec<Vec<BodySample>>,
     /// The body the user selected (always recorded, whatever the scene's size).
     pub tracked: Option<usize>,
+    /// The user's pushes and drags this run (impulses with the step they came before), so a
+    /// seek back replays them where they happened.
+    pub interventions: Vec<Intervention>,
+    /// A step to go to (the timeline, step back): run from t = 0 (or on from now) to it, a
+    /// frame's budget at a time, every step observed by the live checks.
+    pub seek: Option<u64>,
+    /// The run was rewound by a seek that is still going: its steps replay the pushes.
+    replaying: bool,
 }
+
+/// An impulse the user applied between steps: before the step from `step` to `step + 1`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Intervention {
+    pub step: u64,
+    pub body: usize,
+    pub at: DVec2,
+    pub impulse: DVec2,
+}
+
+/// How long a frame may spend seeking, ms (the window stays responsive on a long seek).
+const SEEK_BUDGET_MS: f64 = 40.0;
 
 /// Beyond this many bodies, diagrams are not averaged over a frame (the copies would cost).
 const RECENT_MAX_BODIES: usize = 200;
@@ -202,6 +222,9 @@ impl Physics {
             blows: Vec::new(),
             body_series: Vec::new(),
             tracked: None,
+            interventions: Vec::new(),
+            seek: None,
+            replaying: false,
         };
         p.start_records();
         p
@@ -275,13 +298,21 @@ impl Physics {
         ((1.0 / 60.0) / self.sim.dt()).round().max(1.0) as usize
     }
 
-    /// Back to t = 0 with the current scene and options.
+    /// Back to t = 0 with the current scene and options; the user's pushes are forgotten.
     pub fn reset(&mut self) {
+        self.interventions.clear();
+        self.seek = None;
+        self.replaying = false;
+        self.rewind();
+    }
+
+    /// Back to t = 0 keeping the user's pushes, which a run forward applies again at their steps.
+    fn rewind(&mut self) {
         self.sim = AnySimulation::new(&self.scene, &self.options);
         self.generation += 1;
         self.error = None;
         self.steps_requested = 0;
-        self.interfered = false;
+        self.interfered = !self.interventions.is_empty();
         self.step_times = StepTimes::default();
         self.start_records();
     }
@@ -306,6 +337,78 @@ impl Physics {
     /// True once the level's duration has been simulated.
     pub fn at_end(&self) -> bool {
         self.sim.snapshot().step >= self.sim.total_steps()
+    }
+
+    /// Applies an impulse `j` (N s) at world point `at` to body `i` now, between steps, and keeps
+    /// it for replays. True if the body could take it (a dynamic body).
+    pub fn apply_impulse(&mut self, i: usize, at: DVec2, j: DVec2) -> bool {
+        let done = self.sim.apply_impulse(i, at, j);
+        if done {
+            self.interfered = true;
+            self.interventions.push(Intervention {
+                step: self.sim.snapshot().step,
+                body: i,
+                at,
+                impulse: j,
+            });
+        }
+        done
+    }
+
+    /// Goes toward the step asked for in `seek` (back: from t = 0 again, the user's pushes
+    /// replayed; rapier is deterministic, so the states are the run's own bit for bit), calling
+    /// `observe` after every step; stops after `budget_ms` and goes on next time. Returns true
+    /// when the seek is done (or there is none). Pushes after the step reached are dropped: the
+    /// run goes on from there as a new branch, as an editor's redo is lost by a new edit.
+    pub fn seek_steps(&mut self, budget_ms: f64, mut observe: impl FnMut(&Physics)) -> bool {
+        let Some(target) = self.seek else {
+            return true;
+        };
+        let target = target.min(self.sim.total_steps().max(self.sim.snapshot().step));
+        if target < self.sim.snapshot().step {
+            self.rewind();
+            self.replaying = true;
+            observe(self);
+        }
+        let t0 = Instant::now();
+        while self.sim.snapshot().step < target {
+            // Forward from a live state, its pushes are already in it: only a rewound run
+            // replays them.
+            let ok = if self.replaying {
+                self.advance_replaying()
+            } else {
+                self.advance()
+            };
+            if !ok {
+                break;
+            }
+            observe(self);
+            if t0.elapsed().as_secs_f64() * 1e3 > budget_ms {
+                return false;
+            }
+        }
+        let now = self.sim.snapshot().step;
+        self.interventions.retain(|x| x.step < now);
+        self.replaying = false;
+        self.interfered = !self.interventions.is_empty();
+        self.seek = None;
+        self.paused = true;
+        true
+    }
+
+    /// One step, with the user's pushes recorded before it applied again (a seek's steps).
+    fn advance_replaying(&mut self) -> bool {
+        let step = self.sim.snapshot().step;
+        let due: Vec<Intervention> = self
+            .interventions
+            .iter()
+            .filter(|x| x.step == step)
+            .copied()
+            .collect();
+        for x in due {
+            self.sim.apply_impulse(x.body, x.at, x.impulse);
+        }
+        self.advance()
     }
 
     /// One physics step and its records. Returns false when the run cannot go on.
@@ -403,6 +506,13 @@ fn fixed_step(mut phys: ResMut<Physics>) {
 
 fn new_frame(mut phys: ResMut<Physics>) {
     phys.frame_ms = 0.0;
+}
+
+/// The timeline and step back: seeks within a frame's budget, the live checks seeing every step.
+fn seek(mut phys: ResMut<Physics>, mut live: NonSendMut<LiveChecks>) {
+    if phys.seek.is_some() {
+        phys.seek_steps(SEEK_BUDGET_MS, |p| live.observe(p));
+    }
 }
 
 fn manual_steps(mut phys: ResMut<Physics>) {

@@ -2,7 +2,8 @@
 //!
 //! A level is an exercise with an end (`world.duration`, where `rigidlab check` stops): playing
 //! at the end starts the exercise over rather than running past it unnoticed, and Reset puts
-//! back everything a run changed (the stop at the end, the impulse tool's last arrow).
+//! back everything a run changed (the stop at the end, the impulse tool's last arrow). Stepping
+//! back goes to the step before by replaying the run.
 
 use super::physics::Physics;
 use super::tools::ToolState;
@@ -14,6 +15,16 @@ pub fn toggle_play(phys: &mut Physics, tools: &mut ToolState) {
         restart(phys, tools);
     }
     phys.paused = !phys.paused;
+}
+
+/// One step back, paused: the run is replayed from t = 0 to the step before (see
+/// `Physics::seek_steps`).
+pub fn step_back(phys: &mut Physics) {
+    let step = phys.seek.unwrap_or(phys.snapshot().step);
+    if step > 0 {
+        phys.paused = true;
+        phys.seek = Some(step - 1);
+    }
 }
 
 /// Back to t = 0 as the level opened: the run, the stop at the level's end, the impulse tool's

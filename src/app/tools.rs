@@ -265,12 +265,10 @@ fn spring_stiffness(m: f64) -> f64 {
     super::editor::nice_length(k, 1.0)
 }
 
-/// Applies an impulse `j` (N s) at world point `at` to body `i`, between steps: J on the mass
-/// center and the angular impulse r_{P/G} x J (from the snapshot's G, which is current between steps).
+/// Applies an impulse `j` (N s) at world point `at` to body `i`, between steps (kept by the run,
+/// so stepping back replays it).
 pub fn apply_impulse(phys: &mut Physics, i: usize, at: DVec2, j: DVec2) {
-    if phys.sim.apply_impulse(i, at, j) {
-        phys.interfered = true;
-    }
+    phys.apply_impulse(i, at, j);
 }
 
 /// The mouse spring: a critically damped pull of the grabbed point toward the mouse, applied as the

@@ -63,6 +63,11 @@ pub struct View {
     /// The fastest speed seen in this run (sets the velocity arrow scale), m/s.
     pub max_speed: f64,
     pub generation_speed: Option<u64>,
+    /// The body the camera follows (its mass center stays at the view's center).
+    pub follow: Option<usize>,
+    /// Some moving body was in view last frame (the camera refits when the motion, not the
+    /// user's panning, takes every one of them out).
+    pub bodies_in_view: bool,
 }
 
 impl Default for View {
@@ -77,6 +82,8 @@ impl Default for View {
             bounds_generation: None,
             max_speed: 0.0,
             generation_speed: None,
+            follow: None,
+            bodies_in_view: true,
         }
     }
 }
@@ -348,6 +355,29 @@ pub fn sync_camera(
         }
         view.fit = false;
     }
+    let s = phys.snapshot();
+    if let Some(b) = view.follow.and_then(|i| s.bodies.get(i)) {
+        view.center = b.com;
+    }
+    // Everything that moves has left the view while the scene runs (a body thrown past the
+    // fitted motion, a run past the level's end): fit again.
+    let world = |p: DVec2| view.viewport.contains(view.to_screen(p));
+    let moving: Vec<DVec2> = s
+        .bodies
+        .iter()
+        .filter(|b| b.kind == crate::snapshot::BodyKind::Dynamic)
+        .map(|b| b.com)
+        .collect();
+    let in_view = moving.is_empty() || moving.iter().any(|&p| world(p));
+    if view.bodies_in_view && !in_view && !phys.paused {
+        view.fit = true;
+        view.bounds = current_bounds(s);
+        view.bounds_generation = Some(phys.generation);
+        let b = view.bounds;
+        view.fit_to(&b);
+        view.fit = false;
+    }
+    view.bodies_in_view = in_view;
     let scale = windows.iter().next().map_or(1.0, |w| w.scale_factor());
     for (mut t, mut proj, mut cam) in cams.iter_mut() {
         t.translation = Vec3::new(view.center.x as f32, view.center.y as f32, t.translation.z);
@@ -371,6 +401,18 @@ pub fn sync_camera(
             });
         }
     }
+}
+
+/// The bodies' mass centers now, with a margin of a tenth of their spread (at least 1 m).
+fn current_bounds(s: &crate::snapshot::Snapshot) -> Bounds {
+    let mut b = Bounds::empty();
+    for x in &s.bodies {
+        b.add(x.com);
+    }
+    let pad = (0.1 * b.size().max_element()).max(1.0);
+    b.add(b.min - DVec2::splat(pad));
+    b.add(b.max + DVec2::splat(pad));
+    b
 }
 
 /// Where the mouse is, in window logical pixels, if inside the scene viewport and not over a panel.

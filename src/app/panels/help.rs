@@ -69,7 +69,8 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
 
 const KEYS: &[(&str, &str)] = &[
     ("Space", "play / pause (at the level's end: start over)"),
-    ("S or →", "one physics step"),
+    ("S or Right", "one physics step"),
+    ("Left", "one step back (the run is replayed to the step before; the timeline goes to any time)"),
     ("R", "reset to t = 0 as the level opened"),
     ("− / =", "time scale ÷ 2 / × 2"),
     ("Home", "fit the view to the scene"),

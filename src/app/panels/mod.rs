@@ -228,7 +228,7 @@ fn panels(
         .size_range(260.0..=520.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                playback(ui, &mut phys, st, &mut view, &mut tools);
+                playback(ui, &mut phys, st, &mut view, &mut tools, ov.selected);
                 ui.separator();
                 overlay_controls(ui, &mut ov, &phys);
                 ui.separator();
@@ -271,7 +271,7 @@ fn panels(
                 ui.separator();
             }
             ui.label(
-                "Space play/pause · S step · R reset · −/= time scale · wheel zoom · right-drag pan · Home fit · \
+                "Space play/pause · S step · Left back · R reset · −/= time scale · wheel zoom · right-drag pan · Home fit · \
                  1 select/drag · 2 impulse · 3 set O · V A C F K H T L overlays · F12 screenshot · F1 help",
             );
         });

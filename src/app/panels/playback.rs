@@ -4,7 +4,7 @@
 
 use super::super::physics::Physics;
 use super::super::view::{palette, View};
-use super::super::playback::{restart, toggle_play};
+use super::super::playback::{restart, step_back, toggle_play};
 use super::super::tools::ToolState;
 use super::{fmt, rich, UiState};
 use bevy_egui::egui;
@@ -16,16 +16,40 @@ pub(super) fn playback(
     st: &mut UiState,
     view: &mut View,
     tools: &mut ToolState,
+    selected: Option<usize>,
 ) {
-    let s = phys.snapshot();
+    let (time, step) = (phys.snapshot().time, phys.snapshot().step);
     let duration = phys.sim.level.world.duration;
     ui.heading("Playback");
     ui.label(format!(
         "t = {:.3} s of {:.3} s   (step {})",
-        s.time, duration, s.step
+        time, duration, step
     ));
-    ui.add(egui::ProgressBar::new((s.time / duration).clamp(0.0, 1.0) as f32).desired_height(6.0));
+    // The timeline: drag to any time of the level; going back replays the run from t = 0
+    // (deterministic, the user's pushes included), so every overlay, plot and check is the run's.
+    let dt = phys.sim.dt();
+    let total = phys.sim.total_steps().max(step);
+    let mut at = phys.seek.unwrap_or(step) as f64 * dt;
+    let end = total as f64 * dt;
+    let r = ui.add(
+        egui::Slider::new(&mut at, 0.0..=end)
+            .show_value(false)
+            .text("timeline"),
+    );
+    if r.changed() {
+        phys.seek = Some((at / dt).round() as u64);
+    }
+    if let Some(target) = phys.seek {
+        ui.label(rich(format!("going to t = {:.3} s…", target as f64 * dt), palette::OUTLINE).small());
+    }
     ui.horizontal(|ui| {
+        if ui
+            .add_enabled(step > 0, egui::Button::new("⏮"))
+            .on_hover_text("one step back (Left arrow): the run replayed to the step before")
+            .clicked()
+        {
+            step_back(phys);
+        }
         let label = if phys.paused { "▶ Play" } else { "⏸ Pause" };
         if ui.button(label).clicked() {
             toggle_play(phys, tools);
@@ -51,6 +75,7 @@ pub(super) fn playback(
             .clicked()
         {
             view.fit = true;
+            view.follow = None;
         }
     });
     ui.horizontal(|ui| {
@@ -65,6 +90,20 @@ pub(super) fn playback(
         &mut phys.stop_at_end,
         "stop at the level's end (where `rigidlab check` stops)",
     );
+    if view.follow.is_some_and(|i| Some(i) != selected) {
+        view.follow = None;
+    }
+    if let Some(i) = selected {
+        let name = phys.scene.level.bodies.get(i).map_or("", |b| b.name.as_str());
+        let mut follow = view.follow == Some(i);
+        if ui
+            .checkbox(&mut follow, format!("camera follows {name}"))
+            .on_hover_text("keeps its mass center at the center of the view (Home fits the scene again)")
+            .changed()
+        {
+            view.follow = follow.then_some(i);
+        }
+    }
     for b in &phys.blows {
         ui.label(rich(
             format!(

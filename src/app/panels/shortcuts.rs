@@ -3,7 +3,7 @@
 
 use super::super::overlays::Overlays;
 use super::super::physics::Physics;
-use super::super::playback::{restart, toggle_play};
+use super::super::playback::{restart, step_back, toggle_play};
 use super::super::tools::{Tool, ToolState};
 use super::super::editor::EditorCommand;
 use super::super::view::View;
@@ -34,11 +34,15 @@ pub(super) fn keys(
         phys.paused = true;
         phys.steps_requested += 1;
     }
+    if keys.just_pressed(KeyCode::ArrowLeft) {
+        step_back(&mut phys);
+    }
     if keys.just_pressed(KeyCode::KeyR) {
         restart(&mut phys, &mut tools);
     }
     if keys.just_pressed(KeyCode::Home) {
         view.fit = true;
+        view.follow = None;
     }
     if keys.just_pressed(KeyCode::Minus) {
         ui.time_scale = (ui.time_scale / 2.0).max(1.0 / 64.0);
