@@ -107,6 +107,7 @@ pub fn build_drawing(
         view::highlight(&outlines.bodies, s, i, &mut d);
     }
     let mut scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
+    scales.gain = ov.arrow_scale;
     let vp = view.viewport;
     let (a, b) = (
         view.to_world(Vec2::new(vp.min.x, vp.max.y)),

@@ -36,6 +36,12 @@ pub struct Overlays {
     pub point: Option<(usize, DVec2)>,
     /// The point O for H_O, world frame.
     pub origin: DVec2,
+    /// Arrow lengths times this (the panel's slider; the longest arrow stays clipped).
+    pub arrow_scale: f64,
+    /// Kinds of force left out of the free-body diagram (the panel's per-force boxes).
+    pub hidden_forces: Vec<ForceKind>,
+    /// Each force's x and y components drawn dashed, with their values.
+    pub components: bool,
 }
 
 impl Default for Overlays {
@@ -52,6 +58,9 @@ impl Default for Overlays {
             selected: None,
             point: None,
             origin: DVec2::ZERO,
+            arrow_scale: 1.0,
+            hidden_forces: Vec::new(),
+            components: false,
         }
     }
 }
@@ -75,6 +84,8 @@ pub struct Scales {
     /// The visible world rectangle (min, max), when known: diagrams drawn beside a body go to
     /// the side that has room.
     pub visible: Option<(DVec2, DVec2)>,
+    /// The user's arrow scale (1: as computed).
+    pub gain: f64,
 }
 
 /// The longest arrow on screen, px (an impact's contact force would leave the view).
@@ -107,11 +118,12 @@ impl Scales {
             size,
             m_per_px,
             visible: None,
+            gain: 1.0,
         }
     }
 
     fn len(&self, magnitude: f64, reference: f64) -> f64 {
-        (magnitude / reference * REF_ARROW * self.size)
+        (self.gain * magnitude / reference * REF_ARROW * self.size)
             .min(MAX_ARROW * self.size)
             .min(MAX_ARROW_PX * self.m_per_px)
     }
@@ -336,7 +348,7 @@ pub fn build(
                 quantities::free_body_arrows(None, s, i)
             };
             if ov.free_body {
-                for f in &forces {
+                for f in forces.iter().filter(|f| !ov.hidden_forces.contains(&f.kind)) {
                     let color = force_color(f.kind);
                     let len = scales.len(f.force.length(), scales.force);
                     let u = f.force.normalize_or_zero();
@@ -366,6 +378,26 @@ pub fn build(
                         continue;
                     }
                     d.prims.push(Prim::Arrow(a, z, color));
+                    if ov.components {
+                        // x and y components from the arrow's tail, dashed, each with its value.
+                        let v = z - a;
+                        for (c, axis, value) in [
+                            (DVec2::new(v.x, 0.0), "x", f.force.x),
+                            (DVec2::new(0.0, v.y), "y", f.force.y),
+                        ] {
+                            if c.length() > 4.0 * px {
+                                d.prims.push(Prim::Dashed(a, a + c, color));
+                                if labels {
+                                    d.tip_label(
+                                        a + c,
+                                        c,
+                                        format!("{}_{axis} = {}", f.kind.symbol(), si(value, "N")),
+                                        color,
+                                    );
+                                }
+                            }
+                        }
+                    }
                     if labels {
                         // At the free end of the arrow: the tail for pushes, the head for pulls.
                         let (at, dir) = if pushes { (a, -u) } else { (z, u) };

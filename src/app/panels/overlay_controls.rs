@@ -9,6 +9,7 @@ use super::rich;
 use crate::level::{Effect, Level};
 use bevy::prelude::*;
 use bevy_egui::egui;
+use super::super::quantities::ForceKind;
 
 /// The color key of the overlays that are on (force kinds only where the scene has them).
 pub fn legend_entries(ov: &Overlays, level: &Level, window: usize) -> Vec<(String, Color)> {
@@ -67,6 +68,40 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Phys
         ui.checkbox(&mut ov.trails, "trails (T)");
         ui.checkbox(&mut ov.labels, "magnitudes (L)");
         ui.end_row();
+    });
+    if ov.free_body {
+        ui.horizontal_wrapped(|ui| {
+            ui.label("forces");
+            for (kind, color) in [
+                (ForceKind::Gravity, palette::GRAVITY),
+                (ForceKind::ContactNormal, palette::NORMAL),
+                (ForceKind::Friction, palette::FRICTION),
+                (ForceKind::Joint, palette::REACTION),
+                (ForceKind::Spring, palette::SPRING),
+                (ForceKind::Load, palette::LOAD),
+                (ForceKind::Coupling, palette::COUPLING),
+            ] {
+                let mut shown = !ov.hidden_forces.contains(&kind);
+                if ui
+                    .checkbox(&mut shown, rich(kind.symbol(), color))
+                    .changed()
+                {
+                    ov.hidden_forces.retain(|k| *k != kind);
+                    if !shown {
+                        ov.hidden_forces.push(kind);
+                    }
+                }
+            }
+            ui.checkbox(&mut ov.components, "x, y components");
+        });
+    }
+    ui.horizontal(|ui| {
+        ui.label("arrow scale");
+        ui.add(
+            egui::Slider::new(&mut ov.arrow_scale, 0.25..=4.0)
+                .logarithmic(true)
+                .max_decimals(2),
+        );
     });
     ui.horizontal_wrapped(|ui| {
         for (text, color) in legend_entries(ov, &phys.sim.level, phys.frame_window()) {
