@@ -29,6 +29,8 @@ fn the_window_draws_frames_without_rendering_errors() {
         .env("RIGIDLAB_CONTINUOUS", "1")
         .env("RIGIDLAB_FPS_LOG", "1")
         .env("RIGIDLAB_EXIT_AFTER_FRAMES", "150")
+        // Not the user's own preferences: the test writes what the window remembers elsewhere.
+        .env("RIGIDLAB_PREFS", std::env::temp_dir().join(format!("rigidlab-window-prefs-{}.ron", std::process::id())))
         .env("NO_COLOR", "1")
         .output()
         .expect("rigidlab play runs");

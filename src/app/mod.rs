@@ -17,6 +17,7 @@ pub mod overlays;
 pub mod panels;
 pub mod physics;
 pub mod playback;
+pub mod prefs;
 pub mod quantities;
 pub mod render;
 pub mod tools;
@@ -250,12 +251,19 @@ pub(crate) fn empty_scene() -> Scene {
 }
 
 /// Opens the sandbox window: the level browser over `levels`, or `level` directly.
+/// The level the window opens with when none is named (under the levels folder).
+pub const FIRST_LEVEL: &str = "kinetics/physical_pendulum.ron";
+
 pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
     render::vulkan_check()?;
     let browser = panels::Browser::scan(&levels);
     let scene = match &level {
         Some(p) => crate::level::load(p).map_err(|e| e.to_string())?,
-        None => browser.first_loadable().unwrap_or_else(empty_scene),
+        // The first exercise of the first-steps tour: a pendulum, if the library has it.
+        None => crate::level::load(&levels.join(FIRST_LEVEL))
+            .ok()
+            .or_else(|| browser.first_loadable())
+            .unwrap_or_else(empty_scene),
     };
     let mut app = App::new();
     // winit panics when it cannot reach the display (DISPLAY set to a dead X server, a Wayland-only
@@ -316,6 +324,7 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
     });
     app.add_plugins(ScenePlugin { legend: false });
     app.insert_resource(browser);
+    app.insert_resource(prefs::Prefs::load());
     app.add_plugins((
         panels::PanelsPlugin,
         tools::ToolsPlugin,

@@ -18,6 +18,7 @@ mod scene_editor;
 mod shortcuts;
 mod solver;
 mod tool_controls;
+mod tour;
 
 pub use capture::{capture, save};
 pub use exercise::{grade, grade_message};
@@ -52,6 +53,7 @@ use solver::solver;
 use tool_controls::tool_controls;
 use scene_editor::scene_editor;
 use super::editor::{Editor, EditorCommand};
+use super::prefs::Prefs;
 
 /// Panel state that is not the simulation's.
 #[derive(Resource, Debug, Clone)]
@@ -73,6 +75,8 @@ pub struct UiState {
     pub generation: Option<u64>,
     /// The title and statement being typed in the build panel (read from the level when it changes).
     pub edit_title: Option<(String, String)>,
+    /// The first-steps tour.
+    pub tour: tour::Tour,
     /// The level file the save field was filled for.
     pub save_for: Option<PathBuf>,
     /// The measuring panel's stopwatch.
@@ -97,6 +101,7 @@ impl Default for UiState {
             body_plot: Default::default(),
             stopwatch: Default::default(),
             save_for: None,
+            tour: Default::default(),
         }
     }
 }
@@ -170,7 +175,11 @@ fn panels(
     mut time: ResMut<Time<Virtual>>,
     windows: Query<&Window>,
     rate: Option<Res<FrameRate>>,
-    (mut editor, mut edits): (ResMut<Editor>, MessageWriter<EditorCommand>),
+    (mut editor, mut edits, mut prefs): (
+        ResMut<Editor>,
+        MessageWriter<EditorCommand>,
+        Option<ResMut<Prefs>>,
+    ),
 ) -> Result {
     let rate = rate.map(|r| r.clone()).unwrap_or_default();
     let ctx = contexts.ctx_mut()?.clone();
@@ -178,6 +187,13 @@ fn panels(
     if st.generation.is_none() {
         // The textbook look: dark ink on paper.
         ctx.set_visuals(egui::Visuals::light());
+        if let Some(p) = prefs.as_deref() {
+            st.tour.open = !p.tour_done;
+            st.time_scale = p.time_scale;
+            ov.arrow_scale = p.arrow_scale;
+            ov.labels = p.labels;
+            ov.trails = p.trails;
+        }
     }
     if st.save_for.as_ref() != Some(&phys.scene.file) {
         // A different level (opened, or a new scene): save it under its own name.
@@ -283,6 +299,24 @@ fn panels(
     view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
 
     help::help(&ctx, &mut st.help);
+    let mut t = std::mem::take(&mut st.tour);
+    let finished = tour::tour(&ctx, &mut t, &phys, &ov, st, &editor);
+    st.tour = t;
+    if let Some(p) = prefs.as_deref_mut() {
+        let now = Prefs {
+            tour_done: p.tour_done || finished,
+            arrow_scale: ov.arrow_scale,
+            time_scale: st.time_scale,
+            labels: ov.labels,
+            trails: ov.trails,
+        };
+        if now != *p {
+            *p = now;
+            if let Err(e) = p.save() {
+                st.message = Some((format!("preferences not saved: {e}"), false));
+            }
+        }
+    }
     if ov.selected.is_some_and(|i| i >= phys.scene.level.bodies.len()) {
         // An undo took the selected body away.
         ov.selected = None;

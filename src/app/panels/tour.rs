@@ -1,0 +1,85 @@
+//! The first-steps tour: a small window listing what to try first in the sandbox, each step
+//! ticked when the user has done it (read from the window's own state, not from clicks on the
+//! tour), until they finish or dismiss it; [`super::super::prefs::Prefs`] remembers that.
+
+use super::super::editor::Editor;
+use super::super::overlays::Overlays;
+use super::super::physics::Physics;
+use super::super::view::palette;
+use super::{rich, UiState};
+use bevy_egui::egui;
+
+/// What the tour has seen that leaves no trace in the window's state.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Tour {
+    pub open: bool,
+    pub went_back: bool,
+    pub saw_help: bool,
+}
+
+/// The steps, and whether each is done.
+pub fn steps(
+    tour: &Tour,
+    phys: &Physics,
+    ov: &Overlays,
+    st: &UiState,
+    editor: &Editor,
+) -> Vec<(&'static str, bool)> {
+    vec![
+        ("Press Space (or ▶ Play) to run the exercise", phys.snapshot().step > 0 || phys.seek.is_some()),
+        ("Click a body: its velocity, and the velocity of the point you clicked", ov.selected.is_some()),
+        ("Press F for its free-body diagram and K for the kinetic diagram beside it", ov.free_body && ov.kinetic),
+        ("Drag the timeline back, or press Left to step back", tour.went_back),
+        ("Type your answer into a question's box and press Enter", st.grades.iter().any(|g| g.is_some())),
+        ("Build: new scene, place a bar, and pin it with the join tool", editor.history.can_undo() && !phys.scene.level.joints.is_empty()),
+        ("Press F1 for every key, overlay and tool", tour.saw_help),
+    ]
+}
+
+/// Draws the tour while it is open; returns true when the user finished or dismissed it.
+pub(super) fn tour(
+    ctx: &egui::Context,
+    tour: &mut Tour,
+    phys: &Physics,
+    ov: &Overlays,
+    st: &UiState,
+    editor: &Editor,
+) -> bool {
+    if phys.seek.is_some() {
+        tour.went_back = true;
+    }
+    if st.help {
+        tour.saw_help = true;
+    }
+    if !tour.open {
+        return false;
+    }
+    let steps = steps(tour, phys, ov, st, editor);
+    let done = steps.iter().filter(|(_, d)| *d).count();
+    let mut finished = false;
+    egui::Window::new(format!("First steps ({done} of {})", steps.len()))
+        .id(egui::Id::new("first-steps"))
+        .anchor(egui::Align2::RIGHT_BOTTOM, egui::vec2(-345.0, -40.0))
+        .default_open(!cfg!(target_arch = "wasm32"))
+        .resizable(false)
+        .show(ctx, |ui| {
+            for (what, d) in &steps {
+                let mark = if *d { "✔" } else { "○" };
+                let color = if *d { palette::GRAVITY } else { palette::TEXT };
+                ui.label(rich(format!("{mark} {what}"), color));
+            }
+            ui.horizontal(|ui| {
+                let label = if done == steps.len() { "done" } else { "hide for good" };
+                if ui.button(label).clicked() {
+                    finished = true;
+                }
+                if ui.button("later").on_hover_text("it comes back next time").clicked() {
+                    tour.open = false;
+                }
+            });
+        });
+    if finished {
+        tour.open = false;
+    }
+    finished
+}
