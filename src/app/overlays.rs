@@ -369,11 +369,20 @@ pub fn build(
                             | ForceKind::Coupling
                     ) || (f.kind != ForceKind::Gravity
                         && (off_shape || f.force.dot(b.com - f.point) > 0.0));
-                    let (a, z) = if pushes {
+                    let (mut a, mut z) = if pushes {
                         (f.point - u * len, f.point)
                     } else {
                         (f.point, f.point + u * len)
                     };
+                    if f.kind == ForceKind::Friction {
+                        // Friction lies along the contact surface, right on the other body's
+                        // outline, which hid it: drawn a few pixels off the surface, on the
+                        // body's side.
+                        let to_g = b.com - f.point;
+                        let side = (to_g - u * to_g.dot(u)).normalize_or_zero();
+                        a += side * 5.0 * px;
+                        z += side * 5.0 * px;
+                    }
                     if len < 2.0 * px {
                         continue;
                     }
