@@ -56,3 +56,20 @@ fn the_body_series_follows_the_snapshot_and_exports_every_sample() {
     assert_eq!(csv.lines().count(), series.len() + 1);
     assert!(csv.starts_with("t_s,"));
 }
+
+/// H about the chosen O in the plots: moved from the world origin with the linear momentum
+/// (6/15), it equals the sum over the bodies about O computed directly (6/19).
+#[test]
+fn h_about_any_point_is_the_direct_sum_about_it() {
+    let phys = played("levels/kinetics/physical_pendulum.ron");
+    let p = phys.series.last().unwrap();
+    let s = phys.snapshot();
+    for o in [glam::DVec2::ZERO, glam::DVec2::new(1.0, -2.0), glam::DVec2::new(-3.5, 0.25)] {
+        let direct = rigidlab::analysis::momentum::scene_angular_momentum_about(s, o);
+        let moved = p.h_about(o);
+        assert!(
+            (moved - direct).abs() <= 1e-12 * (1.0 + direct.abs()),
+            "about {o}: {moved} against {direct}"
+        );
+    }
+}

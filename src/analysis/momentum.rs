@@ -73,6 +73,19 @@ pub fn scene_angular_momentum_about(s: &crate::snapshot::Snapshot, o: DVec2) -> 
     system_angular_momentum(s.bodies.iter().map(body), o)
 }
 
+/// A snapshot's system linear momentum G = sum of m v_G (6/18), engine masses: with H about one
+/// point it gives H about any other ([`transfer_angular_momentum`]).
+pub fn scene_linear_momentum(s: &crate::snapshot::Snapshot) -> DVec2 {
+    let body = |b: &crate::snapshot::BodyState| BodyMomentum {
+        m: b.mass,
+        i_g: b.inertia,
+        r_g: b.com,
+        v_g: b.velocity,
+        omega: b.omega,
+    };
+    system_linear_momentum(s.bodies.iter().map(body))
+}
+
 // ---------------------------------------------------------------------------------------------
 // Impulse-momentum over a window [t1, t2].
 

@@ -90,6 +90,8 @@ pub struct SeriesPoint {
     pub elastic: f64,
     /// Angular momentum about the world origin H_O, N m s.
     pub h_o: f64,
+    /// Linear momentum G = sum of m v_G, N s (moves H to any point).
+    pub momentum: DVec2,
 }
 
 /// One sample of a body's plots (the graphs' choice and the CSV export).
@@ -115,6 +117,11 @@ pub const BODY_SERIES_MAX_BODIES: usize = 32;
 impl SeriesPoint {
     pub fn total(&self) -> f64 {
         self.kinetic + self.gravity + self.elastic
+    }
+
+    /// Angular momentum about the point `o`, N m s (6/15's transfer from the world origin).
+    pub fn h_about(&self, o: DVec2) -> f64 {
+        crate::analysis::momentum::transfer_angular_momentum(self.h_o, DVec2::ZERO, o, self.momentum)
     }
 }
 
@@ -487,6 +494,7 @@ fn series_point(s: &Snapshot) -> SeriesPoint {
         gravity: energy::system_gravity_potential(s, energy::engine_mass),
         elastic: s.springs.iter().map(|sp| sp.energy).sum(),
         h_o: quantities::angular_momentum_about(s, DVec2::ZERO),
+        momentum: crate::analysis::momentum::scene_linear_momentum(s),
     }
 }
 

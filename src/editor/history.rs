@@ -25,6 +25,10 @@ impl History {
             (Some(Edit::Set { body: a, property: p }), Edit::Set { body: b, property: q }) => {
                 a == b && std::mem::discriminant(p) == std::mem::discriminant(q)
             }
+            (
+                Some(Edit::SetMotor { joint: a, target: Some(_) }),
+                Edit::SetMotor { joint: b, target: Some(_) },
+            ) => a == b,
             _ => false,
         };
         if !(merges && !self.undo.is_empty()) {

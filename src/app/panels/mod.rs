@@ -83,6 +83,8 @@ pub struct UiState {
     pub stopwatch: measure::Stopwatch,
     /// What the selected body's plot shows.
     pub body_plot: plots::BodyPlot,
+    /// What it is plotted against (None: time).
+    pub body_plot_against: Option<plots::BodyPlot>,
 }
 
 impl Default for UiState {
@@ -99,6 +101,7 @@ impl Default for UiState {
             generation: None,
             edit_title: None,
             body_plot: Default::default(),
+            body_plot_against: None,
             stopwatch: Default::default(),
             save_for: None,
             tour: Default::default(),
@@ -264,9 +267,15 @@ fn panels(
                 ui.separator();
                 measure::measure(ui, &phys, &mut tools, &mut st.stopwatch, ov.selected);
                 ui.separator();
-                plots(ui, &phys, &mut st.message);
+                plots(ui, &phys, ov.origin, &mut st.message);
                 ui.add_space(4.0);
-                plots::body_plot(ui, &phys, ov.selected, &mut st.body_plot, &mut st.message);
+                plots::body_plot(
+                    ui,
+                    &phys,
+                    ov.selected,
+                    (&mut st.body_plot, &mut st.body_plot_against),
+                    &mut st.message,
+                );
                 ui.separator();
                 checks(ui, &phys, &live);
             });

@@ -1,4 +1,4 @@
-//! The plots panel: the current kinetic, potential and total energy and H about the world origin
+//! The plots panel: the current kinetic, potential and total energy and H about the chosen O
 //! with their line plots against time, and a plot of the selected body's quantity of choice
 //! (theta, omega, x_G, y_G, |v_G|, the joints' reaction |R|), each with a cursor readout and a
 //! CSV export.
@@ -79,27 +79,30 @@ pub fn body_csv(samples: &[BodySample]) -> String {
 
 /// The energy series as CSV.
 pub fn energy_csv(series: &[SeriesPoint]) -> String {
-    let mut out = String::from("t_s,T_J,V_gravity_J,V_elastic_J,E_J,H_O_Nms\n");
+    let mut out = String::from("t_s,T_J,V_gravity_J,V_elastic_J,E_J,H_origin_Nms,Gx_Ns,Gy_Ns\n");
     for p in series {
         out += &format!(
-            "{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{}\n",
             p.t,
             p.kinetic,
             p.gravity,
             p.elastic,
             p.total(),
-            p.h_o
+            p.h_o,
+            p.momentum.x,
+            p.momentum.y
         );
     }
     out
 }
 
-/// The selected body's plot: a choice of quantity, the plot, and its CSV.
+/// The selected body's plot: a choice of quantity, against time or another quantity (a phase
+/// plot: omega against theta), and its CSV.
 pub(super) fn body_plot(
     ui: &mut egui::Ui,
     phys: &Physics,
     selected: Option<usize>,
-    choice: &mut BodyPlot,
+    (choice, against): (&mut BodyPlot, &mut Option<BodyPlot>),
     message: &mut Option<(String, bool)>,
 ) {
     let Some(i) = selected else {
@@ -120,7 +123,20 @@ pub(super) fn body_plot(
                     ui.selectable_value(choice, q, q.label());
                 }
             });
+        ui.label("against");
+        egui::ComboBox::from_id_salt("body-plot-x")
+            .selected_text(against.map_or("t, s", |q| q.label()))
+            .show_ui(ui, |ui| {
+                ui.selectable_value(against, None, "t, s");
+                for q in BodyPlot::ALL {
+                    ui.selectable_value(against, Some(q), q.label());
+                }
+            });
     });
+    if let Some(x) = *against {
+        xy_plot(ui, samples, x, *choice);
+        return;
+    }
     let q = *choice;
     let points: Vec<SeriesPoint> = samples
         .iter()
@@ -130,6 +146,7 @@ pub(super) fn body_plot(
             gravity: 0.0,
             elastic: 0.0,
             h_o: 0.0,
+            momentum: glam::DVec2::ZERO,
         })
         .collect();
     line_plot(ui, &points, &[(&|p: &SeriesPoint| p.kinetic, palette::VELOCITY)], q.unit());
@@ -146,6 +163,54 @@ pub(super) fn body_plot(
     }
 }
 
+/// One quantity against another over the run (a phase plot), with both ranges written on it.
+fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) {
+    let width = ui.available_width().min(320.0);
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 160.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, egui::Color32::from_gray(250));
+    let pts: Vec<(f64, f64)> = samples
+        .iter()
+        .map(|p| (x.of(p), y.of(p)))
+        .filter(|(a, b)| a.is_finite() && b.is_finite())
+        .collect();
+    if pts.len() < 2 {
+        return;
+    }
+    let range = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), a| (l.min(a), h.max(a)));
+        let pad = ((hi - lo) * 0.08).max(1e-9 * hi.abs().max(1.0));
+        (lo - pad, hi + pad)
+    };
+    let (x0, x1) = range(&mut pts.iter().map(|p| p.0));
+    let (y0, y1) = range(&mut pts.iter().map(|p| p.1));
+    let inner = rect.shrink2(egui::vec2(4.0, 14.0));
+    let map = |a: f64, b: f64| {
+        egui::pos2(
+            inner.min.x + ((a - x0) / (x1 - x0)) as f32 * inner.width(),
+            inner.max.y - ((b - y0) / (y1 - y0)) as f32 * inner.height(),
+        )
+    };
+    let line: Vec<egui::Pos2> = pts.iter().map(|&(a, b)| map(a, b)).collect();
+    painter.add(egui::Shape::line(line, egui::Stroke::new(1.5, color32(palette::VELOCITY))));
+    let font = egui::FontId::proportional(10.0);
+    let gray = egui::Color32::from_gray(90);
+    painter.text(
+        rect.left_top() + egui::vec2(3.0, 1.0),
+        egui::Align2::LEFT_TOP,
+        format!("{}: {} to {}", y.label(), fmt(y0), fmt(y1)),
+        font.clone(),
+        gray,
+    );
+    painter.text(
+        rect.right_bottom() + egui::vec2(-3.0, -1.0),
+        egui::Align2::RIGHT_BOTTOM,
+        format!("{}: {} to {}", x.label(), fmt(x0), fmt(x1)),
+        font,
+        gray,
+    );
+}
+
 /// Where an export goes: `exports/` of the working directory in the window, a download in the page.
 fn export_path(name: &str) -> std::path::PathBuf {
     if cfg!(target_arch = "wasm32") {
@@ -156,7 +221,12 @@ fn export_path(name: &str) -> std::path::PathBuf {
 }
 
 /// Draws the panel from the run's energy and momentum series.
-pub(super) fn plots(ui: &mut egui::Ui, phys: &Physics, message: &mut Option<(String, bool)>) {
+pub(super) fn plots(
+    ui: &mut egui::Ui,
+    phys: &Physics,
+    origin: glam::DVec2,
+    message: &mut Option<(String, bool)>,
+) {
     ui.heading("Energy and momentum");
     let series = &phys.series;
     if let Some(p) = series.last() {
@@ -170,8 +240,11 @@ pub(super) fn plots(ui: &mut egui::Ui, phys: &Physics, message: &mut Option<(Str
             ui.label(rich("total E = T + V", palette::TEXT));
             ui.label(format!("{:.5} J", p.total()));
             ui.end_row();
-            ui.label(rich("H about the world origin", palette::MOMENTUM));
-            ui.label(format!("{:.5} N m s", p.h_o));
+            ui.label(rich(
+                format!("H about O ({}, {}) m", fmt(origin.x), fmt(origin.y)),
+                palette::MOMENTUM,
+            ));
+            ui.label(format!("{:.5} N m s", p.h_about(origin)));
             ui.end_row();
         });
     }
@@ -188,7 +261,7 @@ pub(super) fn plots(ui: &mut egui::Ui, phys: &Physics, message: &mut Option<(Str
     line_plot(
         ui,
         series,
-        &[(&|p: &SeriesPoint| p.h_o, palette::MOMENTUM)],
+        &[(&|p: &SeriesPoint| p.h_about(origin), palette::MOMENTUM)],
         "N m s",
     );
     if ui.button("export CSV").on_hover_text("t, T, V, E and H_O of the run, SI units").clicked() {

@@ -72,6 +72,7 @@ pub(super) fn scene_editor(
     if let Some(b) = selected.and_then(|i| level.bodies.get(i)) {
         ui.separator();
         inspector(ui, b, out);
+        motors(ui, level, &b.name, out);
     }
 
     ui.separator();
@@ -244,6 +245,39 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
             }));
         }
     });
+}
+
+/// A velocity motor on each pin or slider of the body: on or off, and its target rate.
+fn motors(ui: &mut egui::Ui, level: &crate::level::Level, body: &str, out: &mut Vec<EditorCommand>) {
+    for j in level.joints.iter().filter(|j| {
+        (j.body1 == body || j.body2 == body)
+            && matches!(j.kind, JointKind::Revolute | JointKind::Prismatic)
+    }) {
+        let unit = if j.kind == JointKind::Revolute { "rad/s" } else { "m/s" };
+        let current = match &j.motor {
+            Some(crate::level::Motor::Velocity { target, .. }) => Some(*target),
+            Some(_) => None,
+            None => None,
+        };
+        ui.horizontal(|ui| {
+            let mut on = current.is_some();
+            if ui.checkbox(&mut on, format!("{} motor", j.name)).changed() {
+                out.push(EditorCommand::Apply(Edit::SetMotor {
+                    joint: j.name.clone(),
+                    target: on.then_some(1.0),
+                }));
+            }
+            if let Some(mut t) = current {
+                if drag(ui, &mut t, 0.05, -1e4..=1e4) {
+                    out.push(EditorCommand::Apply(Edit::SetMotor {
+                        joint: j.name.clone(),
+                        target: Some(t),
+                    }));
+                }
+                ui.label(unit);
+            }
+        });
+    }
 }
 
 /// A number field dragged or typed; true when it changed this frame.
