@@ -63,27 +63,24 @@ pub fn system_angular_momentum(bodies: impl IntoIterator<Item = BodyMomentum>, o
 /// A snapshot's system angular momentum about O (6/19): every body's H_O with its engine mass
 /// and I_G (fixed bodies have none), the sum the window plots and draws.
 pub fn scene_angular_momentum_about(s: &crate::snapshot::Snapshot, o: DVec2) -> f64 {
-    let body = |b: &crate::snapshot::BodyState| BodyMomentum {
+    system_angular_momentum(s.bodies.iter().map(engine_momentum), o)
+}
+
+/// A body of a snapshot as the momentum sums take it: engine mass and I_G (zero for fixed bodies).
+fn engine_momentum(b: &crate::snapshot::BodyState) -> BodyMomentum {
+    BodyMomentum {
         m: b.mass,
         i_g: b.inertia,
         r_g: b.com,
         v_g: b.velocity,
         omega: b.omega,
-    };
-    system_angular_momentum(s.bodies.iter().map(body), o)
+    }
 }
 
 /// A snapshot's system linear momentum G = sum of m v_G (6/18), engine masses: with H about one
 /// point it gives H about any other ([`transfer_angular_momentum`]).
 pub fn scene_linear_momentum(s: &crate::snapshot::Snapshot) -> DVec2 {
-    let body = |b: &crate::snapshot::BodyState| BodyMomentum {
-        m: b.mass,
-        i_g: b.inertia,
-        r_g: b.com,
-        v_g: b.velocity,
-        omega: b.omega,
-    };
-    system_linear_momentum(s.bodies.iter().map(body))
+    system_linear_momentum(s.bodies.iter().map(engine_momentum))
 }
 
 // ---------------------------------------------------------------------------------------------
