@@ -135,15 +135,18 @@ pub enum Placeable {
     Bar,
     Ground,
     Wall,
+    /// A fixed 30 degree incline.
+    Incline,
 }
 
 impl Placeable {
-    pub const ALL: [Placeable; 5] = [
+    pub const ALL: [Placeable; 6] = [
         Placeable::Box,
         Placeable::Disc,
         Placeable::Bar,
         Placeable::Ground,
         Placeable::Wall,
+        Placeable::Incline,
     ];
 
     pub fn name(self) -> &'static str {
@@ -153,6 +156,7 @@ impl Placeable {
             Placeable::Bar => "bar",
             Placeable::Ground => "ground",
             Placeable::Wall => "wall",
+            Placeable::Incline => "incline",
         }
     }
 
@@ -191,6 +195,11 @@ impl Placeable {
             Placeable::Wall => Edit::AddWall {
                 x: at.0,
                 height: nice_length(size, 1.0),
+            },
+            Placeable::Incline => Edit::AddIncline {
+                at,
+                angle: 30f64.to_radians(),
+                length: nice_length(size, 0.5),
             },
         }
     }

@@ -54,6 +54,9 @@ pub enum Edit {
     AddGround { y: f64, width: f64 },
     /// A fixed wall at `x`, from y = 0 up `height`.
     AddWall { x: f64, height: f64 },
+    /// A fixed incline: a right-triangle wedge whose slope rises at `angle` (rad) over a base
+    /// `length` m long, its lower corner at `at`.
+    AddIncline { at: V2, angle: f64, length: f64 },
     /// A dynamic body centered at `at`, of `mass` kg.
     AddBody { shape: NewShape, at: V2, mass: f64 },
     /// A joint at the world point `at` between `body1` (None: the ground, a fixed anchor body
@@ -100,6 +103,26 @@ impl Edit {
                 level.bodies.push(b);
                 declare(level, &[Effect::Contacts]);
                 Ok(format!("added {name}, a wall at x = {x} m"))
+            }
+            Edit::AddIncline { at, angle, length } => {
+                if !(*angle > 0.0 && *angle < std::f64::consts::FRAC_PI_2) {
+                    return Err(format!(
+                        "an incline's angle must be between 0 and 90 degrees, not {:.1}",
+                        angle.to_degrees()
+                    ));
+                }
+                let name = fresh_name(level, "incline");
+                let h = length * angle.tan();
+                // Vertices about the lower corner: base along x, the vertical side at the far end.
+                let shape = Shape::Polygon {
+                    points: vec![(0.0, 0.0), (*length, 0.0), (*length, h)],
+                };
+                level.bodies.push(body(&name, BodyKind::Fixed, Some(shape), *at));
+                declare(level, &[Effect::Contacts]);
+                Ok(format!(
+                    "added {name}, an incline at {:.1} degrees, {length} m long",
+                    angle.to_degrees()
+                ))
             }
             Edit::AddBody { shape, at, mass } => {
                 let (stem, shape) = match shape {
