@@ -166,6 +166,7 @@ fn publish_status(
     st: Res<UiState>,
     rate: Res<FrameRate>,
     page: Res<PageState>,
+    editor: Res<super::editor::Editor>,
 ) {
     let s = phys.snapshot();
     let answers: Vec<serde_json::Value> = phys
@@ -209,6 +210,14 @@ fn publish_status(
             "viewport": [view.viewport.min.x, view.viewport.min.y, view.viewport.max.x, view.viewport.max.y],
         },
         "answers": answers,
+        "bodies": phys.scene.level.bodies.len(),
+        "joints": phys.scene.level.joints.len(),
+        "buttons": st
+            .buttons
+            .iter()
+            .map(|(k, r)| (k.clone(), serde_json::json!([r.min.x, r.min.y, r.width(), r.height()])))
+            .collect::<serde_json::Map<String, serde_json::Value>>(),
+        "editor": editor.note.as_ref().map(|(m, ok)| serde_json::json!({"text": m, "ok": ok})),
         "message": st.message.as_ref().map(|(m, ok)| serde_json::json!({"text": m, "ok": ok})),
         "error": phys.error,
         "note": page.note,

@@ -5,6 +5,7 @@
 //   pendulum.png    the simple pendulum played to its end (t = 0.8 s), as the page drew it;
 //   status.json     the page's status at that moment (time, view mapping, frame rate);
 //   answered.png / answered.json   after typing an answer into the first question's box;
+//   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
 //   browser.json    timings: page open to first frame, frame rates while playing.
 // Usage: node web/test/browser.mjs [OUT]   (exit 1 with the reason when a step fails)
@@ -136,7 +137,53 @@ try {
   if (!/broken\.ron:\d+:\d+/.test(refused.message.text)) fail(`the error does not locate the fault: ${refused.message.text}`);
   summary.picked = { opened: opened.title, refused: refused.message.text.split("\n").slice(0, 2).join(" / ") };
 
-  // 5. Frame rate while playing, with every overlay on (keys A C F K H join the default V T L):
+  // 5. The student builds a pendulum in the page with the editor, by clicking: new scene, the
+  //    bar tool and a click in the scene, the pin tool and a click at the bar's left end; then
+  //    plays it. The page publishes where its build buttons are and how metres map to pixels.
+  await page.goto(`${base}?level=kinetics/simple_pendulum.ron`);
+  await waitStatus("the first frame", (s) => s.frames >= 2, 60);
+  const button = async (name) => {
+    let b = (await status()).buttons[name];
+    for (let i = 0; i < 20 && b && b[1] + b[3] > 780; i++) {
+      await page.mouse.move(1150, 500);
+      await page.mouse.wheel(0, 200);
+      const f = (await status()).frames;
+      await waitStatus("a frame after scrolling", (s) => s.frames >= f + 2, 30);
+      b = (await status()).buttons[name];
+    }
+    if (!b) fail(`no "${name}" button in the status`);
+    return b;
+  };
+  const clickButton = async (name) => {
+    const [bx, by, bw, bh] = await button(name);
+    const f = (await status()).frames;
+    await page.mouse.click(bx + bw / 2, by + bh / 2);
+    await waitStatus(`a frame after clicking "${name}"`, (s) => s.frames >= f + 2, 30);
+  };
+  const toScreen = (s, [wx, wy]) => {
+    const [x0, y0, x1, y1] = s.view.viewport;
+    return [(x0 + x1) / 2 + (wx - s.view.center[0]) / s.view.m_per_px, (y0 + y1) / 2 - (wy - s.view.center[1]) / s.view.m_per_px];
+  };
+  await clickButton("new scene");
+  let built = await waitStatus("the new scene", (s) => s.bodies === 1 && s.title === "My scene", 30);
+  await clickButton("place bar");
+  built = await status();
+  // The new scene's ground is 8 m wide: a bar is 2 m long. Put its center 2 m above the ground.
+  let [sx, sy] = toScreen(built, [0.5, 2.0]);
+  await page.mouse.click(sx, sy);
+  built = await waitStatus("the bar placed", (s) => s.bodies === 2, 30);
+  await clickButton("join pin");
+  built = await status();
+  [sx, sy] = toScreen(built, [-0.49, 2.0]);
+  await page.mouse.click(sx, sy);
+  built = await waitStatus("the pin made", (s) => s.joints === 1, 30);
+  await page.keyboard.press("1");
+  await page.keyboard.press(" ");
+  built = await waitStatus("the built pendulum swinging", (s) => !s.paused && s.t > 1.0, 60);
+  await page.screenshot({ path: join(out, "built.png") });
+  summary.built = { bodies: built.bodies, joints: built.joints, t: built.t, editor: built.editor };
+
+  // 6. Frame rate while playing, with every overlay on (keys A C F K H join the default V T L):
   //    frames counted over 2.5 s after a 1 s warm-up (shaders compiled; the pendulum's 3.6 s
   //    run does not end inside the window if the page keeps real time).
   const playFps = async (level) => {

@@ -77,6 +77,9 @@ pub struct UiState {
     pub edit_title: Option<(String, String)>,
     /// The first-steps tour.
     pub tour: tour::Tour,
+    /// Where the build panel's buttons were drawn last frame, by name (the web page publishes
+    /// them so a browser test can build a scene as a user would, by clicking).
+    pub buttons: std::collections::BTreeMap<String, egui::Rect>,
     /// The level file the save field was filled for.
     pub save_for: Option<PathBuf>,
     /// The measuring panel's stopwatch.
@@ -105,6 +108,7 @@ impl Default for UiState {
             stopwatch: Default::default(),
             save_for: None,
             tour: Default::default(),
+            buttons: Default::default(),
         }
     }
 }

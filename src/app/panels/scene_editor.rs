@@ -24,7 +24,9 @@ pub(super) fn scene_editor(
 ) {
     ui.heading("Build");
     ui.horizontal(|ui| {
-        if ui.button("new scene").on_hover_text("a ground line and nothing else").clicked() {
+        let r = ui.button("new scene").on_hover_text("a ground line and nothing else");
+        st.buttons.insert("new scene".into(), r.rect);
+        if r.clicked() {
             out.push(EditorCommand::New);
         }
         if ui
@@ -45,15 +47,18 @@ pub(super) fn scene_editor(
     ui.horizontal_wrapped(|ui| {
         ui.label("place");
         for p in Placeable::ALL {
-            ui.selectable_value(&mut tools.tool, Tool::Place(p), p.name());
+            let r = ui.selectable_value(&mut tools.tool, Tool::Place(p), p.name());
+            st.buttons.insert(format!("place {}", p.name()), r.rect);
         }
     });
     ui.horizontal_wrapped(|ui| {
         ui.label("join");
         for k in [JointKind::Revolute, JointKind::Prismatic, JointKind::Fixed] {
-            ui.selectable_value(&mut tools.tool, Tool::Join(k), joint_name(k));
+            let r = ui.selectable_value(&mut tools.tool, Tool::Join(k), joint_name(k));
+            st.buttons.insert(format!("join {}", joint_name(k)), r.rect);
         }
-        ui.selectable_value(&mut tools.tool, Tool::Spring, "spring");
+        let r = ui.selectable_value(&mut tools.tool, Tool::Spring, "spring");
+        st.buttons.insert("spring".into(), r.rect);
     });
     let hint = match tools.tool {
         Tool::Place(_) => "click in the scene to place it (1 kg; set its mass below)",

@@ -59,7 +59,8 @@ pub(super) fn tour(
     let mut finished = false;
     egui::Window::new(format!("First steps ({done} of {})", steps.len()))
         .id(egui::Id::new("first-steps"))
-        .anchor(egui::Align2::RIGHT_BOTTOM, egui::vec2(-345.0, -40.0))
+        // Top right of the scene: the status bar below wraps to a varying height.
+        .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-345.0, 8.0))
         .default_open(!cfg!(target_arch = "wasm32"))
         .resizable(false)
         .show(ctx, |ui| {
