@@ -46,7 +46,7 @@ fn placed(file: &PathBuf) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
     let index = view::SceneIndex::of(&phys.sim.level);
     let mut d = Drawing::default();
     d.clear(v.m_per_px);
-    view::scene_lines(&phys.sim.level, &outlines, &index, phys.snapshot(), v.m_per_px, &mut d);
+    rigidlab::app::scene_lines::scene_lines(&phys.sim.level, &outlines, &index, phys.snapshot(), v.m_per_px, &mut d);
     let mut scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
     let vp = v.viewport;
     let (a, b) = (

@@ -20,6 +20,7 @@ pub mod playback;
 pub mod prefs;
 pub mod quantities;
 pub mod render;
+pub mod scene_lines;
 pub mod tools;
 pub mod user_files;
 pub mod view;
@@ -96,7 +97,7 @@ pub fn build_drawing(
         view.max_speed = fastest;
     }
     d.clear(view.m_per_px);
-    view::scene_lines(
+    scene_lines::scene_lines(
         &phys.sim.level,
         &outlines.bodies,
         &outlines.index,
@@ -105,7 +106,7 @@ pub fn build_drawing(
         &mut d,
     );
     if let Some(i) = ov.selected {
-        view::highlight(&outlines.bodies, s, i, &mut d);
+        scene_lines::highlight(&outlines.bodies, s, i, &mut d);
     }
     let mut scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
     scales.gain = ov.arrow_scale;
@@ -119,7 +120,7 @@ pub fn build_drawing(
     if let Some(tool) = tool {
         tools::preview(&tool, &phys, &scales, &mut d);
     }
-    view::scale_bar(&view, &mut d);
+    scene_lines::scale_bar(&view, &mut d);
 }
 
 pub(crate) fn color32(c: Color) -> egui::Color32 {
