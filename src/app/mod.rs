@@ -232,7 +232,7 @@ pub(crate) fn empty_scene() -> Scene {
         level: Level {
             title: "Empty scene".into(),
             source: Default::default(),
-            statement: "No level loaded: pick one in the level browser, or spawn bodies.".into(),
+            statement: "No level loaded: pick one in the level browser, or build a scene with the Build panel.".into(),
             effects: vec![
                 crate::level::Effect::Gravity,
                 crate::level::Effect::Contacts,
