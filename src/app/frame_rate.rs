@@ -56,8 +56,17 @@ fn count_frame(
     time: Res<Time<Real>>,
     mut rate: ResMut<FrameRate>,
     mut exit: MessageWriter<AppExit>,
+    phys: Option<Res<super::physics::Physics>>,
 ) {
-    rate.record(time.delta_secs_f64() * 1e3);
+    // Paused, a native window waits for input (app/power.rs): those waits are not frame times.
+    let waiting = !cfg!(target_arch = "wasm32")
+        && std::env::var_os("RIGIDLAB_CONTINUOUS").is_none()
+        && phys.is_some_and(|p| !super::power::animating(&p));
+    if waiting {
+        rate.frames += 1;
+    } else {
+        rate.record(time.delta_secs_f64() * 1e3);
+    }
     // RIGIDLAB_EXIT_AFTER_FRAMES=N closes the window after N frames (the window test's clean end).
     if let Some(n) = std::env::var("RIGIDLAB_EXIT_AFTER_FRAMES")
         .ok()

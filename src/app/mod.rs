@@ -17,6 +17,7 @@ pub mod overlays;
 pub mod panels;
 pub mod physics;
 pub mod playback;
+pub mod power;
 pub mod prefs;
 pub mod quantities;
 pub mod render;
@@ -331,6 +332,7 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
         tools::ToolsPlugin,
         editor::EditorPlugin,
         frame_rate::FrameRatePlugin,
+        power::PowerPlugin,
     ));
     app.add_systems(Startup, panels::spawn_cameras);
 }

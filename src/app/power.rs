@@ -1,0 +1,77 @@
+//! Redraw only when something changes (issue 17: a school computer without a GPU spent both its
+//! cores drawing the same paused picture, main thread 100% and llvmpipe 2 x 87%). While the run
+//! is paused, with no seek, step or edit to do, the window updates on input (and every half
+//! second); playing, every frame. Measured with `ps` over 10 s paused: see the README.
+//!
+//! bevy_egui 0.42 feeds egui a `ModifiersChanged` event every frame even when no key changed;
+//! egui answers any event with an immediate repaint, so the window never waited. The repeated
+//! event is dropped here before egui's pass.
+//!
+//! Native windows only: a page's frames are the browser's. `RIGIDLAB_CONTINUOUS` keeps every
+//! frame (Xvfb has no window manager to give the window focus, and tests count frames).
+
+use super::editor::EditorCommand;
+use super::physics::Physics;
+use bevy::prelude::*;
+use bevy::winit::{UpdateMode, WinitSettings};
+use bevy_egui::{EguiInput, EguiInputSet, EguiPreUpdateSet};
+use std::time::Duration;
+
+pub struct PowerPlugin;
+
+impl Plugin for PowerPlugin {
+    fn build(&self, app: &mut App) {
+        if cfg!(target_arch = "wasm32") || std::env::var_os("RIGIDLAB_CONTINUOUS").is_some() {
+            return;
+        }
+        app.add_systems(
+            PreUpdate,
+            drop_repeated_modifiers
+                .after(EguiInputSet::WriteEguiEvents)
+                .before(EguiPreUpdateSet::BeginPass),
+        )
+        .add_systems(Last, redraw_when_needed);
+    }
+}
+
+/// True when the coming frames show something new without any input.
+pub fn animating(phys: &Physics) -> bool {
+    !phys.paused || phys.seek.is_some() || phys.steps_requested > 0
+}
+
+fn drop_repeated_modifiers(
+    mut inputs: Query<&mut EguiInput>,
+    mut last: Local<Option<bevy_egui::egui::Modifiers>>,
+) {
+    for mut input in inputs.iter_mut() {
+        input.0.events.retain(|e| match e {
+            bevy_egui::egui::Event::ModifiersChanged(m) => {
+                let changed = *last != Some(*m);
+                *last = Some(*m);
+                changed
+            }
+            _ => true,
+        });
+    }
+}
+
+fn redraw_when_needed(
+    phys: Res<Physics>,
+    edits: MessageReader<EditorCommand>,
+    settings: Option<ResMut<WinitSettings>>,
+) {
+    let Some(mut settings) = settings else {
+        return;
+    };
+    let want = if animating(&phys) || !edits.is_empty() {
+        WinitSettings::game()
+    } else {
+        WinitSettings {
+            focused_mode: UpdateMode::reactive(Duration::from_millis(500)),
+            unfocused_mode: UpdateMode::reactive_low_power(Duration::from_millis(500)),
+        }
+    };
+    if settings.focused_mode != want.focused_mode || settings.unfocused_mode != want.unfocused_mode {
+        *settings = want;
+    }
+}
