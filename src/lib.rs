@@ -19,9 +19,9 @@ macro_rules! stderr {
 
 pub mod analysis;
 pub mod checks;
+pub mod cli;
 pub mod clock;
 pub mod editor;
-pub mod cli;
 pub mod level;
 pub mod questions;
 pub mod report;

@@ -5,6 +5,7 @@
 //! grades a run the same way. [`run_scene`] drives a level headless from start to end.
 
 use crate::checks::{CheckResult, CheckSet};
+use crate::clock::Instant;
 use crate::level::{self, Level, LevelError, Scene};
 use crate::questions::{initial_in_f64, LevelFacts, QuestionProbe, QuestionResult};
 use crate::report::LevelReport;
@@ -14,7 +15,6 @@ use crate::snapshot::Snapshot;
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
-use crate::clock::Instant;
 
 /// Why a level could not be run to the end.
 #[derive(Debug, thiserror::Error)]

@@ -14,7 +14,10 @@ fn the_blow(file: &str) -> rigidlab::app::blows::Blow {
     let scene = level::load(Path::new(file)).unwrap();
     let mut phys = Physics::new(scene, Options::default(), false);
     while phys.blows.is_empty() {
-        assert!(phys.advance() && !phys.paused, "{file}: no blow before the level's end");
+        assert!(
+            phys.advance() && !phys.paused,
+            "{file}: no blow before the level's end"
+        );
     }
     assert_eq!(phys.blows.len(), 1);
     phys.blows[0].clone()
@@ -32,15 +35,29 @@ fn the_pins_impulsive_reaction_is_p_times_3h_over_2l_minus_1() {
     ] {
         let b = the_blow(file);
         let p = b.impulse.x;
-        assert!((p - 3.0).abs() < 1e-12 && b.impulse.y == 0.0, "{file}: blow {:?}", b.impulse);
-        let pin = b.joints.iter().find(|j| j.joint == "pin").expect("the pin's share");
-        assert!(pin.steady.is_some(), "{file}: the blow comes after the first step");
+        assert!(
+            (p - 3.0).abs() < 1e-12 && b.impulse.y == 0.0,
+            "{file}: blow {:?}",
+            b.impulse
+        );
+        let pin = b
+            .joints
+            .iter()
+            .find(|j| j.joint == "pin")
+            .expect("the pin's share");
+        assert!(
+            pin.steady.is_some(),
+            "{file}: the blow comes after the first step"
+        );
         let theory = p * (1.5 * h_over_l - 1.0);
         let got = pin.impulsive().x;
         assert!(
             (got - theory).abs() <= 2e-3 * p,
             "{file}: pin's impulsive reaction {got} N s, theory {theory} N s"
         );
-        println!("{file}: pin impulsive {got:.5} N s (theory {theory:.5}), steady {:?}", pin.steady);
+        println!(
+            "{file}: pin impulsive {got:.5} N s (theory {theory:.5}), steady {:?}",
+            pin.steady
+        );
     }
 }

@@ -25,7 +25,9 @@ fn omega_bottom() -> f64 {
 fn build(history: &mut History) -> Scene {
     let mut scene = editor::empty_scene(PathBuf::from("built.ron"));
     let mut edit = |scene: &mut Scene, e: Edit| {
-        let (next, note) = history.apply(scene, &e).unwrap_or_else(|why| panic!("{e:?}: {why}"));
+        let (next, note) = history
+            .apply(scene, &e)
+            .unwrap_or_else(|why| panic!("{e:?}: {why}"));
         assert!(!note.is_empty());
         *scene = next;
     };
@@ -67,7 +69,10 @@ fn a_pendulum_from_nothing_declares_what_it_needs() {
     assert_eq!(l.bodies.len(), 3, "ground, bar, the pin's fixed anchor");
     assert!(l.effects.contains(&Effect::Joints) && l.effects.contains(&Effect::Gravity));
     let pin = &l.joints[0];
-    assert_eq!((pin.body1.as_str(), pin.body2.as_str()), ("anchor1", "bar1"));
+    assert_eq!(
+        (pin.body1.as_str(), pin.body2.as_str()),
+        ("anchor1", "bar1")
+    );
     // The anchor on the bar is its left end, in the bar's frame.
     assert_eq!(pin.anchor2, (-0.5, 0.0));
 }
@@ -91,7 +96,11 @@ fn undo_and_redo_walk_the_edits_and_a_run_of_one_property_is_one_step() {
     }
     assert_eq!(scene.level.bodies[1].mass, Some(2.0));
     let back = h.undo(&scene).unwrap();
-    assert_eq!(back.level.bodies[1].mass, Some(1.0), "the mass drag was not one step");
+    assert_eq!(
+        back.level.bodies[1].mass,
+        Some(1.0),
+        "the mass drag was not one step"
+    );
     let again = h.redo(&back).unwrap();
     assert_eq!(again.level, scene.level);
     // Undo back to the empty scene, then nothing more.
@@ -114,7 +123,10 @@ fn an_edit_the_validator_refuses_leaves_the_scene_as_it_was() {
     };
     let why = h.apply(&scene, &e).unwrap_err();
     assert!(why.contains("not applied"), "{why}");
-    assert!(why.contains("anchor"), "the reason should name the joint anchors: {why}");
+    assert!(
+        why.contains("anchor"),
+        "the reason should name the joint anchors: {why}"
+    );
     let why = h
         .apply(
             &scene,
@@ -126,7 +138,12 @@ fn an_edit_the_validator_refuses_leaves_the_scene_as_it_was() {
         .unwrap_err();
     assert!(why.contains("mass"), "{why}");
     let why = h
-        .apply(&scene, &Edit::Delete { body: "nobody".into() })
+        .apply(
+            &scene,
+            &Edit::Delete {
+                body: "nobody".into(),
+            },
+        )
         .unwrap_err();
     assert!(why.contains("nobody"), "{why}");
 }
@@ -139,9 +156,19 @@ fn deleting_a_body_takes_its_joints_and_questions_with_it() {
         .apply(&scene, &Edit::AddQuestion(Box::new(question())))
         .unwrap()
         .0;
-    let (after, note) = h.apply(&scene, &Edit::Delete { body: "bar1".into() }).unwrap();
+    let (after, note) = h
+        .apply(
+            &scene,
+            &Edit::Delete {
+                body: "bar1".into(),
+            },
+        )
+        .unwrap();
     assert!(after.level.joints.is_empty() && after.level.questions.is_empty());
-    assert!(note.contains("1 joints and springs") && note.contains("1 questions"), "{note}");
+    assert!(
+        note.contains("1 joints and springs") && note.contains("1 questions"),
+        "{note}"
+    );
 }
 
 fn question() -> QuestionDef {
@@ -238,17 +265,40 @@ fn a_disc_rolls_down_an_incline_built_in_the_editor() {
     let (t, n) = ((theta.cos(), theta.sin()), (-theta.sin(), theta.cos()));
     let at = (1.0 * t.0 + r * n.0, 1.0 * t.1 + r * n.1);
     for e in [
-        Edit::AddIncline { at: (0.0, 0.0), angle: theta, length: 2.0 },
-        Edit::AddBody { shape: NewShape::Disc { radius: r }, at, mass: 1.0 },
-        Edit::Set { body: "disc1".into(), property: Property::Friction(0.8) },
-        Edit::Set { body: "incline1".into(), property: Property::Friction(0.8) },
+        Edit::AddIncline {
+            at: (0.0, 0.0),
+            angle: theta,
+            length: 2.0,
+        },
+        Edit::AddBody {
+            shape: NewShape::Disc { radius: r },
+            at,
+            mass: 1.0,
+        },
+        Edit::Set {
+            body: "disc1".into(),
+            property: Property::Friction(0.8),
+        },
+        Edit::Set {
+            body: "incline1".into(),
+            property: Property::Friction(0.8),
+        },
         Edit::SetDuration(0.4),
     ] {
-        scene = h.apply(&scene, &e).unwrap_or_else(|w| panic!("{e:?}: {w}")).0;
+        scene = h
+            .apply(&scene, &e)
+            .unwrap_or_else(|w| panic!("{e:?}: {w}"))
+            .0;
     }
     assert!(scene.level.effects.contains(&Effect::Friction));
-    let mut sim = rigidlab::simulation::AnySimulation::new(&scene, &rigidlab::sim::Options::default());
-    let disc = scene.level.bodies.iter().position(|b| b.name == "disc1").unwrap();
+    let mut sim =
+        rigidlab::simulation::AnySimulation::new(&scene, &rigidlab::sim::Options::default());
+    let disc = scene
+        .level
+        .bodies
+        .iter()
+        .position(|b| b.name == "disc1")
+        .unwrap();
     let v0 = sim.snapshot().bodies[disc].velocity;
     let t0 = sim.snapshot().time;
     while sim.snapshot().time < 0.4 - 1e-9 {
@@ -265,5 +315,8 @@ fn a_disc_rolls_down_an_incline_built_in_the_editor() {
     let along = -(a.x * t.0 + a.y * t.1);
     let rel = (along - expected).abs() / expected;
     eprintln!("incline: a_G {along:.5} m/s^2 against {expected:.5}: {rel:.2e}");
-    assert!(rel < 1.5e-2, "a_G along the slope {along:.4} m/s^2 against {expected:.4}: {rel:.2e}");
+    assert!(
+        rel < 1.5e-2,
+        "a_G along the slope {along:.4} m/s^2 against {expected:.4}: {rel:.2e}"
+    );
 }

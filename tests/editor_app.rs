@@ -33,7 +33,11 @@ fn app() -> App {
 fn send(app: &mut App, c: EditorCommand) -> (String, bool) {
     app.world_mut().write_message(c);
     app.update();
-    app.world().resource::<Editor>().note.clone().expect("the editor answers every command")
+    app.world()
+        .resource::<Editor>()
+        .note
+        .clone()
+        .expect("the editor answers every command")
 }
 
 fn phys(app: &App) -> &Physics {
@@ -45,13 +49,23 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
     let mut app = app();
     // Ground (the new scene has one; a second, lower), a bar placed where a click would put it
     // in a 4 m scene, a pin at its left end to the ground.
-    let (note, ok) = send(&mut app, EditorCommand::Apply(Placeable::Ground.edit_at(glam::DVec2::new(0.0, -1.0), 4.0)));
+    let (note, ok) = send(
+        &mut app,
+        EditorCommand::Apply(Placeable::Ground.edit_at(glam::DVec2::new(0.0, -1.0), 4.0)),
+    );
     assert!(ok, "{note}");
     let bar = Placeable::Bar.edit_at(glam::DVec2::new(0.6, 2.0), 4.0);
-    let Edit::AddBody { shape: editor::NewShape::Bar { length, .. }, .. } = &bar else {
+    let Edit::AddBody {
+        shape: editor::NewShape::Bar { length, .. },
+        ..
+    } = &bar
+    else {
         panic!("{bar:?}")
     };
-    assert_eq!(*length, 1.0, "a bar is 0.3 of a 4 m scene, rounded to 1, 2 or 5: 1 m");
+    assert_eq!(
+        *length, 1.0,
+        "a bar is 0.3 of a 4 m scene, rounded to 1, 2 or 5: 1 m"
+    );
     let (note, ok) = send(&mut app, EditorCommand::Apply(bar));
     assert!(ok, "{note}");
     let (note, ok) = send(
@@ -81,8 +95,18 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
     );
     assert!(ok, "{note}");
     assert!(phys(&app).paused && phys(&app).snapshot().is_initial());
-    let mass = |app: &App| phys(app).snapshot().bodies.iter().find(|b| b.mass > 0.0).map(|b| b.mass);
-    assert!((mass(&app).unwrap() - 3.0).abs() < 1e-6, "the simulation has not the edited mass");
+    let mass = |app: &App| {
+        phys(app)
+            .snapshot()
+            .bodies
+            .iter()
+            .find(|b| b.mass > 0.0)
+            .map(|b| b.mass)
+    };
+    assert!(
+        (mass(&app).unwrap() - 3.0).abs() < 1e-6,
+        "the simulation has not the edited mass"
+    );
     send(&mut app, EditorCommand::Undo);
     assert!((mass(&app).unwrap() - 1.0).abs() < 1e-6);
     send(&mut app, EditorCommand::Redo);
@@ -90,7 +114,12 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
 
     // A refused edit says why and changes nothing.
     let before = phys(&app).scene.level.clone();
-    let (why, ok) = send(&mut app, EditorCommand::Apply(Edit::Delete { body: "nobody".into() }));
+    let (why, ok) = send(
+        &mut app,
+        EditorCommand::Apply(Edit::Delete {
+            body: "nobody".into(),
+        }),
+    );
     assert!(!ok && why.contains("nobody"));
     assert_eq!(phys(&app).scene.level, before);
 
@@ -110,5 +139,14 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
     );
     let saved = rigidlab::level::load(&path).unwrap();
     assert_eq!(saved.level, phys(&app).scene.level);
-    assert_eq!(saved.level.bodies.iter().find(|b| b.name == "bar1").unwrap().mass, Some(3.0));
+    assert_eq!(
+        saved
+            .level
+            .bodies
+            .iter()
+            .find(|b| b.name == "bar1")
+            .unwrap()
+            .mass,
+        Some(3.0)
+    );
 }

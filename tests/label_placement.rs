@@ -46,7 +46,14 @@ fn placed(file: &PathBuf) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
     let index = view::SceneIndex::of(&phys.sim.level);
     let mut d = Drawing::default();
     d.clear(v.m_per_px);
-    rigidlab::app::scene_lines::scene_lines(&phys.sim.level, &outlines, &index, phys.snapshot(), v.m_per_px, &mut d);
+    rigidlab::app::scene_lines::scene_lines(
+        &phys.sim.level,
+        &outlines,
+        &index,
+        phys.snapshot(),
+        v.m_per_px,
+        &mut d,
+    );
     let mut scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
     let vp = v.viewport;
     let (a, b) = (
@@ -66,7 +73,11 @@ fn placed(file: &PathBuf) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
         })
         .collect();
     let bodies = rigidlab::app::screen_bodies(&d, &v);
-    (labels::place(&wants, &bodies, v.viewport), bodies, v.viewport)
+    (
+        labels::place(&wants, &bodies, v.viewport),
+        bodies,
+        v.viewport,
+    )
 }
 
 fn library_exercises() -> Vec<PathBuf> {
@@ -147,7 +158,10 @@ fn crowded_labels_fan_out_around_their_point_and_off_the_body() {
             assert_eq!(overlap_area(r, q), 0.0);
         }
         // Near home: within two label widths.
-        assert!((r.min - want.home).length() < 2.0 * 66.0 + 1.0, "label {k} far away: {r:?}");
+        assert!(
+            (r.min - want.home).length() < 2.0 * 66.0 + 1.0,
+            "label {k} far away: {r:?}"
+        );
     }
     // A label wanting to leave the view is moved back in.
     let edge = labels::place(
@@ -158,5 +172,9 @@ fn crowded_labels_fan_out_around_their_point_and_off_the_body() {
         &[],
         view,
     );
-    assert!(edge[0].max.x <= 400.0 && edge[0].min.y >= 0.0, "{:?}", edge[0]);
+    assert!(
+        edge[0].max.x <= 400.0 && edge[0].min.y >= 0.0,
+        "{:?}",
+        edge[0]
+    );
 }

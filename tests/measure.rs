@@ -23,7 +23,13 @@ fn played(file: &str) -> Physics {
 #[test]
 fn the_period_timer_reads_the_pendulums_exact_period() {
     let phys = played("levels/kinetics/physical_pendulum.ron");
-    let bar = phys.scene.level.bodies.iter().position(|b| b.name == "bar").unwrap();
+    let bar = phys
+        .scene
+        .level
+        .bodies
+        .iter()
+        .position(|b| b.name == "bar")
+        .unwrap();
     let (t, n) = period_of(&phys, bar).expect("a period over 3.6 s of swinging");
     assert!(n >= 1, "{n} periods");
     // The level's bar: I_O = 0.6669333 kg m^2, m = 2 kg, d = 0.5 m, released at 60 degrees.
@@ -34,13 +40,22 @@ fn the_period_timer_reads_the_pendulums_exact_period() {
     // interpolation (omega is sampled every 1/60 s).
     let rel = (t - exact).abs() / exact;
     eprintln!("period timer {t:.5} s over {n} periods, exact {exact:.5} s: {rel:.2e}");
-    assert!(rel < 5e-3, "period {t:.5} s against {exact:.5} s: {rel:.2e}");
+    assert!(
+        rel < 5e-3,
+        "period {t:.5} s against {exact:.5} s: {rel:.2e}"
+    );
 }
 
 #[test]
 fn the_body_series_follows_the_snapshot_and_exports_every_sample() {
     let phys = played("levels/kinetics/physical_pendulum.ron");
-    let bar = phys.scene.level.bodies.iter().position(|b| b.name == "bar").unwrap();
+    let bar = phys
+        .scene
+        .level
+        .bodies
+        .iter()
+        .position(|b| b.name == "bar")
+        .unwrap();
     let series = &phys.body_series[bar];
     let last = series.last().unwrap();
     let s = phys.snapshot();
@@ -51,7 +66,10 @@ fn the_body_series_follows_the_snapshot_and_exports_every_sample() {
     // dt (60x smaller) or counted twice would leave these bounds.
     assert!(series.iter().all(|p| p.reaction.length() < 1.2 * 34.3));
     assert!(series.iter().any(|p| p.reaction.length() > 0.9 * 34.3));
-    assert!(series.iter().skip(1).any(|p| p.reaction.length() > 2.0 * 9.81 * 0.5));
+    assert!(series
+        .iter()
+        .skip(1)
+        .any(|p| p.reaction.length() > 2.0 * 9.81 * 0.5));
     let csv = body_csv(series);
     assert_eq!(csv.lines().count(), series.len() + 1);
     assert!(csv.starts_with("t_s,"));
@@ -64,7 +82,11 @@ fn h_about_any_point_is_the_direct_sum_about_it() {
     let phys = played("levels/kinetics/physical_pendulum.ron");
     let p = phys.series.last().unwrap();
     let s = phys.snapshot();
-    for o in [glam::DVec2::ZERO, glam::DVec2::new(1.0, -2.0), glam::DVec2::new(-3.5, 0.25)] {
+    for o in [
+        glam::DVec2::ZERO,
+        glam::DVec2::new(1.0, -2.0),
+        glam::DVec2::new(-3.5, 0.25),
+    ] {
         let direct = rigidlab::analysis::momentum::scene_angular_momentum_about(s, o);
         let moved = p.h_about(o);
         assert!(

@@ -15,7 +15,11 @@ fn pendulum_at_its_end() -> Physics {
     while !phys.paused {
         assert!(phys.advance());
     }
-    assert!(phys.at_end(), "the run paused before its end at t = {}", phys.snapshot().time);
+    assert!(
+        phys.at_end(),
+        "the run paused before its end at t = {}",
+        phys.snapshot().time
+    );
     phys
 }
 
@@ -26,7 +30,11 @@ fn play_at_the_levels_end_starts_the_exercise_over() {
     let mut tools = ToolState::default();
     toggle_play(&mut phys, &mut tools);
     assert!(!phys.paused, "play did not play");
-    assert_eq!(phys.snapshot().step, 0, "play at the end did not start over");
+    assert_eq!(
+        phys.snapshot().step,
+        0,
+        "play at the end did not start over"
+    );
     assert!(phys.stop_at_end, "the stop at the end was unticked");
 }
 
@@ -63,7 +71,13 @@ fn reset_restores_the_stop_and_clears_the_impulse_arrow() {
 fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
     let scene = level::load(Path::new("levels/kinetics/physical_pendulum.ron")).unwrap();
     let mut phys = Physics::new(scene, Options::default(), false);
-    let bar = phys.scene.level.bodies.iter().position(|b| b.name == "bar").unwrap();
+    let bar = phys
+        .scene
+        .level
+        .bodies
+        .iter()
+        .position(|b| b.name == "bar")
+        .unwrap();
     let mut kept = None;
     for step in 0..120u64 {
         if step == 40 {
@@ -84,9 +98,15 @@ fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
     }
     let s = phys.snapshot();
     assert_eq!(s.step, 70);
-    assert!(phys.paused && phys.interfered, "the push is still part of this run");
+    assert!(
+        phys.paused && phys.interfered,
+        "the push is still part of this run"
+    );
     for (a, b) in s.bodies.iter().zip(&kept.bodies) {
-        assert_eq!((a.com, a.angle, a.velocity, a.omega), (b.com, b.angle, b.velocity, b.omega));
+        assert_eq!(
+            (a.com, a.angle, a.velocity, a.omega),
+            (b.com, b.angle, b.velocity, b.omega)
+        );
     }
     // The initial state and each of the 70 steps.
     assert_eq!(observed, 71);

@@ -47,7 +47,11 @@ fn read_json(path: &Path) -> serde_json::Value {
 fn the_pages_check_report_is_the_cores() {
     let Some(dir) = records() else { return };
     let page: Report = serde_json::from_value(read_json(&dir.join("check.json"))).unwrap();
-    assert!(page.levels.len() >= 5, "the page checked {} levels", page.levels.len());
+    assert!(
+        page.levels.len() >= 5,
+        "the page checked {} levels",
+        page.levels.len()
+    );
     let mut worst: (f64, String) = (0.0, String::new());
     for web in &page.levels {
         let scene = level::load(Path::new(&web.file)).unwrap();
@@ -82,7 +86,12 @@ fn the_pages_check_report_is_the_cores() {
             if d > worst.0 {
                 worst = (d, what.clone());
             }
-            assert!(d <= 1e-6, "{what}: page {} vs native {} (rel {d:.1e})", w.engine, n.engine);
+            assert!(
+                d <= 1e-6,
+                "{what}: page {} vs native {} (rel {d:.1e})",
+                w.engine,
+                n.engine
+            );
         }
     }
     println!(
@@ -110,9 +119,17 @@ fn the_page_draws_the_bob_where_the_core_puts_it() {
     let f = |v: &serde_json::Value| v.as_f64().unwrap();
     let vp = &status["view"]["viewport"];
     let view = View {
-        center: glam::DVec2::new(f(&status["view"]["center"][0]), f(&status["view"]["center"][1])),
+        center: glam::DVec2::new(
+            f(&status["view"]["center"][0]),
+            f(&status["view"]["center"][1]),
+        ),
         m_per_px: f(&status["view"]["m_per_px"]),
-        viewport: Rect::new(f(&vp[0]) as f32, f(&vp[1]) as f32, f(&vp[2]) as f32, f(&vp[3]) as f32),
+        viewport: Rect::new(
+            f(&vp[0]) as f32,
+            f(&vp[1]) as f32,
+            f(&vp[2]) as f32,
+            f(&vp[3]) as f32,
+        ),
         ..Default::default()
     };
     let expect = view.to_screen(bob);

@@ -30,7 +30,10 @@ fn the_window_draws_frames_without_rendering_errors() {
         .env("RIGIDLAB_FPS_LOG", "1")
         .env("RIGIDLAB_EXIT_AFTER_FRAMES", "150")
         // Not the user's own preferences: the test writes what the window remembers elsewhere.
-        .env("RIGIDLAB_PREFS", std::env::temp_dir().join(format!("rigidlab-window-prefs-{}.ron", std::process::id())))
+        .env(
+            "RIGIDLAB_PREFS",
+            std::env::temp_dir().join(format!("rigidlab-window-prefs-{}.ron", std::process::id())),
+        )
         .env("NO_COLOR", "1")
         .output()
         .expect("rigidlab play runs");
@@ -45,7 +48,11 @@ fn the_window_draws_frames_without_rendering_errors() {
         out.status,
         errors.join("\n")
     );
-    assert!(errors.is_empty(), "rendering errors:\n{}", errors.join("\n"));
+    assert!(
+        errors.is_empty(),
+        "rendering errors:\n{}",
+        errors.join("\n")
+    );
     let rate = stderr
         .lines()
         .rfind(|l| l.contains("frame rate:"))

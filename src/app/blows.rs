@@ -54,7 +54,11 @@ pub fn in_step(before: &Snapshot, s: &Snapshot) -> Vec<Blow> {
                 .map(|(k, j)| {
                     // The joint's impulse on the struck body (rapier reports it on body 2).
                     let sign = if j.body2 == imp.body { 1.0 } else { -1.0 };
-                    let anchor = if j.body2 == imp.body { j.anchor } else { j.anchor1 };
+                    let anchor = if j.body2 == imp.body {
+                        j.anchor
+                    } else {
+                        j.anchor1
+                    };
                     let steady = (!before.is_initial())
                         .then(|| before.joints.get(k).map(|b| sign * b.impulse_on_body2))
                         .flatten();

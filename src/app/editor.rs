@@ -76,18 +76,26 @@ fn run_commands(
                     .apply(&phys.scene, &Edit::Replace(Box::new(fresh.level.clone())))
                     .map(|(s, _)| {
                         // Saved under its own name, not the level it replaced.
-                        let s = Scene { file: fresh.file.clone(), ..s };
-                        (s, "a new scene: a ground line; add bodies with the tools".into())
+                        let s = Scene {
+                            file: fresh.file.clone(),
+                            ..s
+                        };
+                        (
+                            s,
+                            "a new scene: a ground line; add bodies with the tools".into(),
+                        )
                     })
             }
             EditorCommand::Save(path) => {
-                ed.note = Some(match super::panels::capture::save_level(&phys.scene, path) {
-                    Ok(m) => {
-                        ed.just_saved = Some(path.clone());
-                        (m, true)
-                    }
-                    Err(e) => (e, false),
-                });
+                ed.note = Some(
+                    match super::panels::capture::save_level(&phys.scene, path) {
+                        Ok(m) => {
+                            ed.just_saved = Some(path.clone());
+                            (m, true)
+                        }
+                        Err(e) => (e, false),
+                    },
+                );
                 continue;
             }
         };

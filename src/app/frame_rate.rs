@@ -48,7 +48,8 @@ pub struct FrameRatePlugin;
 
 impl Plugin for FrameRatePlugin {
     fn build(&self, app: &mut App) {
-        app.init_resource::<FrameRate>().add_systems(First, count_frame);
+        app.init_resource::<FrameRate>()
+            .add_systems(First, count_frame);
     }
 }
 

@@ -28,7 +28,10 @@ pub fn place(wants: &[Want], bodies: &[Vec<Vec2>], view: Rect) -> Vec<Rect> {
         let mut best: Option<(Rect, (f32, f32, f32))> = None;
         for (k, off) in candidates(w.size).enumerate() {
             let r = inside(Rect::from_corners(home + off, home + off + w.size), view);
-            let on_labels: f32 = placed.iter().map(|p| overlap_area(p, &r.inflate(MARGIN))).sum();
+            let on_labels: f32 = placed
+                .iter()
+                .map(|p| overlap_area(p, &r.inflate(MARGIN)))
+                .sum();
             let on_bodies = bodies.iter().filter(|b| rect_hits_polygon(&r, b)).count() as f32;
             let cost = (on_labels, on_bodies, k as f32);
             if on_labels == 0.0 && on_bodies == 0.0 {
@@ -68,7 +71,10 @@ fn candidates(size: Vec2) -> impl Iterator<Item = Vec2> {
             Vec2::new(-r * dx, -r * dy),
         ]);
         // Half steps sideways find the gaps between neighbours.
-        offs.extend([Vec2::new(0.5 * r * dx, r * dy), Vec2::new(-0.5 * r * dx, -r * dy)]);
+        offs.extend([
+            Vec2::new(0.5 * r * dx, r * dy),
+            Vec2::new(-0.5 * r * dx, -r * dy),
+        ]);
     }
     offs.into_iter()
 }
@@ -76,8 +82,14 @@ fn candidates(size: Vec2) -> impl Iterator<Item = Vec2> {
 /// `r` moved (not resized) to lie inside `view` where it fits.
 fn inside(r: Rect, view: Rect) -> Rect {
     let size = r.size();
-    let min_x = r.min.x.clamp(view.min.x, (view.max.x - size.x).max(view.min.x));
-    let min_y = r.min.y.clamp(view.min.y, (view.max.y - size.y).max(view.min.y));
+    let min_x = r
+        .min
+        .x
+        .clamp(view.min.x, (view.max.x - size.x).max(view.min.x));
+    let min_y = r
+        .min
+        .y
+        .clamp(view.min.y, (view.max.y - size.y).max(view.min.y));
     Rect::from_corners(Vec2::new(min_x, min_y), Vec2::new(min_x, min_y) + size)
 }
 
@@ -96,7 +108,12 @@ pub fn rect_hits_polygon(r: &Rect, poly: &[Vec2]) -> bool {
     if poly.is_empty() {
         return false;
     }
-    let corners = [r.min, Vec2::new(r.max.x, r.min.y), r.max, Vec2::new(r.min.x, r.max.y)];
+    let corners = [
+        r.min,
+        Vec2::new(r.max.x, r.min.y),
+        r.max,
+        Vec2::new(r.min.x, r.max.y),
+    ];
     let separated = |axis: Vec2| {
         if axis.length_squared() == 0.0 {
             return false;
@@ -104,11 +121,15 @@ pub fn rect_hits_polygon(r: &Rect, poly: &[Vec2]) -> bool {
         let (a0, a1) = corners
             .iter()
             .map(|c| c.dot(axis))
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
         let (b0, b1) = poly
             .iter()
             .map(|c| c.dot(axis))
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
         a1 <= b0 || b1 <= a0
     };
     if separated(Vec2::X) || separated(Vec2::Y) {

@@ -348,7 +348,10 @@ pub fn build(
                 quantities::free_body_arrows(None, s, i)
             };
             if ov.free_body {
-                for f in forces.iter().filter(|f| !ov.hidden_forces.contains(&f.kind)) {
+                for f in forces
+                    .iter()
+                    .filter(|f| !ov.hidden_forces.contains(&f.kind))
+                {
                     let color = force_color(f.kind);
                     let len = scales.len(f.force.length(), scales.force);
                     let u = f.force.normalize_or_zero();
@@ -490,12 +493,17 @@ fn blows(phys: &Physics, scales: &Scales, labels: bool, d: &mut Drawing) {
     let len = (0.2 * scales.size).max(30.0 * d.m_per_px);
     for blow in phys.blows.iter().filter(|b| b.time <= now + 1e-12) {
         let u = blow.impulse.normalize_or_zero();
-        d.prims.push(Prim::Arrow(blow.point - u * len, blow.point, palette::TOOL));
+        d.prims
+            .push(Prim::Arrow(blow.point - u * len, blow.point, palette::TOOL));
         if labels {
             d.label(
                 blow.point - u * len,
                 Vec2::new(0.0, -12.0),
-                format!("P = {} at t = {:.3} s", si(blow.impulse.length(), "N s"), blow.time),
+                format!(
+                    "P = {} at t = {:.3} s",
+                    si(blow.impulse.length(), "N s"),
+                    blow.time
+                ),
                 palette::TOOL,
             );
         }
@@ -505,12 +513,18 @@ fn blows(phys: &Physics, scales: &Scales, labels: bool, d: &mut Drawing) {
                 // Under a thousandth of the blow: the joint felt none of it (a strike at the
                 // center of percussion). Say so rather than draw nothing.
                 if labels {
-                    d.label(j.anchor, Vec2::new(0.0, 18.0), format!("{}: no impulsive reaction", j.joint), palette::REACTION);
+                    d.label(
+                        j.anchor,
+                        Vec2::new(0.0, 18.0),
+                        format!("{}: no impulsive reaction", j.joint),
+                        palette::REACTION,
+                    );
                 }
                 continue;
             }
             let v = imp.normalize_or_zero() * len * (imp.length() / blow.impulse.length()).min(1.0);
-            d.prims.push(Prim::Arrow(j.anchor - v, j.anchor, palette::REACTION));
+            d.prims
+                .push(Prim::Arrow(j.anchor - v, j.anchor, palette::REACTION));
             if labels {
                 d.label(
                     j.anchor - v,
@@ -591,7 +605,17 @@ fn kinetic_diagram(
     } else {
         aabb.size().y
     };
-    let shift = free_side(i, s, outlines, copies, &aabb, width, height, scales.visible, px);
+    let shift = free_side(
+        i,
+        s,
+        outlines,
+        copies,
+        &aabb,
+        width,
+        height,
+        scales.visible,
+        px,
+    );
     if !aabb.is_empty() {
         copies.push(geometry::Bounds {
             min: aabb.min + shift,

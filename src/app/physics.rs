@@ -9,6 +9,7 @@
 use super::quantities;
 use crate::analysis::energy;
 use crate::checks::CheckResult;
+use crate::clock::Instant;
 use crate::level::Scene;
 use crate::questions::QuestionResult;
 use crate::runner::Observers;
@@ -18,7 +19,6 @@ use crate::snapshot::Snapshot;
 use bevy::prelude::*;
 use glam::DVec2;
 use std::collections::VecDeque;
-use crate::clock::Instant;
 use std::time::Duration;
 
 /// The set the physics step runs in (in `FixedUpdate`, and in `Update` for single steps).
@@ -121,7 +121,12 @@ impl SeriesPoint {
 
     /// Angular momentum about the point `o`, N m s (6/15's transfer from the world origin).
     pub fn h_about(&self, o: DVec2) -> f64 {
-        crate::analysis::momentum::transfer_angular_momentum(self.h_o, DVec2::ZERO, o, self.momentum)
+        crate::analysis::momentum::transfer_angular_momentum(
+            self.h_o,
+            DVec2::ZERO,
+            o,
+            self.momentum,
+        )
     }
 }
 
@@ -278,7 +283,11 @@ impl Physics {
             let angle = match series.last() {
                 Some(last) => {
                     let d = (b.angle - last.angle).rem_euclid(std::f64::consts::TAU);
-                    let d = if d > std::f64::consts::PI { d - std::f64::consts::TAU } else { d };
+                    let d = if d > std::f64::consts::PI {
+                        d - std::f64::consts::TAU
+                    } else {
+                        d
+                    };
                     last.angle + d
                 }
                 None => b.angle,
@@ -432,7 +441,8 @@ impl Physics {
             .collect();
         // The joints' impulses of the step before, for a blow's steady part (cheap: only kept
         // when the level has impulse events).
-        let before_blow = (!self.scene.level.events.is_empty()).then(|| self.sim.snapshot().clone());
+        let before_blow =
+            (!self.scene.level.events.is_empty()).then(|| self.sim.snapshot().clone());
         let t0 = Instant::now();
         let result = self.sim.step().map(|_| ());
         self.step_times.push(t0.elapsed().as_secs_f64() * 1e3);

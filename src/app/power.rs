@@ -71,7 +71,8 @@ fn redraw_when_needed(
             unfocused_mode: UpdateMode::reactive_low_power(Duration::from_millis(500)),
         }
     };
-    if settings.focused_mode != want.focused_mode || settings.unfocused_mode != want.unfocused_mode {
+    if settings.focused_mode != want.focused_mode || settings.unfocused_mode != want.unfocused_mode
+    {
         *settings = want;
     }
 }

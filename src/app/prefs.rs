@@ -62,7 +62,8 @@ impl Prefs {
         if let Some(dir) = p.parent() {
             std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         }
-        let text = ron::ser::to_string_pretty(self, Default::default()).map_err(|e| e.to_string())?;
+        let text =
+            ron::ser::to_string_pretty(self, Default::default()).map_err(|e| e.to_string())?;
         std::fs::write(&p, text).map_err(|e| format!("{}: {e}", p.display()))
     }
 }

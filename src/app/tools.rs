@@ -5,11 +5,11 @@
 
 use super::draw::{si, Drawing, Prim};
 use super::editor::{EditorCommand, Placeable};
-use crate::editor::{Edit, Property};
-use crate::level::JointKind;
 use super::overlays::{Overlays, Scales};
 use super::physics::{Physics, PhysicsStep};
 use super::view::{self, palette, Outlines, View};
+use crate::editor::{Edit, Property};
+use crate::level::JointKind;
 use crate::snapshot::BodyKind;
 use bevy::prelude::*;
 use glam::DVec2;
@@ -159,7 +159,8 @@ fn mouse_tools(
                 }
                 Tool::Ruler => state.ruler = Some((p, p)),
                 Tool::Spring => {
-                    state.spring_from = view::body_at(&outlines.bodies, s, p, tol, true).map(|i| (i, p));
+                    state.spring_from =
+                        view::body_at(&outlines.bodies, s, p, tol, true).map(|i| (i, p));
                 }
             }
         }
@@ -203,7 +204,9 @@ fn mouse_tools(
         if let (Some((i, from)), Some(to)) = (state.spring_from.take(), world) {
             let s = phys.snapshot();
             let level = &phys.scene.level;
-            let other = bodies_at(&outlines, s, to, tol).into_iter().find(|&k| k != i);
+            let other = bodies_at(&outlines, s, to, tol)
+                .into_iter()
+                .find(|&k| k != i);
             if from.distance(to) > tol {
                 let m = s.bodies[i].mass;
                 edits.write(EditorCommand::Apply(Edit::AddSpring {
@@ -237,17 +240,28 @@ fn bodies_at(outlines: &Outlines, s: &crate::snapshot::Snapshot, p: DVec2, tol: 
         .filter(|&i| {
             let b = &s.bodies[i];
             let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
-            outlines.bodies.get(i).is_some_and(|o| o.contains(local, tol))
+            outlines
+                .bodies
+                .get(i)
+                .is_some_and(|o| o.contains(local, tol))
         })
         .collect()
 }
 
 /// The joint the join tool makes at `p`: between the topmost moving body there and the next body
 /// under it, or that body and the ground (a fixed point made there) when it is alone.
-fn join_at(phys: &Physics, outlines: &Outlines, p: DVec2, tol: f64, kind: JointKind) -> Option<Edit> {
+fn join_at(
+    phys: &Physics,
+    outlines: &Outlines,
+    p: DVec2,
+    tol: f64,
+    kind: JointKind,
+) -> Option<Edit> {
     let s = phys.snapshot();
     let under = bodies_at(outlines, s, p, tol);
-    let moving = *under.iter().find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
+    let moving = *under
+        .iter()
+        .find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
     let other = under.iter().copied().find(|&i| i != moving);
     let name = |i: usize| phys.scene.level.bodies[i].name.clone();
     Some(Edit::AddJoint {
@@ -312,7 +326,11 @@ pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawi
         d.label(
             (a + b) / 2.0,
             Vec2::new(0.0, -12.0),
-            format!("{} at {:.1}°", si(v.length(), "m"), v.y.atan2(v.x).to_degrees()),
+            format!(
+                "{} at {:.1}°",
+                si(v.length(), "m"),
+                v.y.atan2(v.x).to_degrees()
+            ),
             palette::TOOL,
         );
     }

@@ -13,8 +13,8 @@
 //! paused, frame rate, the view's mapping from metres to CSS pixels, each question's answer box
 //! and grade): what a screen reader, a teacher's script or the browser test reads.
 
-use super::panels::{self, Browser, UiState};
 use super::frame_rate::FrameRate;
+use super::panels::{self, Browser, UiState};
 use super::physics::Physics;
 use super::view::View;
 use crate::level::Scene;
@@ -239,7 +239,9 @@ fn open_picked_file(mut st: ResMut<UiState>) {
     if text.is_empty() {
         return;
     }
-    let name = el.get_attribute("data-name").unwrap_or_else(|| "picked.ron".into());
+    let name = el
+        .get_attribute("data-name")
+        .unwrap_or_else(|| "picked.ron".into());
     el.set_text_content(None);
     match crate::level::parse(Path::new(&name), &text) {
         Ok(scene) => st.pending_open = Some(scene),

@@ -61,10 +61,21 @@ pub enum Edit {
     AddBody { shape: NewShape, at: V2, mass: f64 },
     /// A joint at the world point `at` between `body1` (None: the ground, a fixed anchor body
     /// made there) and `body2`; anchors are computed in each body's frame so they meet.
-    AddJoint { kind: JointKind, body1: Option<String>, body2: String, at: V2 },
+    AddJoint {
+        kind: JointKind,
+        body1: Option<String>,
+        body2: String,
+        at: V2,
+    },
     /// A linear spring from `at1` on `body1` to `at2` on `body2` (None: the ground), world
     /// points; its rest length is the distance between them (the scene starts unstretched).
-    AddSpring { body1: String, at1: V2, body2: Option<String>, at2: V2, stiffness: f64 },
+    AddSpring {
+        body1: String,
+        at1: V2,
+        body2: Option<String>,
+        at2: V2,
+        stiffness: f64,
+    },
     /// A velocity motor on a joint (None removes it).
     SetMotor { joint: String, target: Option<f64> },
     /// A property of a body.
@@ -99,7 +110,10 @@ impl Edit {
                 let name = fresh_name(level, "wall");
                 let mut b = ground_body(&name, 0.0, 0.0);
                 b.position = (*x, 0.0);
-                b.shape = Some(Shape::Segment { a: (0.0, 0.0), b: (0.0, *height) });
+                b.shape = Some(Shape::Segment {
+                    a: (0.0, 0.0),
+                    b: (0.0, *height),
+                });
                 level.bodies.push(b);
                 declare(level, &[Effect::Contacts]);
                 Ok(format!("added {name}, a wall at x = {x} m"))
@@ -117,7 +131,9 @@ impl Edit {
                 let shape = Shape::Polygon {
                     points: vec![(0.0, 0.0), (*length, 0.0), (*length, h)],
                 };
-                level.bodies.push(body(&name, BodyKind::Fixed, Some(shape), *at));
+                level
+                    .bodies
+                    .push(body(&name, BodyKind::Fixed, Some(shape), *at));
                 declare(level, &[Effect::Contacts]);
                 Ok(format!(
                     "added {name}, an incline at {:.1} degrees, {length} m long",
@@ -126,21 +142,44 @@ impl Edit {
             }
             Edit::AddBody { shape, at, mass } => {
                 let (stem, shape) = match shape {
-                    NewShape::Box { width, height } => ("box", Shape::Box { width: *width, height: *height }),
+                    NewShape::Box { width, height } => (
+                        "box",
+                        Shape::Box {
+                            width: *width,
+                            height: *height,
+                        },
+                    ),
                     NewShape::Disc { radius } => ("disc", Shape::Circle { radius: *radius }),
-                    NewShape::Bar { length, thickness } => {
-                        ("bar", Shape::Box { width: *length, height: *thickness })
-                    }
-                    NewShape::Polygon { points } => ("polygon", Shape::Polygon { points: points.clone() }),
+                    NewShape::Bar { length, thickness } => (
+                        "bar",
+                        Shape::Box {
+                            width: *length,
+                            height: *thickness,
+                        },
+                    ),
+                    NewShape::Polygon { points } => (
+                        "polygon",
+                        Shape::Polygon {
+                            points: points.clone(),
+                        },
+                    ),
                 };
                 let name = fresh_name(level, stem);
                 let mut b = body(&name, BodyKind::Dynamic, Some(shape), *at);
                 b.mass = Some(*mass);
                 level.bodies.push(b);
                 let added = declare(level, &[Effect::Gravity, Effect::Contacts]);
-                Ok(format!("added {name} ({mass} kg) at ({:.3}, {:.3}) m{added}", at.0, at.1))
+                Ok(format!(
+                    "added {name} ({mass} kg) at ({:.3}, {:.3}) m{added}",
+                    at.0, at.1
+                ))
             }
-            Edit::AddJoint { kind, body1, body2, at } => {
+            Edit::AddJoint {
+                kind,
+                body1,
+                body2,
+                at,
+            } => {
                 let b2 = find(level, body2)?.clone();
                 let (b1, note) = match body1 {
                     Some(n) => (find(level, n)?.clone(), String::new()),
@@ -152,7 +191,10 @@ impl Edit {
                     }
                 };
                 if b1.name == b2.name {
-                    return Err(format!("a joint needs two bodies; both ends are on {}", b1.name));
+                    return Err(format!(
+                        "a joint needs two bodies; both ends are on {}",
+                        b1.name
+                    ));
                 }
                 let name = fresh_name(level, joint_stem(*kind));
                 level.joints.push(JointDef {
@@ -168,9 +210,18 @@ impl Edit {
                     starts_apart: false,
                 });
                 let added = declare(level, &[Effect::Joints]);
-                Ok(format!("added {name} joining {} and {}{note}{added}", b1.name, b2.name))
+                Ok(format!(
+                    "added {name} joining {} and {}{note}{added}",
+                    b1.name, b2.name
+                ))
             }
-            Edit::AddSpring { body1, at1, body2, at2, stiffness } => {
+            Edit::AddSpring {
+                body1,
+                at1,
+                body2,
+                at2,
+                stiffness,
+            } => {
                 let b1 = find(level, body1)?.clone();
                 let (p2, b2name) = match body2 {
                     Some(n) => {
@@ -192,7 +243,9 @@ impl Edit {
                     damping: 0.0,
                 });
                 let added = declare(level, &[Effect::Springs]);
-                Ok(format!("added {name}, k = {stiffness} N/m, rest length {rest:.4} m{added}"))
+                Ok(format!(
+                    "added {name}, k = {stiffness} N/m, rest length {rest:.4} m{added}"
+                ))
             }
             Edit::SetMotor { joint, target } => {
                 let j = level
@@ -200,14 +253,24 @@ impl Edit {
                     .iter_mut()
                     .find(|j| &j.name == joint)
                     .ok_or_else(|| format!("there is no joint named \"{joint}\""))?;
-                j.motor = target.map(|t| Motor::Velocity { target: t, max_force: None });
-                let added = if target.is_some() { declare(level, &[Effect::Motors]) } else { String::new() };
+                j.motor = target.map(|t| Motor::Velocity {
+                    target: t,
+                    max_force: None,
+                });
+                let added = if target.is_some() {
+                    declare(level, &[Effect::Motors])
+                } else {
+                    String::new()
+                };
                 Ok(match target {
                     Some(t) => format!("{joint} drives at {t} per second{added}"),
                     None => format!("{joint} has no motor"),
                 })
             }
-            Edit::Set { body: name, property } => set(level, name, property),
+            Edit::Set {
+                body: name,
+                property,
+            } => set(level, name, property),
             Edit::Delete { body: name } => delete(level, name),
             Edit::Duplicate { body: name, offset } => {
                 let mut b = find(level, name)?.clone();
@@ -226,7 +289,10 @@ impl Edit {
                 let n = (level.checks.len(), level.questions.len());
                 level.checks.clear();
                 level.questions.clear();
-                Ok(format!("dropped the exercise's {} checks and {} questions", n.0, n.1))
+                Ok(format!(
+                    "dropped the exercise's {} checks and {} questions",
+                    n.0, n.1
+                ))
             }
             Edit::AddQuestion(q) => {
                 if level.questions.iter().any(|x| x.id == q.id) {
@@ -251,7 +317,10 @@ impl Edit {
 pub(crate) fn ground_body(name: &str, y: f64, half_width: f64) -> BodyDef {
     let mut b = body(name, BodyKind::Fixed, None, (0.0, y));
     if half_width > 0.0 {
-        b.shape = Some(Shape::Segment { a: (-half_width, 0.0), b: (half_width, 0.0) });
+        b.shape = Some(Shape::Segment {
+            a: (-half_width, 0.0),
+            b: (half_width, 0.0),
+        });
     }
     b
 }
@@ -434,7 +503,9 @@ fn delete(level: &mut Level, name: &str) -> Result<String, String> {
     level
         .springs
         .retain(|s| s.body1 != name && s.body2.as_deref() != Some(name));
-    let names_any = |s: String| s.contains(&quoted) || gone_joints.iter().any(|j| s.contains(&format!("\"{j}\"")));
+    let names_any = |s: String| {
+        s.contains(&quoted) || gone_joints.iter().any(|j| s.contains(&format!("\"{j}\"")))
+    };
     level.torsion_springs.retain(|s| !names(ron_of(s)));
     // A coupling is over joints' coordinates as well as bodies'.
     level.couplings.retain(|c| !names_any(ron_of(c)));

@@ -22,12 +22,25 @@ impl History {
     pub fn apply(&mut self, scene: &Scene, e: &Edit) -> Result<(Scene, String), String> {
         let (next, note) = apply(scene, e)?;
         let merges = match (&self.last, e) {
-            (Some(Edit::Set { body: a, property: p }), Edit::Set { body: b, property: q }) => {
-                a == b && std::mem::discriminant(p) == std::mem::discriminant(q)
-            }
             (
-                Some(Edit::SetMotor { joint: a, target: Some(_) }),
-                Edit::SetMotor { joint: b, target: Some(_) },
+                Some(Edit::Set {
+                    body: a,
+                    property: p,
+                }),
+                Edit::Set {
+                    body: b,
+                    property: q,
+                },
+            ) => a == b && std::mem::discriminant(p) == std::mem::discriminant(q),
+            (
+                Some(Edit::SetMotor {
+                    joint: a,
+                    target: Some(_),
+                }),
+                Edit::SetMotor {
+                    joint: b,
+                    target: Some(_),
+                },
             ) => a == b,
             _ => false,
         };
@@ -47,7 +60,10 @@ impl History {
         let level = self.undo.pop()?;
         self.redo.push(scene.level.clone());
         self.last = None;
-        Some(Scene { file: scene.file.clone(), level })
+        Some(Scene {
+            file: scene.file.clone(),
+            level,
+        })
     }
 
     /// The scene the last undo went back from.
@@ -55,7 +71,10 @@ impl History {
         let level = self.redo.pop()?;
         self.undo.push(scene.level.clone());
         self.last = None;
-        Some(Scene { file: scene.file.clone(), level })
+        Some(Scene {
+            file: scene.file.clone(),
+            level,
+        })
     }
 
     pub fn can_undo(&self) -> bool {

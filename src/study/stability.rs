@@ -19,6 +19,7 @@
 pub mod cases;
 pub mod criteria;
 
+use crate::clock::Instant;
 use crate::level::{self, Scene};
 use crate::sim::{Engine, Options};
 use criteria::{Criterion, Monitor, Outcome};
@@ -28,7 +29,6 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use crate::clock::Instant;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {

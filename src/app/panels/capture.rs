@@ -71,7 +71,13 @@ pub fn capture(level: &Level, s: &Snapshot) -> Level {
 /// Writes the current state as a level (t becomes 0; at t = 0 the scene as edited).
 pub fn save(phys: &Physics, path: &Path) -> Result<String, String> {
     let level = capture(&phys.scene.level, phys.snapshot());
-    save_level(&Scene { file: phys.scene.file.clone(), level }, path)
+    save_level(
+        &Scene {
+            file: phys.scene.file.clone(),
+            level,
+        },
+        path,
+    )
 }
 
 /// Writes a level and reads it back: it must parse, validate, and be equal; then it goes to the
@@ -99,6 +105,9 @@ pub(super) fn default_save_path(scene: &Scene) -> String {
     if cfg!(target_arch = "wasm32") {
         format!("{stem}-saved.ron")
     } else {
-        format!("{}/{stem}-saved.ron", super::super::user_files::SAVED_LEVELS)
+        format!(
+            "{}/{stem}-saved.ron",
+            super::super::user_files::SAVED_LEVELS
+        )
     }
 }

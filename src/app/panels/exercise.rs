@@ -49,7 +49,11 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st:
             });
             if let Some(g) = &st.grades[k] {
                 let (text, right) = grade_message(q, g);
-                let color = if right { palette::GRAVITY } else { palette::NORMAL };
+                let color = if right {
+                    palette::GRAVITY
+                } else {
+                    palette::NORMAL
+                };
                 ui.label(rich(text, color));
             }
             if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {

@@ -70,30 +70,51 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
 const KEYS: &[(&str, &str)] = &[
     ("Space", "play / pause (at the level's end: start over)"),
     ("S or Right", "one physics step"),
-    ("Left", "one step back (the run is replayed to the step before; the timeline goes to any time)"),
+    (
+        "Left",
+        "one step back (the run is replayed to the step before; the timeline goes to any time)",
+    ),
     ("R", "reset to t = 0 as the level opened"),
     ("− / =", "time scale ÷ 2 / × 2"),
     ("Home", "fit the view to the scene"),
     ("1 2 3", "tools: select and drag · impulse · set O"),
     ("Esc", "clear the selection"),
-    ("Delete", "delete the selected body (with its joints and the questions about it)"),
+    (
+        "Delete",
+        "delete the selected body (with its joints and the questions about it)",
+    ),
     ("Ctrl+Z", "undo an edit"),
     ("Ctrl+Y, Ctrl+Shift+Z", "redo"),
-    ("F12", "screenshot into screenshots/ (downloaded in a web page)"),
+    (
+        "F12",
+        "screenshot into screenshots/ (downloaded in a web page)",
+    ),
     ("F1 or ?", "this help"),
 ];
 
 fn overlays() -> Vec<(&'static str, &'static str, bevy::color::Color)> {
     vec![
-        ("V", "velocity of G and of the chosen point", palette::VELOCITY),
+        (
+            "V",
+            "velocity of G and of the chosen point",
+            palette::VELOCITY,
+        ),
         ("A", "acceleration of G", palette::ACCEL),
-        ("C", "instantaneous center of zero velocity", palette::CENTER),
+        (
+            "C",
+            "instantaneous center of zero velocity",
+            palette::CENTER,
+        ),
         ("F", "free-body diagram: weight", palette::GRAVITY),
         ("", "contact normal force N", palette::NORMAL),
         ("", "friction F", palette::FRICTION),
         ("", "joint reaction R", palette::REACTION),
         ("", "applied loads", palette::LOAD),
-        ("K", "kinetic diagram: m a_G and I_G alpha beside the body", palette::ACCEL),
+        (
+            "K",
+            "kinetic diagram: m a_G and I_G alpha beside the body",
+            palette::ACCEL,
+        ),
         ("H", "angular momentum about O", palette::MOMENTUM),
         ("T", "trails of G", palette::TRAIL),
         ("L", "labels with magnitudes", palette::TEXT),

@@ -53,7 +53,10 @@ impl Browser {
         };
         for (path, text) in files {
             let entry = Entry::from_load(path.clone(), level::parse(&path, &text), Some(text));
-            b.groups.entry(group_of(root, &path)).or_default().push(entry);
+            b.groups
+                .entry(group_of(root, &path))
+                .or_default()
+                .push(entry);
         }
         for entries in b.groups.values_mut() {
             entries.sort_by(|a, b| a.path.cmp(&b.path));
@@ -89,7 +92,10 @@ impl Browser {
             if let Ok(files) = level::collect_files(&[saved.to_path_buf()]) {
                 for f in files {
                     let entry = Entry::from_load(f.clone(), level::load(&f), None);
-                    b.groups.entry(format!("saved ({}/)", saved.display())).or_default().push(entry);
+                    b.groups
+                        .entry(format!("saved ({}/)", saved.display()))
+                        .or_default()
+                        .push(entry);
                 }
             }
         }

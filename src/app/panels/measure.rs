@@ -37,9 +37,9 @@ pub fn period_of(phys: &Physics, i: usize) -> Option<(f64, usize)> {
         }
     } else {
         // A body on a spring: the velocity component along the direction it moves most.
-        let (sx, sy) = samples
-            .iter()
-            .fold((0.0, 0.0), |(a, b), p| (a + p.v.x * p.v.x, b + p.v.y * p.v.y));
+        let (sx, sy) = samples.iter().fold((0.0, 0.0), |(a, b), p| {
+            (a + p.v.x * p.v.x, b + p.v.y * p.v.y)
+        });
         for p in samples {
             c.add(p.t, if sx >= sy { p.v.x } else { p.v.y });
         }
@@ -84,13 +84,22 @@ pub(super) fn measure(
         ui.label(rich(format!("laps: {} s", laps.join(", ")), palette::OUTLINE).small());
     }
     if let Some(i) = selected {
-        let name = phys.scene.level.bodies.get(i).map_or("", |b| b.name.as_str());
+        let name = phys
+            .scene
+            .level
+            .bodies
+            .get(i)
+            .map_or("", |b| b.name.as_str());
         match period_of(phys, i) {
             Some((t, n)) => ui.label(format!(
                 "period of {name}: {t:.4} s (mean of {n} periods, between ω's zero crossings)"
             )),
             None => ui.label(
-                rich(format!("period of {name}: play until it has swung back twice"), palette::OUTLINE).small(),
+                rich(
+                    format!("period of {name}: play until it has swung back twice"),
+                    palette::OUTLINE,
+                )
+                .small(),
             ),
         };
     }
@@ -108,7 +117,13 @@ pub(super) fn measure(
                 ));
             }
             None => {
-                ui.label(rich("drag in the scene to measure a length and its angle", palette::OUTLINE).small());
+                ui.label(
+                    rich(
+                        "drag in the scene to measure a length and its angle",
+                        palette::OUTLINE,
+                    )
+                    .small(),
+                );
             }
         }
     });

@@ -10,9 +10,9 @@ mod checks;
 mod exercise;
 mod help;
 mod level_browser;
+pub mod measure;
 mod overlay_controls;
 mod playback;
-pub mod measure;
 pub mod plots;
 mod scene_editor;
 mod shortcuts;
@@ -27,13 +27,14 @@ pub use overlay_controls::legend_entries;
 pub use solver::study_error;
 
 use super::color32;
+use super::editor::{Editor, EditorCommand};
 use super::frame_rate::FrameRate;
 use super::overlays::Overlays;
 use super::physics::{LiveChecks, Physics};
+use super::prefs::Prefs;
 use super::tools::ToolState;
 use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
-use std::path::PathBuf;
 use bevy::camera::visibility::RenderLayers;
 use bevy::camera::CameraOutputMode;
 use bevy::prelude::*;
@@ -48,12 +49,11 @@ use level_browser::level_browser;
 use overlay_controls::overlay_controls;
 use playback::playback;
 use plots::plots;
+use scene_editor::scene_editor;
 use shortcuts::keys;
 use solver::solver;
+use std::path::PathBuf;
 use tool_controls::tool_controls;
-use scene_editor::scene_editor;
-use super::editor::{Editor, EditorCommand};
-use super::prefs::Prefs;
 
 /// Panel state that is not the simulation's.
 #[derive(Resource, Debug, Clone)]
@@ -330,7 +330,10 @@ fn panels(
             }
         }
     }
-    if ov.selected.is_some_and(|i| i >= phys.scene.level.bodies.len()) {
+    if ov
+        .selected
+        .is_some_and(|i| i >= phys.scene.level.bodies.len())
+    {
         // An undo took the selected body away.
         ov.selected = None;
         ov.point = None;

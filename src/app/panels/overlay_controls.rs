@@ -4,12 +4,12 @@
 
 use super::super::overlays::Overlays;
 use super::super::physics::Physics;
+use super::super::quantities::ForceKind;
 use super::super::view::palette;
 use super::rich;
 use crate::level::{Effect, Level};
 use bevy::prelude::*;
 use bevy_egui::egui;
-use super::super::quantities::ForceKind;
 
 /// The color key of the overlays that are on (force kinds only where the scene has them).
 pub fn legend_entries(ov: &Overlays, level: &Level, window: usize) -> Vec<(String, Color)> {

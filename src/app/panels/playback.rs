@@ -3,9 +3,9 @@
 //! exercise's.
 
 use super::super::physics::Physics;
-use super::super::view::{palette, View};
 use super::super::playback::{restart, step_back, toggle_play};
 use super::super::tools::ToolState;
+use super::super::view::{palette, View};
 use super::{fmt, rich, UiState};
 use bevy_egui::egui;
 
@@ -40,7 +40,13 @@ pub(super) fn playback(
         phys.seek = Some((at / dt).round() as u64);
     }
     if let Some(target) = phys.seek {
-        ui.label(rich(format!("going to t = {:.3} s…", target as f64 * dt), palette::OUTLINE).small());
+        ui.label(
+            rich(
+                format!("going to t = {:.3} s…", target as f64 * dt),
+                palette::OUTLINE,
+            )
+            .small(),
+        );
     }
     ui.horizontal(|ui| {
         if ui
@@ -94,11 +100,18 @@ pub(super) fn playback(
         view.follow = None;
     }
     if let Some(i) = selected {
-        let name = phys.scene.level.bodies.get(i).map_or("", |b| b.name.as_str());
+        let name = phys
+            .scene
+            .level
+            .bodies
+            .get(i)
+            .map_or("", |b| b.name.as_str());
         let mut follow = view.follow == Some(i);
         if ui
             .checkbox(&mut follow, format!("camera follows {name}"))
-            .on_hover_text("keeps its mass center at the center of the view (Home fits the scene again)")
+            .on_hover_text(
+                "keeps its mass center at the center of the view (Home fits the scene again)",
+            )
             .changed()
         {
             view.follow = follow.then_some(i);
@@ -113,7 +126,11 @@ pub(super) fn playback(
                 fmt(b.impulse.length()),
                 fmt(b.impulse.x),
                 fmt(b.impulse.y),
-                phys.snapshot().bodies.get(b.body).map(|x| x.name.as_str()).unwrap_or("?")
+                phys.snapshot()
+                    .bodies
+                    .get(b.body)
+                    .map(|x| x.name.as_str())
+                    .unwrap_or("?")
             ),
             palette::TOOL,
         ));

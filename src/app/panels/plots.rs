@@ -106,14 +106,25 @@ pub(super) fn body_plot(
     message: &mut Option<(String, bool)>,
 ) {
     let Some(i) = selected else {
-        ui.label(rich("select a body to plot its θ, ω, x, y, v or R against time", palette::OUTLINE).small());
+        ui.label(
+            rich(
+                "select a body to plot its θ, ω, x, y, v or R against time",
+                palette::OUTLINE,
+            )
+            .small(),
+        );
         return;
     };
     let Some(samples) = phys.body_series.get(i).filter(|s| !s.is_empty()) else {
         ui.label(rich("a fixed body: nothing to plot", palette::OUTLINE).small());
         return;
     };
-    let name = phys.scene.level.bodies.get(i).map_or("body", |b| b.name.as_str());
+    let name = phys
+        .scene
+        .level
+        .bodies
+        .get(i)
+        .map_or("body", |b| b.name.as_str());
     ui.horizontal(|ui| {
         ui.label(egui::RichText::new(name).strong());
         egui::ComboBox::from_id_salt("body-plot")
@@ -149,17 +160,42 @@ pub(super) fn body_plot(
             momentum: glam::DVec2::ZERO,
         })
         .collect();
-    line_plot(ui, &points, &[(&|p: &SeriesPoint| p.kinetic, palette::VELOCITY)], q.unit());
+    line_plot(
+        ui,
+        &points,
+        &[(&|p: &SeriesPoint| p.kinetic, palette::VELOCITY)],
+        q.unit(),
+    );
     if samples[0].t > 0.0 {
-        ui.label(rich(format!("recorded from t = {:.3} s, when it was selected", samples[0].t), palette::OUTLINE).small());
+        ui.label(
+            rich(
+                format!(
+                    "recorded from t = {:.3} s, when it was selected",
+                    samples[0].t
+                ),
+                palette::OUTLINE,
+            )
+            .small(),
+        );
     }
-    if ui.button("export CSV").on_hover_text("t, x_G, y_G, θ, ω, v_G, R of this body, SI units").clicked() {
-        let stem = phys.scene.file.file_stem().map_or("scene".into(), |s| s.to_string_lossy().to_string());
+    if ui
+        .button("export CSV")
+        .on_hover_text("t, x_G, y_G, θ, ω, v_G, R of this body, SI units")
+        .clicked()
+    {
+        let stem = phys
+            .scene
+            .file
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().to_string());
         let path = export_path(&format!("{stem}-{name}.csv"));
-        *message = Some(match super::super::user_files::deliver(&path, body_csv(samples).as_bytes(), "text/csv") {
-            Ok(m) => (m, true),
-            Err(e) => (e, false),
-        });
+        *message = Some(
+            match super::super::user_files::deliver(&path, body_csv(samples).as_bytes(), "text/csv")
+            {
+                Ok(m) => (m, true),
+                Err(e) => (e, false),
+            },
+        );
     }
 }
 
@@ -178,7 +214,9 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
         return;
     }
     let range = |v: &mut dyn Iterator<Item = f64>| {
-        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), a| (l.min(a), h.max(a)));
+        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), a| {
+            (l.min(a), h.max(a))
+        });
         let pad = ((hi - lo) * 0.08).max(1e-9 * hi.abs().max(1.0));
         (lo - pad, hi + pad)
     };
@@ -192,7 +230,10 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
         )
     };
     let line: Vec<egui::Pos2> = pts.iter().map(|&(a, b)| map(a, b)).collect();
-    painter.add(egui::Shape::line(line, egui::Stroke::new(1.5, color32(palette::VELOCITY))));
+    painter.add(egui::Shape::line(
+        line,
+        egui::Stroke::new(1.5, color32(palette::VELOCITY)),
+    ));
     let font = egui::FontId::proportional(10.0);
     let gray = egui::Color32::from_gray(90);
     painter.text(
@@ -264,13 +305,27 @@ pub(super) fn plots(
         &[(&|p: &SeriesPoint| p.h_about(origin), palette::MOMENTUM)],
         "N m s",
     );
-    if ui.button("export CSV").on_hover_text("t, T, V, E and H_O of the run, SI units").clicked() {
-        let stem = phys.scene.file.file_stem().map_or("scene".into(), |s| s.to_string_lossy().to_string());
+    if ui
+        .button("export CSV")
+        .on_hover_text("t, T, V, E and H_O of the run, SI units")
+        .clicked()
+    {
+        let stem = phys
+            .scene
+            .file
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().to_string());
         let path = export_path(&format!("{stem}-energy.csv"));
-        *message = Some(match super::super::user_files::deliver(&path, energy_csv(series).as_bytes(), "text/csv") {
-            Ok(m) => (m, true),
-            Err(e) => (e, false),
-        });
+        *message = Some(
+            match super::super::user_files::deliver(
+                &path,
+                energy_csv(series).as_bytes(),
+                "text/csv",
+            ) {
+                Ok(m) => (m, true),
+                Err(e) => (e, false),
+            },
+        );
     }
 }
 
@@ -341,10 +396,16 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
         let k = series.partition_point(|p| p.t < t).min(series.len() - 1);
         let p = &series[k];
         painter.line_segment(
-            [egui::pos2(map(p.t, lo).x, inner.min.y), egui::pos2(map(p.t, lo).x, inner.max.y)],
+            [
+                egui::pos2(map(p.t, lo).x, inner.min.y),
+                egui::pos2(map(p.t, lo).x, inner.max.y),
+            ],
             egui::Stroke::new(1.0, egui::Color32::from_gray(150)),
         );
-        let values: Vec<String> = lines.iter().map(|(f, _)| format!("{} {unit}", fmt(f(p)))).collect();
+        let values: Vec<String> = lines
+            .iter()
+            .map(|(f, _)| format!("{} {unit}", fmt(f(p))))
+            .collect();
         painter.text(
             rect.right_top() + egui::vec2(-3.0, 1.0),
             egui::Align2::RIGHT_TOP,

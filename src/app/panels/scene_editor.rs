@@ -24,7 +24,9 @@ pub(super) fn scene_editor(
 ) {
     ui.heading("Build");
     ui.horizontal(|ui| {
-        let r = ui.button("new scene").on_hover_text("a ground line and nothing else");
+        let r = ui
+            .button("new scene")
+            .on_hover_text("a ground line and nothing else");
         st.buttons.insert("new scene".into(), r.rect);
         if r.clicked() {
             out.push(EditorCommand::New);
@@ -70,7 +72,14 @@ pub(super) fn scene_editor(
     };
     ui.label(rich(hint, palette::OUTLINE).small());
     if let Some((note, ok)) = &editor.note {
-        ui.label(rich(note.clone(), if *ok { palette::GRAVITY } else { palette::NORMAL }));
+        ui.label(rich(
+            note.clone(),
+            if *ok {
+                palette::GRAVITY
+            } else {
+                palette::NORMAL
+            },
+        ));
     }
 
     let level = &phys.scene.level;
@@ -253,12 +262,21 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
 }
 
 /// A velocity motor on each pin or slider of the body: on or off, and its target rate.
-fn motors(ui: &mut egui::Ui, level: &crate::level::Level, body: &str, out: &mut Vec<EditorCommand>) {
+fn motors(
+    ui: &mut egui::Ui,
+    level: &crate::level::Level,
+    body: &str,
+    out: &mut Vec<EditorCommand>,
+) {
     for j in level.joints.iter().filter(|j| {
         (j.body1 == body || j.body2 == body)
             && matches!(j.kind, JointKind::Revolute | JointKind::Prismatic)
     }) {
-        let unit = if j.kind == JointKind::Revolute { "rad/s" } else { "m/s" };
+        let unit = if j.kind == JointKind::Revolute {
+            "rad/s"
+        } else {
+            "m/s"
+        };
         let current = match &j.motor {
             Some(crate::level::Motor::Velocity { target, .. }) => Some(*target),
             Some(_) => None,

@@ -1,11 +1,11 @@
 //! The keyboard shortcuts (listed in the status bar): play/pause, step, reset, time scale, fit,
 //! the mouse tools, clearing the selection, undo/redo/delete for the editor, and screenshots.
 
+use super::super::editor::EditorCommand;
 use super::super::overlays::Overlays;
 use super::super::physics::Physics;
 use super::super::playback::{restart, step_back, toggle_play};
 use super::super::tools::{Tool, ToolState};
-use super::super::editor::EditorCommand;
 use super::super::view::View;
 use super::UiState;
 use bevy::prelude::*;
@@ -69,7 +69,11 @@ pub(super) fn keys(
     }
     let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
     if ctrl && keys.just_pressed(KeyCode::KeyZ) {
-        edits.write(if shift { EditorCommand::Redo } else { EditorCommand::Undo });
+        edits.write(if shift {
+            EditorCommand::Redo
+        } else {
+            EditorCommand::Undo
+        });
     }
     if ctrl && keys.just_pressed(KeyCode::KeyY) {
         edits.write(EditorCommand::Redo);

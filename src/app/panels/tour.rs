@@ -26,12 +26,30 @@ pub fn steps(
     editor: &Editor,
 ) -> Vec<(&'static str, bool)> {
     vec![
-        ("Press Space (or ▶ Play) to run the exercise", phys.snapshot().step > 0 || phys.seek.is_some()),
-        ("Click a body: its velocity, and the velocity of the point you clicked", ov.selected.is_some()),
-        ("Press F for its free-body diagram and K for the kinetic diagram beside it", ov.free_body && ov.kinetic),
-        ("Drag the timeline back, or press Left to step back", tour.went_back),
-        ("Type your answer into a question's box and press Enter", st.grades.iter().any(|g| g.is_some())),
-        ("Build: new scene, place a bar, and pin it with the join tool", editor.history.can_undo() && !phys.scene.level.joints.is_empty()),
+        (
+            "Press Space (or ▶ Play) to run the exercise",
+            phys.snapshot().step > 0 || phys.seek.is_some(),
+        ),
+        (
+            "Click a body: its velocity, and the velocity of the point you clicked",
+            ov.selected.is_some(),
+        ),
+        (
+            "Press F for its free-body diagram and K for the kinetic diagram beside it",
+            ov.free_body && ov.kinetic,
+        ),
+        (
+            "Drag the timeline back, or press Left to step back",
+            tour.went_back,
+        ),
+        (
+            "Type your answer into a question's box and press Enter",
+            st.grades.iter().any(|g| g.is_some()),
+        ),
+        (
+            "Build: new scene, place a bar, and pin it with the join tool",
+            editor.history.can_undo() && !phys.scene.level.joints.is_empty(),
+        ),
         ("Press F1 for every key, overlay and tool", tour.saw_help),
     ]
 }
@@ -70,11 +88,19 @@ pub(super) fn tour(
                 ui.label(rich(format!("{mark} {what}"), color));
             }
             ui.horizontal(|ui| {
-                let label = if done == steps.len() { "done" } else { "hide for good" };
+                let label = if done == steps.len() {
+                    "done"
+                } else {
+                    "hide for good"
+                };
                 if ui.button(label).clicked() {
                     finished = true;
                 }
-                if ui.button("later").on_hover_text("it comes back next time").clicked() {
+                if ui
+                    .button("later")
+                    .on_hover_text("it comes back next time")
+                    .clicked()
+                {
                     tour.open = false;
                 }
             });

@@ -4,12 +4,12 @@
 use super::metrics;
 use crate::analysis::energy;
 use crate::checks::CheckResult;
+use crate::clock::Instant;
 use crate::level::{CheckKind, EventDef, Level, Profile, Scene};
 use crate::questions::QuestionResult;
 use crate::runner::Observers;
 use crate::sim::{Engine, Options};
 use crate::snapshot::{BodyState, Snapshot};
-use crate::clock::Instant;
 use std::time::Duration;
 
 /// The engine precision the sweep varies: the simulation stage's own.
