@@ -171,7 +171,8 @@ impl Placeable {
     /// The edit that places it at `p`, sized for a scene `size` m across; bodies are 1 kg (a
     /// round mass, whatever their size: the sandbox used to fill them at 1000 kg/m^2).
     pub fn edit_at(self, p: DVec2, size: f64) -> Edit {
-        let at = (round_to(p.x, size), round_to(p.y, size));
+        let at = round_point(p, size);
+        let at = (at.x, at.y);
         match self {
             Placeable::Box => Edit::AddBody {
                 shape: NewShape::Box {

@@ -60,9 +60,7 @@ fn count_frame(
     phys: Option<Res<super::physics::Physics>>,
 ) {
     // Paused, a native window waits for input (app/power.rs): those waits are not frame times.
-    let waiting = !cfg!(target_arch = "wasm32")
-        && std::env::var_os("RIGIDLAB_CONTINUOUS").is_none()
-        && phys.is_some_and(|p| !super::power::animating(&p));
+    let waiting = super::power::enabled() && phys.is_some_and(|p| !super::power::animating(&p));
     if waiting {
         rate.frames += 1;
     } else {

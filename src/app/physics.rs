@@ -100,7 +100,7 @@ pub struct BodySample {
     pub t: f64,
     /// Mass center, m.
     pub g: DVec2,
-    /// Angle, rad (unwrapped: it keeps counting past a turn).
+    /// Angle, rad (the snapshot's, continuous: it keeps counting past a turn).
     pub angle: f64,
     pub omega: f64,
     /// Velocity of G, m/s.
@@ -272,33 +272,19 @@ impl Physics {
             if !(all || self.tracked == Some(i)) || b.kind != crate::snapshot::BodyKind::Dynamic {
                 continue;
             }
+            if self.body_series[i].last().is_some_and(|l| l.t == s.time) {
+                continue;
+            }
             let (arrows, _) = quantities::free_body_arrows(None, s, i);
             let reaction = arrows
                 .iter()
                 .filter(|f| f.kind == quantities::ForceKind::Joint)
                 .map(|f| f.force)
                 .sum();
-            let series = &mut self.body_series[i];
-            // Unwrapped angle: the snapshot's angle is in (-pi, pi]; add the turns since the last sample.
-            let angle = match series.last() {
-                Some(last) => {
-                    let d = (b.angle - last.angle).rem_euclid(std::f64::consts::TAU);
-                    let d = if d > std::f64::consts::PI {
-                        d - std::f64::consts::TAU
-                    } else {
-                        d
-                    };
-                    last.angle + d
-                }
-                None => b.angle,
-            };
-            if series.last().is_some_and(|l| l.t == s.time) {
-                continue;
-            }
-            series.push(BodySample {
+            self.body_series[i].push(BodySample {
                 t: s.time,
                 g: b.com,
-                angle,
+                angle: b.angle,
                 omega: b.omega,
                 v: b.velocity,
                 reaction,
@@ -415,13 +401,7 @@ impl Physics {
     /// One step, with the user's pushes recorded before it applied again (a seek's steps).
     fn advance_replaying(&mut self) -> bool {
         let step = self.sim.snapshot().step;
-        let due: Vec<Intervention> = self
-            .interventions
-            .iter()
-            .filter(|x| x.step == step)
-            .copied()
-            .collect();
-        for x in due {
+        for x in self.interventions.iter().filter(|x| x.step == step) {
             self.sim.apply_impulse(x.body, x.at, x.impulse);
         }
         self.advance()

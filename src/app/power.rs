@@ -19,9 +19,14 @@ use std::time::Duration;
 
 pub struct PowerPlugin;
 
+/// Whether this window may wait for input at all (native, and not asked for every frame).
+pub fn enabled() -> bool {
+    !cfg!(target_arch = "wasm32") && std::env::var_os("RIGIDLAB_CONTINUOUS").is_none()
+}
+
 impl Plugin for PowerPlugin {
     fn build(&self, app: &mut App) {
-        if cfg!(target_arch = "wasm32") || std::env::var_os("RIGIDLAB_CONTINUOUS").is_some() {
+        if !enabled() {
             return;
         }
         app.add_systems(

@@ -204,7 +204,7 @@ fn mouse_tools(
         if let (Some((i, from)), Some(to)) = (state.spring_from.take(), world) {
             let s = phys.snapshot();
             let level = &phys.scene.level;
-            let other = bodies_at(&outlines, s, to, tol)
+            let other = view::bodies_under(&outlines.bodies, s, to, tol)
                 .into_iter()
                 .find(|&k| k != i);
             if from.distance(to) > tol {
@@ -225,27 +225,12 @@ fn mouse_tools(
                 let j = impulse_of_drag(b.mass, a.end - at);
                 let time = s.time;
                 if j.length() > 0.0 {
-                    apply_impulse(&mut phys, a.body, at, j);
+                    phys.apply_impulse(a.body, at, j);
                     state.last_impulse = Some((at, j, time));
                 }
             }
         }
     }
-}
-
-/// Every body under `p`, topmost first.
-fn bodies_at(outlines: &Outlines, s: &crate::snapshot::Snapshot, p: DVec2, tol: f64) -> Vec<usize> {
-    (0..s.bodies.len())
-        .rev()
-        .filter(|&i| {
-            let b = &s.bodies[i];
-            let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
-            outlines
-                .bodies
-                .get(i)
-                .is_some_and(|o| o.contains(local, tol))
-        })
-        .collect()
 }
 
 /// The joint the join tool makes at `p`: between the topmost moving body there and the next body
@@ -258,7 +243,7 @@ fn join_at(
     kind: JointKind,
 ) -> Option<Edit> {
     let s = phys.snapshot();
-    let under = bodies_at(outlines, s, p, tol);
+    let under = view::bodies_under(&outlines.bodies, s, p, tol);
     let moving = *under
         .iter()
         .find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
@@ -277,12 +262,6 @@ fn join_at(
 fn spring_stiffness(m: f64) -> f64 {
     let k = m * std::f64::consts::TAU.powi(2);
     super::editor::nice_length(k, 1.0)
-}
-
-/// Applies an impulse `j` (N s) at world point `at` to body `i`, between steps (kept by the run,
-/// so stepping back replays it).
-pub fn apply_impulse(phys: &mut Physics, i: usize, at: DVec2, j: DVec2) {
-    phys.apply_impulse(i, at, j);
 }
 
 /// The mouse spring: a critically damped pull of the grabbed point toward the mouse, applied as the
@@ -309,7 +288,7 @@ fn apply_grab(state: Res<ToolState>, mut phys: ResMut<Physics>) {
         f = f.normalize() * limit;
     }
     let dt = phys.sim.dt();
-    apply_impulse(&mut phys, g.body, p, f * dt);
+    phys.apply_impulse(g.body, p, f * dt);
 }
 
 /// What the tools draw: the mouse spring, the aimed impulse, the last impulse.

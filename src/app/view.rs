@@ -534,6 +534,13 @@ pub fn sync_meshes(phys: Res<Physics>, mut q: Query<(&BodyMesh, &mut Transform)>
     }
 }
 
+/// Whether the world point `p` is on body `i`'s outline (within `tol`, m).
+fn on_outline(outlines: &[Outline], s: &Snapshot, i: usize, p: DVec2, tol: f64) -> bool {
+    let b = &s.bodies[i];
+    let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
+    outlines.get(i).is_some_and(|o| o.contains(local, tol))
+}
+
 /// Which body (if any) is under a world point: topmost first (last drawn).
 pub fn body_at(
     outlines: &[Outline],
@@ -548,14 +555,21 @@ pub fn body_at(
         .rev()
         .filter(|(_, b)| !only_moving || b.kind == BodyKind::Dynamic)
         .find(|(i, b)| {
-            let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
-            outlines.get(*i).is_some_and(|o| o.contains(local, tol))
+            on_outline(outlines, s, *i, p, tol)
                 || (outlines
                     .get(*i)
                     .is_some_and(|o| o.filled.is_empty() && o.segments.is_empty())
                     && (p - b.position).length() <= tol)
         })
         .map(|(i, _)| i)
+}
+
+/// Every body whose outline is under a world point, topmost first (the join and spring tools).
+pub fn bodies_under(outlines: &[Outline], s: &Snapshot, p: DVec2, tol: f64) -> Vec<usize> {
+    (0..s.bodies.len())
+        .rev()
+        .filter(|&i| on_outline(outlines, s, i, p, tol))
+        .collect()
 }
 
 /// Shape kinds present, for the legend.

@@ -184,15 +184,10 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
             }
             _ => {}
         }
-        let (mut x, mut y) = b.position;
         ui.label("position, m");
-        ui.horizontal(|ui| {
-            let cx = drag(ui, &mut x, 0.01, -1e6..=1e6);
-            let cy = drag(ui, &mut y, 0.01, -1e6..=1e6);
-            if cx || cy {
-                set(Property::Position((x, y)));
-            }
-        });
+        if let Some(p) = drag_pair(ui, b.position, 0.01, 1e6) {
+            set(Property::Position(p));
+        }
         ui.end_row();
         let mut deg = b.angle.to_degrees();
         ui.label("angle, degrees");
@@ -201,15 +196,10 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
         }
         ui.end_row();
         if b.kind == BodyKind::Dynamic {
-            let (mut vx, mut vy) = b.velocity;
             ui.label("velocity, m/s");
-            ui.horizontal(|ui| {
-                let cx = drag(ui, &mut vx, 0.01, -1e4..=1e4);
-                let cy = drag(ui, &mut vy, 0.01, -1e4..=1e4);
-                if cx || cy {
-                    set(Property::Velocity((vx, vy)));
-                }
-            });
+            if let Some(v) = drag_pair(ui, b.velocity, 0.01, 1e4) {
+                set(Property::Velocity(v));
+            }
             ui.end_row();
             let mut w = b.omega;
             ui.label("ω, rad/s");
@@ -301,6 +291,21 @@ fn motors(
             }
         });
     }
+}
+
+/// Two number fields side by side (x, y), each within +-`limit`; the pair when either changed.
+fn drag_pair(
+    ui: &mut egui::Ui,
+    (mut x, mut y): (f64, f64),
+    speed: f64,
+    limit: f64,
+) -> Option<(f64, f64)> {
+    ui.horizontal(|ui| {
+        let cx = drag(ui, &mut x, speed, -limit..=limit);
+        let cy = drag(ui, &mut y, speed, -limit..=limit);
+        (cx || cy).then_some((x, y))
+    })
+    .inner
 }
 
 /// A number field dragged or typed; true when it changed this frame.
