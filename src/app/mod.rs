@@ -10,6 +10,7 @@
 pub mod blows;
 pub mod draw;
 pub mod editor;
+pub mod frame_cost;
 pub mod frame_rate;
 pub mod geometry;
 pub mod labels;
@@ -303,6 +304,7 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
         ));
     }
     add_sandbox(&mut app, scene, browser, true);
+    frame_cost::choose_executor(&mut app);
     if std::env::var_os("RIGIDLAB_CONTINUOUS").is_some() {
         // Xvfb has no window manager: the window never gets focus and Bevy would throttle.
         app.insert_resource(bevy::winit::WinitSettings::continuous());

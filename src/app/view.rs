@@ -323,11 +323,6 @@ pub fn motion_bounds(scene: &Scene, options: &Options) -> Bounds {
     all
 }
 
-/// Spawns the world camera.
-pub fn spawn_camera(mut commands: Commands) {
-    commands.spawn((Camera2d, WorldCamera, Msaa::Sample4));
-}
-
 /// Refits on a new scene, then applies the view to the camera.
 pub fn sync_camera(
     phys: Res<Physics>,

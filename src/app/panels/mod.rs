@@ -127,15 +127,13 @@ impl Plugin for PanelsPlugin {
 }
 
 /// The world camera and, over it, the egui camera (full window, draws only the UI).
-pub fn spawn_cameras(mut commands: Commands, mut settings: ResMut<EguiGlobalSettings>) {
+pub fn spawn_cameras(
+    mut commands: Commands,
+    mut settings: ResMut<EguiGlobalSettings>,
+    adapter: Option<Res<bevy::render::renderer::RenderAdapterInfo>>,
+) {
     settings.auto_create_primary_context = false;
-    // In a web page WebGL2 often runs on the CPU (SwiftShader where there is no GPU), where the
-    // frame's cost grows with the samples drawn: 4x MSAA is left to native windows.
-    let msaa = if cfg!(target_arch = "wasm32") {
-        Msaa::Off
-    } else {
-        Msaa::Sample4
-    };
+    let msaa = super::frame_cost::scene_samples(adapter.as_deref());
     commands.spawn((Camera2d, WorldCamera, msaa));
     commands.spawn((
         PrimaryEguiContext,

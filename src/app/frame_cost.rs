@@ -1,0 +1,57 @@
+//! What a frame costs on a computer without a GPU, and the two choices that halve it.
+//!
+//! Measured under Xvfb with Mesa's llvmpipe on this project's 2-core machine (1440x900, the
+//! large-amplitude physical pendulum with every overlay on; README "Frame rate"):
+//! - **Samples per pixel.** llvmpipe shades every sample on the CPU: 4x MSAA drew 12 fps, none
+//!   24 fps. On a CPU adapter the scene is drawn without MSAA (egui antialiases its own edges).
+//! - **Bevy's multi-threaded executor.** It hands each system to a task pool thread and parks
+//!   and wakes threads around it; with two cores shared with llvmpipe's two rasterizer threads,
+//!   58% of the process's samples were in the kernel switching threads. The sandbox's systems
+//!   are light and mostly in sequence (the physics is one system), so the native window runs
+//!   every schedule on one thread: 24 fps became 33 fps, and the four-bar, whose physics steps
+//!   at 10 kHz, went from 3 fps (falling behind real time) to 28 fps.
+//!
+//! `RIGIDLAB_MSAA=off|4` and `RIGIDLAB_EXECUTOR=multi` bring back either choice to measure it.
+
+use bevy::ecs::schedule::{Schedules, SingleThreadedExecutor};
+use bevy::prelude::*;
+use bevy::render::renderer::RenderAdapterInfo;
+
+/// How many samples per pixel the scene is drawn with: none on a CPU renderer (llvmpipe
+/// natively, and a web page, where WebGL2 is SwiftShader on a machine without a GPU), 4x on a
+/// GPU.
+pub fn scene_samples(adapter: Option<&RenderAdapterInfo>) -> Msaa {
+    match std::env::var("RIGIDLAB_MSAA").as_deref() {
+        Ok("off" | "1") => return Msaa::Off,
+        Ok("4") => return Msaa::Sample4,
+        _ => {}
+    }
+    // wgpu's DeviceType is not re-exported by bevy_render: its name is compared instead.
+    let on_cpu = adapter.is_some_and(|a| format!("{:?}", a.device_type) == "Cpu");
+    if cfg!(target_arch = "wasm32") || on_cpu {
+        Msaa::Off
+    } else {
+        Msaa::Sample4
+    }
+}
+
+/// Runs every schedule of the app and of its render world on one thread (see the module's
+/// note), unless `RIGIDLAB_EXECUTOR=multi`. Call once all plugins are added: schedules created
+/// later keep Bevy's default executor.
+pub fn choose_executor(app: &mut App) {
+    if std::env::var("RIGIDLAB_EXECUTOR").as_deref() == Ok("multi") {
+        return;
+    }
+    single_threaded(app.world_mut());
+    if let Some(render) = app.get_sub_app_mut(bevy::render::RenderApp) {
+        single_threaded(render.world_mut());
+    }
+}
+
+fn single_threaded(world: &mut World) {
+    if let Some(mut schedules) = world.get_resource_mut::<Schedules>() {
+        for (_, schedule) in schedules.iter_mut() {
+            schedule.set_executor(SingleThreadedExecutor::new());
+        }
+    }
+}
