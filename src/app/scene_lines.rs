@@ -141,6 +141,10 @@ pub fn scene_lines(
         }
     }
     for sp in &s.springs {
+        if sp.torsion {
+            coil(sp.point1, m_per_px, d);
+            continue;
+        }
         spring(sp.point1, sp.point2, m_per_px, d);
         if sp.body2.is_none() {
             pin_support(sp.point2, m_per_px, d);
@@ -182,6 +186,21 @@ fn spring(a: DVec2, b: DVec2, m_per_px: f64, d: &mut Drawing) {
     }
     pts.push(b - u * lead);
     pts.push(b);
+    d.prims.push(Prim::Poly(pts, false, palette::SPRING));
+}
+
+/// A torsion spring: a flat spiral around body1's G (the format gives it no place of its own: its
+/// couples act on whole bodies), 2.5 turns out to 12 px.
+fn coil(c: DVec2, m_per_px: f64, d: &mut Drawing) {
+    let turns = 2.5;
+    let n = 60;
+    let pts = (0..=n)
+        .map(|k| {
+            let f = k as f64 / n as f64;
+            let r = (3.0 + 9.0 * f) * m_per_px;
+            c + DVec2::from_angle(f * turns * std::f64::consts::TAU) * r
+        })
+        .collect();
     d.prims.push(Prim::Poly(pts, false, palette::SPRING));
 }
 

@@ -8,7 +8,7 @@ use super::editor::{EditorCommand, Placeable};
 use super::overlays::{Overlays, Scales};
 use super::physics::{Physics, PhysicsStep};
 use super::view::{self, palette, Outlines, View};
-use crate::editor::{Edit, Property};
+use crate::editor::{Edit, NewShape, Property};
 use crate::level::JointKind;
 use crate::snapshot::BodyKind;
 use bevy::prelude::*;
@@ -29,6 +29,11 @@ pub enum Tool {
     Join(JointKind),
     /// Drag: a spring from a point on a body to a point on another body or on the ground.
     Spring,
+    /// Click: a torsion spring on the body there, to the body under it or to the ground.
+    Torsion,
+    /// Clicks: a polygon's vertices; a click on the first vertex (or Enter) makes the body,
+    /// Escape drops the outline.
+    Polygon,
     /// Drag: a length and its angle, kept on screen.
     Ruler,
 }
@@ -66,6 +71,8 @@ pub struct ToolState {
     pub cursor: Option<DVec2>,
     /// A spring being drawn: the body and the world point it starts from.
     pub spring_from: Option<(usize, DVec2)>,
+    /// The vertices of a polygon being drawn, world (rounded like a placed body).
+    pub polygon: Vec<DVec2>,
     press: Option<Vec2>,
 }
 
@@ -100,11 +107,22 @@ fn mouse_tools(
     buttons: Res<ButtonInput<MouseButton>>,
     windows: Query<&Window>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+    keys: Res<ButtonInput<KeyCode>>,
     mut edits: MessageWriter<EditorCommand>,
 ) {
     let Some(window) = windows.iter().next() else {
         return;
     };
+    if state.tool != Tool::Polygon || keys.just_pressed(KeyCode::Escape) {
+        state.polygon.clear();
+    }
+    let typing = egui_input
+        .as_ref()
+        .is_some_and(|e| e.wants_any_keyboard_input());
+    if keys.just_pressed(KeyCode::Enter) && !typing && state.polygon.len() >= 3 {
+        let points = std::mem::take(&mut state.polygon);
+        edits.write(EditorCommand::Apply(polygon_body(&points)));
+    }
     let over_ui = egui_input.is_some_and(|e| e.wants_any_pointer_input());
     let cursor = view::scene_cursor(&view, window);
     let world = cursor.map(|c| view.to_world(c));
@@ -158,6 +176,24 @@ fn mouse_tools(
                     }
                 }
                 Tool::Ruler => state.ruler = Some((p, p)),
+                Tool::Torsion => {
+                    if let Some(e) = torsion_at(&phys, &outlines, p, tol) {
+                        edits.write(EditorCommand::Apply(e));
+                    }
+                }
+                Tool::Polygon => {
+                    let closes =
+                        state.polygon.len() >= 3 && state.polygon[0].distance(p) < 2.0 * tol;
+                    if closes {
+                        let points = std::mem::take(&mut state.polygon);
+                        edits.write(EditorCommand::Apply(polygon_body(&points)));
+                    } else {
+                        let at = super::editor::round_point(p, view.scene_size());
+                        if state.polygon.last() != Some(&at) {
+                            state.polygon.push(at);
+                        }
+                    }
+                }
                 Tool::Spring => {
                     state.spring_from =
                         view::body_at(&outlines.bodies, s, p, tol, true).map(|i| (i, p));
@@ -257,6 +293,41 @@ fn join_at(
     })
 }
 
+/// The torsion spring the torsion tool makes at `p`: on the topmost moving body there, to the
+/// next body under it or to the ground; k puts the body alone on it at about 1 Hz about G
+/// (k = I_G (2 pi)^2, rounded).
+fn torsion_at(phys: &Physics, outlines: &Outlines, p: DVec2, tol: f64) -> Option<Edit> {
+    let s = phys.snapshot();
+    let under = view::bodies_under(&outlines.bodies, s, p, tol);
+    let moving = *under
+        .iter()
+        .find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
+    let other = under.iter().copied().find(|&i| i != moving);
+    let name = |i: usize| phys.scene.level.bodies[i].name.clone();
+    let k = s.bodies[moving].inertia * std::f64::consts::TAU.powi(2);
+    Some(Edit::AddTorsionSpring {
+        body1: name(moving),
+        body2: other.map(name),
+        stiffness: super::editor::nice_length(k, 1.0),
+    })
+}
+
+/// A 1 kg body whose outline is the clicked vertices (their convex hull, as the level format
+/// takes it), its frame at their mean.
+fn polygon_body(points: &[DVec2]) -> Edit {
+    let mean = points.iter().copied().sum::<DVec2>() / points.len().max(1) as f64;
+    Edit::AddBody {
+        shape: NewShape::Polygon {
+            points: points
+                .iter()
+                .map(|q| (q.x - mean.x, q.y - mean.y))
+                .collect(),
+        },
+        at: (mean.x, mean.y),
+        mass: 1.0,
+    }
+}
+
 /// A new spring's stiffness: the body on it oscillates at about 1 Hz (k = m (2 pi)^2), rounded to
 /// a number a level file reads well.
 fn spring_stiffness(m: f64) -> f64 {
@@ -296,6 +367,12 @@ pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawi
     let s = phys.snapshot();
     if let (Some((_, from)), Some(g)) = (state.spring_from, state.cursor) {
         d.prims.push(Prim::Dashed(from, g, palette::TOOL));
+    }
+    if let Some(&first) = state.polygon.first() {
+        let mut pts = state.polygon.clone();
+        pts.extend(state.cursor);
+        d.prims.push(Prim::Poly(pts, false, palette::TOOL));
+        d.prims.push(Prim::Dot(first, 4.0, palette::TOOL));
     }
     if let Some((a, b)) = state.ruler.filter(|(a, b)| a != b) {
         d.prims.push(Prim::Line(a, b, palette::TOOL));

@@ -2,7 +2,8 @@
 //! bodies it names, change the level, declare the effects it now relies on, say what it did).
 
 use crate::level::{
-    BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape, SpringDef, V2,
+    BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape, SpringDef,
+    TorsionSpringDef, V2,
 };
 use glam::DVec2;
 
@@ -74,6 +75,13 @@ pub enum Edit {
         at1: V2,
         body2: Option<String>,
         at2: V2,
+        stiffness: f64,
+    },
+    /// A torsion spring between `body1` and `body2` (None: the ground), at rest at the angle
+    /// the scene starts with: a couple -k (theta - theta_0) on body1, the opposite on body2.
+    AddTorsionSpring {
+        body1: String,
+        body2: Option<String>,
         stiffness: f64,
     },
     /// A velocity motor on a joint (None removes it).
@@ -245,6 +253,36 @@ impl Edit {
                 let added = declare(level, &[Effect::Springs]);
                 Ok(format!(
                     "added {name}, k = {stiffness} N/m, rest length {rest:.4} m{added}"
+                ))
+            }
+            Edit::AddTorsionSpring {
+                body1,
+                body2,
+                stiffness,
+            } => {
+                let b1 = find(level, body1)?.name.clone();
+                let b2 = match body2 {
+                    Some(n) => Some(find(level, n)?.name.clone()),
+                    None => None,
+                };
+                if b2.as_deref() == Some(b1.as_str()) {
+                    return Err(format!(
+                        "a torsion spring needs two bodies; both ends are on {b1}"
+                    ));
+                }
+                let name = fresh_name(level, "coil");
+                level.torsion_springs.push(TorsionSpringDef {
+                    name: name.clone(),
+                    body1: b1.clone(),
+                    body2: b2.clone(),
+                    stiffness: *stiffness,
+                    rest_angle: None,
+                    damping: 0.0,
+                });
+                let added = declare(level, &[Effect::Springs]);
+                Ok(format!(
+                    "added {name}, a torsion spring of k = {stiffness} N m/rad between {b1} and {}, at rest as it starts{added}",
+                    b2.as_deref().unwrap_or("the ground")
                 ))
             }
             Edit::SetMotor { joint, target } => {

@@ -52,6 +52,8 @@ pub(super) fn scene_editor(
             let r = ui.selectable_value(&mut tools.tool, Tool::Place(p), p.name());
             st.buttons.insert(format!("place {}", p.name()), r.rect);
         }
+        let r = ui.selectable_value(&mut tools.tool, Tool::Polygon, "polygon");
+        st.buttons.insert("place polygon".into(), r.rect);
     });
     ui.horizontal_wrapped(|ui| {
         ui.label("join");
@@ -61,6 +63,8 @@ pub(super) fn scene_editor(
         }
         let r = ui.selectable_value(&mut tools.tool, Tool::Spring, "spring");
         st.buttons.insert("spring".into(), r.rect);
+        let r = ui.selectable_value(&mut tools.tool, Tool::Torsion, "torsion");
+        st.buttons.insert("torsion".into(), r.rect);
     });
     let hint = match tools.tool {
         Tool::Place(_) => "click in the scene to place it (1 kg; set its mass below)",
@@ -68,6 +72,12 @@ pub(super) fn scene_editor(
             "click where two bodies overlap to join them there; on one body alone, it is joined to the ground"
         }
         Tool::Spring => "drag from a point on a body to a point on another body or the ground",
+        Tool::Torsion => {
+            "click a body: a torsion spring to the body under it, or to the ground, at rest as it starts"
+        }
+        Tool::Polygon => {
+            "click its corners (the outline is their convex hull), then the first corner again or Enter; Escape drops it"
+        }
         _ => "select a body to edit it; while paused at t = 0, drag it to move it",
     };
     ui.label(rich(hint, palette::OUTLINE).small());
