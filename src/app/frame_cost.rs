@@ -11,8 +11,16 @@
 //!   every schedule on one thread: 24 fps became 33 fps, and the four-bar, whose physics steps
 //!   at 10 kHz, went from 3 fps (falling behind real time) to 28 fps.
 //!
-//! `RIGIDLAB_MSAA=off|4` and `RIGIDLAB_EXECUTOR=multi` bring back either choice to measure it.
+//! - **Pipelined rendering.** Bevy renders frame n while it updates frame n + 1, so a key shows
+//!   a frame late. Without the pipeline a key read in an update is drawn by that same update:
+//!   input shows on the next frame. It cost nothing on the pendulum (34 to 35 fps either way)
+//!   and 5% where the physics is heavy (four-bar 27 against 28.5 fps, pyramid 16 to 19 against
+//!   18), which the window pays for its responsiveness.
+//!
+//! `RIGIDLAB_MSAA=off|4`, `RIGIDLAB_EXECUTOR=multi` and `RIGIDLAB_PIPELINE=1` bring back each
+//! choice to measure it.
 
+use bevy::app::PluginGroupBuilder;
 use bevy::ecs::schedule::{Schedules, SingleThreadedExecutor};
 use bevy::prelude::*;
 use bevy::render::renderer::RenderAdapterInfo;
@@ -53,5 +61,15 @@ fn single_threaded(world: &mut World) {
         for (_, schedule) in schedules.iter_mut() {
             schedule.set_executor(SingleThreadedExecutor::new());
         }
+    }
+}
+
+/// Bevy's plugins without pipelined rendering (see the module's note), unless
+/// `RIGIDLAB_PIPELINE=1`.
+pub fn without_render_pipeline(plugins: PluginGroupBuilder) -> PluginGroupBuilder {
+    if std::env::var_os("RIGIDLAB_PIPELINE").is_some() {
+        plugins
+    } else {
+        plugins.disable::<bevy::render::pipelined_rendering::PipelinedRenderingPlugin>()
     }
 }

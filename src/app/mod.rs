@@ -284,14 +284,16 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
         *why_hook.lock().unwrap() = msg;
     }));
     let opened = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        app.add_plugins(DefaultPlugins.set(WindowPlugin {
-            primary_window: Some(Window {
-                title: "rigidlab".into(),
-                resolution: (1440, 900).into(),
+        app.add_plugins(frame_cost::without_render_pipeline(DefaultPlugins.set(
+            WindowPlugin {
+                primary_window: Some(Window {
+                    title: "rigidlab".into(),
+                    resolution: (1440, 900).into(),
+                    ..default()
+                }),
                 ..default()
-            }),
-            ..default()
-        }));
+            },
+        )));
     }));
     std::panic::set_hook(hook);
     if opened.is_err() {
