@@ -95,3 +95,38 @@ fn h_about_any_point_is_the_direct_sum_about_it() {
         );
     }
 }
+
+/// The protractor reads the angle between its arms, 0 to 180 degrees, whichever way round they
+/// were drawn: 90 degrees between the axes, 135 from x to (-1, 1) and back, 60 between a 60
+/// degree ray and the x axis from a vertex away from the origin.
+#[test]
+fn the_protractor_reads_the_angle_between_its_arms() {
+    use glam::DVec2;
+    use rigidlab::app::tools::Protractor;
+    let deg = |v: DVec2, a1: DVec2, a2: DVec2| {
+        Protractor {
+            vertex: v,
+            arm1: a1,
+            arm2: Some(a2),
+            dragging: false,
+        }
+        .angle()
+        .unwrap()
+        .to_degrees()
+    };
+    let o = DVec2::ZERO;
+    assert!((deg(o, DVec2::X, DVec2::new(0.0, 2.0)) - 90.0).abs() < 1e-12);
+    assert!((deg(o, DVec2::X, DVec2::new(-1.0, 1.0)) - 135.0).abs() < 1e-12);
+    assert!((deg(o, DVec2::new(-1.0, 1.0), DVec2::X) - 135.0).abs() < 1e-12);
+    let v = DVec2::new(3.0, -2.0);
+    let ray = v + DVec2::from_angle(60f64.to_radians()) * 0.7;
+    assert!((deg(v, ray, v + DVec2::X * 5.0) - 60.0).abs() < 1e-9);
+    // No angle until both arms have length.
+    let half = Protractor {
+        vertex: o,
+        arm1: o,
+        arm2: Some(DVec2::X),
+        dragging: false,
+    };
+    assert_eq!(half.angle(), None);
+}

@@ -36,6 +36,8 @@ pub enum Tool {
     Polygon,
     /// Drag: a length and its angle, kept on screen.
     Ruler,
+    /// Drag from the vertex along one arm, then click the other arm's end: the angle between.
+    Protractor,
 }
 
 /// A body held by the mouse.
@@ -71,9 +73,30 @@ pub struct ToolState {
     pub cursor: Option<DVec2>,
     /// A spring being drawn: the body and the world point it starts from.
     pub spring_from: Option<(usize, DVec2)>,
+    /// The protractor's last measurement.
+    pub protractor: Option<Protractor>,
     /// The vertices of a polygon being drawn, world (rounded like a placed body).
     pub polygon: Vec<DVec2>,
     press: Option<Vec2>,
+}
+
+/// A protractor: a vertex, one arm's end, and the other arm's end once clicked (until then the
+/// cursor).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Protractor {
+    pub vertex: DVec2,
+    pub arm1: DVec2,
+    pub arm2: Option<DVec2>,
+    /// The first arm is being dragged.
+    pub dragging: bool,
+}
+
+impl Protractor {
+    /// The angle from arm 1 to arm 2, 0 to 180 degrees, rad (None until both arms have length).
+    pub fn angle(&self) -> Option<f64> {
+        let (a, b) = (self.arm1 - self.vertex, self.arm2? - self.vertex);
+        (a.length() > 0.0 && b.length() > 0.0).then(|| a.angle_to(b).abs())
+    }
 }
 
 /// Aiming time: a drag of D meters gives the body a velocity change of about D / AIM_TIME.
@@ -176,6 +199,21 @@ fn mouse_tools(
                     }
                 }
                 Tool::Ruler => state.ruler = Some((p, p)),
+                Tool::Protractor => {
+                    state.protractor = match state.protractor {
+                        // The second click ends the second arm.
+                        Some(pr) if !pr.dragging && pr.arm2.is_none() => Some(Protractor {
+                            arm2: Some(p),
+                            ..pr
+                        }),
+                        _ => Some(Protractor {
+                            vertex: p,
+                            arm1: p,
+                            arm2: None,
+                            dragging: true,
+                        }),
+                    }
+                }
                 Tool::Torsion => {
                     if let Some(e) = torsion_at(&phys, &outlines, p, tol) {
                         edits.write(EditorCommand::Apply(e));
@@ -219,11 +257,17 @@ fn mouse_tools(
                     *to = p;
                 }
             }
+            if let Some(pr) = state.protractor.as_mut().filter(|pr| pr.dragging) {
+                pr.arm1 = p;
+            }
         }
     }
     if buttons.just_released(MouseButton::Left) {
         let grab = state.grab.take();
         state.press = None;
+        if let Some(pr) = state.protractor.as_mut() {
+            pr.dragging = false;
+        }
         // Paused at t = 0 the scene is being set up: a drag moves the body (an edit, undoable).
         if let (Some(g), Some(p)) = (grab.filter(|g| g.pulling), world) {
             if phys.paused && phys.snapshot().is_initial() {
@@ -374,6 +418,9 @@ pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawi
         d.prims.push(Prim::Poly(pts, false, palette::TOOL));
         d.prims.push(Prim::Dot(first, 4.0, palette::TOOL));
     }
+    if let Some(pr) = state.protractor {
+        protractor(pr, state.cursor, d);
+    }
     if let Some((a, b)) = state.ruler.filter(|(a, b)| a != b) {
         d.prims.push(Prim::Line(a, b, palette::TOOL));
         d.prims.push(Prim::Dot(a, 3.0, palette::TOOL));
@@ -423,4 +470,37 @@ pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawi
             );
         }
     }
+}
+
+/// The protractor's arms, the arc between them and the angle; before the second click the second
+/// arm follows the cursor.
+fn protractor(pr: Protractor, cursor: Option<DVec2>, d: &mut Drawing) {
+    let arm2 = pr.arm2.or(cursor.filter(|_| !pr.dragging));
+    d.prims.push(Prim::Line(pr.vertex, pr.arm1, palette::TOOL));
+    let Some(arm2) = arm2 else {
+        return;
+    };
+    d.prims.push(Prim::Line(pr.vertex, arm2, palette::TOOL));
+    let shown = Protractor {
+        arm2: Some(arm2),
+        ..pr
+    };
+    let Some(angle) = shown.angle() else {
+        return;
+    };
+    let (a, b) = (pr.arm1 - pr.vertex, arm2 - pr.vertex);
+    let r = (0.3 * a.length().min(b.length())).max(20.0 * d.m_per_px);
+    let start = a.y.atan2(a.x);
+    let sweep = a.angle_to(b);
+    let arc: Vec<DVec2> = (0..=24)
+        .map(|k| pr.vertex + DVec2::from_angle(start + sweep * k as f64 / 24.0) * r)
+        .collect();
+    let mid = arc[12];
+    d.prims.push(Prim::Poly(arc, false, palette::TOOL));
+    d.label(
+        mid,
+        Vec2::new(0.0, -10.0),
+        format!("{:.1}°", angle.to_degrees()),
+        palette::TOOL,
+    );
 }

@@ -44,14 +44,18 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
                     "Wheel zooms about the cursor; right or middle drag pans. Tool 1 selects a body and a point \
                      on it (v_P, lines to the instantaneous center) and drags it on a spring; tool 2 strikes: \
                      click-drag on a body, the arrow is the impulse; tool 3 sets O, the point angular momentum \
-                     H_O is taken about.",
+                     H_O is taken about. The Measure panel reads the clicked point's position, v_P and a_P; \
+                     its protractor is a drag from the vertex along one arm, then a click at the other arm's \
+                     end; its ruler is a drag.",
                 );
                 ui.add_space(6.0);
                 ui.strong("Building a scene (the Build panel)");
                 ui.label(
-                    "New scene starts from a ground line. Place puts a box, disc, bar (1 kg each), ground or wall \
-                     where you click; join makes a pin, slider or weld where two bodies overlap (on one body alone, \
-                     to a fixed point there); spring is a drag from a body to another body or the ground. Select a \
+                    "New scene starts from a ground line. Place puts a box, disc, bar (1 kg each), ground, wall \
+                     or incline where you click; polygon takes a body's corners click by click (the first corner \
+                     again or Enter closes it); join makes a pin, slider or weld where two bodies overlap (on one \
+                     body alone, to a fixed point there); spring is a drag from a body to another body or the \
+                     ground; torsion puts a coil on the clicked body, to the body under it or the ground. Select a \
                      body to edit its mass, size, position, angle, velocity, friction and restitution; paused at \
                      t = 0, drag it to move it. Each edit is checked like a level file (a refused one says why and \
                      changes nothing), declares the effects it needs, and restarts the run. Save writes a level \

@@ -1,13 +1,16 @@
 //! The measuring panel: a stopwatch on simulated time, a period timer for the selected body (the
-//! same zero-crossing reading the period questions use, analysis::oscillation), and the ruler
-//! tool's last measurement.
+//! same zero-crossing reading the period questions use, analysis::oscillation), the clicked point's
+//! position, velocity and acceleration (RK-6, RK-10), and the ruler's and protractor's last
+//! measurements.
 
 use super::super::physics::Physics;
 use super::super::tools::{Tool, ToolState};
 use super::super::view::palette;
 use super::rich;
+use crate::analysis::kinematics::{body_point_velocity, point_acceleration};
 use crate::analysis::oscillation::Crossings;
 use bevy_egui::egui;
+use glam::DVec2;
 
 /// A stopwatch reading the simulation's clock (not the wall clock: time scale and pauses do not
 /// change what it measures).
@@ -54,6 +57,7 @@ pub(super) fn measure(
     tools: &mut ToolState,
     watch: &mut Stopwatch,
     selected: Option<usize>,
+    point: Option<(usize, DVec2)>,
 ) {
     ui.heading("Measure");
     let now = phys.snapshot().time;
@@ -103,6 +107,22 @@ pub(super) fn measure(
             ),
         };
     }
+    if let Some((i, local)) = point {
+        point_readout(ui, phys, i, local);
+    }
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut tools.tool, Tool::Protractor, "protractor");
+        match tools.protractor.and_then(|p| p.angle()) {
+            Some(a) => ui.label(format!("{:.2}° between the arms", a.to_degrees())),
+            None => ui.label(
+                rich(
+                    "drag from the vertex along one arm, then click the other arm's end",
+                    palette::OUTLINE,
+                )
+                .small(),
+            ),
+        };
+    });
     ui.horizontal(|ui| {
         ui.selectable_value(&mut tools.tool, Tool::Ruler, "ruler");
         match tools.ruler {
@@ -127,4 +147,42 @@ pub(super) fn measure(
             }
         }
     });
+}
+
+/// The clicked point P of body `i` (select tool): where it is, v_P = v_G + omega k x r_P/G
+/// (RK-6) and a_P = a_G + alpha k x r_P/G - omega^2 r_P/G (RK-10), with a_G and alpha over the
+/// last physics step (as the acceleration overlay draws them).
+fn point_readout(ui: &mut egui::Ui, phys: &Physics, i: usize, local: DVec2) {
+    let s = phys.snapshot();
+    let Some(b) = s.bodies.get(i) else {
+        return;
+    };
+    let p = b.world_point(local);
+    let v = body_point_velocity(b, p);
+    let name = phys
+        .scene
+        .level
+        .bodies
+        .get(i)
+        .map_or("", |d| d.name.as_str());
+    ui.label(format!("point P on {name}: ({:.4}, {:.4}) m", p.x, p.y));
+    ui.monospace(format!(
+        "v_P = ({:+.4}, {:+.4}) m/s, |v_P| {:.4}",
+        v.x,
+        v.y,
+        v.length()
+    ));
+    let acc = phys
+        .prev_velocities
+        .as_ref()
+        .map(|(prev, dt)| super::super::quantities::accelerations(s, prev, *dt));
+    if let Some((a_g, alpha)) = acc.and_then(|a| a.get(i).copied()) {
+        let a = point_acceleration(a_g, alpha, b.omega, p - b.com);
+        ui.monospace(format!(
+            "a_P = ({:+.4}, {:+.4}) m/s², |a_P| {:.4}",
+            a.x,
+            a.y,
+            a.length()
+        ));
+    }
 }

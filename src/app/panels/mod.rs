@@ -267,7 +267,14 @@ fn panels(
                 ui.separator();
                 solver(ui, &mut phys, &live);
                 ui.separator();
-                measure::measure(ui, &phys, &mut tools, &mut st.stopwatch, ov.selected);
+                measure::measure(
+                    ui,
+                    &phys,
+                    &mut tools,
+                    &mut st.stopwatch,
+                    ov.selected,
+                    ov.point,
+                );
                 ui.separator();
                 plots(ui, &phys, ov.origin, &mut st.message);
                 ui.add_space(4.0);
