@@ -38,6 +38,7 @@ pub mod sim64 {
     pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod build;
     mod couplings;
+    mod impacts;
     mod interventions;
     pub mod joints;
     mod probes;

@@ -16,19 +16,18 @@
 //!   v_An' = v_An (1 - e)/2, v_Bn' = v_An (1 + e)/2, tangential parts unchanged:
 //!     v_A' = (0.65, -0.7794229) m/s, v_B' = (1.35, 0.7794229) m/s.
 //!
-//! Measured (a known gap, not hidden): rapier solves an impact as a speculative contact in the
-//! step before the bodies touch, with the normal and lever arms of that step's start, up to
-//! v dt before touching. Started touching (0.1 mm) both cases are within 0.25% at every dt; from
-//! 1 cm or 10 cm the error is first order in dt: oblique 1.8% at dt = 1/240 s, 0.32% at 1/960,
-//! 0.12% at 1/3840; curb 0.79%, 0.25%, 0.05%. (Turning off rapier's contact recycling, which kept
-//! a pair's manifold until it had moved 5 cm, removed the part that did not shrink with dt.)
-//! Why rapier does this (measured): it acts on the pair before it touches. Two discs 8.7 mm apart
-//! approaching at 1.76 m/s end a 1/240 s step 1.45 mm apart, never having touched, with A's
-//! velocity changed from 2 to 1.378 m/s (e = 0, 1 substep); with e = 0.8 the whole bounce is
-//! applied in that step. Cutting the step at parry's time of impact was tried (branch
-//! `impact-cut-experiment`): it comes after rapier has acted and changes nothing for the discs.
-//! The test holds both: touching within 0.25%, and from a distance the error falling at least
-//! 3x from dt = 1/240 s to 1/3840 s and under 0.15% there.
+//! rapier alone solves an impact as a speculative contact in the call before the bodies touch,
+//! made within its prediction distance (2 cm), with the normal and lever arms of that call's
+//! start: from 1 cm the oblique discs were 1.8% off at dt = 1/240 s, 0.32% at 1/960, 0.12% at
+//! 1/3840 (first order in dt), and two discs 8.7 mm apart ended a step 1.45 mm apart with the
+//! whole bounce applied. rigidlab now cuts each rapier call at the first time of impact and makes
+//! contacts only within 20 um (sim/impacts.rs), then makes the contact in a short call (1/64 of
+//! the step) where rapier's soft contact acts nearly rigidly (opt-in for now,
+//! `Options::impact_cuts` / `--impact-cuts`: see `Settings::impact_cuts`). Measured with the cuts, over every
+//! gap and dt below: oblique 4.5e-6 to 6.6e-6; curb 1.4e-6 to 7.1e-6 except 5.8e-4 (1 cm at
+//! 1/960 s) and 2.8e-5 (10 cm at 1/3840 s). The tests hold every case within 0.1% (the issue's
+//! bound), and rapier's own speculative contact (`impact_cuts: Some(false)`) outside it, so
+//! the cut is what the pass rests on.
 
 use rigidlab::level;
 use rigidlab::sim::{Options, Simulation};
@@ -36,8 +35,16 @@ use std::path::Path;
 
 /// Runs a level's text and returns the final velocities (v_G, omega) of the named bodies.
 fn final_state(text: &str, names: &[&str]) -> Vec<(f64, f64, f64)> {
+    let cuts = Options {
+        impact_cuts: Some(true),
+        ..Default::default()
+    };
+    final_state_with(text, names, &cuts)
+}
+
+fn final_state_with(text: &str, names: &[&str], opts: &Options) -> Vec<(f64, f64, f64)> {
     let scene = level::parse(Path::new("approach.ron"), text).unwrap_or_else(|e| panic!("{e}"));
-    let mut sim = Simulation::new(&scene, &Options::default());
+    let mut sim = Simulation::new(&scene, opts);
     sim.run(|_| {}).unwrap();
     let s = sim.snapshot();
     names
@@ -56,29 +63,16 @@ fn rel(a: f64, b: f64, scale: f64) -> f64 {
 const GAPS: [f64; 4] = [1e-4, 1e-3, 1e-2, 1e-1];
 const DTS: [f64; 3] = [1.0 / 240.0, 1.0 / 960.0, 1.0 / 3840.0];
 
-/// `errors[d * GAPS.len() + g]` for DTS[d], GAPS[g]: see the module doc.
-fn assert_converges(errors: &[f64]) {
-    let at = |d: usize, g: usize| errors[d * GAPS.len() + g];
-    for d in 0..DTS.len() {
+/// `errors[d * GAPS.len() + g]` for DTS[d], GAPS[g]: every case within 0.1% of the impulse
+/// solution (the issue's bound; see the module doc for the measured sizes).
+fn assert_within_bound(errors: &[f64]) {
+    for (k, e) in errors.iter().enumerate() {
+        let (d, g) = (k / GAPS.len(), k % GAPS.len());
         assert!(
-            at(d, 0) < 2.5e-3,
-            "started touching, dt {}: {:.3e}",
-            DTS[d],
-            at(d, 0)
-        );
-    }
-    for g in 2..GAPS.len() {
-        let (coarse, fine) = (at(0, g), at(DTS.len() - 1, g));
-        assert!(
-            fine < coarse / 3.0,
-            "gap {}: {coarse:.3e} -> {fine:.3e} does not converge",
-            GAPS[g]
-        );
-        assert!(
-            fine < 1.5e-3,
-            "gap {} at dt {}: {fine:.3e}",
+            *e < 1e-3,
+            "gap {} m at dt {} s: {e:.3e} off the impulse solution",
             GAPS[g],
-            DTS[DTS.len() - 1]
+            DTS[d]
         );
     }
 }
@@ -113,7 +107,7 @@ fn a_wheel_hitting_a_curb_converges_to_the_impulse_solution_from_any_gap() {
             errors.push(e);
         }
     }
-    assert_converges(&errors);
+    assert_within_bound(&errors);
 }
 
 #[test]
@@ -152,5 +146,33 @@ fn an_oblique_impact_of_two_discs_converges_to_the_impulse_solution_from_any_gap
             errors.push(e);
         }
     }
-    assert_converges(&errors);
+    assert_within_bound(&errors);
+}
+
+/// Without the cuts (rapier's speculative contact, made 2 cm out), the oblique impact from 1 cm
+/// at 1/240 s is off by more than 1% (measured 1.8%): the test above passes because of the cut.
+#[test]
+fn without_impact_cuts_rapier_solves_the_oblique_impact_from_its_approach() {
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let text = format!(
+        r#"Level(
+  title: "oblique discs", effects: [contacts, restitution],
+  world: (dt: {dt}, substeps: 4, duration: 0.105),
+  bodies: [
+    (name: "A", shape: Circle(radius: 0.1), mass: 1.0, position: (-0.01, 0.0), velocity: (2.0, 0.0), restitution: 0.8),
+    (name: "B", shape: Circle(radius: 0.1), mass: 1.0, position: ({xb}, {yb}), restitution: 0.8),
+  ],
+)"#,
+        dt = 1.0 / 240.0,
+        xb = 0.2 * c,
+        yb = 0.2 * s
+    );
+    let off = Options {
+        impact_cuts: Some(false),
+        ..Default::default()
+    };
+    let v = final_state_with(&text, &["A", "B"], &off);
+    let e = rel(v[0].0, 0.65, 2.0).max(rel(v[1].1, 0.7794229, 2.0));
+    println!("oblique without cuts, 1 cm at 1/240 s: {e:.2e}");
+    assert!(e > 1e-2, "rapier alone: {e:.3e}");
 }

@@ -15,6 +15,7 @@ pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precis
 mod build;
 mod couplings;
 pub mod energy;
+mod impacts;
 mod interventions;
 pub mod joints;
 pub mod options;

@@ -16,6 +16,9 @@ pub struct Options {
     /// The engine's floating point (None: the level's `world.precision`). Read by
     /// [`crate::simulation::AnySimulation`], which builds the engine of that precision.
     pub precision: Option<crate::level::Precision>,
+    /// Cut rapier's calls at times of impact (None: where the scene allows, see
+    /// `Settings::impact_cuts`); `Some(false)` measures rapier's own speculative contacts.
+    pub impact_cuts: Option<bool>,
 }
 
 /// The set of effects a world was built with.

@@ -53,12 +53,25 @@ pub struct Settings {
     /// normal and lever arms are those of the approach, not of the impact (a wheel meeting a
     /// curb 6.7 mm after the pair was first seen pivoted 1.5% too slowly).
     pub contact_recycling: bool,
+    /// Each rapier call is cut at the first time of impact within it, and contacts are made
+    /// only within 20 um (sim/impacts.rs): an impact's normal and lever arms are those of the
+    /// instant the bodies touch, whatever gap they approached from. Asked for with
+    /// `Options::impact_cuts` (`--impact-cuts`) in scenes with contacts; it costs a cast per
+    /// nearby pair per call (all pairs are tried: meant for textbook scenes, not piles).
+    #[serde(default)]
+    pub impact_cuts: bool,
 }
 
 impl Settings {
     /// Folds the overrides into the level's settings.
     pub fn resolve(level: &Level, opts: &Options, precision: Precision) -> Settings {
         let effects = Effects::of(level, opts.all_effects);
+        // Opt-in for now: the impact questions' readings (carrying states to the touching
+        // instant) were built around rapier's speculative contact; with the cuts the measured
+        // restitution of a dropped ball read 0.8025 for 0.8 at 1/480 s (0.8007 at 1/60 s), the
+        // engine's own bounce being 0.799. Until those readings are reconciled the library runs
+        // as before; `--impact-cuts` turns the cuts on.
+        let impact_cuts = opts.impact_cuts.unwrap_or(false) && effects.has(Effect::Contacts);
         let substeps = opts.substeps.unwrap_or(level.world.substeps).max(1);
         Settings {
             dt: opts.dt.unwrap_or(level.world.dt),
@@ -75,6 +88,7 @@ impl Settings {
             contact_hz: level.world.contact_hz,
             allow_fast_rotation: level.world.allow_fast_rotation,
             contact_recycling: false,
+            impact_cuts,
         }
     }
 

@@ -290,8 +290,15 @@ impl Simulation {
         // contact and joint impulses are summed over the n calls into the step's snapshot.
         let n = self.substeps().max(1);
         let split = self.settings.substepping == Substepping::Split;
-        let calls = if split { n } else { 1 };
-        let h = dt / calls as f64;
+        // The rapier calls of this step, (length, rapier substeps): n calls of one substep when
+        // split, else one call of n; an impact cut (sim/impacts.rs) divides a call in two.
+        let mut calls: std::collections::VecDeque<(f64, usize)> = if split {
+            std::iter::repeat_n((dt / n as f64, 1), n).collect()
+        } else {
+            std::iter::once((dt, n)).collect()
+        };
+        let mut cuts = 0;
+        let mut merged = split;
         let mut lambdas = vec![0.0; self.level.couplings.len()];
         let mut carried: Vec<Vec<DVec2>> = self
             .carriers
@@ -301,12 +308,32 @@ impl Simulation {
         let mut springs: Vec<SpringState> = Vec::new();
         let mut joint_sum: Vec<JointState> = Vec::new();
         let mut contact_sum: Vec<ContactState> = Vec::new();
-        {
-            let p = &mut self.world.integration_parameters;
-            p.dt = h as Real;
-            p.num_solver_iterations = if split { 1 } else { n };
-        }
-        for call in 0..calls {
+        let mut first_call = true;
+        while let Some((mut h, sub)) = calls.pop_front() {
+            if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
+                if let Some(t) = self.time_of_impact(h) {
+                    // The contact is made in a short call after the cut, where rapier's soft
+                    // contact acts as a nearly rigid one (its softness grows with the call's
+                    // length), then the rest of the call.
+                    let impact = (h - t).min(h * super::impacts::IMPACT_CALL);
+                    if h - t - impact > 0.0 {
+                        calls.push_front((h - t - impact, sub));
+                    }
+                    if t > 0.0 {
+                        calls.push_front((impact, sub));
+                        h = t;
+                    } else {
+                        h = impact;
+                    }
+                    cuts += 1;
+                    merged = true;
+                }
+            }
+            {
+                let p = &mut self.world.integration_parameters;
+                p.dt = h as Real;
+                p.num_solver_iterations = sub;
+            }
             self.apply_forces(&loads);
             self.load_carriers(h, &mut carried);
             let mut now = self.spring_states(true);
@@ -327,12 +354,13 @@ impl Simulation {
                 }
             }
             // The snapshot reports the mean force over the step (its impulse / dt).
+            let weight = h / dt;
             for sp in now.iter_mut() {
-                sp.force_on_body1 /= calls as f64;
-                sp.tension /= calls as f64;
-                sp.couple_on_body1 /= calls as f64;
+                sp.force_on_body1 *= weight;
+                sp.tension *= weight;
+                sp.couple_on_body1 *= weight;
             }
-            if call == 0 {
+            if first_call {
                 springs = now;
             } else {
                 for (a, b) in springs.iter_mut().zip(&now) {
@@ -341,20 +369,22 @@ impl Simulation {
                     a.couple_on_body1 += b.couple_on_body1;
                 }
             }
+            first_call = false;
             // rapier builds a substep's joint rows from the poses it starts from: keep them,
             // so the call's impulses (all of one substep) are read along the very rows they
             // acted on.
-            let rows_from = split.then(|| self.joint_poses());
+            let rows_from = (split || self.settings.impact_cuts).then(|| self.joint_poses());
             self.world.step();
             let call_lambdas = self.solve_couplings();
             self.owe_carriers(&call_lambdas);
             for (l, x) in lambdas.iter_mut().zip(call_lambdas) {
                 *l += x;
             }
-            if let Some(poses) = rows_from {
+            // A call of several rapier substeps holds the last one's joint impulses only.
+            if let Some(poses) = rows_from.filter(|_| split || merged || !calls.is_empty()) {
                 self.read_contacts();
                 merge_contacts(&mut contact_sum, &self.snapshot.contacts);
-                self.read_joints_scaled(1.0, Some(&poses));
+                self.read_joints_scaled(sub as f64, Some(&poses));
                 merge_joints(&mut joint_sum, &self.snapshot.joints);
             }
         }
@@ -370,14 +400,14 @@ impl Simulation {
         self.snapshot.substeps = n;
         self.read_bodies();
         self.guard()?;
-        if split {
+        if merged {
             self.snapshot.contacts = contact_sum;
         } else {
             self.read_contacts();
         }
         self.weld_on_contact();
         // Welds created now get their first impulses next step.
-        if split {
+        if merged {
             self.snapshot.joints = joint_sum;
         } else {
             self.read_joints();

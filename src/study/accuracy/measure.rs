@@ -61,6 +61,7 @@ impl Setting {
             substepping: None,
             // The study builds each precision's engine itself (`with_engine!`).
             precision: None,
+            impact_cuts: None,
         }
     }
 
