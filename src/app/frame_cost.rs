@@ -67,9 +67,10 @@ fn single_threaded(world: &mut World) {
 /// Bevy's plugins without pipelined rendering (see the module's note), unless
 /// `RIGIDLAB_PIPELINE=1`.
 pub fn without_render_pipeline(plugins: PluginGroupBuilder) -> PluginGroupBuilder {
-    if std::env::var_os("RIGIDLAB_PIPELINE").is_some() {
-        plugins
-    } else {
-        plugins.disable::<bevy::render::pipelined_rendering::PipelinedRenderingPlugin>()
+    // A web page has no render thread to pipeline (bevy_render has no such plugin there).
+    #[cfg(not(target_arch = "wasm32"))]
+    if std::env::var_os("RIGIDLAB_PIPELINE").is_none() {
+        return plugins.disable::<bevy::render::pipelined_rendering::PipelinedRenderingPlugin>();
     }
+    plugins
 }
