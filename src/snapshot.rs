@@ -121,6 +121,11 @@ pub struct ContactPoint {
     /// (a hand-built snapshot): the analysis then takes the point at the start of the step.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arms: Option<(DVec2, DVec2)>,
+    /// Inside a step only (None in every snapshot): the touching material points in body1's and
+    /// body2's frames, with which the simulation places a contact read in an earlier rapier call
+    /// of the step at the poses the step ends with.
+    #[serde(skip)]
+    pub local: Option<(DVec2, DVec2)>,
 }
 
 impl ContactState {

@@ -518,6 +518,7 @@ fn free_body_of_a_block_on_the_floor_balances() {
         normal_impulse: 2.0 * 9.81 * dt / 2.0,
         tangent_impulse: 0.0,
         arms: None,
+        local: None,
     };
     let c = ContactState {
         body1: 0,
@@ -574,6 +575,7 @@ fn contact_impulses_act_at_the_solver_arms_when_the_snapshot_has_them() {
         normal_impulse: 0.1,
         tangent_impulse: 0.0,
         arms: Some((DVec2::new(0.3, 0.0), DVec2::new(0.3, -0.2))),
+        local: None,
     };
     let contact = |p: ContactPoint| ContactState {
         body1: 0,
@@ -603,6 +605,7 @@ fn contact_impulses_act_at_the_solver_arms_when_the_snapshot_has_them() {
         vec![floor, block(0.02)],
         vec![contact(ContactPoint {
             arms: None,
+            local: None,
             ..point
         })],
         dt,

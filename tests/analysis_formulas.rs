@@ -195,6 +195,7 @@ fn pair_contact_orients_the_normal_and_weights_the_point_by_impulse() {
         normal_impulse: j,
         tangent_impulse: 0.0,
         arms: None,
+        local: None,
     };
     let snap = Snapshot {
         step: 1,

@@ -64,6 +64,12 @@ impl Simulation {
     }
 
     pub(super) fn read_contacts(&mut self) {
+        self.read_contacts_with(false);
+    }
+
+    /// Reads the contacts; `local`: with each point's material points in its bodies' frames
+    /// (`ContactPoint::local`), for a step of several rapier calls (see `place_at_step_end`).
+    pub(super) fn read_contacts_with(&mut self, local: bool) {
         // Overwrite the previous step's entries in place: no allocation per manifold in steady state.
         let contacts = &mut self.snapshot.contacts;
         let mut n = 0;
@@ -78,6 +84,15 @@ impl Simulation {
             );
             let (b1, b2) = (c1.user_data as usize, c2.user_data as usize);
             let (pose1, pose2) = (*c1.position(), *c2.position());
+            let body_pose = |c: &Collider| {
+                c.parent()
+                    .map_or(Pose::IDENTITY, |h| *self.world.bodies[h].position())
+            };
+            let (frame1, frame2) = if local {
+                (body_pose(c1).inverse(), body_pose(c2).inverse())
+            } else {
+                (Pose::IDENTITY, Pose::IDENTITY)
+            };
             for m in pair.manifolds() {
                 if m.points.is_empty() {
                     continue;
@@ -105,6 +120,12 @@ impl Simulation {
                     normal_impulse: pt.data.impulse as f64,
                     tangent_impulse: pt.data.tangent_impulse[0] as f64,
                     arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
+                    local: local.then(|| {
+                        (
+                            to_d(frame1 * (pose1 * pt.local_p1)),
+                            to_d(frame2 * (pose2 * pt.local_p2)),
+                        )
+                    }),
                 }));
             }
         }
@@ -240,6 +261,25 @@ pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) 
     for (j, o) in old.into_iter().enumerate() {
         if !used[j] {
             sum.push(o);
+        }
+    }
+}
+
+/// Places every contact of a step of several rapier calls at the poses the step ends with (a
+/// contact that ended in an earlier call, such as an impact cut at its time of impact, was read
+/// at that call's poses), as `read_contacts` reads rapier's own: the point on body1 and the
+/// separation of the two material points along the normal. Clears `ContactPoint::local`.
+pub(super) fn place_at_step_end(contacts: &mut [ContactState], bodies: &[BodyState]) {
+    for c in contacts {
+        for p in &mut c.points {
+            if let Some((l1, l2)) = p.local.take() {
+                let (p1, p2) = (
+                    bodies[c.body1].world_point(l1),
+                    bodies[c.body2].world_point(l2),
+                );
+                p.point = p1;
+                p.distance = (p2 - p1).dot(c.normal);
+            }
         }
     }
 }

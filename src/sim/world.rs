@@ -3,7 +3,7 @@
 use super::build;
 use super::profiles::{sample1, sample2};
 use super::rapier::prelude::*;
-use super::readings::{merge_contacts, merge_joints};
+use super::readings::{merge_contacts, merge_joints, place_at_step_end};
 use crate::level::*;
 use crate::sim::energy::{EnergyGuard, FACTOR, SUSTAIN};
 use crate::sim::options::{Options, SimError};
@@ -382,7 +382,7 @@ impl Simulation {
             }
             // A call of several rapier substeps holds the last one's joint impulses only.
             if let Some(poses) = rows_from.filter(|_| split || merged || !calls.is_empty()) {
-                self.read_contacts();
+                self.read_contacts_with(true);
                 merge_contacts(&mut contact_sum, &self.snapshot.contacts);
                 self.read_joints_scaled(sub as f64, Some(&poses));
                 merge_joints(&mut joint_sum, &self.snapshot.joints);
@@ -401,6 +401,7 @@ impl Simulation {
         self.read_bodies();
         self.guard()?;
         if merged {
+            place_at_step_end(&mut contact_sum, &self.snapshot.bodies);
             self.snapshot.contacts = contact_sum;
         } else {
             self.read_contacts();
