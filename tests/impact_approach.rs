@@ -16,18 +16,17 @@
 //!   v_An' = v_An (1 - e)/2, v_Bn' = v_An (1 + e)/2, tangential parts unchanged:
 //!     v_A' = (0.65, -0.7794229) m/s, v_B' = (1.35, 0.7794229) m/s.
 //!
-//! rapier alone solves an impact as a speculative contact in the call before the bodies touch,
-//! made within its prediction distance (2 cm), with the normal and lever arms of that call's
-//! start: from 1 cm the oblique discs were 1.8% off at dt = 1/240 s, 0.32% at 1/960, 0.12% at
-//! 1/3840 (first order in dt), and two discs 8.7 mm apart ended a step 1.45 mm apart with the
-//! whole bounce applied. rigidlab now cuts each rapier call at the first time of impact and makes
-//! contacts only within 20 um (sim/impacts.rs), then makes the contact in a short call (1/64 of
-//! the step) where rapier's soft contact acts nearly rigidly (opt-in for now,
-//! `Options::impact_cuts` / `--impact-cuts`: see `Settings::impact_cuts`). Measured with the cuts, over every
-//! gap and dt below: oblique 4.5e-6 to 6.6e-6; curb 1.4e-6 to 7.1e-6 except 5.8e-4 (1 cm at
-//! 1/960 s) and 2.8e-5 (10 cm at 1/3840 s). The tests hold every case within 0.1% (the issue's
-//! bound), and rapier's own speculative contact (`impact_cuts: Some(false)`) outside it, so
-//! the cut is what the pass rests on.
+//! rapier alone solves an impact as a speculative contact made within its prediction distance
+//! (2 cm), bouncing a new contact at the end of the call before the bodies touch, with the normal
+//! and lever arms of that call's start: from 1 cm the oblique discs were 1.8% off at dt = 1/240
+//! s, 0.32% at 1/960, 0.12% at 1/3840 (first order in dt). rigidlab now plans each rapier call
+//! around the impacts in it (sim/impacts.rs, the default for scenes of up to 64 moving bodies):
+//! the prediction distance is lowered below the gap of approaching pairs, the call is cut at the
+//! first time of impact, and the contact is made in a short call (1/64 of the step) where
+//! rapier's soft contact acts nearly rigidly. Measured, over every gap and dt below: oblique
+//! 3.4e-7 to 5.9e-6; curb 1.2e-6 to 4.8e-5 except 4.9e-4 (10 cm at 1/240 s). The tests hold
+//! every case within 0.1% (the bound), and rapier's own speculative contact
+//! (`impact_cuts: Some(false)`) outside it, so the cut is what the pass rests on.
 
 use rigidlab::level;
 use rigidlab::sim::{Options, Simulation};

@@ -229,10 +229,6 @@ pub(crate) fn integration_parameters(s: &Settings) -> IntegrationParameters {
     p.num_internal_pgs_iterations = s.solver_iterations;
     p.max_ccd_substeps = if s.effects.has(Effect::Ccd) { 1 } else { 0 };
     p.contact_recycling = s.contact_recycling;
-    if s.impact_cuts {
-        // length_unit is 1 m: the normalized distance is in metres (see sim/impacts.rs).
-        p.normalized_prediction_distance = super::impacts::PREDICTION as Real;
-    }
     if let Some(hz) = s.contact_hz {
         // Contacts with fixed bodies stay twice as stiff, as in rapier's defaults (30/60 Hz).
         p.contact_softness.natural_frequency = hz as Real;

@@ -1,25 +1,35 @@
-//! Impacts at the instant the bodies touch (issue 13): the step is cut at the time of impact.
+//! Impacts at the instant the bodies touch (issue 13): each rapier call is planned around the
+//! impacts in it.
 //!
-//! rapier computes a pair's contact manifold at the start of each call, within its prediction
-//! distance (2 cm by default), and acts on it in that call: two bodies a few millimetres apart
-//! got the whole bounce with the normal and lever arms of the approach, not of the impact, an
-//! error first order in the distance moved per step (the oblique discs 1.8% off at 1/240 s from
-//! any gap; started touching, 2e-4). So where `Settings::impact_cuts` is on, the prediction
-//! distance is [`PREDICTION`] and, before each rapier call, the earliest time of impact among
-//! the approaching pairs is found (parry's nonlinear shape cast: translation and rotation over
-//! the call, the velocities including gravity's change over it). The call is cut there: the
-//! bodies arrive just apart, and the next call sees the contact where it happens.
+//! rapier makes a pair's contact manifold at the start of each call within its prediction
+//! distance (2 cm by default) and acts on it in that call: a new contact that approaches is
+//! bounced at the call's end (`apply_restitution`) with the normal and lever arms of the call's
+//! start, up to a step before the bodies touch (the oblique discs were 1.8% off at 1/240 s from
+//! any gap; started touching, 2e-4), and once it has pushed at all, the touch is no longer new
+//! and gets no bounce. So, before each call, for the pairs that approach as an impact does (faster
+//! than gravity alone closes a gap; [`Simulation::plan_call`]):
+//! - the prediction distance of the call is lowered below their gaps, so rapier makes no contact
+//!   for them before they touch (resting stacks, whose pairs do not approach, keep rapier's
+//!   2 cm, which they were tuned with);
+//! - the call is cut at the first time of impact among them (parry's nonlinear shape cast:
+//!   translation and rotation, the velocities including gravity's change over the call), so the
+//!   bodies arrive [`ARRIVE_APART`] apart;
+//! - the contact is then made in a short call ([`IMPACT_CALL`] of the call), with the manifold
+//!   of the touching configuration, where rapier's soft contact acts nearly rigidly.
+//! A pair further than the prediction distance is cut too when it meets within the call, except
+//! one that moves in a call more than the thicker of the two is thick: there rapier tunnels,
+//! which only `ccd` prevents (a bullet that crosses a wall within a step tunnels unless the
+//! level declares it).
 
 use super::rapier::parry::query::{self, NonlinearRigidMotion};
 use super::rapier::prelude::*;
 use super::world::Simulation;
 
-/// rapier's prediction distance with impact cuts, m (with a length unit of 1 m): contacts are
-/// made within 20 um, so a pair closing from further away is cut at its time of impact first.
-pub const PREDICTION: f64 = 2e-5;
+/// Closer than this, m, a pair touches: its contact is rapier's.
+pub const TOUCHING: f64 = 1e-5;
 
-/// How far apart a cut leaves the bodies, m: well inside [`PREDICTION`], so the next call makes
-/// the contact, and small against any body (the normal's error is of order this over the radii).
+/// How far apart a cut leaves the bodies, m: within [`TOUCHING`], and small against any body (the
+/// normal's error is of order this over the radii).
 const ARRIVE_APART: f64 = 2e-6;
 
 /// The call after a cut, in which the contact is made, as a fraction of the call that was cut.
@@ -29,21 +39,44 @@ pub const IMPACT_CALL: f64 = 1.0 / 64.0;
 /// prediction).
 pub const MAX_CUTS: usize = 4;
 
+/// How far ahead, in calls, an approaching pair is looked for (its closing speed is its gap over
+/// its time of impact).
+const LOOKAHEAD: f64 = 64.0;
+
+/// The plan of one rapier call.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CallPlan {
+    /// Where to cut the call, s from its start, if an impact falls in it (0: the pair is
+    /// already within reach, and the coming call is the short one that makes the contact).
+    pub cut: Option<f64>,
+    /// rapier's (normalized) prediction distance for the call, m.
+    pub prediction: f64,
+}
+
 impl Simulation {
-    /// The time, s from now and before `horizon`, at which the first approaching pair without a
-    /// contact comes within [`ARRIVE_APART`], if any does: 0 for a pair already within the
-    /// prediction distance, whose contact the coming call makes.
-    pub(super) fn time_of_impact(&self, horizon: f64) -> Option<f64> {
-        let first = self.first_impact(horizon, 0.0)?;
+    /// The plan of the coming call of length `horizon` (see the module doc).
+    pub(super) fn plan_call(&self, horizon: f64) -> CallPlan {
+        let first = self.scan(horizon, 0.0);
         // Gravity changes the velocities over the call: cast again with their mean up to the
         // first estimate (a body dropped onto the ground at 1/240 s arrives 85 um later than at
         // its starting velocity).
-        self.first_impact(horizon, first).or(Some(first))
+        match first.cut {
+            Some(t) if t > 0.0 => {
+                let again = self.scan(horizon, t);
+                CallPlan {
+                    cut: again.cut.or(first.cut),
+                    prediction: again.prediction.min(first.prediction),
+                }
+            }
+            _ => first,
+        }
     }
 
-    fn first_impact(&self, horizon: f64, gravity_time: f64) -> Option<f64> {
+    fn scan(&self, horizon: f64, gravity_time: f64) -> CallPlan {
         let w = &self.world;
+        let rapier_prediction = self.settings_prediction();
         let g = w.gravity * (0.5 * gravity_time) as Real;
+        let ahead = horizon * LOOKAHEAD;
         let motion = |co: &Collider| -> (NonlinearRigidMotion, Aabb, bool) {
             let aabb = co.compute_aabb();
             match co.parent().map(|h| &w.bodies[h]) {
@@ -58,12 +91,12 @@ impl Simulation {
                     let com_in_collider = co.position().inverse() * (*rb.position() * local_com);
                     let reach = aabb.half_extents().length() * 2.0;
                     let sweep = (v.length() + rb.angvel().abs() * reach) * horizon as Real;
-                    let mut swept = aabb;
-                    swept.mins -= Vector::splat(sweep);
-                    swept.maxs += Vector::splat(sweep);
+                    let mut near = aabb;
+                    near.mins -= Vector::splat(sweep.max(rapier_prediction as Real));
+                    near.maxs += Vector::splat(sweep.max(rapier_prediction as Real));
                     (
                         NonlinearRigidMotion::new(*co.position(), com_in_collider, v, rb.angvel()),
-                        swept,
+                        near,
                         true,
                     )
                 }
@@ -74,53 +107,94 @@ impl Simulation {
                 ),
             }
         };
-        let moving: Vec<_> = w
-            .colliders
-            .iter()
-            .map(|(h, co)| (h, co, motion(co)))
-            .collect();
-        let mut best: Option<f64> = None;
-        for (a, (h1, co1, (m1, box1, moves1))) in moving.iter().enumerate() {
-            for (h2, co2, (m2, box2, moves2)) in &moving[a + 1..] {
+        let moving: Vec<_> = w.colliders.iter().map(|(_, co)| (co, motion(co))).collect();
+        // An impact closes faster than gravity alone can close a gap over two calls (a body
+        // resting on another, or sliding into it, is not an impact).
+        let slow = 2.0 * w.gravity.length() as f64 * horizon + 1e-3;
+        let mut plan = CallPlan {
+            cut: None,
+            prediction: rapier_prediction,
+        };
+        for (a, (co1, (m1, box1, moves1))) in moving.iter().enumerate() {
+            for (co2, (m2, box2, moves2)) in &moving[a + 1..] {
                 if !(*moves1 || *moves2) || co1.parent() == co2.parent() || !box1.intersects(box2) {
                     continue;
                 }
-                if !w
-                    .narrow_phase
-                    .contact_pair(*h1, *h2)
-                    .is_none_or(|p| !p.has_any_active_contact())
-                {
+                // Where the two are nearest, and how fast they close there (the velocities of
+                // the two surface points along the normal).
+                let reach = (box1.maxs - box1.mins)
+                    .length()
+                    .max((box2.maxs - box2.mins).length());
+                let Ok(Some(c)) = query::contact(
+                    co1.position(),
+                    co1.shape(),
+                    co2.position(),
+                    co2.shape(),
+                    reach,
+                ) else {
+                    continue;
+                };
+                let apart = c.dist as f64;
+                if apart <= TOUCHING {
+                    // Touching: rapier's contact. (Making a touching, closing pair's contact in
+                    // a short call as after a cut was tried: it changed a ladder sliding off its
+                    // wall, 8.6e-3 to 1.28e-2 off at 1/960 s, and no impact needed it.)
                     continue;
                 }
-                let apart =
-                    query::distance(co1.position(), co1.shape(), co2.position(), co2.shape())
-                        .map_or(0.0, |d| d.distance as f64);
-                let end = best.unwrap_or(horizon) as Real;
-                let Ok(Some(hit)) =
-                    query::cast_shapes_nonlinear(m1, co1.shape(), m2, co2.shape(), 0.0, end, true)
-                else {
+                let point_velocity = |m: &NonlinearRigidMotion, p: Vector| {
+                    let center = m.start * m.local_center;
+                    let r = p - center;
+                    m.linvel + Vector::new(-r.y, r.x) * m.angvel
+                };
+                let closing = ((point_velocity(m1, c.point1) - point_velocity(m2, c.point2))
+                    .dot(c.normal1)) as f64;
+                if closing <= slow {
+                    continue;
+                }
+                let Ok(Some(hit)) = query::cast_shapes_nonlinear(
+                    m1,
+                    co1.shape(),
+                    m2,
+                    co2.shape(),
+                    0.0,
+                    ahead as Real,
+                    true,
+                ) else {
                     continue;
                 };
-                let t = if apart <= PREDICTION {
-                    // Already within reach and closing: the contact is made in this call.
-                    0.0
-                } else {
-                    // Arrive ARRIVE_APART short of touching: back off along the closing speed.
-                    let t = hit.time_of_impact as f64;
-                    let closing = (apart / t.max(1e-12)).max(1e-9);
-                    let t = t - ARRIVE_APART / closing;
-                    // A call needs some length: closer than a millionth of the call is now.
-                    if t < 1e-6 * horizon {
-                        0.0
-                    } else {
-                        t
-                    }
+                let t_hit = hit.time_of_impact as f64;
+                if t_hit >= horizon && apart > rapier_prediction {
+                    // Out of rapier's sight and not meeting within the call.
+                    continue;
+                }
+                // A pair that moves more in a call than the thicker of the two is thick is
+                // where rapier tunnels (a bullet through a wall): only `ccd` prevents that, as
+                // the level declares it or not.
+                let thickness = |co: &Collider| {
+                    let e = co.compute_aabb().half_extents() * 2.0;
+                    e.x.min(e.y) as f64
                 };
-                if t < horizon && best.is_none_or(|b| t < b) {
-                    best = Some(t);
+                let moved = (m1.linvel - m2.linvel).length() as f64 * horizon;
+                if moved > thickness(co1).max(thickness(co2)) {
+                    continue;
+                }
+                // No contact for this pair until it touches.
+                plan.prediction = plan.prediction.min(0.5 * apart).max(2.0 * TOUCHING);
+                if t_hit < horizon {
+                    // Arrive ARRIVE_APART short of touching; a call needs some length.
+                    let t = t_hit - ARRIVE_APART / closing;
+                    let t = if t < 1e-6 * horizon { 0.0 } else { t };
+                    if plan.cut.is_none_or(|c| t < c) {
+                        plan.cut = Some(t);
+                    }
                 }
             }
         }
-        best
+        plan
+    }
+
+    /// rapier's prediction distance for this run, m (its default: `length_unit` is 1 m).
+    fn settings_prediction(&self) -> f64 {
+        IntegrationParameters::default().prediction_distance() as f64
     }
 }

@@ -55,24 +55,27 @@ pub struct Settings {
     pub contact_recycling: bool,
     /// Each rapier call is cut at the first time of impact within it, and contacts are made
     /// only within 20 um (sim/impacts.rs): an impact's normal and lever arms are those of the
-    /// instant the bodies touch, whatever gap they approached from. Asked for with
-    /// `Options::impact_cuts` (`--impact-cuts`) in scenes with contacts; it costs a cast per
-    /// nearby pair per call (all pairs are tried: meant for textbook scenes, not piles).
+    /// instant the bodies touch, whatever gap they approached from. On in scenes with contacts
+    /// and at most [`IMPACT_CUT_BODIES`] moving bodies, or as `Options::impact_cuts` says
+    /// (`--impact-cuts`, `--no-impact-cuts`): every nearby pair is tried each call.
     #[serde(default)]
     pub impact_cuts: bool,
 }
+
+/// The most moving bodies a scene may have for its impacts to be cut by default.
+pub const IMPACT_CUT_BODIES: usize = 64;
 
 impl Settings {
     /// Folds the overrides into the level's settings.
     pub fn resolve(level: &Level, opts: &Options, precision: Precision) -> Settings {
         let effects = Effects::of(level, opts.all_effects);
-        // Opt-in for now: contacts made only within 20 um leave resting stacks without the
-        // speculative margin they were tuned with (card_house at 8 substeps collapsed, 5.4 cm of
-        // overlap), and the cuts stop a bullet that the level leaves without CCD (bullet_wall's
-        // known gap is that it tunnels). Keeping rapier's 2 cm prediction instead failed: the
-        // speculative contact's impulse before the touch makes the touch no longer "new", and
-        // rapier then gives it no bounce. `--impact-cuts` turns the cuts on.
-        let impact_cuts = opts.impact_cuts.unwrap_or(false) && effects.has(Effect::Contacts);
+        let moving = level
+            .bodies
+            .iter()
+            .filter(|b| b.kind != crate::level::BodyKind::Fixed)
+            .count();
+        let impact_cuts = effects.has(Effect::Contacts)
+            && opts.impact_cuts.unwrap_or(moving <= IMPACT_CUT_BODIES);
         let substeps = opts.substeps.unwrap_or(level.world.substeps).max(1);
         Settings {
             dt: opts.dt.unwrap_or(level.world.dt),

@@ -310,8 +310,11 @@ impl Simulation {
         let mut contact_sum: Vec<ContactState> = Vec::new();
         let mut first_call = true;
         while let Some((mut h, sub)) = calls.pop_front() {
+            let mut prediction = None;
             if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
-                if let Some(t) = self.time_of_impact(h) {
+                let plan = self.plan_call(h);
+                prediction = Some(plan.prediction);
+                if let Some(t) = plan.cut {
                     // The contact is made in a short call after the cut, where rapier's soft
                     // contact acts as a nearly rigid one (its softness grows with the call's
                     // length), then the rest of the call.
@@ -333,6 +336,10 @@ impl Simulation {
                 let p = &mut self.world.integration_parameters;
                 p.dt = h as Real;
                 p.num_solver_iterations = sub;
+                p.normalized_prediction_distance = prediction.map_or(
+                    IntegrationParameters::default().normalized_prediction_distance,
+                    |x| x as Real,
+                );
             }
             self.apply_forces(&loads);
             self.load_carriers(h, &mut carried);

@@ -133,9 +133,11 @@ pub fn all() -> Vec<Spec> {
             recorded: Extra::default(),
             not_default: &[],
             gaps: &[],
-            settings_why: "at 4 substeps the house collapses (top card moves 1.9 m); 8 substeps \
-                hold it. While the pairs lean together in the first second, the 2 mm cards (thinner \
-                than rapier's 5 mm allowed error) cross tips by up to 2 cm (penetration_all)",
+            settings_why: "rapier's defaults: rigidlab cuts the step at each time of impact \
+                (src/sim/impacts.rs), so the cards meet where they touch as the pairs lean \
+                together. Before the cuts, at 4 substeps the house collapsed (top card moved 1.9 m) \
+                and 8 substeps held it, the 2 mm cards (thinner than rapier's 5 mm allowed error) \
+                crossing tips by up to 2 cm (penetration_all)",
         },
         Spec {
             name: "arch",
@@ -288,11 +290,12 @@ pub fn all() -> Vec<Spec> {
             },
             special: |_, _| vec![Box::new(Apex::new("ball", 1.1 + 0.01))],
             recorded: Extra::default(),
-            not_default: &[Effect::Ccd],
+            not_default: &[],
             gaps: &[],
-            settings_why: "without CCD the ball, at 4.4 m/s (7.4 cm a step), is not seen by the \
-                2 cm contact prediction until it is 5.2 cm deep in the floor; CCD (the `ccd` \
-                effect): 5 mm; dt 1/120 also works at twice the cost",
+            settings_why: "rapier's defaults: rigidlab cuts the step at the ball's time of impact \
+                (src/sim/impacts.rs). Before the cuts, the ball at 4.4 m/s (7.4 cm a step) was not \
+                seen by rapier's 2 cm contact prediction until it was 5.2 cm deep in the floor and \
+                the level needed the `ccd` effect (5 mm) or dt 1/120",
         },
         Spec {
             name: "newtons_cradle",
@@ -308,8 +311,10 @@ pub fn all() -> Vec<Spec> {
             recorded: Extra::default(),
             not_default: &[],
             gaps: &[],
-            settings_why: "at dt 1/60 the 4.4 m/s impact drives the first ball 3.1 cm into the \
-                second (2.8 cm with 8 substeps, 1.5 cm at dt 1/120; CCD does not help)",
+            settings_why: "rapier's defaults: rigidlab cuts the step at each time of impact \
+                (src/sim/impacts.rs). Before the cuts, at dt 1/60 the 4.4 m/s impact drove the \
+                first ball 3.1 cm into the second (2.8 cm with 8 substeps, 1.5 cm at dt 1/120; CCD \
+                did not help) and the level needed dt 1/180 with 2 substeps",
         },
         Spec {
             name: "mass_extremes",
