@@ -16,6 +16,7 @@
 //!   bodies arrive [`ARRIVE_APART`] apart;
 //! - the contact is then made in a short call ([`IMPACT_CALL`] of the call), with the manifold
 //!   of the touching configuration, where rapier's soft contact acts nearly rigidly.
+//!
 //! A pair further than the prediction distance is cut too when it meets within the call, except
 //! one that moves in a call more than the thicker of the two is thick: there rapier tunnels,
 //! which only `ccd` prevents (a bullet that crosses a wall within a step tunnels unless the
