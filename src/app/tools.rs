@@ -322,12 +322,7 @@ fn join_at(
     tol: f64,
     kind: JointKind,
 ) -> Option<Edit> {
-    let s = phys.snapshot();
-    let under = view::bodies_under(&outlines.bodies, s, p, tol);
-    let moving = *under
-        .iter()
-        .find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
-    let other = under.iter().copied().find(|&i| i != moving);
+    let (moving, other) = moving_and_partner(phys, outlines, p, tol)?;
     let name = |i: usize| phys.scene.level.bodies[i].name.clone();
     Some(Edit::AddJoint {
         kind,
@@ -337,18 +332,29 @@ fn join_at(
     })
 }
 
-/// The torsion spring the torsion tool makes at `p`: on the topmost moving body there, to the
-/// next body under it or to the ground; k puts the body alone on it at about 1 Hz about G
-/// (k = I_G (2 pi)^2, rounded).
-fn torsion_at(phys: &Physics, outlines: &Outlines, p: DVec2, tol: f64) -> Option<Edit> {
+/// The topmost moving body at `p` and the next body under it (None: the ground), as the join
+/// and torsion tools connect them.
+fn moving_and_partner(
+    phys: &Physics,
+    outlines: &Outlines,
+    p: DVec2,
+    tol: f64,
+) -> Option<(usize, Option<usize>)> {
     let s = phys.snapshot();
     let under = view::bodies_under(&outlines.bodies, s, p, tol);
     let moving = *under
         .iter()
         .find(|&&i| s.bodies[i].kind == BodyKind::Dynamic)?;
-    let other = under.iter().copied().find(|&i| i != moving);
+    Some((moving, under.iter().copied().find(|&i| i != moving)))
+}
+
+/// The torsion spring the torsion tool makes at `p`: on the topmost moving body there, to the
+/// next body under it or to the ground; k puts the body alone on it at about 1 Hz about G
+/// (k = I_G (2 pi)^2, rounded).
+fn torsion_at(phys: &Physics, outlines: &Outlines, p: DVec2, tol: f64) -> Option<Edit> {
+    let (moving, other) = moving_and_partner(phys, outlines, p, tol)?;
     let name = |i: usize| phys.scene.level.bodies[i].name.clone();
-    let k = s.bodies[moving].inertia * std::f64::consts::TAU.powi(2);
+    let k = phys.snapshot().bodies[moving].inertia * std::f64::consts::TAU.powi(2);
     Some(Edit::AddTorsionSpring {
         body1: name(moving),
         body2: other.map(name),
