@@ -168,6 +168,9 @@ pub struct FrameAnalysis {
     links: RefCell<BodyLinks>,
     fresh: Cell<bool>,
     frame: Frame,
+    /// Whether the last snapshot closes a step, and whether `frame` is its frame.
+    stepped: bool,
+    frame_current: bool,
 }
 
 impl FrameAnalysis {
@@ -184,7 +187,14 @@ impl FrameAnalysis {
     }
 
     /// The last frame computed.
+    ///
+    /// Panics when the run observes its snapshots with [`Self::observe_motion`], which computes
+    /// none: a reader of the frame must be declared (`checks::Probe::needs_diagram`).
     pub fn frame(&self) -> &Frame {
+        assert!(
+            self.frame_current,
+            "the frame of this step was not computed (observe_motion): declare the reader"
+        );
         &self.frame
     }
 
@@ -198,15 +208,26 @@ impl FrameAnalysis {
         self.links.borrow()
     }
 
-    /// The frame of `snap` (the snapshots must come in order, the initial one first).
-    ///
-    /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
-    pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
+    /// Whether the last snapshot observed closes a step (false for the initial state).
+    pub fn stepped(&self) -> bool {
+        self.stepped
+    }
+
+    /// Only the bodies' states at the start and end of the step ([`Self::start_of_step`]) and
+    /// the links ([`Self::links`]), without the frame: for a run whose readers need no more
+    /// (an impact's bracket, a blow's pivot), at a fraction of [`Self::observe`]'s cost. A run
+    /// takes one or the other for every snapshot: [`Self::frame`] refuses a frame not computed.
+    pub fn observe_motion(&mut self, snap: &Snapshot) {
+        self.advance(snap);
+        self.frame_current = false;
+    }
+
+    /// Swaps the end of the last step into its start and reads this step's end.
+    fn advance(&mut self, snap: &Snapshot) {
         let n = snap.bodies.len();
-        let stepped = !snap.is_initial() && self.before.len() == n;
+        self.stepped = !snap.is_initial() && self.before.len() == n;
         self.fresh.set(false);
-        let f = &mut self.frame;
-        if stepped {
+        if self.stepped {
             // The end of the last step is the start of this one. Fixed bodies do not move: their
             // entries in both buffers stay as first copied.
             std::mem::swap(&mut self.before, &mut self.after);
@@ -218,8 +239,8 @@ impl FrameAnalysis {
             self.after.clear();
             self.after.extend(snap.bodies.iter().map(Motion::from));
             self.before.clone_from(&self.after);
-            f.bodies.clear();
-            f.bodies.resize(n, BodyFrame::default());
+            self.frame.bodies.clear();
+            self.frame.bodies.resize(n, BodyFrame::default());
             self.has_mass.clear();
             self.has_mass
                 .extend(snap.bodies.iter().map(|b| b.mass > 0.0));
@@ -231,6 +252,16 @@ impl FrameAnalysis {
             self.moving
                 .extend((0..n).filter(|&i| snap.bodies[i].kind != BodyKind::Fixed));
         }
+    }
+
+    /// The frame of `snap` (the snapshots must come in order, the initial one first).
+    ///
+    /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
+    pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
+        self.advance(snap);
+        self.frame_current = true;
+        let stepped = self.stepped;
+        let f = &mut self.frame;
         f.time = snap.time;
         f.dt = snap.dt;
         f.stepped = stepped;

@@ -274,36 +274,75 @@ impl ImpulseMomentumLedger {
     }
 
     /// The windows whose residuals go furthest beyond the rounding the ledger was given (see
-    /// [`WindowBalance::linear_beyond_rounding`]): every pair of instants is tried, so a long
-    /// run (over 20,000 instants) falls back to [`Self::worst_windows`], which ignores rounding.
+    /// [`WindowBalance::linear_beyond_rounding`]), in O(n) per direction rather than over all
+    /// n^2 / 2 pairs of instants (20,000 steps of 100 probes took minutes that way).
+    ///
+    /// Angular, exactly: with r the residual from the first instant and R the summed rounding,
+    /// |r_b - r_a| - (R_b - R_a) is the larger of u_b - u_a for u = r - R and for u = -r - R, and
+    /// the largest u_b - u_a over a < b is one pass keeping the smallest u so far.
+    /// Linear: |v| is the largest d.v over unit directions d, so each of `DIRECTIONS` directions
+    /// gives its best pair in one such pass (u = d.r - R); the pairs found are measured exactly
+    /// and the worst kept. The pair found for the direction nearest to the true worst window's
+    /// residual scores at least its excess minus |r_b - r_a| (1 - cos(pi / DIRECTIONS)), so the
+    /// excess reported is short of the true one by at most 7.5e-5 of that window's residual.
     pub fn worst_windows_beyond_rounding(&self) -> WorstWindows {
+        const DIRECTIONS: usize = 256;
         let n = self.entries.len();
         let rounded = self
             .entries
             .last()
             .is_some_and(|e| e.rg > 0.0 || e.rh > 0.0);
-        if n < 2 || !rounded || n > 20_000 {
+        if n < 2 || !rounded {
             return self.worst_windows();
         }
-        let (mut lin, mut ang) = ((0, 0, f64::NEG_INFINITY), (0, 0, f64::NEG_INFINITY));
-        for a in 0..n {
-            for b in a + 1..n {
-                let w = self.between(a, b);
-                let (l, r) = (
-                    w.linear_residual().length() - w.rounding_g,
-                    w.angular_residual().abs() - w.rounding_h,
-                );
-                if l > lin.2 {
-                    lin = (a, b, l);
+        // The largest u_b - u_a over a < b: (a, b).
+        let widest_rise = |u: &dyn Fn(&LedgerEntry) -> f64| {
+            let (mut lo, mut best, mut pair) = (0, f64::NEG_INFINITY, (0, 1));
+            for b in 1..n {
+                let ub = u(&self.entries[b]);
+                let rise = ub - u(&self.entries[lo]);
+                if rise > best {
+                    (best, pair) = (rise, (lo, b));
                 }
-                if r > ang.2 {
-                    ang = (a, b, r);
+                if ub < u(&self.entries[lo]) {
+                    lo = b;
                 }
             }
-        }
+            pair
+        };
+        let linear_excess = |(a, b): (usize, usize)| {
+            let w = self.between(a, b);
+            w.linear_residual().length() - w.rounding_g
+        };
+        let angular_excess = |(a, b): (usize, usize)| {
+            let w = self.between(a, b);
+            w.angular_residual().abs() - w.rounding_h
+        };
+        let worst_of = |pairs: &mut dyn Iterator<Item = (usize, usize)>,
+                        excess: &dyn Fn((usize, usize)) -> f64| {
+            pairs
+                .map(|p| (excess(p), p))
+                .max_by(|x, y| x.0.total_cmp(&y.0))
+                .map_or((0, 1), |(_, p)| p)
+        };
+        let angular = worst_of(
+            &mut [
+                widest_rise(&|e| (e.h - e.m) - e.rh),
+                widest_rise(&|e| -(e.h - e.m) - e.rh),
+            ]
+            .into_iter(),
+            &angular_excess,
+        );
+        let linear = worst_of(
+            &mut (0..DIRECTIONS).map(|k| {
+                let d = DVec2::from_angle(std::f64::consts::TAU * k as f64 / DIRECTIONS as f64);
+                widest_rise(&|e| d.dot(e.g - e.j) - e.rg)
+            }),
+            &linear_excess,
+        );
         WorstWindows {
-            linear: self.between(lin.0, lin.1),
-            angular: self.between(ang.0, ang.1),
+            linear: self.between(linear.0, linear.1),
+            angular: self.between(angular.0, angular.1),
         }
     }
 

@@ -53,6 +53,11 @@ pub trait Probe {
     fn observe_frame(&mut self, snap: &Snapshot, _frame: &FrameAnalysis) {
         self.observe(snap)
     }
+    /// With [`Probe::wants_frame`]: whether it reads the frame's sums (`FrameAnalysis::frame`)
+    /// or only the step's start states and links (`FrameAnalysis::observe_motion`).
+    fn needs_diagram(&self) -> bool {
+        true
+    }
     fn finish(self: Box<Self>) -> CheckResult;
 }
 
@@ -62,6 +67,8 @@ pub trait Probe {
 pub struct CheckSet {
     probes: Vec<Box<dyn Probe>>,
     frame: Option<FrameAnalysis>,
+    /// Whether a probe reads the frame's sums: else the pass computes only the states.
+    diagram: bool,
 }
 
 impl CheckSet {
@@ -72,13 +79,22 @@ impl CheckSet {
             .iter()
             .any(|p| p.wants_frame())
             .then(FrameAnalysis::new);
-        CheckSet { probes, frame }
+        let diagram = probes.iter().any(|p| p.wants_frame() && p.needs_diagram());
+        CheckSet {
+            probes,
+            frame,
+            diagram,
+        }
     }
 
     /// Feeds a snapshot (the initial one first, then one per step, in order) to every check.
     pub fn observe(&mut self, snap: &Snapshot) {
-        if let Some(fa) = self.frame.as_mut() {
-            fa.observe(snap);
+        match self.frame.as_mut() {
+            Some(fa) if self.diagram => {
+                fa.observe(snap);
+            }
+            Some(fa) => fa.observe_motion(snap),
+            None => {}
         }
         for p in self.probes.iter_mut() {
             match &self.frame {

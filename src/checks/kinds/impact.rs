@@ -227,6 +227,11 @@ impl Restitution {
 }
 
 impl FrameProbe for Restitution {
+    /// The impact's bracket reads the step's contacts and start states, not the frame's sums.
+    fn needs_diagram(&self) -> bool {
+        false
+    }
+
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
@@ -236,11 +241,14 @@ impl FrameProbe for Restitution {
         if self.partner.is_none() {
             self.partner = match &self.other {
                 Some(o) => s.body_index(o),
-                // Any partner: the one with the largest normal impulse this step.
-                None => s
-                    .contacts
+                // Any partner: the one with the largest normal impulse this step, among the
+                // body's own contacts (the frame's index: a scan of every contact, every step,
+                // for each body that touches nothing made 100 probes cost O(N x contacts)).
+                None => fa
+                    .links(s)
+                    .contacts_of(i)
                     .iter()
-                    .filter(|c| c.body1 == i || c.body2 == i)
+                    .map(|&c| &s.contacts[c as usize])
                     .max_by(|a, b| {
                         let n = |c: &crate::snapshot::ContactState| {
                             c.points.iter().map(|p| p.normal_impulse).sum::<f64>()
@@ -261,7 +269,7 @@ impl FrameProbe for Restitution {
         // The bodies' states at the start of the step, copied once per step for every check
         // (the shared frame pass): a copy per probe made 100 probes on 100 bodies cost O(N^2).
         let before = fa.start_of_step();
-        if let (Some(k), true) = (self.partner, fa.frame().stepped) {
+        if let (Some(k), true) = (self.partner, fa.stepped()) {
             let detector = self.detector.get_or_insert_with(|| {
                 let weight: f64 = [i, k]
                     .iter()

@@ -38,6 +38,11 @@ use glam::DVec2;
 /// A probe that reads the shared per-step frame (`analysis::frame`) rather than walking the
 /// step's impulses itself.
 pub(super) trait FrameProbe {
+    /// Whether the probe reads the frame's sums (`FrameAnalysis::frame`), or only the states
+    /// at the step's ends and the links, which cost a fraction of the frame pass.
+    fn needs_diagram(&self) -> bool {
+        true
+    }
     fn observe_frame(&mut self, snap: &Snapshot, fa: &FrameAnalysis);
     fn finish(self) -> CheckResult;
 }
@@ -73,11 +78,18 @@ pub(super) fn framed<P: FrameProbe + 'static>(inner: P) -> Box<dyn Probe> {
 impl<P: FrameProbe> Probe for Framed<P> {
     fn observe(&mut self, snap: &Snapshot) {
         let fa = self.own.get_or_insert_with(FrameAnalysis::new);
-        fa.observe(snap);
+        if self.inner.needs_diagram() {
+            fa.observe(snap);
+        } else {
+            fa.observe_motion(snap);
+        }
         self.inner.observe_frame(snap, fa);
     }
     fn wants_frame(&self) -> bool {
         true
+    }
+    fn needs_diagram(&self) -> bool {
+        self.inner.needs_diagram()
     }
     fn observe_frame(&mut self, snap: &Snapshot, fa: &FrameAnalysis) {
         self.inner.observe_frame(snap, fa);

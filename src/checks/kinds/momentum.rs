@@ -241,6 +241,7 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         o: def.point.map(v2),
         window: def.window.unwrap_or((0.0, f64::INFINITY)),
         index: None,
+        subject: BodySet::default(),
         resolved: false,
         ledger: None,
         // Its own windows (every [t1', t2'] inside `window`, see `ImpulseMomentumLedger`).
@@ -260,6 +261,8 @@ struct ImpulseMomentum {
     window: (f64, f64),
     /// The body's index (None for the scene).
     index: Option<usize>,
+    /// The subject's bodies (the one body, or every dynamic body), resolved with `index`.
+    subject: BodySet,
     resolved: bool,
     ledger: Option<ImpulseMomentumLedger>,
     /// Residuals over [t1, t], step by step (these also catch a non-finite state).
@@ -279,6 +282,7 @@ impl FrameProbe for ImpulseMomentum {
                 return;
             };
             self.index = index;
+            self.subject = subject_set(s, index);
             self.resolved = true;
         }
         let f = fa.frame();
@@ -327,14 +331,8 @@ impl FrameProbe for ImpulseMomentum {
         // substeps has its velocity decrement, a few ulps, rounded the same way every substep:
         // a bias of 1.1e-3 N s over the run that f64 does not show (3e-15).
         let rounding = {
-            let bodies: Vec<usize> = match self.index {
-                Some(i) => vec![i],
-                None => (0..s.bodies.len())
-                    .filter(|&i| s.bodies[i].mass > 0.0)
-                    .collect(),
-            };
             let (mut rg, mut rh) = (0.0, 0.0);
-            for i in bodies {
+            for &i in &self.subject {
                 let b = &s.bodies[i];
                 let (rf, rm) = finite_difference_resolution(
                     b.mass,
@@ -357,10 +355,7 @@ impl FrameProbe for ImpulseMomentum {
         // Scales: the set's G and H_O, and the momenta its bodies carry one by one (two discs
         // swapping H through a torsion spring have H_O = 0 throughout, yet each carries some).
         let (mut g_bodies, mut h_bodies) = (0.0, 0.0);
-        for i in self
-            .index
-            .map_or_else(|| (0..s.bodies.len()).collect(), |i| vec![i])
-        {
+        for &i in &self.subject {
             let b = &s.bodies[i];
             if b.mass > 0.0 {
                 g_bodies += linear_momentum(b.mass, b.velocity).length();

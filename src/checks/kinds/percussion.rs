@@ -125,6 +125,11 @@ impl CenterOfPercussion {
 }
 
 impl FrameProbe for CenterOfPercussion {
+    /// The pivot's reaction and the body's own impulses are read from the snapshot and the links.
+    fn needs_diagram(&self) -> bool {
+        false
+    }
+
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);
