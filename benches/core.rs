@@ -2,7 +2,8 @@
 //! interleaved repeats).
 //!
 //! 1. Overhead of rigidlab's runner (forces, couplings, snapshot with converted joint and
-//!    contact impulses, guard) over a plain rapier loop on the very same 200-body world.
+//!    contact impulses, guard) over a plain rapier loop on the very same 200-body world, with
+//!    the contacts read and with them unread (a run none of whose readers reads contacts).
 //!    Goal: ratio <= 1.05.
 //! 2. What undeclared effects cost: a 50-link pendulum chain with its declared effects
 //!    (gravity, joints) against `--all-effects` (colliders in collision detection, CCD,
@@ -101,6 +102,12 @@ fn main() {
     time_steps(&mut ours, 240, true);
     time_steps(&mut plain, 240, false);
     let (mo, mp) = paired(&mut ours, true, &mut plain, false, rounds);
+    // The same runner where no reader wants the contacts (a run whose checks read none:
+    // `runner::run_graded` turns their reading off).
+    let mut unread = Simulation::new(&scene, &opts);
+    unread.set_contact_readings(false);
+    time_steps(&mut unread, 240, true);
+    let (mu, mp2) = paired(&mut unread, true, &mut plain, false, rounds);
     println!(
         "runner overhead, 200-body pile ({} contact manifolds):",
         ours.snapshot().contacts.len()
@@ -111,6 +118,12 @@ fn main() {
     );
     println!("  rigidlab runner    {:>9.1} us/step", mo * 1e6);
     println!("  ratio ours/plain   {:>9.3}   (goal <= 1.05)", mo / mp);
+    println!(
+        "  contacts unread    {:>9.1} us/step against {:.1}: ratio {:.3}   (goal <= 1.05)",
+        mu * 1e6,
+        mp2 * 1e6,
+        mu / mp2
+    );
 
     // 2. Declared effects against all effects on a 50-link chain.
     let scene = parse(Path::new("chain.ron"), &chain(50)).expect("the bench scene is valid");

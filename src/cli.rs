@@ -259,7 +259,7 @@ fn check(
                     }
                 };
                 let bar = progress_bar(&scene, &opts);
-                let r = runner::run_scene(&scene, &opts, &graded, |s| tick(&bar, s.step));
+                let r = runner::run_graded(&scene, &opts, &graded, |step| tick(&bar, step));
                 if let Some(b) = bar {
                     b.finish_and_clear();
                 }

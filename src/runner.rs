@@ -89,7 +89,7 @@ pub fn run_file(
     answers: &HashMap<String, f64>,
 ) -> Result<LevelReport, RunError> {
     let scene = level::load(path)?;
-    run_scene(&scene, opts, answers, |_| {})
+    run_graded(&scene, opts, answers, |_| {})
 }
 
 /// The checks and questions of one run, fed every snapshot in order (the initial one first).
@@ -113,6 +113,11 @@ impl Observers {
                 .map(|q| QuestionProbe::sharing(Arc::clone(&facts), q))
                 .collect(),
         }
+    }
+
+    /// Whether a check or a question reads the snapshots' contacts (every question is taken to).
+    pub fn reads_contacts(&self) -> bool {
+        self.checks.reads_contacts() || !self.questions.is_empty()
     }
 
     pub fn observe(&mut self, s: &Snapshot) {
@@ -146,15 +151,41 @@ impl Observers {
     }
 }
 
+/// Runs a scene for its checks and questions alone, calling `progress` with each step's number:
+/// the snapshots carry only what the level's readers read (no contacts where none reads them,
+/// `sim::Simulation::set_contact_readings`). [`run_scene`] reads everything, for its `each`.
+pub fn run_graded(
+    scene: &Scene,
+    opts: &Options,
+    answers: &HashMap<String, f64>,
+    mut progress: impl FnMut(u64),
+) -> Result<LevelReport, RunError> {
+    run_with(scene, opts, answers, true, |s| progress(s.step))
+}
+
 /// Runs a scene, calling `each` with every snapshot (initial state first).
 pub fn run_scene(
     scene: &Scene,
     opts: &Options,
     answers: &HashMap<String, f64>,
+    each: impl FnMut(&Snapshot),
+) -> Result<LevelReport, RunError> {
+    run_with(scene, opts, answers, false, each)
+}
+
+/// [`run_scene`]; `as_read`: the snapshots carry only what the observers read.
+fn run_with(
+    scene: &Scene,
+    opts: &Options,
+    answers: &HashMap<String, f64>,
+    as_read: bool,
     mut each: impl FnMut(&Snapshot),
 ) -> Result<LevelReport, RunError> {
     let mut sim = AnySimulation::new(scene, opts);
     let mut observers = Observers::new(&sim.level);
+    if as_read && !observers.reads_contacts() {
+        sim.set_contact_readings(false);
+    }
     let start = Instant::now();
     let mut steps = 0;
     let result = sim.run(|s| {

@@ -88,6 +88,11 @@ impl AnySimulation {
         forward!(mut self, s => s.run(each))
     }
 
+    /// Whether snapshots carry the step's contacts (`sim::Simulation::set_contact_readings`).
+    pub fn set_contact_readings(&mut self, on: bool) {
+        forward!(mut self, s => s.set_contact_readings(on))
+    }
+
     /// A blow between steps (`sim::Simulation::apply_impulse`).
     pub fn apply_impulse(&mut self, i: usize, at: DVec2, j: DVec2) -> bool {
         forward!(mut self, s => s.apply_impulse(i, at, j))

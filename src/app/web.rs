@@ -136,7 +136,7 @@ fn check(scenes: &[Scene], note: Option<String>) -> crate::report::Report {
     let opts = crate::sim::Options::default();
     let mut levels = Vec::new();
     for scene in scenes {
-        match crate::runner::run_scene(scene, &opts, &Default::default(), |_| {}) {
+        match crate::runner::run_graded(scene, &opts, &Default::default(), |_| {}) {
             Ok(r) => levels.push(r),
             Err(e) => {
                 let mut r = crate::report::LevelReport::failed(&scene.file, &e.to_string());

@@ -53,6 +53,11 @@ pub trait Probe {
     fn observe_frame(&mut self, snap: &Snapshot, _frame: &FrameAnalysis) {
         self.observe(snap)
     }
+    /// Whether it reads the snapshots' contacts: a run none of whose readers does leaves them
+    /// unread (`sim::Simulation::set_contact_readings`). True unless the probe knows better.
+    fn reads_contacts(&self) -> bool {
+        true
+    }
     /// With [`Probe::wants_frame`]: whether it reads the frame's sums (`FrameAnalysis::frame`)
     /// or only the step's start states and links (`FrameAnalysis::observe_motion`).
     fn needs_diagram(&self) -> bool {
@@ -102,6 +107,11 @@ impl CheckSet {
                 _ => p.observe(snap),
             }
         }
+    }
+
+    /// Whether a probe of the set reads the snapshots' contacts ([`Probe::reads_contacts`]).
+    pub fn reads_contacts(&self) -> bool {
+        self.probes.iter().any(|p| p.reads_contacts())
     }
 
     /// The results, in the level's order.

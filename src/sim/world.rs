@@ -38,6 +38,10 @@ pub struct Simulation {
     pub(super) torsion_rest: Vec<f64>,
     /// Energy-explosion guard (see `sim::energy`).
     pub energy: EnergyGuard,
+    /// Whether the snapshot carries the step's contacts (`Simulation::set_contact_readings`).
+    pub(super) contact_readings: bool,
+    /// Whether the level has a kinematic body (the energy guard reads its contacts).
+    has_kinematic: bool,
 }
 
 impl Simulation {
@@ -108,6 +112,12 @@ impl Simulation {
             forced_bodies: Vec::new(),
             torsion_rest: Vec::new(),
             energy: EnergyGuard::default(),
+            contact_readings: true,
+            has_kinematic: scene
+                .level
+                .bodies
+                .iter()
+                .any(|b| b.kind == BodyKind::Kinematic),
         };
         sim.joint_defs = if sim.settings.effects.has(Effect::Joints) {
             sim.level.joints.clone()
@@ -207,6 +217,21 @@ impl Simulation {
     }
 
     /// The state after the last step (or the initial state).
+    /// Whether each snapshot carries the step's contacts (on by default). Reading 200 contact
+    /// manifolds into f64 costs about 5% of rapier's step on a 200-box pile (`benches/core.rs`):
+    /// a run whose readers use none turns it off (`runner::Observers::reads_contacts`), and its
+    /// snapshots' `contacts` stay empty. Contacts are still read where the simulation itself needs
+    /// them: a weld waiting for its bodies to touch, or a kinematic body whose pushes the energy
+    /// guard counts as work.
+    pub fn set_contact_readings(&mut self, on: bool) {
+        self.contact_readings = on;
+    }
+
+    /// Whether this step's contacts are read (see [`Simulation::set_contact_readings`]).
+    fn contacts_wanted(&self) -> bool {
+        self.contact_readings || !self.pending_welds.is_empty() || self.has_kinematic
+    }
+
     pub fn snapshot(&self) -> &Snapshot {
         &self.snapshot
     }
@@ -309,6 +334,7 @@ impl Simulation {
         let mut joint_sum: Vec<JointState> = Vec::new();
         let mut contact_sum: Vec<ContactState> = Vec::new();
         let mut first_call = true;
+        let contacts_wanted = self.contacts_wanted();
         while let Some((mut h, sub)) = calls.pop_front() {
             let mut prediction = None;
             if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
@@ -389,8 +415,10 @@ impl Simulation {
             }
             // A call of several rapier substeps holds the last one's joint impulses only.
             if let Some(poses) = rows_from.filter(|_| split || merged || !calls.is_empty()) {
-                self.read_contacts_with(true);
-                merge_contacts(&mut contact_sum, &self.snapshot.contacts);
+                if contacts_wanted {
+                    self.read_contacts_with(true);
+                    merge_contacts(&mut contact_sum, &self.snapshot.contacts);
+                }
                 self.read_joints_scaled(sub as f64, Some(&poses));
                 merge_joints(&mut joint_sum, &self.snapshot.joints);
             }
@@ -407,7 +435,9 @@ impl Simulation {
         self.snapshot.substeps = n;
         self.read_bodies();
         self.guard()?;
-        if merged {
+        if !contacts_wanted {
+            self.snapshot.contacts.clear();
+        } else if merged {
             place_at_step_end(&mut contact_sum, &self.snapshot.bodies);
             self.snapshot.contacts = contact_sum;
         } else {

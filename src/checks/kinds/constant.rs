@@ -52,6 +52,11 @@ impl ConstantAcceleration {
 }
 
 impl Probe for ConstantAcceleration {
+    /// Reads the bodies only.
+    fn reads_contacts(&self) -> bool {
+        false
+    }
+
     fn observe(&mut self, s: &Snapshot) {
         if !in_window(self.window, s.time) {
             return;

@@ -38,6 +38,11 @@ struct MassProperties {
 }
 
 impl Probe for MassProperties {
+    /// Reads the bodies only.
+    fn reads_contacts(&self) -> bool {
+        false
+    }
+
     fn observe(&mut self, s: &Snapshot) {
         if self.out.is_some() {
             return;

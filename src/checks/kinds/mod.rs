@@ -286,6 +286,9 @@ pub(super) struct Misconfigured {
 }
 
 impl Probe for Misconfigured {
+    fn reads_contacts(&self) -> bool {
+        false
+    }
     fn observe(&mut self, _: &Snapshot) {}
     fn finish(self: Box<Self>) -> CheckResult {
         result(
