@@ -161,7 +161,15 @@ impl Simulation {
     /// read along rows rebuilt from `rows_from` (the poses the call started from) when given,
     /// else from the poses now (one substep of motion off: O(h) in the rows' direction).
     pub(super) fn read_joints_scaled(&mut self, n: f64, rows_from: Option<&[JointPoses]>) {
-        self.snapshot.joints.clear();
+        // The joints' entries are overwritten in place (names are set once: a joint's name does
+        // not change), and its bodies' indices found once: a split step reads the joints once
+        // per substep, and a name cloned and hashed each time cost more than the reading.
+        self.snapshot.joints.truncate(self.joints.len());
+        while self.joint_bodies.len() < self.joint_defs.len() {
+            let def = &self.joint_defs[self.joint_bodies.len()];
+            let pair = (self.body_index[&def.body1], self.body_index[&def.body2]);
+            self.joint_bodies.push(pair);
+        }
         for (k, h) in self.joints.iter().enumerate() {
             let j = &self
                 .world
@@ -169,7 +177,7 @@ impl Simulation {
                 .get(*h)
                 .expect("joint handles stay valid");
             let def = &self.joint_defs[k];
-            let (i1, i2) = (self.body_index[&def.body1], self.body_index[&def.body2]);
+            let (i1, i2) = self.joint_bodies[k];
             let (rb1, rb2) = (
                 &self.world.bodies[self.bodies[i1]],
                 &self.world.bodies[self.bodies[i2]],
@@ -200,8 +208,8 @@ impl Simulation {
                 }
             };
             // Joint rows restart each substep: the step's impulse is `substeps` times the last one.
-            self.snapshot.joints.push(JointState {
-                name: def.name.clone(),
+            let state = JointState {
+                name: String::new(),
                 body1: i1,
                 body2: i2,
                 anchor: to_d(frame2.translation),
@@ -213,7 +221,17 @@ impl Simulation {
                 motor_impulse: r.motor * n,
                 limit_impulse: r.limit * n,
                 coordinate,
-            });
+            };
+            match self.snapshot.joints.get_mut(k) {
+                Some(e) => {
+                    let name = std::mem::take(&mut e.name);
+                    *e = JointState { name, ..state };
+                }
+                None => self.snapshot.joints.push(JointState {
+                    name: def.name.clone(),
+                    ..state
+                }),
+            }
         }
     }
 }
@@ -225,21 +243,30 @@ pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) 
     let old = std::mem::take(sum);
     *sum = now.to_vec();
     let mut used = vec![false; old.len()];
-    for (k, c) in sum.iter_mut().enumerate() {
-        let ordinal = now[..k]
-            .iter()
-            .filter(|o| o.body1 == c.body1 && o.body2 == c.body2)
-            .count();
-        let Some(j) = old
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| o.body1 == c.body1 && o.body2 == c.body2)
-            .map(|(j, _)| j)
-            .nth(ordinal)
-        else {
-            continue;
-        };
+    // The k-th manifold of a body pair now meets the k-th of the same pair before: both lists
+    // sorted by pair (stable, so each pair's manifolds keep their order) and walked together,
+    // O(n log n) where counting each manifold's ordinal was O(n^2) per rapier call.
+    let key = |c: &ContactState| (c.body1, c.body2);
+    let mut now_order: Vec<usize> = (0..now.len()).collect();
+    now_order.sort_by_key(|&k| key(&now[k]));
+    let mut old_order: Vec<usize> = (0..old.len()).collect();
+    old_order.sort_by_key(|&j| key(&old[j]));
+    let (mut a, mut b) = (0, 0);
+    while a < now_order.len() && b < old_order.len() {
+        let (k, j) = (now_order[a], old_order[b]);
+        match key(&now[k]).cmp(&key(&old[j])) {
+            std::cmp::Ordering::Less => {
+                a += 1;
+                continue;
+            }
+            std::cmp::Ordering::Greater => {
+                b += 1;
+                continue;
+            }
+            std::cmp::Ordering::Equal => (a, b) = (a + 1, b + 1),
+        }
         used[j] = true;
+        let c = &mut sum[k];
         if c.points.is_empty() {
             c.points = old[j].points.clone();
             continue;
@@ -287,14 +314,21 @@ pub(super) fn place_at_step_end(contacts: &mut [ContactState], bodies: &[BodySta
 /// Adds one rapier call's joint impulses (world axes) to the step's sums; the rest of the
 /// state (anchors, coordinate) is the latest call's.
 pub(super) fn merge_joints(sum: &mut Vec<JointState>, now: &[JointState]) {
-    let old = std::mem::take(sum);
-    *sum = now.to_vec();
-    for (s, o) in sum.iter_mut().zip(old) {
-        s.impulse_on_body2 += o.impulse_on_body2;
-        s.angular_impulse_on_body2 += o.angular_impulse_on_body2;
-        s.angular_impulse_on_body1 += o.angular_impulse_on_body1;
-        s.couple_on_body2 += o.couple_on_body2;
-        s.motor_impulse += o.motor_impulse;
-        s.limit_impulse += o.limit_impulse;
+    // The geometry is the last call's; the impulses add up. Names are cloned once, when a joint
+    // first enters the sum (a weld made during the step joins it then).
+    for (k, n) in now.iter().enumerate() {
+        let Some(s) = sum.get_mut(k) else {
+            sum.push(n.clone());
+            continue;
+        };
+        let name = std::mem::take(&mut s.name);
+        let prev = std::mem::replace(s, JointState { name, ..*n });
+        s.impulse_on_body2 += prev.impulse_on_body2;
+        s.angular_impulse_on_body2 += prev.angular_impulse_on_body2;
+        s.angular_impulse_on_body1 += prev.angular_impulse_on_body1;
+        s.couple_on_body2 += prev.couple_on_body2;
+        s.motor_impulse += prev.motor_impulse;
+        s.limit_impulse += prev.limit_impulse;
     }
+    sum.truncate(now.len());
 }

@@ -22,6 +22,8 @@ pub struct Simulation {
     pub(super) joints: Vec<ImpulseJointHandle>,
     /// Definitions of `joints` (the level's, then welds created at run time).
     pub(super) joint_defs: Vec<JointDef>,
+    /// Each joint's two bodies' indices (filled as `joint_defs` grows; see `read_joints_scaled`).
+    pub(super) joint_bodies: Vec<(usize, usize)>,
     pub(super) body_index: HashMap<String, usize>,
     pub(super) snapshot: Snapshot,
     /// Initial value of each coupling's sum.
@@ -105,6 +107,7 @@ impl Simulation {
             bodies,
             joints,
             joint_defs: Vec::new(),
+            joint_bodies: Vec::new(),
             body_index,
             coupling_rest: Vec::new(),
             carriers: Vec::new(),
