@@ -44,6 +44,9 @@ pub struct Simulation {
     pub(super) contact_readings: bool,
     /// Whether the level has a kinematic body (the energy guard reads its contacts).
     has_kinematic: bool,
+    /// The world's own normalized prediction distance, restored after a call the impact plan
+    /// lowered it for (sim/impacts.rs).
+    prediction_distance: Real,
 }
 
 impl Simulation {
@@ -116,6 +119,7 @@ impl Simulation {
             torsion_rest: Vec::new(),
             energy: EnergyGuard::default(),
             contact_readings: true,
+            prediction_distance: IntegrationParameters::default().normalized_prediction_distance,
             has_kinematic: scene
                 .level
                 .bodies
@@ -365,10 +369,8 @@ impl Simulation {
                 let p = &mut self.world.integration_parameters;
                 p.dt = h as Real;
                 p.num_solver_iterations = sub;
-                p.normalized_prediction_distance = prediction.map_or(
-                    IntegrationParameters::default().normalized_prediction_distance,
-                    |x| x as Real,
-                );
+                p.normalized_prediction_distance =
+                    prediction.map_or(self.prediction_distance, |x| x as Real);
             }
             self.apply_forces(&loads);
             self.load_carriers(h, &mut carried);
