@@ -127,8 +127,60 @@ fn finer(scene: &Scene) -> Vec<(String, Options)> {
 
 #[test]
 fn levels_written_from_the_docs_alone_pass_untuned() {
-    all_pass("tests/newuser", finer, NEWUSER_KNOWN_GAPS);
+    let known: Vec<_> = NEWUSER_KNOWN_GAPS
+        .iter()
+        .chain(NEWUSER_OPEN_FINDINGS)
+        .copied()
+        .collect();
+    all_pass("tests/newuser", finer, &known);
 }
+
+/// What a second new user's levels (tests/newuser/n2_*, 2026-11-25, written from README.md and
+/// docs/levels.md alone) found that is rigidlab's reading or the engine's start-up, not yet
+/// fixed: each measured here and listed in the README's known gaps. (Fixed the same day: H_O's
+/// scale on a bar spinning freely on its pin, read 1.00; a wheel rolling into a curb carried
+/// with g to the touching instant, as if its floor did not hold it up, 0.66% off in w'.)
+const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
+    // rigidlab's `restitution` check takes the approach speed at the start of the impact's step,
+    // not carried to the touching instant as the `Restitution` question does (0.60016): e reads
+    // 0.6031 at 4 substeps, 0.6041 at 8 and 0.6047 at 16 against 0.6 (tolerance 5e-3).
+    ("n2_01_ball_drop_restitution.ron", "check restitution"),
+    // The engine's floor sags 0.8 mm under the rolling wheel, so G meets the curb 0.8 mm low:
+    // the impulse solution from the engine's state (the analysis) loses 1.46% more energy
+    // than the textbook (1.860 against 1.833 J); the engine itself reads 1.8375 J (2.3e-3).
+    ("n2_03_wheel_curb_from_gap.ron", "question lost"),
+    // Started touching the floor 7.7 mm from the curb, the wheel meets the curb in the first
+    // step, before the floor has pushed: it falls unsupported for a step (1.0e-2 off in w',
+    // 4.6e-2 in the energy lost, any substeps). At dt/2 the engine is within 7.4e-4 but the
+    // analysis, which has no contacts in the initial snapshot to tell it the floor holds the
+    // wheel, carries it with g: 5.6e-3 off in w', 2.5e-2 in the energy lost.
+    ("n2_03b_wheel_curb_from_8mm.ron", "question omega_after"),
+    ("n2_03b_wheel_curb_from_8mm.ron", "question vGx_after"),
+    ("n2_03b_wheel_curb_from_8mm.ron", "question lost"),
+    // rapier's soft wall at 16 substeps: the wall force at 55 degrees reads 2.6e-2 low (the
+    // ladder's known gap, tests/ladder_release.rs).
+    ("n2_11_ladder_omega_at_55.ron", "question N_wall"),
+    // A disc set spinning on a rough floor: the contacts' work while it slips is over-counted by
+    // 2.4% (U' -1.5358 J against the textbook's -1.5 and the engine's own energy change
+    // -1.4989 J; 1.17e-2 at 8 substeps, 3.0e-3 at dt/2): rigidlab's reading of friction work,
+    // not found yet. Its H about a floor point reads 9.5e-3 off (5.8e-3 at 8 substeps).
+    (
+        "n2_12_spinning_disc_on_rough_floor.ron",
+        "check work_energy",
+    ),
+    (
+        "n2_12_spinning_disc_on_rough_floor.ron",
+        "check impulse_momentum",
+    ),
+    // At 8 and 16 substeps the disc, placed touching the floor, bounces on rapier's soft
+    // contact: at t = 0.15 s the floor pushes 10.31 N against m g = 9.81 N, and the slipping
+    // accelerations read 5.1e-2 (8 substeps) and 3.1e-2 (16) high; at 4 substeps 1e-6.
+    ("n2_12_spinning_disc_on_rough_floor.ron", "question a_slip"),
+    (
+        "n2_12_spinning_disc_on_rough_floor.ron",
+        "question alpha_slip",
+    ),
+];
 
 /// Engine gaps the new user's levels run into, measured (README, "Known gaps"), each a file and
 /// the start of the failure's line.

@@ -106,7 +106,18 @@ impl Impact {
         let l2 = to_local(&hit.bodies[i2], p + n * d);
         let (b1, b2) = (&pre.bodies[i1], &pre.bodies[i2]);
         let (q1, q2) = (b1.world_point(l1), b2.world_point(l2));
-        let free: Vec<bool> = (0..pre.bodies.len()).map(|i| is_free(hit, i)).collect();
+        // Free over [pre, touching]: under gravity alone, so neither jointed nor pushed by a
+        // contact in the step before (a wheel rolling on its floor into a curb is held up by the
+        // floor until the impact: carried with g, it gained g tau downward and H about the
+        // corner was 1% off).
+        let supported = |i: usize| {
+            pre.contacts.iter().any(|c| {
+                (c.body1 == i || c.body2 == i) && c.points.iter().any(|p| p.normal_impulse > 0.0)
+            })
+        };
+        let free: Vec<bool> = (0..pre.bodies.len())
+            .map(|i| is_free(hit, i) && !supported(i))
+            .collect();
         let acc = |i: usize| if free[i] { pre.gravity } else { DVec2::ZERO };
         let discs = (
             facts.bodies.get(i1).and_then(|x| x.disc),
