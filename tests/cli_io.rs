@@ -240,6 +240,38 @@ fn coincident_bodies_are_warned_about_and_the_library_has_none() {
     }
 }
 
+/// A body whose starting velocity disagrees with its joint (a disc pinned 0.1 m above its
+/// center given only omega: its pin point would move at omega x 0.1) is warned about at the
+/// joint, with the velocity that matches; matched, or declared `starts_apart`, it is not.
+#[test]
+fn a_jointed_body_started_against_its_joint_is_warned_about() {
+    let level = |disc: &str, extra: &str| {
+        format!(
+            "Level(\n  title: \"kicked\",\n  effects: [gravity, joints],\n  world: (dt: 0.01, duration: 0.1),\n  bodies: [\n    (name: \"ground\", kind: fixed),\n    (name: \"disc\", shape: Circle(radius: 0.15), mass: 1.5, position: (0.0, -0.1), {disc}),\n  ],\n  joints: [(name: \"pin\", kind: revolute, body1: \"ground\", body2: \"disc\", anchor2: (0.0, 0.1){extra})],\n)\n"
+        )
+    };
+    // omega 0.35 about G: the pin point (0.1 above G) moves at -0.35 x 0.1 = -0.035 m/s in x.
+    let (_, warnings) =
+        level::load_with_warnings(&write(&level("omega: 0.35", ""), "kicked")).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let w = warnings[0].to_string();
+    assert!(
+        w.contains("kicked.ron:9:")
+            && w.contains("joint \"pin\"")
+            && w.contains("(-0.0350, 0.0000) m/s")
+            && w.contains("give it velocity: (0.035000, 0.000000)"),
+        "{w}"
+    );
+    // With that velocity the disc turns about its pin: no warning.
+    let matched = level("velocity: (0.035, 0.0), omega: 0.35", "");
+    let (_, warnings) = level::load_with_warnings(&write(&matched, "matched")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    // A pivot meant to catch the moving body says so.
+    let caught = level("omega: 0.35", ", starts_apart: true");
+    let (_, warnings) = level::load_with_warnings(&write(&caught, "caught")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
 fn write(text: &str, name: &str) -> PathBuf {
     let path = temp_dir(name).join(format!("{name}.ron"));
     std::fs::write(&path, text).unwrap();

@@ -7,7 +7,9 @@
 //! warning existed). Bodies joined by a joint do not collide (sim/build.rs turns their contacts
 //! off), so a pin between two coincident bodies is not warned about.
 
-use super::{BodyDef, BodyKind, Effect, Level, LevelError, LevelWarning, Locator, Shape, V2};
+use super::{
+    BodyDef, BodyKind, Effect, JointKind, Level, LevelError, LevelWarning, Locator, Shape, V2,
+};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -19,6 +21,104 @@ pub fn find(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
     let mut out = Vec::new();
     if level.effects.contains(&Effect::Contacts) {
         out.extend(coincident_bodies(file, text, level));
+    }
+    if level.effects.contains(&Effect::Joints) {
+        out.extend(joint_velocities(file, text, level));
+    }
+    out
+}
+
+/// Where a body's mass center is in its frame, when its shape alone says (a circle, box or
+/// capsule at the origin, a segment at its middle); None for polygons and compounds, whose
+/// centroid is the analysis layer's to compute (the warning below then stays silent).
+fn simple_mass_center(b: &BodyDef) -> Option<V2> {
+    match &b.shape {
+        None | Some(Shape::Circle { .. } | Shape::Box { .. } | Shape::Capsule { .. }) => {
+            Some((0.0, 0.0))
+        }
+        Some(Shape::Segment { a, b }) => Some(((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0)),
+        Some(_) => None,
+    }
+}
+
+/// Joints whose two bodies' starting velocities disagree at the joint: a pinned disc given only
+/// its omega, its mass center left at rest. rapier then jerks them together in the first step
+/// with an impulse no textbook has (a new user's pendulum swung 0.0273 rad instead of 0.0515).
+fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
+    let body = |n: &str| level.bodies.iter().find(|b| b.name == n);
+    let rotate = |p: V2, a: f64| (p.0 * a.cos() - p.1 * a.sin(), p.0 * a.sin() + p.1 * a.cos());
+    // Velocity of the body point at world `p`, and the body's omega (fixed bodies at rest).
+    let motion = |b: &BodyDef, g_local: V2, p: V2| {
+        if b.kind == BodyKind::Fixed {
+            return ((0.0, 0.0), 0.0);
+        }
+        let g = rotate(g_local, b.angle);
+        let r = (p.0 - b.position.0 - g.0, p.1 - b.position.1 - g.1);
+        (
+            (b.velocity.0 - b.omega * r.1, b.velocity.1 + b.omega * r.0),
+            b.omega,
+        )
+    };
+    let loc = Locator::new(text);
+    let mut out = Vec::new();
+    for j in &level.joints {
+        // `starts_apart`: the joint is meant to start broken (a pivot that catches a moving
+        // plate: its first step is the impact).
+        let (Some(b1), Some(b2), false) = (body(&j.body1), body(&j.body2), j.starts_apart) else {
+            continue;
+        };
+        let (Some(g1), Some(g2)) = (simple_mass_center(b1), simple_mass_center(b2)) else {
+            continue;
+        };
+        // At body2's anchor: on a slot that is the point of body1's slot line the pin is at
+        // (for a pin or a weld the two anchors coincide, `validate::joints::anchors_meet`).
+        let a2 = rotate(j.anchor2, b2.angle);
+        let p = (b2.position.0 + a2.0, b2.position.1 + a2.1);
+        let ((v1, w1), (v2, w2)) = (motion(b1, g1, p), motion(b2, g2, p));
+        let mut dv = (v2.0 - v1.0, v2.1 - v1.1);
+        if matches!(j.kind, JointKind::Prismatic | JointKind::PinSlot) {
+            // Sliding along the axis is the joint's own motion.
+            let ax = rotate(j.axis, b1.angle);
+            let n = ax.0.hypot(ax.1).max(1e-300);
+            let along = (dv.0 * ax.0 + dv.1 * ax.1) / (n * n);
+            dv = (dv.0 - along * ax.0, dv.1 - along * ax.1);
+        }
+        let turns_with = matches!(j.kind, JointKind::Fixed | JointKind::Prismatic);
+        let dw = if turns_with { w2 - w1 } else { 0.0 };
+        let speed = dv.0.hypot(dv.1);
+        let scale = v1.0.hypot(v1.1).max(v2.0.hypot(v2.1)).max(1.0);
+        if speed <= 1e-6 * scale && dw.abs() <= 1e-6 * w1.abs().max(w2.abs()).max(1.0) {
+            continue;
+        }
+        // The body2 velocity that matches body1 at the joint (body2's omega kept).
+        let fix = (b2.velocity.0 - dv.0, b2.velocity.1 - dv.1);
+        let what = if speed > 1e-6 * scale {
+            format!(
+                "at t = 0 body \"{}\"'s point at the joint moves at ({:.4}, {:.4}) m/s and body \"{}\"'s at ({:.4}, {:.4}) m/s",
+                b1.name, v1.0, v1.1, b2.name, v2.0, v2.1
+            )
+        } else {
+            format!(
+                "at t = 0 body \"{}\" turns at {w1} rad/s and body \"{}\" at {w2} rad/s",
+                b1.name, b2.name
+            )
+        };
+        out.push(LevelWarning(LevelError::new(
+            file,
+            loc.item_pos("joints", &j.name),
+            format!(
+                "joint \"{}\": {what}; rapier makes them agree in the first step with an impulse no textbook has",
+                j.name
+            ),
+            if speed > 1e-6 * scale {
+                format!(
+                    "`velocity` is the mass center's and `omega` turns the body about it (v_P = v_G + omega x r_P/G); to start \"{}\" moving with \"{}\" at the joint, give it velocity: ({:.6}, {:.6}) (or, for a joint meant to catch it as an impact, add `starts_apart: true`)",
+                    b2.name, b1.name, fix.0, fix.1
+                )
+            } else {
+                format!("a {:?} joint keeps its bodies turning together: give both the same `omega`", j.kind).to_lowercase()
+            },
+        )));
     }
     out
 }
