@@ -222,6 +222,16 @@ impl FrameAnalysis {
         self.frame_current = false;
     }
 
+    /// [`Self::observe`] when `diagram` (a reader needs the frame's sums), else
+    /// [`Self::observe_motion`].
+    pub fn observe_as(&mut self, snap: &Snapshot, diagram: bool) {
+        if diagram {
+            self.observe(snap);
+        } else {
+            self.observe_motion(snap);
+        }
+    }
+
     /// Swaps the end of the last step into its start and reads this step's end.
     fn advance(&mut self, snap: &Snapshot) {
         let n = snap.bodies.len();

@@ -94,12 +94,8 @@ impl CheckSet {
 
     /// Feeds a snapshot (the initial one first, then one per step, in order) to every check.
     pub fn observe(&mut self, snap: &Snapshot) {
-        match self.frame.as_mut() {
-            Some(fa) if self.diagram => {
-                fa.observe(snap);
-            }
-            Some(fa) => fa.observe_motion(snap),
-            None => {}
+        if let Some(fa) = self.frame.as_mut() {
+            fa.observe_as(snap, self.diagram);
         }
         for p in self.probes.iter_mut() {
             match &self.frame {

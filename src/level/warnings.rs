@@ -46,7 +46,6 @@ fn simple_mass_center(b: &BodyDef) -> Option<V2> {
 /// with an impulse no textbook has (a new user's pendulum swung 0.0273 rad instead of 0.0515).
 fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
     let body = |n: &str| level.bodies.iter().find(|b| b.name == n);
-    let rotate = |p: V2, a: f64| (p.0 * a.cos() - p.1 * a.sin(), p.0 * a.sin() + p.1 * a.cos());
     // Velocity of the body point at world `p`, and the body's omega (fixed bodies at rest).
     let motion = |b: &BodyDef, g_local: V2, p: V2| {
         if b.kind == BodyKind::Fixed {
@@ -85,14 +84,14 @@ fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning>
         }
         let turns_with = matches!(j.kind, JointKind::Fixed | JointKind::Prismatic);
         let dw = if turns_with { w2 - w1 } else { 0.0 };
-        let speed = dv.0.hypot(dv.1);
         let scale = v1.0.hypot(v1.1).max(v2.0.hypot(v2.1)).max(1.0);
-        if speed <= 1e-6 * scale && dw.abs() <= 1e-6 * w1.abs().max(w2.abs()).max(1.0) {
+        let slips = dv.0.hypot(dv.1) > 1e-6 * scale;
+        if !slips && dw.abs() <= 1e-6 * w1.abs().max(w2.abs()).max(1.0) {
             continue;
         }
         // The body2 velocity that matches body1 at the joint (body2's omega kept).
         let fix = (b2.velocity.0 - dv.0, b2.velocity.1 - dv.1);
-        let what = if speed > 1e-6 * scale {
+        let what = if slips {
             format!(
                 "at t = 0 body \"{}\"'s point at the joint moves at ({:.4}, {:.4}) m/s and body \"{}\"'s at ({:.4}, {:.4}) m/s",
                 b1.name, v1.0, v1.1, b2.name, v2.0, v2.1
@@ -110,7 +109,7 @@ fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning>
                 "joint \"{}\": {what}; rapier makes them agree in the first step with an impulse no textbook has",
                 j.name
             ),
-            if speed > 1e-6 * scale {
+            if slips {
                 format!(
                     "`velocity` is the mass center's and `omega` turns the body about it (v_P = v_G + omega x r_P/G); to start \"{}\" moving with \"{}\" at the joint, give it velocity: ({:.6}, {:.6}) (or, for a joint meant to catch it as an impact, add `starts_apart: true`)",
                     b2.name, b1.name, fix.0, fix.1
@@ -123,10 +122,15 @@ fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning>
     out
 }
 
+/// `p` turned by `a` rad counter-clockwise.
+fn rotate(p: V2, a: f64) -> V2 {
+    let (s, c) = a.sin_cos();
+    (p.0 * c - p.1 * s, p.0 * s + p.1 * c)
+}
+
 /// The center of a shape's bounding box in its body's frame (polygons are often written in world
 /// coordinates on a body at the origin, so the body position alone says little).
 fn local_center(shape: &Shape) -> V2 {
-    let rotate = |p: V2, a: f64| (p.0 * a.cos() - p.1 * a.sin(), p.0 * a.sin() + p.1 * a.cos());
     match shape {
         Shape::Circle { .. } | Shape::Box { .. } | Shape::Capsule { .. } => (0.0, 0.0),
         Shape::Segment { a, b } => ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0),
@@ -160,12 +164,8 @@ fn local_center(shape: &Shape) -> V2 {
 
 /// Where a body's collider is centered in the world.
 fn world_center(b: &BodyDef, shape: &Shape) -> V2 {
-    let c = local_center(shape);
-    let (s, co) = b.angle.sin_cos();
-    (
-        b.position.0 + c.0 * co - c.1 * s,
-        b.position.1 + c.0 * s + c.1 * co,
-    )
+    let c = rotate(local_center(shape), b.angle);
+    (b.position.0 + c.0, b.position.1 + c.1)
 }
 
 /// Groups of at least two colliding bodies (one of them moving) whose colliders are centered

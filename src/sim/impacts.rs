@@ -199,8 +199,9 @@ impl Simulation {
         plan
     }
 
-    /// rapier's prediction distance for this run, m (its default: `length_unit` is 1 m).
+    /// rapier's prediction distance for this run when no impact lowers it, m (the world's own
+    /// normalized distance times its length unit).
     fn settings_prediction(&self) -> f64 {
-        IntegrationParameters::default().prediction_distance() as f64
+        (self.prediction_distance * self.world.integration_parameters.length_unit) as f64
     }
 }

@@ -53,9 +53,9 @@ pub struct Settings {
     /// normal and lever arms are those of the approach, not of the impact (a wheel meeting a
     /// curb 6.7 mm after the pair was first seen pivoted 1.5% too slowly).
     pub contact_recycling: bool,
-    /// Each rapier call is cut at the first time of impact within it, and contacts are made
-    /// only within 20 um (sim/impacts.rs): an impact's normal and lever arms are those of the
-    /// instant the bodies touch, whatever gap they approached from. On in scenes with contacts
+    /// Each rapier call is planned around the impacts in it (sim/impacts.rs): cut at the first
+    /// time of impact, with no contact for an approaching pair before it touches, so an impact's
+    /// normal and lever arms are those of the instant the bodies touch, whatever gap they approached from. On in scenes with contacts
     /// and at most [`IMPACT_CUT_BODIES`] moving bodies, or as `Options::impact_cuts` says
     /// (`--impact-cuts`, `--no-impact-cuts`): every nearby pair is tried each call.
     #[serde(default)]

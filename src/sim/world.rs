@@ -46,7 +46,7 @@ pub struct Simulation {
     has_kinematic: bool,
     /// The world's own normalized prediction distance, restored after a call the impact plan
     /// lowered it for (sim/impacts.rs).
-    prediction_distance: Real,
+    pub(super) prediction_distance: Real,
 }
 
 impl Simulation {
@@ -57,6 +57,7 @@ impl Simulation {
         let mut world = PhysicsWorld::new();
         world.gravity = build::gravity(&level);
         world.integration_parameters = build::integration_parameters(&settings);
+        let prediction_distance = world.integration_parameters.normalized_prediction_distance;
         let contacts = effects.has(Effect::Contacts);
 
         let mut bodies = Vec::new();
@@ -119,7 +120,7 @@ impl Simulation {
             torsion_rest: Vec::new(),
             energy: EnergyGuard::default(),
             contact_readings: true,
-            prediction_distance: IntegrationParameters::default().normalized_prediction_distance,
+            prediction_distance,
             has_kinematic: scene
                 .level
                 .bodies
@@ -223,7 +224,6 @@ impl Simulation {
         (self.level.world.duration / self.dt()).round().max(1.0) as u64
     }
 
-    /// The state after the last step (or the initial state).
     /// Whether each snapshot carries the step's contacts (on by default). Reading 200 contact
     /// manifolds into f64 costs about 5% of rapier's step on a 200-box pile (`benches/core.rs`):
     /// a run whose readers use none turns it off (`runner::Observers::reads_contacts`), and its
@@ -239,6 +239,7 @@ impl Simulation {
         self.contact_readings || !self.pending_welds.is_empty() || self.has_kinematic
     }
 
+    /// The state after the last step (or the initial state).
     pub fn snapshot(&self) -> &Snapshot {
         &self.snapshot
     }

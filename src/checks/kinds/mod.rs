@@ -78,11 +78,7 @@ pub(super) fn framed<P: FrameProbe + 'static>(inner: P) -> Box<dyn Probe> {
 impl<P: FrameProbe> Probe for Framed<P> {
     fn observe(&mut self, snap: &Snapshot) {
         let fa = self.own.get_or_insert_with(FrameAnalysis::new);
-        if self.inner.needs_diagram() {
-            fa.observe(snap);
-        } else {
-            fa.observe_motion(snap);
-        }
+        fa.observe_as(snap, self.inner.needs_diagram());
         self.inner.observe_frame(snap, fa);
     }
     fn wants_frame(&self) -> bool {
