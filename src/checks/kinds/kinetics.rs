@@ -6,10 +6,9 @@ use super::{
     v2, FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::FrameAnalysis;
-use crate::analysis::kinematics::{acceleration_fd, angular_acceleration_fd};
 use crate::analysis::kinetics::{
     finite_difference_resolution, gravity_point, kinetic_moment_about, kinetic_moment_fixed_axis,
-    newton_euler_residual,
+
 };
 use crate::analysis::mass::{parallel_axis, MassProps};
 use crate::analysis::Motion;
@@ -111,12 +110,15 @@ impl FrameProbe for NewtonEuler {
             return;
         };
         let b = &s.bodies[i];
-        let now = Motion::from(b);
-        self.k_g = crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
         let f = fa.frame();
         if !f.stepped {
             return;
         }
+        if self.k_g == 0.0 {
+            // m and I_G do not change during a run.
+            self.k_g = crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
+        }
+        let now = Motion::from(b);
         let before = fa.start_of_step()[i];
         if let (Some(p), None) = (self.p, self.pivot) {
             // A pivot at P: the body's joint to a fixed body, anchored at P (to 1e-4 of the
@@ -129,10 +131,13 @@ impl FrameProbe for NewtonEuler {
                     .map(|o| before.com.distance(o)),
             );
         }
-        let sums = f.bodies[i].impulses;
-        let sum_f = sums.impulse / s.dt;
-        let a_g = acceleration_fd(before.velocity, now.velocity, s.dt);
-        let ma = b.mass * a_g;
+        // The step's free-body and kinetic diagrams, from the shared frame pass: sum F and
+        // sum M_G (impulses / dt), a_G and alpha by finite differences (`FD`), and their
+        // residuals (6/1), computed there once for every reader.
+        let bf = &f.bodies[i];
+        let sums = &bf.impulses;
+        let inv_dt = 1.0 / s.dt;
+        let ma = b.mass * bf.acceleration;
         // The residual the engine's precision cannot resolve is not held against it: a body
         // coasting force-free after an impact has F_s at f32 noise otherwise, and reads 100 %.
         let (res_f, res_m) = finite_difference_resolution(
@@ -149,30 +154,22 @@ impl FrameProbe for NewtonEuler {
         // force of the diagram (in statics the sum and m a_G vanish while a piston's force and
         // the pin's reaction balancing it do not), and a couple's size over k_G.
         let k = self.k_g.max(1e-9);
-        let fs = sum_f
+        let fs = bf
+            .force
             .length()
             .max(ma.length())
             .max(b.mass * s.gravity.length())
-            .max(sums.largest_impulse / s.dt)
-            .max(sums.largest_couple / s.dt / k)
+            .max(sums.largest_impulse * inv_dt)
+            .max(sums.largest_couple * inv_dt / k)
             .max(res_f)
             .max(1e-12);
         let rel = match self.p {
             None => {
                 // 6/1: the body's free-body diagram over the step, from the shared frame.
-                let moment_g = f.bodies[i].moment_g * s.dt;
-                let (df, dm) = newton_euler_residual(
-                    b.mass,
-                    b.inertia,
-                    &before,
-                    &now,
-                    sums.impulse,
-                    moment_g,
-                    s.dt,
-                );
-                self.f.add(df.length(), s.time);
-                self.last = (sum_f.length(), ma.length());
-                let force = beyond(df.length(), res_f) / fs;
+                let (df, dm) = (bf.force_residual.length(), bf.moment_residual);
+                self.f.add(df, s.time);
+                self.last = (bf.force.length(), ma.length());
+                let force = beyond(df, res_f) / fs;
                 if self.locked {
                     force
                 } else {
@@ -183,12 +180,13 @@ impl FrameProbe for NewtonEuler {
             Some(p) => {
                 // 6/2 about P (and 6/4 about the pivot) with the textbook m and I_G.
                 let t = self.textbook;
-                let alpha = angular_acceleration_fd(before.omega, now.omega, s.dt);
-                let sum_m = sums.moment_about(p) / s.dt;
+                let sum_m = sums.moment_about(p) * inv_dt;
                 // G where the step's impulses act on average: the mean of the substeps' start
                 // positions, as for gravity in the diagram (each substep's m dv acts there).
                 let r_g = gravity_point(before.com, now.com, self.substeps);
-                let kinetic = kinetic_moment_about(t.mass, t.inertia, alpha, r_g, a_g, p);
+                let alpha = bf.angular_acceleration;
+                let kinetic =
+                    kinetic_moment_about(t.mass, t.inertia, alpha, r_g, bf.acceleration, p);
                 let mut worst = (sum_m - kinetic).abs();
                 if let Some(Some(r_bar)) = self.pivot {
                     let i_o = parallel_axis(t.inertia, t.mass, r_bar);

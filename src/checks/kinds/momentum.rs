@@ -370,15 +370,22 @@ impl FrameProbe for ImpulseMomentum {
         self.g_worst.add(from_t1.linear_beyond_rounding(), s.time);
         // Scales: the set's G and H_O, and the momenta its bodies carry one by one (two discs
         // swapping H through a torsion spring have H_O = 0 throughout, yet each carries some).
-        let (mut g_bodies, mut h_bodies) = (0.0, 0.0);
-        for &i in &self.subject {
-            let b = &s.bodies[i];
-            if b.mass > 0.0 {
-                g_bodies += linear_momentum(b.mass, b.velocity).length();
-                h_bodies +=
-                    angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, o).abs();
-            }
-        }
+        // (One body: its own G and H_O, computed above.)
+        let (g_bodies, h_bodies) = match self.index {
+            Some(_) => (g.length(), h.abs()),
+            None => self
+                .subject
+                .iter()
+                .map(|&i| &s.bodies[i])
+                .filter(|b| b.mass > 0.0)
+                .fold((0.0, 0.0), |(gs, hs), b| {
+                    (
+                        gs + linear_momentum(b.mass, b.velocity).length(),
+                        hs + angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, o)
+                            .abs(),
+                    )
+                }),
+        };
         self.g_scale = self
             .g_scale
             .max(g.length())
