@@ -47,6 +47,9 @@ pub struct PairContact {
     pub normal: DVec2,
     /// Impulse-weighted mean contact point (first point if no impulse), world.
     pub point: DVec2,
+    /// The same mean of the points on a's surface and on b's (they differ by the points'
+    /// separation along the normal): the material points that touch.
+    pub surfaces: (DVec2, DVec2),
     /// Total impulse on b over the step, N s (a gets the opposite).
     pub impulse_on_b: DVec2,
     /// Sum of the normal impulses, N s.
@@ -80,7 +83,10 @@ fn pair_contact_among(
 ) -> Option<PairContact> {
     let mut out = PairContact::default();
     let (mut wsum, mut psum, mut nsum) = (0.0, DVec2::ZERO, DVec2::ZERO);
-    let mut first: Option<(DVec2, DVec2)> = None;
+    // The points on a's surface and on b's: a point is on body1's, body2's is `normal * distance`
+    // from it.
+    let (mut sa, mut sb) = (DVec2::ZERO, DVec2::ZERO);
+    let mut first: Option<(DVec2, DVec2, (DVec2, DVec2))> = None;
     for c in ids.map(|k| &snap.contacts[k]) {
         let sign = if c.body1 == a && c.body2 == b {
             1.0
@@ -92,21 +98,31 @@ fn pair_contact_among(
         let n = c.normal * sign;
         out.impulse_on_b += c.impulse_on_body2() * sign;
         for p in &c.points {
-            first.get_or_insert((p.point, n));
+            let other = p.point + c.normal * p.distance;
+            let on = if sign > 0.0 {
+                (p.point, other)
+            } else {
+                (other, p.point)
+            };
+            first.get_or_insert((p.point, n, on));
             wsum += p.normal_impulse;
             psum += p.point * p.normal_impulse;
             nsum += n * p.normal_impulse;
+            sa += on.0 * p.normal_impulse;
+            sb += on.1 * p.normal_impulse;
             out.normal_impulse += p.normal_impulse;
             out.points += 1;
         }
     }
-    let (p0, n0) = first?;
+    let (p0, n0, on0) = first?;
     if wsum > 0.0 {
         out.normal = nsum.normalize_or(n0);
         out.point = psum / wsum;
+        out.surfaces = (sa / wsum, sb / wsum);
     } else {
         out.normal = n0;
         out.point = p0;
+        out.surfaces = on0;
     }
     Some(out)
 }

@@ -35,6 +35,7 @@ pub mod mass;
 pub mod momentum;
 pub mod oscillation;
 pub mod percussion;
+pub mod touching;
 pub mod virtual_work;
 
 use crate::snapshot::BodyState;
@@ -86,9 +87,29 @@ impl Motion {
         self.position + DVec2::from_angle(self.angle).rotate(local)
     }
 
+    /// Body-frame coordinates of the world point `p` (the inverse of [`Motion::world_point`]).
+    pub fn local_point(&self, p: DVec2) -> DVec2 {
+        DVec2::from_angle(-self.angle).rotate(p - self.position)
+    }
+
     /// Velocity of the body point now at world position `p` (RK-6).
     pub fn velocity_at(&self, p: DVec2) -> DVec2 {
         kinematics::point_velocity(self.velocity, self.omega, p - self.com)
+    }
+
+    /// The state `tau` later (earlier when negative) for a body at constant acceleration `a` of
+    /// G and constant omega: a body flying free under gravity (no moment about G), carried from
+    /// a step's end to the instant of an impact inside it (`touching`).
+    pub fn carried(&self, tau: f64, a: DVec2) -> Motion {
+        let com = self.com + self.velocity * tau + 0.5 * a * tau * tau;
+        let turn = self.omega * tau;
+        Motion {
+            position: com - DVec2::from_angle(turn).rotate(self.com - self.position),
+            angle: self.angle + turn,
+            com,
+            velocity: self.velocity + a * tau,
+            omega: self.omega,
+        }
     }
 
     /// The state halfway through a step in velocity (mean of the two ends): the velocity at

@@ -10,7 +10,8 @@ use crate::analysis::cross;
 use crate::analysis::impulse_solver::{
     coupling_row, joint_impulse, joint_rows, point_row, row_velocity, solve_impulses, ConstraintRow,
 };
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::analysis::touching::Approaching;
+use crate::analysis::Motion;
 use crate::snapshot::{BodyState, ContactState, Snapshot};
 use glam::DVec2;
 
@@ -119,75 +120,17 @@ impl Impact {
             .map(|i| is_free(hit, i) && !supported(i))
             .collect();
         let acc = |i: usize| if free[i] { pre.gravity } else { DVec2::ZERO };
-        let discs = (
-            facts.bodies.get(i1).and_then(|x| x.disc),
-            facts.bodies.get(i2).and_then(|x| x.disc),
-        );
-        let (n, tau, disc_point) = match discs {
-            // Two discs: the line of centers at touching, |d + w tau + a tau^2/2| = r1 + r2, instead of
-            // the engine's speculative normal (taken up to a step before they touch).
-            (Some(r1), Some(r2)) => {
-                let (d0, w, a) = (
-                    b2.com - b1.com,
-                    b2.velocity - b1.velocity,
-                    acc(i2) - acc(i1),
-                );
-                let mut t = 0.0;
-                for _ in 0..30 {
-                    let d = d0 + w * t + 0.5 * a * t * t;
-                    let f = d.length() - (r1 + r2);
-                    let df = d.normalize_or(DVec2::X).dot(w + a * t);
-                    if df.abs() < 1e-15 {
-                        break;
-                    }
-                    let step = f / df;
-                    t -= step;
-                    if step.abs() < 1e-15 {
-                        break;
-                    }
-                }
-                if !(t.is_finite() && t.abs() <= 2.0 * hit.dt) {
-                    t = 0.0;
-                }
-                let nn = (d0 + w * t + 0.5 * a * t * t).normalize_or(n);
-                if (w + a * t).dot(nn) >= 0.0 {
-                    return None; // not approaching: no impact
-                }
-                let g1 = b1.com + b1.velocity * t + 0.5 * acc(i1) * t * t;
-                (nn, t, Some(g1 + nn * r1))
-            }
-            _ => {
-                let gap = (q2 - q1).dot(n);
-                let v_n = (point_velocity(b2, q2) - point_velocity(b1, q1)).dot(n);
-                let a_n = (acc(i2) - acc(i1)).dot(n);
-                // Not approaching faster than gravity can close a gap in a step or two: a contact
-                // that was there from the start or that the bodies slid into (a ladder on its wall,
-                // a block set down), not an impact.
-                if v_n >= -(2.0 * pre.gravity.length() * hit.dt + 1e-9) {
-                    return None;
-                }
-                // gap + v_n tau + a_n tau^2 / 2 = 0 while approaching: the root nearest the last free
-                // step, within three steps either way (negative when the engine let the bodies overlap
-                // before the contact acted: the textbook impact is at the touching instant).
-                let roots: Vec<f64> = if a_n.abs() < 1e-12 {
-                    vec![-gap / v_n]
-                } else {
-                    let disc = v_n * v_n - 2.0 * a_n * gap;
-                    if disc < 0.0 {
-                        vec![]
-                    } else {
-                        let r = disc.sqrt();
-                        vec![(-v_n - r) / a_n, (-v_n + r) / a_n]
-                    }
-                };
-                let tau = roots
-                    .into_iter()
-                    .filter(|t| v_n + a_n * t < 0.0 && t.abs() <= 3.0 * hit.dt)
-                    .min_by(|a, b| a.abs().total_cmp(&b.abs()))
-                    .unwrap_or(0.0);
-                (n, tau, None)
-            }
-        };
+        let disc = |i: usize| facts.bodies.get(i).and_then(|x| x.disc);
+        let (m1, m2) = (Motion::from(b1), Motion::from(b2));
+        let touch = Approaching {
+            pre: [&m1, &m2],
+            acc: [acc(i1), acc(i2)],
+            points: [q1, q2],
+            normal: n,
+            discs: [disc(i1), disc(i2)],
+        }
+        .touching(pre.gravity.length(), hit.dt)?;
+        let (n, tau, disc_point) = (touch.normal, touch.tau, touch.disc_point);
         let states: Vec<BodyState> = pre
             .bodies
             .iter()

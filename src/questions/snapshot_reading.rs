@@ -40,10 +40,12 @@ pub(super) fn is_free(s: &Snapshot, i: usize) -> bool {
 
 /// A body state carried forward by `tau` at constant acceleration `a` and constant omega.
 pub(super) fn carried_forward(b: &BodyState, tau: f64, a: DVec2) -> BodyState {
+    let m = crate::analysis::Motion::from(b).carried(tau, a);
     let mut n = b.clone();
-    n.com = b.com + b.velocity * tau + 0.5 * a * tau * tau;
-    n.velocity = b.velocity + a * tau;
-    n.angle = b.angle + b.omega * tau;
+    n.com = m.com;
+    n.velocity = m.velocity;
+    n.angle = m.angle;
+    // From the body's own G offset (the carried frame origin agrees to rounding).
     n.position = n.com - DVec2::from_angle(n.angle).rotate(b.local_com);
     n
 }

@@ -8,7 +8,6 @@ use super::{
 use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::kinetics::{
     finite_difference_resolution, gravity_point, kinetic_moment_about, kinetic_moment_fixed_axis,
-
 };
 use crate::analysis::mass::{parallel_axis, MassProps};
 use crate::analysis::Motion;

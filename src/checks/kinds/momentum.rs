@@ -381,8 +381,10 @@ impl FrameProbe for ImpulseMomentum {
                 .fold((0.0, 0.0), |(gs, hs), b| {
                     (
                         gs + linear_momentum(b.mass, b.velocity).length(),
-                        hs + angular_momentum_about(b.mass, b.inertia, b.com, b.velocity, b.omega, o)
-                            .abs(),
+                        hs + angular_momentum_about(
+                            b.mass, b.inertia, b.com, b.velocity, b.omega, o,
+                        )
+                        .abs(),
                     )
                 }),
         };
