@@ -152,20 +152,37 @@ impl MassOf {
     }
 }
 
+/// A measured impact.
 struct Done {
     /// When the impact began (the start of its first step), s.
     start_time: f64,
+    steps: u32,
+    points: usize,
+    /// The touching instant, s: None when the pair did not approach faster than gravity closes
+    /// a gap in a step or two, a contact settling at step resolution, which the textbook's e
+    /// does not describe (the questions call it no impact).
+    touch_time: Option<f64>,
     eccentric: bool,
-    /// Whether the pair approached faster than gravity closes a gap in a step or two (the
-    /// touching instant was found): else a contact settling at step resolution, which the
-    /// textbook's e does not describe (the questions call it no impact).
-    approached: bool,
     e: f64,
     e_set: f64,
+    /// The approach speed along the normal, m/s, and the tangential relative velocity before
+    /// and after.
+    approach: f64,
+    tangential: (f64, f64),
+    /// T lost, measured and by IM-14, J.
+    lost: f64,
+    lost_theory: f64,
+    /// The normal impulse on the body and its m dv_n, N s.
+    impulse_and_dp: (f64, f64),
     h_before: f64,
     h_theory: f64,
     h_engine: f64,
-    note: String,
+}
+
+impl Done {
+    fn approached(&self) -> bool {
+        self.touch_time.is_some()
+    }
 }
 
 struct Restitution {
@@ -309,46 +326,61 @@ impl Restitution {
         // Momentum along n of the body against the contact impulse on it (IM-9).
         let dp = ba.mass * (a1.velocity - a0.velocity).dot(m.normal);
         let j_on_a = -o.impulse.dot(m.normal);
-        let touch = match &o.touch {
-            Some(t) => format!(", touching at {:.5} s", t.time),
+        self.impacts.push(Done {
+            start_time: o.start_time,
+            steps: o.steps,
+            points: o.points,
+            touch_time: o.touch.map(|t| t.time),
+            eccentric,
+            e: m.e,
+            e_set,
+            approach: -m.v_n_before,
+            tangential: (m.v_t_before, m.v_t_after),
+            lost,
+            lost_theory,
+            impulse_and_dp: (j_on_a, dp),
+            h_before,
+            h_theory,
+            h_engine,
+        });
+    }
+}
+
+impl Done {
+    /// What the impact measured, for the result's note (written once, at the end of the run:
+    /// a pile's resting contacts open and close brackets every few steps).
+    fn note(&self, body: &str) -> String {
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        let touch = match self.touch_time {
+            Some(t) => format!(", touching at {t:.5} s"),
             None => ", not approaching: read at the bracket's ends".into(),
         };
         let mut note = format!(
             "t = {:.4} s ({} step{}, {} point{}{touch}): approach {:.4} m/s, e measured {:.5} (set {:.3}), tangential {:+.4} -> {:+.4} m/s, T lost {:.4e} J",
-            o.start_time,
-            o.steps,
-            if o.steps == 1 { "" } else { "s" },
-            o.points,
-            if o.points == 1 { "" } else { "s" },
-            -m.v_n_before,
-            m.e,
-            e_set,
-            m.v_t_before,
-            m.v_t_after,
-            lost
+            self.start_time,
+            self.steps,
+            plural(self.steps as usize),
+            self.points,
+            plural(self.points),
+            self.approach,
+            self.e,
+            self.e_set,
+            self.tangential.0,
+            self.tangential.1,
+            self.lost
         );
-        if eccentric {
+        if self.eccentric {
             note += &format!(
                 ", eccentric: H_C before {:.5}, after theory {:.5}, engine {:.5} N m s (e not a textbook quantity here)",
-                h_before, h_theory, h_engine
+                self.h_before, self.h_theory, self.h_engine
             );
         } else {
             note += &format!(
-                " (IM-14: {:.4e} J), normal impulse on \"{}\" {:.4e} N s vs m dv_n {:.4e} N s",
-                lost_theory, self.name, j_on_a, dp
+                " (IM-14: {:.4e} J), normal impulse on \"{body}\" {:.4e} N s vs m dv_n {:.4e} N s",
+                self.lost_theory, self.impulse_and_dp.0, self.impulse_and_dp.1
             );
         }
-        self.impacts.push(Done {
-            start_time: o.start_time,
-            eccentric,
-            approached: o.touch.is_some(),
-            e: m.e,
-            e_set,
-            h_before,
-            h_theory,
-            h_engine,
-            note,
-        });
+        note
     }
 }
 
@@ -511,18 +543,18 @@ impl FrameProbe for Restitution {
         // Only the impacts that approached are graded, when there are any: a ball's last
         // bounces, slower than gravity closes a gap in two steps, settle in a few steps of
         // contact that step resolution cannot tell from a landing (kept in the note).
-        let some_approached = self.impacts.iter().any(|d| d.approached);
+        let some_approached = self.impacts.iter().any(Done::approached);
         let note = self
             .impacts
             .iter()
-            .map(|d| match some_approached && !d.approached {
-                true => format!("{} (not graded)", d.note),
-                false => d.note.clone(),
+            .map(|d| match some_approached && !d.approached() {
+                true => format!("{} (not graded)", d.note(&self.name)),
+                false => d.note(&self.name),
             })
             .collect::<Vec<_>>()
             .join("; ");
         if some_approached {
-            self.impacts.retain(|d| d.approached);
+            self.impacts.retain(Done::approached);
         }
         let errors: Vec<(f64, f64)> = self
             .impacts
