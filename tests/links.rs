@@ -40,6 +40,18 @@ fn compare_on(file: &str, steps: usize) -> (usize, usize) {
             assert_eq!(scanned, linked, "{file}: body {i} at t = {}", s.time);
             singles += scanned.len();
         }
+        // `pushed`: a body some contact pushes over the step (a scan of every contact).
+        for i in 0..n {
+            let scanned = s.contacts.iter().any(|c| {
+                (c.body1 == i || c.body2 == i) && c.points.iter().any(|p| p.normal_impulse > 0.0)
+            });
+            assert_eq!(
+                links.pushed(i),
+                scanned,
+                "{file}: body {i} at t = {}",
+                s.time
+            );
+        }
         for c in &s.contacts {
             let (a, b) = (c.body1, c.body2);
             let in_pair = |k: usize| k == a || k == b;

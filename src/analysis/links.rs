@@ -10,6 +10,8 @@ use crate::snapshot::Snapshot;
 pub struct BodyLinks {
     contacts: Adjacency,
     joints: Adjacency,
+    /// Per body: whether a contact pushed it over the step (a positive normal impulse).
+    pushed: Vec<bool>,
 }
 
 impl BodyLinks {
@@ -20,6 +22,23 @@ impl BodyLinks {
             .rebuild(n, snap.contacts.iter().map(|c| (c.body1, c.body2)));
         self.joints
             .rebuild(n, snap.joints.iter().map(|j| (j.body1, j.body2)));
+        self.pushed.clear();
+        self.pushed.resize(n, false);
+        for c in &snap.contacts {
+            if c.points.iter().any(|p| p.normal_impulse > 0.0) {
+                for i in [c.body1, c.body2] {
+                    if let Some(x) = self.pushed.get_mut(i) {
+                        *x = true;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether a contact pushed body i over the step (a body held up by its floor, not flying
+    /// free: `analysis::touching`).
+    pub fn pushed(&self, i: usize) -> bool {
+        self.pushed.get(i).copied().unwrap_or(false)
     }
 
     /// The contacts touching body i, ascending.

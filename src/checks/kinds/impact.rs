@@ -435,7 +435,7 @@ impl FrameProbe for Restitution {
             });
             let pc = pair_contact_linked(s, i, k, &fa.links(s));
             let bracket = detector.step(pc.map_or(0.0, |c| c.normal_impulse));
-            let (now_a, now_b) = (Motion::from(&s.bodies[i]), Motion::from(&s.bodies[k]));
+            let now = |x: usize| Motion::from(&s.bodies[x]);
             match (bracket, pc) {
                 (Bracket::Start, Some(c)) => {
                     let touch = self.touching(s, fa, [i, k], &c);
@@ -443,8 +443,8 @@ impl FrameProbe for Restitution {
                         start_time: s.time - s.dt,
                         a0: before[i],
                         b0: before[k],
-                        a1: now_a,
-                        b1: now_b,
+                        a1: now(i),
+                        b1: now(k),
                         end_time: s.time,
                         touch,
                         normal: c.normal,
@@ -463,8 +463,8 @@ impl FrameProbe for Restitution {
                 _ => {}
             }
             if let (Some(o), Some(c)) = (self.open.as_mut(), pc) {
-                o.a1 = now_a;
-                o.b1 = now_b;
+                o.a1 = now(i);
+                o.b1 = now(k);
                 o.end_time = s.time;
                 o.impulse += c.impulse_on_b;
                 o.steps += 1;
@@ -494,16 +494,7 @@ impl FrameProbe for Restitution {
             }
             // For the next step's impact, if it is one: which of the two a contact pushed.
             let links = fa.links(s);
-            let pushed = |x: usize| {
-                s.bodies[x].mass > 0.0
-                    && links.contacts_of(x).iter().any(|&c| {
-                        s.contacts[c as usize]
-                            .points
-                            .iter()
-                            .any(|p| p.normal_impulse > 0.0)
-                    })
-            };
-            self.pushed = [pushed(i), pushed(k)];
+            self.pushed = [links.pushed(i), links.pushed(k)];
         }
     }
 
