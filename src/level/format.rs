@@ -337,6 +337,18 @@ pub enum JointKind {
     PinSlot,
 }
 
+impl JointKind {
+    /// What the docs call it: pin, slider, weld, pin in a slot.
+    pub fn describe(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "pin",
+            JointKind::Prismatic => "slider",
+            JointKind::Fixed => "weld",
+            JointKind::PinSlot => "pin in a slot",
+        }
+    }
+}
+
 /// A joint motor.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -115,7 +115,10 @@ fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning>
                     b2.name, b1.name, fix.0, fix.1
                 )
             } else {
-                format!("a {:?} joint keeps its bodies turning together: give both the same `omega`", j.kind).to_lowercase()
+                format!(
+                    "a {} keeps its bodies turning together: give both the same `omega`",
+                    j.kind.describe()
+                )
             },
         )));
     }
