@@ -22,8 +22,10 @@ pub struct Touching {
     pub tau: f64,
     /// Contact normal from the first body to the second at the touch.
     pub normal: DVec2,
-    /// For two discs: the touching point on the line of centers (else the caller's material
-    /// point carried to the touch).
+    /// Where a disc of the pair touches, on its rim along the normal (for two discs, on the
+    /// line of centers). None for two other shapes: the caller's material point carried to the
+    /// touch. (A spinning disc's material point at the contact at the step's end was elsewhere
+    /// at the touch: a disc striking a wall at 20 rad/s read its approach 1% fast from it.)
     pub disc_point: Option<DVec2>,
 }
 
@@ -85,7 +87,14 @@ impl Approaching<'_> {
             }
             _ => {
                 let n = self.normal;
-                let [q1, q2] = self.points;
+                // A disc's touching point is on its rim along the normal, whatever it spins.
+                let [mut q1, mut q2] = self.points;
+                if let [Some(r1), _] = self.discs {
+                    q1 = b1.com + n * r1;
+                }
+                if let [_, Some(r2)] = self.discs {
+                    q2 = b2.com - n * r2;
+                }
                 let gap = (q2 - q1).dot(n);
                 let v_n = (b2.velocity_at(q2) - b1.velocity_at(q1)).dot(n);
                 let a_n = (a2 - a1).dot(n);
@@ -112,10 +121,16 @@ impl Approaching<'_> {
                     .filter(|t| v_n + a_n * t < 0.0 && t.abs() <= 3.0 * dt)
                     .min_by(|a, b| a.abs().total_cmp(&b.abs()))
                     .unwrap_or(0.0);
+                // A disc touches on its rim, r along the normal from its G.
+                let rim = match self.discs {
+                    [Some(r1), _] => Some(b1.carried(tau, a1).com + n * r1),
+                    [_, Some(r2)] => Some(b2.carried(tau, a2).com - n * r2),
+                    _ => None,
+                };
                 Some(Touching {
                     tau,
                     normal: n,
-                    disc_point: None,
+                    disc_point: rim,
                 })
             }
         }
