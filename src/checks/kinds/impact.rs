@@ -1,5 +1,6 @@
 //! `restitution`: impacts between two bodies, e measured against e set (IM-9 to IM-15).
 
+use super::momentum::pivot_of;
 use super::{
     body_def, cached_body, dynamic_body, framed, misconfigured, result, subject_of, FrameProbe,
     Summary,
@@ -13,7 +14,7 @@ use crate::analysis::impact::{
 use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
 use crate::analysis::touching::Approaching;
-use crate::analysis::Motion;
+use crate::analysis::{cross, Motion};
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, Effect, Level, Shape};
 use crate::snapshot::Snapshot;
@@ -37,10 +38,14 @@ use glam::DVec2;
 /// |e - e_set| on the scale 1 (perfectly elastic). The note adds the tangential velocity change, the
 /// kinetic energy lost against IM-14 and the contact impulse against the momentum change.
 ///
-/// Eccentric impact (IM-15: the textbook does not use e for it): theory H about the contact point
-/// C after = H_C before plus the non-impulsive forces' angular impulse about C over the bracket
-/// (RM-10: the impulsive reaction passes through C); engine H_C after from rapier's state (6/15);
-/// error relative to |H_C before|. The measured e at C is shown as information only.
+/// Eccentric impact (IM-15: the textbook does not use e for it; the normal at the touch misses a
+/// body's G, or a rough contact is left stuck, as a wheel pivoting onto a curb): theory H after =
+/// H before plus the other forces' angular impulse over the bracket, about the pin of a body of
+/// the pair jointed to a fixed body (its reaction has no moment there), else about the contact
+/// point C (RM-10: the impulsive reaction passes through C); engine H after from rapier's state
+/// (6/15); error relative to what the two bodies carry about that point one by one (H of the
+/// pair can be near zero: a ball striking a pinned bar below its pin). The measured e is shown
+/// as information only.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let b = match dynamic_body(level, def) {
         Ok(b) => b,
@@ -110,12 +115,16 @@ struct Open {
     /// e, the energy lost and m dv are read at the touch. None when the pair was not
     /// approaching: the states at the bracket's ends are read.
     touch: Option<Touch>,
-    /// The engine's contact normal and point C at the first step (C: where the impulsive
-    /// reaction acts, about which H is balanced).
+    /// The engine's contact normal and point C at the first step.
     normal: DVec2,
     point: DVec2,
+    /// The point H is balanced about (IM-15): the pin of a body of the pair jointed to a fixed
+    /// body (its reaction has no moment there), else C (the impulsive reaction passes through
+    /// it, RM-10); and whether it is a pin.
+    about: DVec2,
+    about_pin: bool,
     impulse: DVec2,
-    /// Angular impulse about C of the non-impulsive forces over the bracket.
+    /// Angular impulse about `about` of the other forces over the bracket.
     other_moment: f64,
     steps: u32,
     points: usize,
@@ -177,6 +186,10 @@ struct Done {
     h_before: f64,
     h_theory: f64,
     h_engine: f64,
+    /// What the two bodies carry about that point one by one, before or after (the larger).
+    h_scale: f64,
+    /// H about the pin (else about the contact point).
+    about_pin: bool,
 }
 
 impl Done {
@@ -294,21 +307,48 @@ impl Restitution {
         let (ba, bb) = (&o.body_a, &o.body_b);
         let e_set = self.e_body.max(self.partner_e);
         let k_g = |b: &MassOf| crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
-        // Eccentric when the impulse's line of action misses a body's G by more than 1% of its
-        // k_G: read from what the impulse did (its moment about G, I_G dw, against m |dv|), not
-        // from the contact normal and point, which rapier takes up to a step before touching (two
-        // discs meeting obliquely were called eccentric by 1.6% of k_G).
-        let eccentric = [(ba, &a0, &a1), (bb, &b0, &b1)]
-            .iter()
-            .any(|(b, st0, st1)| {
-                b.mass > 0.0
-                    && b.inertia > 0.0
-                    && b.inertia * (st1.omega - st0.omega).abs()
-                        > 0.01 * k_g(b) * b.mass * (st1.velocity - st0.velocity).length()
-            });
-        let h_before = Self::h_about(ba, &o.a0, o.point) + Self::h_about(bb, &o.b0, o.point);
-        let h_engine = Self::h_about(ba, &o.a1, o.point) + Self::h_about(bb, &o.b1, o.point);
+        // Eccentric when the normal's line of action misses a body's G by more than 1% of its
+        // k_G. At the touch, from the normal and point there; without one (a pair that did not
+        // approach), from what the impulse did (its moment about G, I_G dw, against m |dv|),
+        // since rapier takes the contact's normal and point up to a step before touching. (The
+        // impulse's effect alone called a spinning disc striking a rough wall eccentric: its
+        // friction turns it, though the normal passes through G.) A rough impact that leaves
+        // the contact stuck (a wheel pivoting onto a curb, RM-10) is taken about C too: friction
+        // then acts as hard as the normal, and the textbook solves it by H about C, not by e.
+        // Stuck: the slip speed fell by 95% or more (rapier leaves a wheel at a curb's corner
+        // with 3% of it, 0.017 of 0.508 m/s; a disc sliding along a wall keeps 55%).
+        let slip = 1e-3 * m.v_n_before.abs() + 1e-9;
+        let stuck = m.v_t_before.abs() > slip && m.v_t_after.abs() <= 0.05 * m.v_t_before.abs();
+        let eccentric = stuck
+            || [(ba, &a0, &a1), (bb, &b0, &b1)]
+                .iter()
+                .any(|(b, st0, st1)| {
+                    b.mass > 0.0
+                        && b.inertia > 0.0
+                        && match &o.touch {
+                            Some(_) => cross(point - st0.com, normal).abs() > 0.01 * k_g(b),
+                            None => {
+                                b.inertia * (st1.omega - st0.omega).abs()
+                                    > 0.01
+                                        * k_g(b)
+                                        * b.mass
+                                        * (st1.velocity - st0.velocity).length()
+                            }
+                        }
+                });
+        let h = |st: [&Motion; 2]| {
+            [
+                Self::h_about(ba, st[0], o.about),
+                Self::h_about(bb, st[1], o.about),
+            ]
+        };
+        let (hb, ha) = (h([&o.a0, &o.b0]), h([&o.a1, &o.b1]));
+        let h_before = hb[0] + hb[1];
+        let h_engine = ha[0] + ha[1];
         let h_theory = h_before + o.other_moment;
+        // The scale: what the bodies carry one by one (a ball striking a bar below its pin can
+        // bring H about the contact point near zero, and a relative error on it blew up).
+        let h_scale = (hb[0].abs() + hb[1].abs()).max(ha[0].abs() + ha[1].abs());
         let t = |b: &MassOf, st: &Motion| {
             if b.mass > 0.0 {
                 kinetic_energy(b.mass, st.velocity, b.inertia, st.omega)
@@ -342,6 +382,8 @@ impl Restitution {
             h_before,
             h_theory,
             h_engine,
+            h_scale,
+            about_pin: o.about_pin,
         });
     }
 }
@@ -371,8 +413,9 @@ impl Done {
         );
         if self.eccentric {
             note += &format!(
-                ", eccentric: H_C before {:.5}, after theory {:.5}, engine {:.5} N m s (e not a textbook quantity here)",
-                self.h_before, self.h_theory, self.h_engine
+                ", eccentric: H about {} before {:.5}, after theory {:.5}, engine {:.5} N m s (scale {:.5}; e not a textbook quantity here, IM-15)",
+                if self.about_pin { "the pin O" } else { "the contact point C" },
+                self.h_before, self.h_theory, self.h_engine, self.h_scale
             );
         } else {
             note += &format!(
@@ -439,6 +482,7 @@ impl FrameProbe for Restitution {
             match (bracket, pc) {
                 (Bracket::Start, Some(c)) => {
                     let touch = self.touching(s, fa, [i, k], &c);
+                    let pin = pivot_of(s, i).or_else(|| pivot_of(s, k));
                     self.open = Some(Open {
                         start_time: s.time - s.dt,
                         a0: before[i],
@@ -449,6 +493,8 @@ impl FrameProbe for Restitution {
                         touch,
                         normal: c.normal,
                         point: c.point,
+                        about: pin.unwrap_or(c.point),
+                        about_pin: pin.is_some(),
                         impulse: DVec2::ZERO,
                         other_moment: 0.0,
                         steps: 0,
@@ -469,7 +515,7 @@ impl FrameProbe for Restitution {
                 o.impulse += c.impulse_on_b;
                 o.steps += 1;
                 o.points = o.points.max(c.points);
-                let point = o.point;
+                let about = o.about;
                 let mut other_moment = 0.0;
                 for_each_external_impulse_linked(
                     Before::Two([(i, &before[i]), (k, &before[k])]),
@@ -486,7 +532,7 @@ impl FrameProbe for Restitution {
                             _ => false,
                         };
                         if !between {
-                            other_moment += imp.moment_about(point);
+                            other_moment += imp.moment_about(about);
                         }
                     },
                 );
@@ -552,7 +598,7 @@ impl FrameProbe for Restitution {
             .iter()
             .map(|d| {
                 if d.eccentric {
-                    let scale = d.h_before.abs().max(f64::MIN_POSITIVE);
+                    let scale = d.h_scale.max(f64::MIN_POSITIVE);
                     (
                         (d.h_engine - d.h_theory).abs(),
                         (d.h_engine - d.h_theory).abs() / scale,
@@ -564,7 +610,7 @@ impl FrameProbe for Restitution {
             .collect();
         let first = &self.impacts[0];
         let (theory, engine, scale) = if first.eccentric {
-            (first.h_theory, first.h_engine, first.h_before.abs())
+            (first.h_theory, first.h_engine, first.h_scale)
         } else {
             (first.e_set, first.e, 1.0)
         };
