@@ -36,6 +36,12 @@ pub fn spring_mass_period(m: f64, k: f64) -> f64 {
     2.0 * PI * (m / k).sqrt()
 }
 
+/// Reduced mass of two bodies joined by a spring, m1 m2 / (m1 + m2): their relative motion
+/// vibrates as one body of that mass on the spring (T = 2 pi sqrt(mu / k)).
+pub fn reduced_mass(m1: f64, m2: f64) -> f64 {
+    m1 * m2 / (m1 + m2)
+}
+
 /// Acceleration of the center of a round body rolling without slip down a slope theta:
 /// a = g sin(theta) / (1 + k_G^2 / r^2) (RK-8 with 6/1; disc k^2 = r^2/2, hoop k^2 = r^2).
 pub fn rolling_acceleration(g: f64, theta: f64, k_g: f64, r: f64) -> f64 {

@@ -31,6 +31,9 @@ pub(super) struct Meter {
     pub crossings: Crossings,
     /// Direction of the spring a `SpringPeriod` body oscillates along.
     pub spring_axis: Option<DVec2>,
+    /// For `SpringPeriod`: the free body at the spring's other end, when the body's springs all
+    /// join it to that one (their relative motion is what vibrates).
+    pub spring_partner: Option<usize>,
     /// The pair an impact quantity is about.
     pub pair: Option<PairTracker>,
     /// Highest mass center since the contact went quiet (rebound height), m.
@@ -62,6 +65,7 @@ impl Meter {
             analysis_sum: 0.0,
             crossings: Crossings::default(),
             spring_axis: None,
+            spring_partner: None,
             pair: impacts::pair_tracker(q),
             rebound_apex: f64::NEG_INFINITY,
             first_load: None,

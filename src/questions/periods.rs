@@ -8,7 +8,7 @@
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::joint_index;
-use crate::analysis::closed_forms::{pendulum_period, spring_mass_period};
+use crate::analysis::closed_forms::{pendulum_period, reduced_mass, spring_mass_period};
 pub(super) use crate::analysis::oscillation::Crossings;
 use crate::level::Quantity;
 use crate::snapshot::Snapshot;
@@ -27,6 +27,14 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         }
         Quantity::SpringPeriod(body) => {
             if let Some(i) = m.body_index(s, body) {
+                // The rate the spring stretches at, along its axis: the body's velocity, less the
+                // partner's when both ends are free (a pair drifting on a floor oscillates about
+                // its moving mass center, and a body's own velocity may never turn back).
+                let rate = |snap: &Snapshot, a: DVec2, partner: Option<usize>| {
+                    let v = snap.bodies[i].velocity
+                        - partner.map_or(DVec2::ZERO, |j| snap.bodies[j].velocity);
+                    v.dot(a)
+                };
                 if m.spring_axis.is_none() {
                     let init: &Snapshot = m.init.as_deref().unwrap_or(prev);
                     let sp = init
@@ -34,12 +42,13 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         .iter()
                         .find(|x| !x.torsion && (x.body1 == i || x.body2 == Some(i)));
                     m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
+                    m.spring_partner = spring_partner(init, i);
                     if let Some(a) = m.spring_axis {
-                        m.crossings.add(prev.time, prev.bodies[i].velocity.dot(a));
+                        m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
                     }
                 }
                 if let Some(a) = m.spring_axis {
-                    m.crossings.add(s.time, s.bodies[i].velocity.dot(a));
+                    m.crossings.add(s.time, rate(s, a, m.spring_partner));
                 }
             }
         }
@@ -76,7 +85,11 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 .iter()
                 .map(|(_, k)| k)
                 .sum();
-            let mass = s.bodies[i].mass;
+            // Two free bodies on their springs: the relative motion, with the reduced mass.
+            let mass = match m.spring_partner {
+                Some(j) => reduced_mass(s.bodies[i].mass, s.bodies[j].mass),
+                None => s.bodies[i].mass,
+            };
             (
                 m.crossings.period(),
                 (k > 0.0).then(|| spring_mass_period(mass, k)),
@@ -107,4 +120,30 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
     }
     let theta0 = (1.0 - one_minus_cos).clamp(-1.0, 1.0).acos();
     Some(pendulum_period(i_o, b0.mass, g, d, theta0))
+}
+
+/// The free body at the other end of every spring of body i, when there is one and only one
+/// (dynamic, neither jointed nor on another spring): then the pair's relative motion is a single
+/// vibration of the reduced mass. None for a body on a spring to the ground (or on several).
+fn spring_partner(s: &Snapshot, i: usize) -> Option<usize> {
+    let ends = |x: &crate::snapshot::SpringState| -> Option<Option<usize>> {
+        if x.torsion {
+            return None;
+        }
+        match (x.body1 == i, x.body2) {
+            (true, other) => Some(other),
+            (false, Some(b)) if b == i => Some(Some(x.body1)),
+            _ => None,
+        }
+    };
+    let mut others = s.springs.iter().filter_map(ends);
+    let j = others.next()??;
+    if !others.all(|o| o == Some(j)) || s.bodies[j].mass <= 0.0 {
+        return None;
+    }
+    let jointed = s.joints.iter().any(|x| x.body1 == j || x.body2 == j);
+    let other_springs = s.springs.iter().any(|x| {
+        !x.torsion && (x.body1 == j || x.body2 == Some(j)) && !(x.body1 == i || x.body2 == Some(i))
+    });
+    (!jointed && !other_springs).then_some(j)
 }
