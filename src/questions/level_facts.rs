@@ -24,6 +24,7 @@ pub(super) struct BodyInfo {
 /// A joint's kind, bodies and geometry, in the level's order (the snapshots' order too).
 #[derive(Debug, Clone)]
 pub(super) struct JointInfo {
+    pub name: String,
     pub kind: JointKind,
     pub body1: usize,
     pub body2: usize,
@@ -75,6 +76,7 @@ impl LevelFacts {
                     .joints
                     .iter()
                     .map(|j| JointInfo {
+                        name: j.name.clone(),
                         kind: j.kind,
                         body1: index(&j.body1),
                         body2: index(&j.body2),
@@ -109,6 +111,14 @@ impl LevelFacts {
     /// Body `name` of `s` with its index (see [`LevelFacts::body_index`]).
     pub fn named_body<'a>(&self, s: &'a Snapshot, name: &str) -> Option<(usize, &'a BodyState)> {
         self.body_index(s, name).map(|i| (i, &s.bodies[i]))
+    }
+
+    /// Where joint `name` holds its bodies in `s`, world: its anchor on body2 as the level
+    /// gives it. For a snapshot that reports no joints (the initial state: the engine reports
+    /// them from the first step on).
+    pub fn joint_anchor(&self, s: &Snapshot, name: &str) -> Option<DVec2> {
+        let j = self.joints.iter().find(|j| j.name == name)?;
+        Some(s.bodies.get(j.body2)?.world_point(j.anchor2))
     }
 
     /// The pair's restitution as rapier combines it (the larger of the two, see `sim::build`).

@@ -40,8 +40,18 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
         }
         Quantity::PercussionDistance { body, joint } => {
             let (i, b) = m.named_body(s, body)?;
-            let j = &s.joints[joint_index(s, joint)?];
-            let pin = if j.body2 == i { j.anchor } else { j.anchor1 };
+            // The pin where the engine reports it; at t = 0, where the level puts it.
+            let pin = match joint_index(s, joint) {
+                Some(k) => {
+                    let j = &s.joints[k];
+                    if j.body2 == i {
+                        j.anchor
+                    } else {
+                        j.anchor1
+                    }
+                }
+                None => m.facts.joint_anchor(s, joint)?,
+            };
             let r_bar = (b.com - pin).length();
             let q = |i_g: f64, mass: f64| {
                 center_of_percussion_distance(parallel_axis(i_g, mass, r_bar), mass, r_bar)

@@ -340,7 +340,10 @@ impl QuestionProbe {
         }
         let r = self.value.unwrap_or(Reading::MISSING);
         if r.engine.is_nan() && self.note.is_empty() {
-            self.note = "the quantity could not be read (too few oscillations, no contact, or a missing item)".into();
+            self.note = match self.def.at {
+                When::Time(t) if t <= 0.0 => "the quantity could not be read at t = 0: the engine reports joint reactions and contact forces from its first step on (ask at a later time, or at an event)".into(),
+                _ => "the quantity could not be read (too few oscillations, no contact, or a missing item)".into(),
+            };
         }
         QuestionResult::new(&self.def, r, self.note, student)
     }
