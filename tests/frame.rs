@@ -2,14 +2,18 @@
 //!
 //! `FrameAnalysis` reads every step's impulses source by source for speed; the reference is the
 //! generic visitor of `analysis::kinetics` (`free_body`, `for_each_external_impulse`) with the
-//! textbook's work of an impulse (`energy::work_of_impulse_with_arm`). Over scenes that use every
-//! source (gravity, contacts between moving bodies and with the ground, joints to the ground and
-//! between bodies, springs to the ground, between bodies and to a kinematic body, loads with
-//! couples, impulse events, couplings) every body's sums, the scene's external resultant, its
-//! non-conservative work and its totals must agree to round-off (1e-12 of the terms' size).
+//! textbook's work of an impulse (`energy::work_of_impulse_with_arm`; a contact's, whose normal part
+//! depends on whether its pair pushed the step before, `energy::work_of_contact_impulse`). Over
+//! scenes that use every source (gravity, contacts between moving bodies and with the ground,
+//! joints to the ground and between bodies, springs to the ground, between bodies and to a
+//! kinematic body, loads with couples, impulse events, couplings) every body's sums, the
+//! scene's external resultant, its non-conservative work and its totals must agree to
+//! round-off (1e-12 of the terms' size).
 
 use glam::DVec2;
-use rigidlab::analysis::energy::{gravity_potential, kinetic_energy, work_of_impulse_with_arm};
+use rigidlab::analysis::energy::{
+    gravity_potential, kinetic_energy, work_of_contact_impulse, work_of_impulse_with_arm,
+};
 use rigidlab::analysis::frame::{FrameAnalysis, StepWork};
 use rigidlab::analysis::kinetics::{for_each_external_impulse, free_body, Before, Source};
 use rigidlab::analysis::{cross, Motion};
@@ -96,6 +100,16 @@ fn compare_run(name: &str, scene: &level::Scene) -> usize {
     let mut before: Vec<Motion> = sim.snapshot().bodies.iter().map(Motion::from).collect();
     let mut compared = 0;
     let steps = (scene.level.world.duration / scene.level.world.dt).round() as usize;
+    // The pairs a contact pushed in the step before: their contacts are not impacts, and their
+    // normal impulses work through the bodies' displacement (`work_of_contact_impulse`).
+    let pushing = |s: &Snapshot| -> Vec<(usize, usize)> {
+        s.contacts
+            .iter()
+            .filter(|c| c.points.iter().any(|p| p.normal_impulse > 0.0))
+            .map(|c| (c.body1.min(c.body2), c.body1.max(c.body2)))
+            .collect()
+    };
+    let mut pushed_before = pushing(sim.snapshot());
     for _ in 0..steps {
         let s = sim.step().unwrap_or_else(|e| panic!("{name}: {e}"));
         let f = fa.observe(s).clone();
@@ -118,13 +132,34 @@ fn compare_run(name: &str, scene: &level::Scene) -> usize {
                 j += imp.impulse;
                 m_g += imp.moment_about_g();
                 m_o += imp.moment_about(DVec2::ZERO);
-                let u = work_of_impulse_with_arm(
-                    imp.impulse,
-                    imp.arm,
-                    imp.couple,
-                    &before[i],
-                    &after[i],
-                );
+                let u = match imp.source {
+                    Source::Contact { contact, point } => {
+                        let c = &s.contacts[contact];
+                        let p = &c.points[point];
+                        let sign = if c.body2 == i { 1.0 } else { -1.0 };
+                        let (b0, b1) = (&before[i], &after[i]);
+                        let mean = (
+                            0.5 * (b0.velocity + b1.velocity),
+                            0.5 * (b0.omega + b1.omega),
+                        );
+                        let moved = ((b1.com - b0.com) / s.dt, (b1.angle - b0.angle) / s.dt);
+                        let key = (c.body1.min(c.body2), c.body1.max(c.body2));
+                        work_of_contact_impulse(
+                            c.normal * p.normal_impulse * sign,
+                            c.tangent() * p.tangent_impulse * sign,
+                            imp.arm,
+                            mean,
+                            pushed_before.contains(&key).then_some(moved),
+                        )
+                    }
+                    _ => work_of_impulse_with_arm(
+                        imp.impulse,
+                        imp.arm,
+                        imp.couple,
+                        &before[i],
+                        &after[i],
+                    ),
+                };
                 let (own, whole) = slots(s, imp.source, imp.other);
                 if let Some(k) = own {
                     work[k] += u;
@@ -182,6 +217,7 @@ fn compare_run(name: &str, scene: &level::Scene) -> usize {
         close2(f.totals.linear_momentum, g, big, "G", t);
         close(f.totals.angular_momentum_origin, h, big, "H_O", t);
         before = after;
+        pushed_before = pushing(s);
         compared += 1;
     }
     compared

@@ -134,6 +134,31 @@ pub fn work_of_impulse_with_arm(
     )) + couple * mid.omega
 }
 
+/// Work of one contact point's impulse on a body over a step, with the solver's lever arm
+/// `arm` from G: the friction part `j_t` at the step's mean velocities `mean` (v_G, omega), as
+/// [`work_of_impulse_with_arm`]; the normal part `j_n` too when the contact is new (an impact:
+/// the mean velocity makes it exact for an impulsive change), but for a contact that already
+/// pushed the step before (a body resting, rolling or sliding on it) at the velocities of the
+/// body's displacement over the step, `moved` = (dr_G / dt, dtheta / dt) (WE-1: U = F . dr).
+///
+/// Why: rapier reports a round body resting on a soft contact with a step-end velocity of
+/// about -g h while its position stays (a disc rolling on a floor: v_y -0.0102 m/s at h =
+/// 1/960 s, y constant to 1e-8 m), so at the mean velocity the floor's normal force did work
+/// the positions never show (0.15 J of a 3 J ledger for a disc sliding to rolling). The
+/// displacement of the material point that is at the contact mid-step is dr_G + 2 sin(dtheta/2)
+/// k x arm, which dtheta k x arm gives to second order.
+pub fn work_of_contact_impulse(
+    j_n: DVec2,
+    j_t: DVec2,
+    arm: DVec2,
+    mean: (DVec2, f64),
+    moved: Option<(DVec2, f64)>,
+) -> f64 {
+    let at = |(v, w): (DVec2, f64)| super::kinematics::point_velocity(v, w, arm);
+    let v_mean = at(mean);
+    j_t.dot(v_mean) + j_n.dot(moved.map_or(v_mean, at))
+}
+
 /// Work of a pair of equal and opposite impulses (J on body B at p, -J on body A at p):
 /// U = J . v_{B/A,mid}. This is the energy a contact dissipates (friction, an inelastic impact).
 pub fn work_of_pair_impulse(

@@ -11,7 +11,7 @@
 //! `checks::CheckSet`): the walk and the start-of-step states are computed once per step.
 //! It costs O(bodies + contacts + joints + springs) per step.
 
-use super::energy::{gravity_potential, kinetic_energy};
+use super::energy::{gravity_potential, kinetic_energy, work_of_contact_impulse};
 use super::kinematics::{acceleration_fd, angular_acceleration_fd, instantaneous_center};
 use super::kinetics::contact_arms_at_start;
 use super::links::BodyLinks;
@@ -163,6 +163,11 @@ pub struct FrameAnalysis {
     moving: Vec<usize>,
     /// Scratch for the pass, per body.
     mids: Vec<Mid>,
+    /// The pairs of bodies (lower index first, sorted) a contact pushed in the last step
+    /// observed, and in the step before it: a contact that pushed before is not an impact
+    /// (`energy::work_of_contact_impulse`).
+    pushing: Vec<(usize, usize)>,
+    pushed_before: Vec<(usize, usize)>,
     /// Which contacts and joints touch each body in the last snapshot, built when first asked
     /// for in a step (`fresh` says it is): most levels' checks never ask.
     links: RefCell<BodyLinks>,
@@ -278,6 +283,20 @@ impl FrameAnalysis {
         f.external = ImpulseSums::default();
         f.work = StepWork::default();
         f.elastic_potential = snap.springs.iter().map(|s| s.energy).sum();
+        // The pairs a contact pushed: this step's, and the step before's.
+        std::mem::swap(&mut self.pushed_before, &mut self.pushing);
+        if !stepped {
+            self.pushed_before.clear();
+        }
+        self.pushing.clear();
+        self.pushing.extend(
+            snap.contacts
+                .iter()
+                .filter(|c| c.points.iter().any(|p| p.normal_impulse > 0.0))
+                .map(|c| pair_key(c.body1, c.body2)),
+        );
+        self.pushing.sort_unstable();
+        self.pushing.dedup();
         if stepped {
             let mut pass = Pass {
                 snap,
@@ -293,6 +312,7 @@ impl FrameAnalysis {
                 has_mass: &self.has_mass,
                 massive: &self.massive,
                 mids: &mut self.mids,
+                pushed_before: &self.pushed_before,
             };
             pass.run();
         }
@@ -364,6 +384,13 @@ struct Pass<'a> {
     massive: &'a [usize],
     /// Per body with mass, filled first: where gravity acts and the mean velocities.
     mids: &'a mut [Mid],
+    /// The pairs a contact pushed in the step before (`FrameAnalysis::pushed_before`).
+    pushed_before: &'a [(usize, usize)],
+}
+
+/// A pair of bodies as the pushed lists hold it: lower index first.
+fn pair_key(a: usize, b: usize) -> (usize, usize) {
+    (a.min(b), a.max(b))
 }
 
 /// A body's gravity point (`kinetics::gravity_point`) and mean velocities over the step
@@ -373,6 +400,8 @@ struct Mid {
     g_point: DVec2,
     velocity: DVec2,
     omega: f64,
+    /// The velocities of the body's displacement over the step, dr_G / dt and dtheta / dt.
+    moved: (DVec2, f64),
 }
 
 impl Pass<'_> {
@@ -410,8 +439,26 @@ impl Pass<'_> {
         internal: bool,
         work: Option<(Slot, bool)>,
     ) {
-        let m_origin = cross(point, j) + couple;
         let u = work.map(|_| self.work_of(i, j, arm, couple));
+        self.add_with_work(i, j, point, arm, couple, internal, work.zip(u));
+    }
+
+    /// [`Pass::add`] with the impulse's work already known (a contact's, whose normal part
+    /// depends on whether the contact is new).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn add_with_work(
+        &mut self,
+        i: usize,
+        j: DVec2,
+        point: DVec2,
+        arm: DVec2,
+        couple: f64,
+        internal: bool,
+        work: Option<((Slot, bool), f64)>,
+    ) {
+        let m_origin = cross(point, j) + couple;
+        let (work, u) = (work.map(|w| w.0), work.map(|w| w.1));
         let acc = &mut self.bodies[i];
         acc.moment_g += cross(arm, j) + couple;
         acc.impulses.add(j, m_origin, couple);
@@ -439,6 +486,7 @@ impl Pass<'_> {
                 g_point: m0.com + (m1.com - m0.com) * self.s_frac,
                 velocity: 0.5 * (m0.velocity + m1.velocity),
                 omega: 0.5 * (m0.omega + m1.omega),
+                moved: ((m1.com - m0.com) / dt, (m1.angle - m0.angle) / dt),
             };
             self.mids[i] = mid;
             let j = snap.bodies[i].mass * snap.gravity * dt;
@@ -523,19 +571,39 @@ impl Pass<'_> {
             }
             let internal = in1 && in2;
             let t = c.tangent();
+            // A contact whose pair pushed the step before is no impact: its normal impulse
+            // works through the bodies' displacement (`energy::work_of_contact_impulse`).
+            let resting = self
+                .pushed_before
+                .binary_search(&pair_key(c.body1, c.body2))
+                .is_ok();
+            let work = (Slot::Contacts, true);
             for p in &c.points {
-                let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
+                let (j_n, j_t) = (c.normal * p.normal_impulse, t * p.tangent_impulse);
+                let j2 = j_n + j_t;
                 let (arm1, arm2) = p
                     .arms
                     .unwrap_or_else(|| contact_arms_at_start(snap, self.before, c, p));
-                let work = Some((Slot::Contacts, true));
+                let u = |pass: &Self, i: usize, sign: f64, arm: DVec2| {
+                    let m = &pass.mids[i];
+                    let moved = resting.then_some(m.moved);
+                    work_of_contact_impulse(
+                        j_n * sign,
+                        j_t * sign,
+                        arm,
+                        (m.velocity, m.omega),
+                        moved,
+                    )
+                };
                 if in2 {
                     let at = self.g_point(c.body2) + arm2;
-                    self.add(c.body2, j2, at, arm2, 0.0, internal, work);
+                    let w = Some((work, u(self, c.body2, 1.0, arm2)));
+                    self.add_with_work(c.body2, j2, at, arm2, 0.0, internal, w);
                 }
                 if in1 {
                     let at = self.g_point(c.body1) + arm1;
-                    self.add(c.body1, -j2, at, arm1, 0.0, internal, work);
+                    let w = Some((work, u(self, c.body1, -1.0, arm1)));
+                    self.add_with_work(c.body1, -j2, at, arm1, 0.0, internal, w);
                 }
             }
         }
