@@ -129,6 +129,12 @@ pub struct ContactPoint {
 }
 
 impl ContactState {
+    /// Whether the contact pushed over the step (a point with a positive normal impulse): a
+    /// body it touches is held by it, not flying free.
+    pub fn pushes(&self) -> bool {
+        self.points.iter().any(|p| p.normal_impulse > 0.0)
+    }
+
     /// The tangent direction the friction impulse is measured along.
     pub fn tangent(&self) -> DVec2 {
         self.normal.perp()

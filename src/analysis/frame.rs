@@ -292,7 +292,7 @@ impl FrameAnalysis {
         self.pushing.extend(
             snap.contacts
                 .iter()
-                .filter(|c| c.points.iter().any(|p| p.normal_impulse > 0.0))
+                .filter(|c| c.pushes())
                 .map(|c| pair_key(c.body1, c.body2)),
         );
         self.pushing.sort_unstable();
@@ -439,15 +439,16 @@ impl Pass<'_> {
         internal: bool,
         work: Option<(Slot, bool)>,
     ) {
-        let u = work.map(|_| self.work_of(i, j, arm, couple));
-        self.add_with_work(i, j, point, arm, couple, internal, work.zip(u));
+        self.add_sums(i, j, point, arm, couple, internal);
+        if let Some(to) = work {
+            let u = self.work_of(i, j, arm, couple);
+            self.add_work(i, to, u);
+        }
     }
 
-    /// [`Pass::add`] with the impulse's work already known (a contact's, whose normal part
-    /// depends on whether the contact is new).
+    /// The impulse's part in body i's sums and, when it comes from outside, the scene's.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
-    fn add_with_work(
+    fn add_sums(
         &mut self,
         i: usize,
         j: DVec2,
@@ -455,21 +456,22 @@ impl Pass<'_> {
         arm: DVec2,
         couple: f64,
         internal: bool,
-        work: Option<((Slot, bool), f64)>,
     ) {
         let m_origin = cross(point, j) + couple;
-        let (work, u) = (work.map(|w| w.0), work.map(|w| w.1));
         let acc = &mut self.bodies[i];
         acc.moment_g += cross(arm, j) + couple;
         acc.impulses.add(j, m_origin, couple);
         if !internal {
             self.external.add(j, m_origin, couple);
         }
-        if let (Some((slot, scene)), Some(u)) = (work, u) {
-            acc.work.add(slot, u);
-            if scene {
-                self.work.add(slot, u);
-            }
+    }
+
+    /// Work `u` done on body i, in its `slot` of the body's ledger and, with `scene`, the scene's.
+    #[inline]
+    fn add_work(&mut self, i: usize, (slot, scene): (Slot, bool), u: f64) {
+        self.bodies[i].work.add(slot, u);
+        if scene {
+            self.work.add(slot, u);
         }
     }
 
@@ -597,13 +599,15 @@ impl Pass<'_> {
                 };
                 if in2 {
                     let at = self.g_point(c.body2) + arm2;
-                    let w = Some((work, u(self, c.body2, 1.0, arm2)));
-                    self.add_with_work(c.body2, j2, at, arm2, 0.0, internal, w);
+                    self.add_sums(c.body2, j2, at, arm2, 0.0, internal);
+                    let w = u(self, c.body2, 1.0, arm2);
+                    self.add_work(c.body2, work, w);
                 }
                 if in1 {
                     let at = self.g_point(c.body1) + arm1;
-                    let w = Some((work, u(self, c.body1, -1.0, arm1)));
-                    self.add_with_work(c.body1, -j2, at, arm1, 0.0, internal, w);
+                    self.add_sums(c.body1, -j2, at, arm1, 0.0, internal);
+                    let w = u(self, c.body1, -1.0, arm1);
+                    self.add_work(c.body1, work, w);
                 }
             }
         }

@@ -25,7 +25,7 @@ impl BodyLinks {
         self.pushed.clear();
         self.pushed.resize(n, false);
         for c in &snap.contacts {
-            if c.points.iter().any(|p| p.normal_impulse > 0.0) {
+            if c.pushes() {
                 for i in [c.body1, c.body2] {
                     if let Some(x) = self.pushed.get_mut(i) {
                         *x = true;

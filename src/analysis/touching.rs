@@ -11,8 +11,19 @@
 //! attempted); the questions' impact solution (`questions::impact_solution`) and the
 //! `restitution` check both take it from here.
 
+use super::impulse_solver::is_massive;
 use super::Motion;
+use crate::snapshot::Snapshot;
 use glam::DVec2;
+
+/// Whether body i of `s` moves under gravity alone but for its contacts: dynamic, with mass,
+/// neither jointed nor coupled. With no contact pushing it either, it flies free, and its
+/// approach to an impact is carried at g.
+pub fn flies_free(s: &Snapshot, i: usize) -> bool {
+    is_massive(&s.bodies[i])
+        && !s.joints.iter().any(|j| j.body1 == i || j.body2 == i)
+        && !s.couplings.iter().any(|c| c.terms.iter().any(|t| t.0 == i))
+}
 
 /// When and where a pair touches, from their states at the start of the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,11 +89,10 @@ impl Approaching<'_> {
                 if (w + a * t).dot(n) >= 0.0 {
                     return None;
                 }
-                let g1 = b1.com + b1.velocity * t + 0.5 * a1 * t * t;
                 Some(Touching {
                     tau: t,
                     normal: n,
-                    disc_point: Some(g1 + n * r1),
+                    disc_point: Some(b1.carried(t, a1).com + n * r1),
                 })
             }
             _ => {

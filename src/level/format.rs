@@ -248,6 +248,16 @@ pub struct BodyDef {
     pub angular_damping: Option<f64>,
 }
 
+impl BodyDef {
+    /// The radius of a body whose shape is a disc about its origin (its G).
+    pub fn disc_radius(&self) -> Option<f64> {
+        match self.shape {
+            Some(Shape::Circle { radius }) => Some(radius),
+            _ => None,
+        }
+    }
+}
+
 fn default_kind() -> BodyKind {
     BodyKind::Dynamic
 }

@@ -5,12 +5,12 @@
 //! events read them (see `sample::Occasion`).
 
 use super::level_facts::LevelFacts;
-use super::snapshot_reading::{carried_forward, is_free, to_local};
+use super::snapshot_reading::{carried_forward, to_local};
 use crate::analysis::cross;
 use crate::analysis::impulse_solver::{
     coupling_row, joint_impulse, joint_rows, point_row, row_velocity, solve_impulses, ConstraintRow,
 };
-use crate::analysis::touching::Approaching;
+use crate::analysis::touching::{flies_free, Approaching};
 use crate::analysis::Motion;
 use crate::snapshot::{BodyState, ContactState, Snapshot};
 use glam::DVec2;
@@ -112,12 +112,12 @@ impl Impact {
         // floor until the impact: carried with g, it gained g tau downward and H about the
         // corner was 1% off).
         let supported = |i: usize| {
-            pre.contacts.iter().any(|c| {
-                (c.body1 == i || c.body2 == i) && c.points.iter().any(|p| p.normal_impulse > 0.0)
-            })
+            pre.contacts
+                .iter()
+                .any(|c| (c.body1 == i || c.body2 == i) && c.pushes())
         };
         let free: Vec<bool> = (0..pre.bodies.len())
-            .map(|i| is_free(hit, i) && !supported(i))
+            .map(|i| flies_free(hit, i) && !supported(i))
             .collect();
         let acc = |i: usize| if free[i] { pre.gravity } else { DVec2::ZERO };
         let disc = |i: usize| facts.bodies.get(i).and_then(|x| x.disc);
@@ -237,7 +237,7 @@ impl Blow {
             t0: pre.time,
             post,
             joint_impulse,
-            free: (0..s.len()).map(|i| is_free(hit, i)).collect(),
+            free: (0..s.len()).map(|i| flies_free(hit, i)).collect(),
         }
     }
 

@@ -3,7 +3,7 @@
 //! and geometry. The impact and blow solutions, friction's work and the joint analyses read
 //! them; the engine's state comes from the snapshots.
 
-use crate::level::{Effect, JointKind, Level, Shape};
+use crate::level::{Effect, JointKind, Level};
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 use std::collections::HashMap;
@@ -64,10 +64,7 @@ impl LevelFacts {
                     } else {
                         0.0
                     },
-                    disc: match &b.shape {
-                        Some(Shape::Circle { radius }) => Some(*radius),
-                        _ => None,
-                    },
+                    disc: b.disc_radius(),
                     textbook: crate::analysis::mass::of_body(b, crate::level::DEFAULT_DENSITY),
                 })
                 .collect(),

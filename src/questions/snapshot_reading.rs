@@ -31,13 +31,6 @@ pub(super) fn body_mechanical_energy(g: DVec2, b: &BodyState) -> f64 {
     body_kinetic_energy(b) + crate::analysis::energy::gravity_potential(b.mass, g, b.com)
 }
 
-/// A body moving under gravity alone over this stretch (dynamic, no joint, no coupling).
-pub(super) fn is_free(s: &Snapshot, i: usize) -> bool {
-    is_massive(&s.bodies[i])
-        && !s.joints.iter().any(|j| j.body1 == i || j.body2 == i)
-        && !s.couplings.iter().any(|c| c.terms.iter().any(|t| t.0 == i))
-}
-
 /// A body state carried forward by `tau` at constant acceleration `a` and constant omega.
 pub(super) fn carried_forward(b: &BodyState, tau: f64, a: DVec2) -> BodyState {
     let m = crate::analysis::Motion::from(b).carried(tau, a);

@@ -13,10 +13,10 @@ use crate::analysis::impact::{
 };
 use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
-use crate::analysis::touching::Approaching;
+use crate::analysis::touching::{flies_free, Approaching};
 use crate::analysis::{cross, Motion};
 use crate::checks::{CheckResult, Probe};
-use crate::level::{CheckDef, Effect, Level, Shape};
+use crate::level::{CheckDef, Effect, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
@@ -67,15 +67,11 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             0.0
         }
     };
-    let disc = |d: &crate::level::BodyDef| match d.shape {
-        Some(Shape::Circle { radius }) => Some(radius),
-        _ => None,
-    };
     framed(Restitution {
         def: def.clone(),
         name: b.name.clone(),
         e_body: restitution(b),
-        disc_body: disc(b),
+        disc_body: b.disc_radius(),
         // Only the bodies with a restitution or a disc's line of centers, and only the named
         // partner when there is one: a probe on every body of a large scene would otherwise
         // hold every body's name.
@@ -83,8 +79,8 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             .bodies
             .iter()
             .filter(|d| other.as_ref().is_none_or(|o| *o == d.name))
-            .filter(|d| restitution(d) != 0.0 || disc(d).is_some())
-            .map(|d| (d.name.clone(), restitution(d), disc(d)))
+            .filter(|d| restitution(d) != 0.0 || d.disc_radius().is_some())
+            .map(|d| (d.name.clone(), restitution(d), d.disc_radius()))
             .collect(),
         other,
         partner_e: 0.0,
@@ -234,20 +230,9 @@ impl Restitution {
         c: &PairContact,
     ) -> Option<Touch> {
         let before = fa.start_of_step();
-        let links = fa.links(s);
-        // Free over the approach: under gravity alone, so with mass, neither jointed nor
-        // coupled, nor pushed by a contact in the step before.
-        let free = |x: usize, pushed: bool| {
-            s.bodies[x].mass > 0.0
-                && !pushed
-                && links.joints_of(x).is_empty()
-                && !s
-                    .couplings
-                    .iter()
-                    .any(|cp| cp.terms.iter().any(|t| t.0 == x))
-        };
-        let acc = [(i, self.pushed[0]), (k, self.pushed[1])].map(|(x, p)| {
-            if free(x, p) {
+        // Free over the approach: under gravity alone, not pushed by a contact the step before.
+        let acc = [(i, self.pushed[0]), (k, self.pushed[1])].map(|(x, pushed)| {
+            if !pushed && flies_free(s, x) {
                 s.gravity
             } else {
                 DVec2::ZERO

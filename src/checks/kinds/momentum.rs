@@ -168,20 +168,15 @@ impl FrameProbe for AngularMomentumFixedPoint {
                 reaction += j.angular_impulse_on_body1 - cross(r, j.impulse_on_body2);
             }
         }
-        let weight: f64 = self
-            .set
-            .iter()
-            .map(|&i| s.bodies[i].mass * (s.bodies[i].com - o).length())
-            .sum::<f64>()
-            * s.gravity.length();
+        // The weights' moment arms summed, and the set's reach from O, in one pass.
+        let (mass_arms, reach) = self.set.iter().fold((0.0, 0.0f64), |(m, r), &i| {
+            let d = (s.bodies[i].com - o).length();
+            (m + s.bodies[i].mass * d, r.max(d))
+        });
+        let weight = mass_arms * s.gravity.length();
         // The forces that balance count too (as in `newton_euler`): a bar spinning freely on
         // its pin has sum M_O and dH_O/dt near zero, while the pin pulls it round with m r w^2;
         // a residual that small a force's moment at the set's reach explains is not 100 %.
-        let reach = self
-            .set
-            .iter()
-            .map(|&i| (s.bodies[i].com - o).length())
-            .fold(0.0, f64::max);
         let balanced = (sums.largest_impulse * reach + sums.largest_couple) / s.dt;
         let level = theory
             .abs()
