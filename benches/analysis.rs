@@ -180,7 +180,13 @@ fn main() {
     }
     if profiling {
         for (kind, r) in kinds.iter().zip(by_kind.iter_mut()) {
-            println!("   {:<30} {:>7.2}%", kind.name(), 100.0 * median(&mut r[1]));
+            println!(
+                "   {:<30} {:>7.2} us {:>7.2}% of its own step {:>7.2}% of the bare step",
+                kind.name(),
+                median(&mut r[2]),
+                100.0 * median(&mut r[0]),
+                100.0 * median(&mut r[1])
+            );
         }
         return;
     }

@@ -451,13 +451,28 @@ fn impact_detector_brackets_impulsive_steps() {
     let mut d = ImpactDetector::new(0.1, 0.2);
     let seq: Vec<Bracket> = [0.0, 0.05, 5.0, 2.0, 0.05, 0.05, 0.0, 3.0, 0.0]
         .iter()
-        .map(|&x| d.step(x))
+        .map(|&x| d.step(x, true))
         .collect();
     use Bracket::*;
     assert_eq!(
         seq,
         vec![Quiet, Quiet, Start, Continue, End, Quiet, Quiet, Start, End]
     );
+    // A contact that goes on carrying a load after the impact (a ball landing on a pile) ends
+    // the impact at the first step that no longer changes the pair's motion, whatever its
+    // impulse; a step that still does continues it.
+    let mut d = ImpactDetector::new(0.1, 0.2);
+    let seq: Vec<Bracket> = [
+        (0.0, true),
+        (5.0, true),
+        (3.0, true),
+        (3.0, false),
+        (3.0, false),
+    ]
+    .iter()
+    .map(|&(x, moves)| d.step(x, moves))
+    .collect();
+    assert_eq!(seq, vec![Quiet, Start, Continue, End, Quiet]);
 }
 
 // ------------------------------------------------------------------ kinetics (section 7)

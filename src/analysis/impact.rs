@@ -74,6 +74,29 @@ pub fn pair_contact_linked(
     pair_contact_among(snap, a, b, links.contacts_of(a).iter().map(|&k| k as usize))
 }
 
+/// The pair's [`PairContact::normal_impulse`] alone, reading only the contacts `links` lists for
+/// a (summed in the same order: equal to the last bit), for a step that needs no more.
+pub fn pair_normal_impulse_linked(
+    snap: &Snapshot,
+    a: usize,
+    b: usize,
+    links: &super::links::BodyLinks,
+) -> f64 {
+    let mut sum = 0.0;
+    for c in links
+        .contacts_of(a)
+        .iter()
+        .map(|&k| &snap.contacts[k as usize])
+    {
+        if (c.body1 == a && c.body2 == b) || (c.body1 == b && c.body2 == a) {
+            for p in &c.points {
+                sum += p.normal_impulse;
+            }
+        }
+    }
+    sum
+}
+
 /// [`pair_contact`] over the contacts `ids` (ascending: the sums add in the snapshot's order).
 fn pair_contact_among(
     snap: &Snapshot,
@@ -178,7 +201,11 @@ pub fn is_eccentric(r_g: DVec2, p: DVec2, n: DVec2, tol: f64) -> bool {
 
 /// Follows one pair's contact impulses step by step and brackets impacts: an impact starts at a
 /// step whose normal impulse is impulsive (more than `threshold` N s, after a step below it) and
-/// lasts while the following steps carry more than `fraction` of the first step's impulse.
+/// lasts while the following steps carry more than `fraction` of the first step's impulse and
+/// still change the pair's motion. A contact that only carries a load (a ball at the bottom of a
+/// pile holds up the balls above it with several times its own weight) is not an impact: the
+/// step that changes the pair's relative normal velocity by no more than gravity does in a step
+/// ends it (IM-9: an impact is over when compression and restitution are).
 #[derive(Debug, Clone, Default)]
 pub struct ImpactDetector {
     pub threshold: f64,
@@ -210,11 +237,15 @@ impl ImpactDetector {
         }
     }
 
-    /// Feeds the normal impulse of the pair in a step.
-    pub fn step(&mut self, normal_impulse: f64) -> Bracket {
+    /// Feeds the normal impulse of the pair in a step, and whether the step changed the pair's
+    /// relative normal velocity by more than gravity does in a step (`changes_motion`; always
+    /// true without gravity).
+    pub fn step(&mut self, normal_impulse: f64, changes_motion: bool) -> Bracket {
         let prev = std::mem::replace(&mut self.previous, normal_impulse);
         match self.active {
-            Some(first) if normal_impulse > self.fraction * first => Bracket::Continue,
+            Some(first) if normal_impulse > self.fraction * first && changes_motion => {
+                Bracket::Continue
+            }
             Some(_) => {
                 self.active = None;
                 Bracket::End

@@ -24,12 +24,10 @@ impl BodyLinks {
             .rebuild(n, snap.joints.iter().map(|j| (j.body1, j.body2)));
         self.pushed.clear();
         self.pushed.resize(n, false);
-        for c in &snap.contacts {
-            if c.pushes() {
-                for i in [c.body1, c.body2] {
-                    if let Some(x) = self.pushed.get_mut(i) {
-                        *x = true;
-                    }
+        for c in snap.contacts.iter().filter(|c| c.pushes()) {
+            for i in [c.body1, c.body2] {
+                if let Some(x) = self.pushed.get_mut(i) {
+                    *x = true;
                 }
             }
         }
@@ -65,24 +63,34 @@ impl Adjacency {
     fn rebuild(&mut self, bodies: usize, pairs: impl Iterator<Item = (usize, usize)> + Clone) {
         self.start.clear();
         self.start.resize(bodies + 1, 0);
-        let ends = |(a, b): (usize, usize)| [Some(a), (b != a).then_some(b)];
+        // Each item once per body it touches (twice only for two different bodies).
         for (a, b) in pairs.clone() {
-            for i in ends((a, b)).into_iter().flatten().filter(|&i| i < bodies) {
-                self.start[i + 1] += 1;
+            if a < bodies {
+                self.start[a + 1] += 1;
+            }
+            if b != a && b < bodies {
+                self.start[b + 1] += 1;
             }
         }
-        for i in 0..bodies {
-            self.start[i + 1] += self.start[i];
+        // Counts to row starts (start[0] = 0): a running sum.
+        let mut sum = 0;
+        for x in self.start.iter_mut() {
+            sum += *x;
+            *x = sum;
         }
         self.items.clear();
         self.items.resize(self.start[bodies] as usize, 0);
         // Fill each body's row in item order.
         self.next.clear();
         self.next.extend_from_slice(&self.start[..bodies]);
-        for (k, pair) in pairs.enumerate() {
-            for i in ends(pair).into_iter().flatten().filter(|&i| i < bodies) {
-                self.items[self.next[i] as usize] = k as u32;
-                self.next[i] += 1;
+        for (k, (a, b)) in pairs.enumerate() {
+            if a < bodies {
+                self.items[self.next[a] as usize] = k as u32;
+                self.next[a] += 1;
+            }
+            if b != a && b < bodies {
+                self.items[self.next[b] as usize] = k as u32;
+                self.next[b] += 1;
             }
         }
     }

@@ -358,9 +358,11 @@ pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     };
     framed(WorkEnergy {
         def: def.clone(),
+        // Only the joints with a motor do work: a level without motors skips the joint scan.
         level_joints: level
             .joints
             .iter()
+            .filter(|j| j.motor.is_some())
             .map(|j| (j.name.clone(), j.kind, v2(j.axis)))
             .collect(),
         springs: {
@@ -415,7 +417,7 @@ const OTHER: usize = 5;
 /// motors and spring damping, which need the level's joint axes and spring constants, are added here.
 struct WorkEnergy {
     def: CheckDef,
-    /// (name, kind, axis in body1's frame) of the level's joints.
+    /// (name, kind, axis in body1's frame) of the level's joints that have a motor.
     level_joints: Vec<(String, JointKind, DVec2)>,
     /// (stiffness, damping in effect) per spring, in the snapshot's order (linear, then torsion).
     springs: Vec<(f64, f64)>,
@@ -470,7 +472,12 @@ impl WorkEnergy {
         let before = fa.start_of_step();
         let state = |i: usize| -> (Motion, Motion) { (before[i], Motion::from(&s.bodies[i])) };
         // Joints: motors do work; the rest of the reaction is ideal (no work) in theory.
-        for j in &s.joints {
+        let motorized = if self.level_joints.is_empty() {
+            &[][..]
+        } else {
+            &s.joints[..]
+        };
+        for j in motorized {
             if j.motor_impulse == 0.0 {
                 continue;
             }

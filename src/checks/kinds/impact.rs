@@ -8,8 +8,8 @@ use super::{
 use crate::analysis::energy::kinetic_energy;
 use crate::analysis::frame::FrameAnalysis;
 use crate::analysis::impact::{
-    central_impact_energy_loss, measure_impact, pair_contact_linked, Bracket, ImpactDetector,
-    PairContact,
+    central_impact_energy_loss, measure_impact, pair_contact_linked, pair_normal_impulse_linked,
+    Bracket, ImpactDetector, PairContact,
 };
 use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
@@ -23,7 +23,9 @@ use glam::DVec2;
 /// `restitution`: every impact between `body` and `other` (or any partner) is bracketed from the
 /// contact impulses (`analysis::impact::ImpactDetector`: a step whose normal impulse exceeds twice
 /// what gravity gives the pair in a step starts it; it lasts while the impulse stays above 20% of
-/// the first step's), and measured at the instant the pair touches (`analysis::touching`, as the
+/// the first step's and the steps change the pair's relative normal velocity by more than
+/// gravity does in a step, so a ball that lands on a pile and carries the balls above it is not
+/// in an impact for the rest of the run), and measured at the instant the pair touches (`analysis::touching`, as the
 /// questions' impact solution finds it): the states at the start of its first step carried
 /// forward to the touch and those at the end of its last carried back, each body at gravity
 /// while it flies free (not jointed, not pushed by a contact the step before; after the touch,
@@ -461,9 +463,25 @@ impl FrameProbe for Restitution {
                     .sum();
                 ImpactDetector::new(2.0 * weight * s.dt + 1e-12, 0.2)
             });
-            let pc = pair_contact_linked(s, i, k, &fa.links(s));
-            let bracket = detector.step(pc.map_or(0.0, |c| c.normal_impulse));
+            // The pair's contact in full only where an impact may start or goes on: most
+            // steps of most pairs need its normal impulse alone.
+            let links = fa.links(s);
+            let j_n = pair_normal_impulse_linked(s, i, k, &links);
+            let pc = (detector.in_impact() || j_n > detector.threshold)
+                .then(|| pair_contact_linked(s, i, k, &links))
+                .flatten();
+            drop(links);
             let now = |x: usize| Motion::from(&s.bodies[x]);
+            // Whether the step changed the pair's relative normal velocity at the contact by
+            // more than gravity does in a step (an impact in progress; a load carried is not).
+            let changes_motion = pc.is_some_and(|c| {
+                let v_n = |a: &Motion, b: &Motion| {
+                    (b.velocity_at(c.point) - a.velocity_at(c.point)).dot(c.normal)
+                };
+                let dv = v_n(&now(i), &now(k)) - v_n(&before[i], &before[k]);
+                dv.abs() > s.gravity.length() * s.dt
+            });
+            let bracket = detector.step(j_n, changes_motion);
             match (bracket, pc) {
                 (Bracket::Start, Some(c)) => {
                     let touch = self.touching(s, fa, [i, k], &c);
