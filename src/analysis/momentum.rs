@@ -180,19 +180,15 @@ impl ImpulseMomentumLedger {
     /// the caller takes every moment about).
     pub fn new(t0: f64, g0: DVec2, h0: f64) -> Self {
         Self {
-            entries: {
-                let mut v = Vec::with_capacity(400);
-                v.push(LedgerEntry {
-                    t: t0,
-                    g: g0,
-                    h: h0,
-                    j: DVec2::ZERO,
-                    m: 0.0,
-                    rg: 0.0,
-                    rh: 0.0,
-                });
-                v
-            },
+            entries: vec![LedgerEntry {
+                t: t0,
+                g: g0,
+                h: h0,
+                j: DVec2::ZERO,
+                m: 0.0,
+                rg: 0.0,
+                rh: 0.0,
+            }],
         }
     }
 
