@@ -179,8 +179,15 @@ impl ImpulseMomentumLedger {
     /// A ledger starting at time `t0` with momenta `g0` and `h0` (about the fixed point O that
     /// the caller takes every moment about).
     pub fn new(t0: f64, g0: DVec2, h0: f64) -> Self {
-        Self {
-            entries: vec![LedgerEntry {
+        Self::with_capacity(t0, g0, h0, 1)
+    }
+
+    /// [`Self::new`] with room for `instants` recorded instants before it reallocates (a run's
+    /// steps, known at its start: growing 100 ledgers step by step cost 12% more instructions
+    /// in the 100-body bench).
+    pub fn with_capacity(t0: f64, g0: DVec2, h0: f64, instants: usize) -> Self {
+        let mut entries = Vec::with_capacity(instants.max(1));
+        entries.push(LedgerEntry {
                 t: t0,
                 g: g0,
                 h: h0,
@@ -188,8 +195,8 @@ impl ImpulseMomentumLedger {
                 m: 0.0,
                 rg: 0.0,
                 rh: 0.0,
-            }],
-        }
+        });
+        Self { entries }
     }
 
     /// Number of recorded instants (the first included).

@@ -251,6 +251,7 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         body,
         o: def.point.map(v2),
         window: def.window.unwrap_or((0.0, f64::INFINITY)),
+        duration: level.world.duration,
         index: None,
         subject: BodySet::default(),
         resolved: false,
@@ -270,6 +271,8 @@ struct ImpulseMomentum {
     o: Option<DVec2>,
     /// [t1, t2]: the steps that start at or after t1 and end at or before t2 (within half a step).
     window: (f64, f64),
+    /// The level's run, s (to size the ledger).
+    duration: f64,
     /// The body's index (None for the scene).
     index: Option<usize>,
     /// The subject's bodies (the one body, or every dynamic body), resolved with `index`.
@@ -327,9 +330,19 @@ impl FrameProbe for ImpulseMomentum {
                 }
             }
         };
+        let duration = self.duration;
         let ledger = self.ledger.get_or_insert_with(|| {
             let (g0, h0) = momenta(true);
-            ImpulseMomentumLedger::new(start, g0, h0)
+            // Room for the window's steps in the level's run (at most a million instants: a
+            // longer run grows the ledger as it goes).
+            let end = t2.min(duration);
+            let steps = ((end - start) / s.dt).ceil();
+            let instants = if steps.is_finite() && steps > 0.0 {
+                (steps as usize).min(1 << 20) + 2
+            } else {
+                1
+            };
+            ImpulseMomentumLedger::with_capacity(start, g0, h0, instants)
         });
         let sums = match self.index {
             Some(i) => f.bodies[i].impulses,
