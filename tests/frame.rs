@@ -257,3 +257,37 @@ fn the_shared_pass_equals_the_reference_on_library_levels() {
         assert!(compare_run(file, &scene) > 0, "{file}");
     }
 }
+
+/// A run whose readers need no work takes the pass without it (`FramePass::Diagram`): the same
+/// sums, residuals and momenta to the last bit, and a refusal, not zeros, for a reader that asks
+/// for the work anyway.
+#[test]
+fn the_pass_without_work_has_the_same_sums_and_refuses_the_work() {
+    use rigidlab::analysis::frame::FramePass;
+    let scene = parse(Path::new("mixed.ron"), MIXED).unwrap_or_else(|e| panic!("{e}"));
+    let mut sim = Simulation::new(&scene, &Options::default());
+    let (mut full, mut sums) = (FrameAnalysis::new(), FrameAnalysis::new());
+    let mut nonzero_work = false;
+    for k in 0..180 {
+        let s = if k == 0 {
+            sim.snapshot().clone()
+        } else {
+            sim.step().unwrap().clone()
+        };
+        full.observe_as(&s, FramePass::Work);
+        sums.observe_as(&s, FramePass::Diagram);
+        let (a, b) = (full.frame(), sums.frame());
+        for (x, y) in a.bodies.iter().zip(&b.bodies) {
+            assert_eq!(x.impulses, y.impulses, "t = {}", s.time);
+            assert_eq!(x.force_residual, y.force_residual);
+            assert_eq!(x.moment_residual, y.moment_residual);
+            assert_eq!(x.kinetic_energy, y.kinetic_energy);
+        }
+        assert_eq!(a.external, b.external);
+        assert_eq!(a.totals, b.totals);
+        nonzero_work |= a.work(None).total() != 0.0;
+        let refused = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| b.work(None)));
+        assert!(refused.is_err(), "the work of a Diagram pass was handed out");
+    }
+    assert!(nonzero_work, "the scene's forces did no work: the comparison says nothing");
+}

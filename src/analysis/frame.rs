@@ -79,6 +79,19 @@ impl StepWork {
     }
 }
 
+/// How much of the pass a run's readers need: each level includes the one before.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
+pub enum FramePass {
+    /// The bodies' states at the step's ends and the links only ([`FrameAnalysis::observe_motion`]).
+    Motion,
+    /// The frame without the work of the step's forces ([`Frame::work`] is then refused): the
+    /// free-body diagrams' sums, residuals, momenta and energies.
+    Diagram,
+    /// Everything, the non-conservative work by source included.
+    #[default]
+    Work,
+}
+
 /// One body's textbook quantities at the end of a step (zero for bodies without mass).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct BodyFrame {
@@ -146,6 +159,25 @@ pub struct Frame {
     pub work: StepWork,
     /// Whether this frame closes a step (false for the initial state).
     pub stepped: bool,
+    /// Whether the pass computed the work (`FramePass::Work`); else the work fields are zero.
+    pub work_computed: bool,
+}
+
+impl Frame {
+    /// The non-conservative work of the step on body i, or on the scene with None.
+    ///
+    /// Panics when the pass left the work out (`FramePass::Diagram`): its reader must ask for
+    /// `FramePass::Work`.
+    pub fn work(&self, body: Option<usize>) -> StepWork {
+        assert!(
+            self.work_computed,
+            "the work of this step was not computed (FramePass::Diagram): ask for FramePass::Work"
+        );
+        match body {
+            Some(i) => self.bodies[i].work,
+            None => self.work,
+        }
+    }
 }
 
 /// Computes a [`Frame`] per snapshot, keeping what it needs from the previous one.
@@ -227,13 +259,17 @@ impl FrameAnalysis {
         self.frame_current = false;
     }
 
-    /// [`Self::observe`] when `diagram` (a reader needs the frame's sums), else
-    /// [`Self::observe_motion`].
-    pub fn observe_as(&mut self, snap: &Snapshot, diagram: bool) {
-        if diagram {
-            self.observe(snap);
-        } else {
-            self.observe_motion(snap);
+    /// The pass its readers need: [`Self::observe_motion`], or the frame with or without the
+    /// work of the step's forces.
+    pub fn observe_as(&mut self, snap: &Snapshot, pass: FramePass) {
+        match pass {
+            FramePass::Motion => self.observe_motion(snap),
+            FramePass::Diagram => {
+                self.observe_pass(snap, false);
+            }
+            FramePass::Work => {
+                self.observe_pass(snap, true);
+            }
         }
     }
 
@@ -273,6 +309,11 @@ impl FrameAnalysis {
     ///
     /// Bodies without mass keep an all-zero entry: a body's mass does not change during a run.
     pub fn observe(&mut self, snap: &Snapshot) -> &Frame {
+        self.observe_pass(snap, true)
+    }
+
+    /// [`Self::observe`], with the work of the step's forces only when `work`.
+    fn observe_pass(&mut self, snap: &Snapshot, work: bool) -> &Frame {
         self.advance(snap);
         self.frame_current = true;
         let stepped = self.stepped;
@@ -282,21 +323,25 @@ impl FrameAnalysis {
         f.stepped = stepped;
         f.external = ImpulseSums::default();
         f.work = StepWork::default();
+        f.work_computed = work;
         f.elastic_potential = snap.springs.iter().map(|s| s.energy).sum();
-        // The pairs a contact pushed: this step's, and the step before's.
-        std::mem::swap(&mut self.pushed_before, &mut self.pushing);
-        if !stepped {
-            self.pushed_before.clear();
+        // The pairs a contact pushed: this step's, and the step before's (for the contacts'
+        // work; a run's pass is the same at every step, so the lists are whole when read).
+        if work {
+            std::mem::swap(&mut self.pushed_before, &mut self.pushing);
+            if !stepped {
+                self.pushed_before.clear();
+            }
+            self.pushing.clear();
+            self.pushing.extend(
+                snap.contacts
+                    .iter()
+                    .filter(|c| c.pushes())
+                    .map(|c| pair_key(c.body1, c.body2)),
+            );
+            self.pushing.sort_unstable();
+            self.pushing.dedup();
         }
-        self.pushing.clear();
-        self.pushing.extend(
-            snap.contacts
-                .iter()
-                .filter(|c| c.pushes())
-                .map(|c| pair_key(c.body1, c.body2)),
-        );
-        self.pushing.sort_unstable();
-        self.pushing.dedup();
         if stepped {
             let mut pass = Pass {
                 snap,
@@ -313,6 +358,7 @@ impl FrameAnalysis {
                 massive: &self.massive,
                 mids: &mut self.mids,
                 pushed_before: &self.pushed_before,
+                with_work: work,
             };
             pass.run();
         }
@@ -386,6 +432,8 @@ struct Pass<'a> {
     mids: &'a mut [Mid],
     /// The pairs a contact pushed in the step before (`FrameAnalysis::pushed_before`).
     pushed_before: &'a [(usize, usize)],
+    /// Whether to compute the work of the impulses (`FramePass::Work`).
+    with_work: bool,
 }
 
 /// A pair of bodies as the pushed lists hold it: lower index first.
@@ -440,7 +488,7 @@ impl Pass<'_> {
         work: Option<(Slot, bool)>,
     ) {
         self.add_sums(i, j, point, arm, couple, internal);
-        if let Some(to) = work {
+        if let Some(to) = work.filter(|_| self.with_work) {
             let u = self.work_of(i, j, arm, couple);
             self.add_work(i, to, u);
         }
@@ -575,10 +623,11 @@ impl Pass<'_> {
             let t = c.tangent();
             // A contact whose pair pushed the step before is no impact: its normal impulse
             // works through the bodies' displacement (`energy::work_of_contact_impulse`).
-            let resting = self
-                .pushed_before
-                .binary_search(&pair_key(c.body1, c.body2))
-                .is_ok();
+            let resting = self.with_work
+                && self
+                    .pushed_before
+                    .binary_search(&pair_key(c.body1, c.body2))
+                    .is_ok();
             let work = (Slot::Contacts, true);
             for p in &c.points {
                 let (j_n, j_t) = (c.normal * p.normal_impulse, t * p.tangent_impulse);
@@ -600,14 +649,18 @@ impl Pass<'_> {
                 if in2 {
                     let at = self.g_point(c.body2) + arm2;
                     self.add_sums(c.body2, j2, at, arm2, 0.0, internal);
-                    let w = u(self, c.body2, 1.0, arm2);
-                    self.add_work(c.body2, work, w);
+                    if self.with_work {
+                        let w = u(self, c.body2, 1.0, arm2);
+                        self.add_work(c.body2, work, w);
+                    }
                 }
                 if in1 {
                     let at = self.g_point(c.body1) + arm1;
                     self.add_sums(c.body1, -j2, at, arm1, 0.0, internal);
-                    let w = u(self, c.body1, -1.0, arm1);
-                    self.add_work(c.body1, work, w);
+                    if self.with_work {
+                        let w = u(self, c.body1, -1.0, arm1);
+                        self.add_work(c.body1, work, w);
+                    }
                 }
             }
         }

@@ -188,13 +188,13 @@ impl ImpulseMomentumLedger {
     pub fn with_capacity(t0: f64, g0: DVec2, h0: f64, instants: usize) -> Self {
         let mut entries = Vec::with_capacity(instants.max(1));
         entries.push(LedgerEntry {
-                t: t0,
-                g: g0,
-                h: h0,
-                j: DVec2::ZERO,
-                m: 0.0,
-                rg: 0.0,
-                rh: 0.0,
+            t: t0,
+            g: g0,
+            h: h0,
+            j: DVec2::ZERO,
+            m: 0.0,
+            rg: 0.0,
+            rh: 0.0,
         });
         Self { entries }
     }

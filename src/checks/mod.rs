@@ -8,7 +8,7 @@
 
 mod kinds;
 
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::level::{CheckDef, CheckKind, Level};
 use crate::snapshot::Snapshot;
 use serde::{Deserialize, Serialize};
@@ -58,10 +58,10 @@ pub trait Probe {
     fn reads_contacts(&self) -> bool {
         true
     }
-    /// With [`Probe::wants_frame`]: whether it reads the frame's sums (`FrameAnalysis::frame`)
-    /// or only the step's start states and links (`FrameAnalysis::observe_motion`).
-    fn needs_diagram(&self) -> bool {
-        true
+    /// With [`Probe::wants_frame`]: how much of the shared pass it reads (the step's states and
+    /// links, the frame's sums, or the work too). Everything unless the probe knows better.
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Work
     }
     fn finish(self: Box<Self>) -> CheckResult;
 }
@@ -72,8 +72,8 @@ pub trait Probe {
 pub struct CheckSet {
     probes: Vec<Box<dyn Probe>>,
     frame: Option<FrameAnalysis>,
-    /// Whether a probe reads the frame's sums: else the pass computes only the states.
-    diagram: bool,
+    /// The most of the pass a probe reads: the pass computes that much.
+    pass: FramePass,
 }
 
 impl CheckSet {
@@ -84,18 +84,23 @@ impl CheckSet {
             .iter()
             .any(|p| p.wants_frame())
             .then(FrameAnalysis::new);
-        let diagram = probes.iter().any(|p| p.wants_frame() && p.needs_diagram());
+        let pass = probes
+            .iter()
+            .filter(|p| p.wants_frame())
+            .map(|p| p.frame_pass())
+            .max()
+            .unwrap_or(FramePass::Motion);
         CheckSet {
             probes,
             frame,
-            diagram,
+            pass,
         }
     }
 
     /// Feeds a snapshot (the initial one first, then one per step, in order) to every check.
     pub fn observe(&mut self, snap: &Snapshot) {
         if let Some(fa) = self.frame.as_mut() {
-            fa.observe_as(snap, self.diagram);
+            fa.observe_as(snap, self.pass);
         }
         for p in self.probes.iter_mut() {
             match &self.frame {

@@ -5,7 +5,7 @@ use super::{
     subject_of, subject_set, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinematics::{omega_from_angles, velocity_from_positions, wrap_angle};
 use crate::analysis::mass::MassProps;
 use crate::analysis::Motion;
@@ -224,8 +224,8 @@ struct KineticEnergyIc {
 
 impl FrameProbe for KineticEnergyIc {
     /// The contact point comes from the body's own contacts (the frame's links), not the sums.
-    fn needs_diagram(&self) -> bool {
-        false
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Motion
     }
 
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
@@ -460,10 +460,7 @@ impl WorkEnergy {
     /// The non-conservative work of the step that led to `s`.
     fn step_work(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         let f = fa.frame();
-        let w = match self.index {
-            Some(i) => f.bodies[i].work,
-            None => f.work,
-        };
+        let w = f.work(self.index);
         let mut add = [0.0; 6];
         add[LOADS] = w.loads;
         add[EVENTS] = w.events;

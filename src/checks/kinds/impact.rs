@@ -6,7 +6,7 @@ use super::{
     Summary,
 };
 use crate::analysis::energy::kinetic_energy;
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::impact::{
     central_impact_energy_loss, measure_impact, pair_contact_linked, pair_normal_impulse_linked,
     Bracket, ImpactDetector, PairContact,
@@ -416,8 +416,8 @@ impl Done {
 
 impl FrameProbe for Restitution {
     /// The impact's bracket reads the step's contacts and start states, not the frame's sums.
-    fn needs_diagram(&self) -> bool {
-        false
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Motion
     }
 
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {

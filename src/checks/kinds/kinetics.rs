@@ -5,7 +5,7 @@ use super::{
     cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass,
     v2, FrameProbe, Summary, Worst,
 };
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::{
     finite_difference_resolution, gravity_point, kinetic_moment_about, kinetic_moment_fixed_axis,
 };
@@ -102,6 +102,11 @@ struct NewtonEuler {
 }
 
 impl FrameProbe for NewtonEuler {
+    /// The frame's sums and residuals, not the work of the forces.
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Diagram
+    }
+
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         // The step's substeps as the engine ran them (overrides included).
         self.substeps = s.substeps.max(1);

@@ -29,7 +29,7 @@ mod percussion;
 mod virtual_work;
 
 use super::{kind_name, CheckResult, Probe};
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::mass::MassProps;
 use crate::level::{BodyDef, CheckDef, CheckKind, Level};
 use crate::snapshot::Snapshot;
@@ -38,10 +38,10 @@ use glam::DVec2;
 /// A probe that reads the shared per-step frame (`analysis::frame`) rather than walking the
 /// step's impulses itself.
 pub(super) trait FrameProbe {
-    /// Whether the probe reads the frame's sums (`FrameAnalysis::frame`), or only the states
-    /// at the step's ends and the links, which cost a fraction of the frame pass.
-    fn needs_diagram(&self) -> bool {
-        true
+    /// How much of the frame pass the probe reads: the states at the step's ends and the links
+    /// (a fraction of the pass's cost), the frame's sums, or the work of the step's forces too.
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Work
     }
     fn observe_frame(&mut self, snap: &Snapshot, fa: &FrameAnalysis);
     fn finish(self) -> CheckResult;
@@ -78,14 +78,14 @@ pub(super) fn framed<P: FrameProbe + 'static>(inner: P) -> Box<dyn Probe> {
 impl<P: FrameProbe> Probe for Framed<P> {
     fn observe(&mut self, snap: &Snapshot) {
         let fa = self.own.get_or_insert_with(FrameAnalysis::new);
-        fa.observe_as(snap, self.inner.needs_diagram());
+        fa.observe_as(snap, self.inner.frame_pass());
         self.inner.observe_frame(snap, fa);
     }
     fn wants_frame(&self) -> bool {
         true
     }
-    fn needs_diagram(&self) -> bool {
-        self.inner.needs_diagram()
+    fn frame_pass(&self) -> FramePass {
+        self.inner.frame_pass()
     }
     fn observe_frame(&mut self, snap: &Snapshot, fa: &FrameAnalysis) {
         self.inner.observe_frame(snap, fa);

@@ -5,7 +5,7 @@ use super::{
     v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::cross;
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::finite_difference_resolution;
 use crate::analysis::momentum::{
     angular_momentum_about, linear_momentum, ImpulseMomentumLedger, WindowBalance,
@@ -100,6 +100,11 @@ struct AngularMomentumFixedPoint {
 }
 
 impl FrameProbe for AngularMomentumFixedPoint {
+    /// The frame's impulse sums and momenta, not the work of the forces.
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Diagram
+    }
+
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         if self.unresolved.is_some() {
             return;
@@ -289,6 +294,11 @@ struct ImpulseMomentum {
 }
 
 impl FrameProbe for ImpulseMomentum {
+    /// The frame's impulse sums and momenta, not the work of the forces.
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Diagram
+    }
+
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
         let o = self.o.unwrap_or_default();
         if !self.resolved {

@@ -5,7 +5,7 @@ use super::{
     cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass,
     v2, FrameProbe, Summary, Worst,
 };
-use crate::analysis::frame::FrameAnalysis;
+use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::{for_each_external_impulse_linked, gravity_point, Before, Source};
 use crate::analysis::mass::{parallel_axis, MassProps};
 use crate::analysis::percussion::{
@@ -126,8 +126,8 @@ impl CenterOfPercussion {
 
 impl FrameProbe for CenterOfPercussion {
     /// The pivot's reaction and the body's own impulses are read from the snapshot and the links.
-    fn needs_diagram(&self) -> bool {
-        false
+    fn frame_pass(&self) -> FramePass {
+        FramePass::Motion
     }
 
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
