@@ -287,7 +287,13 @@ fn the_pass_without_work_has_the_same_sums_and_refuses_the_work() {
         assert_eq!(a.totals, b.totals);
         nonzero_work |= a.work(None).total() != 0.0;
         let refused = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| b.work(None)));
-        assert!(refused.is_err(), "the work of a Diagram pass was handed out");
+        assert!(
+            refused.is_err(),
+            "the work of a Diagram pass was handed out"
+        );
     }
-    assert!(nonzero_work, "the scene's forces did no work: the comparison says nothing");
+    assert!(
+        nonzero_work,
+        "the scene's forces did no work: the comparison says nothing"
+    );
 }
