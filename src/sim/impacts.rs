@@ -55,15 +55,17 @@ pub struct CallPlan {
 }
 
 impl Simulation {
-    /// The plan of the coming call of length `horizon` (see the module doc).
-    pub(super) fn plan_call(&self, horizon: f64) -> CallPlan {
-        let first = self.scan(horizon, 0.0);
+    /// The plan of the coming call of length `horizon` (see the module doc). `new_touches`:
+    /// whether a pair placed touching that closes at impact speed, with no contact made yet, is
+    /// an impact of this call (not in the short call a cut planned: its pair arrives touching).
+    pub(super) fn plan_call(&self, horizon: f64, new_touches: bool) -> CallPlan {
+        let first = self.scan(horizon, 0.0, new_touches);
         // Gravity changes the velocities over the call: cast again with their mean up to the
         // first estimate (a body dropped onto the ground at 1/240 s arrives 85 um later than at
         // its starting velocity).
         match first.cut {
             Some(t) if t > 0.0 => {
-                let again = self.scan(horizon, t);
+                let again = self.scan(horizon, t, new_touches);
                 CallPlan {
                     cut: again.cut.or(first.cut),
                     prediction: again.prediction.min(first.prediction),
@@ -73,7 +75,7 @@ impl Simulation {
         }
     }
 
-    fn scan(&self, horizon: f64, gravity_time: f64) -> CallPlan {
+    fn scan(&self, horizon: f64, gravity_time: f64, new_touches: bool) -> CallPlan {
         let w = &self.world;
         let rapier_prediction = self.settings_prediction();
         let g = w.gravity * (0.5 * gravity_time) as Real;
@@ -110,7 +112,11 @@ impl Simulation {
                 ),
             }
         };
-        let moving: Vec<_> = w.colliders.iter().map(|(_, co)| (co, motion(co))).collect();
+        let moving: Vec<_> = w
+            .colliders
+            .iter()
+            .map(|(handle, co)| (handle, co, motion(co)))
+            .collect();
         // An impact closes faster than gravity alone can close a gap over two calls (a body
         // resting on another, or sliding into it, is not an impact).
         let slow = 2.0 * w.gravity.length() as f64 * horizon + 1e-3;
@@ -118,8 +124,8 @@ impl Simulation {
             cut: None,
             prediction: rapier_prediction,
         };
-        for (a, (co1, (m1, box1, speed1))) in moving.iter().enumerate() {
-            for (co2, (m2, box2, speed2)) in &moving[a + 1..] {
+        for (a, (h1, co1, (m1, box1, speed1))) in moving.iter().enumerate() {
+            for (h2, co2, (m2, box2, speed2)) in &moving[a + 1..] {
                 // Two bodies that cannot close fast enough to make an impact (a resting stack) are
                 // passed over before any query.
                 if speed1 + speed2 <= slow || co1.parent() == co2.parent() || !box1.intersects(box2)
@@ -141,12 +147,6 @@ impl Simulation {
                     continue;
                 };
                 let apart = c.dist as f64;
-                if apart <= TOUCHING {
-                    // Touching: rapier's contact. (Making a touching, closing pair's contact in
-                    // a short call as after a cut was tried: it changed a ladder sliding off its
-                    // wall, 8.6e-3 to 1.28e-2 off at 1/960 s, and no impact needed it.)
-                    continue;
-                }
                 let point_velocity = |m: &NonlinearRigidMotion, p: Vector| {
                     let center = m.start * m.local_center;
                     let r = p - center;
@@ -155,6 +155,23 @@ impl Simulation {
                 let closing = ((point_velocity(m1, c.point1) - point_velocity(m2, c.point2))
                     .dot(c.normal1)) as f64;
                 if closing <= slow {
+                    continue;
+                }
+                if apart <= TOUCHING {
+                    // Touching and closing at impact speed. A pair rapier has made a contact for
+                    // is rapier's (a ladder sliding on its wall, whose contact pushes in bursts:
+                    // making it in a short call changed that ladder from 8.6e-3 to 1.28e-2 off at
+                    // 1/960 s). A pair with no contact yet (two bodies placed touching and moving
+                    // into each other: a level's first step) is an impact like one met from a
+                    // gap, made in a short call: else rapier bounces it over the whole call and
+                    // the rebound lacks gravity's change over the call (a ball placed on a rough
+                    // floor read e = (2 + g dt)/4 for 0.5).
+                    let made = w.narrow_phase.contact_pair(*h1, *h2).is_some_and(|pair| {
+                        pair.manifolds().iter().any(|m| !m.points.is_empty())
+                    });
+                    if new_touches && !made {
+                        plan.cut = Some(0.0);
+                    }
                     continue;
                 }
                 let Ok(Some(hit)) = query::cast_shapes_nonlinear(

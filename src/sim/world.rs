@@ -331,6 +331,9 @@ impl Simulation {
             std::iter::once((dt, n)).collect()
         };
         let mut cuts = 0;
+        // Whether the coming call is the short one a cut planned for its contact (then no pair
+        // touching in it is cut again).
+        let mut impact_call_next = false;
         let mut merged = split;
         let mut lambdas = vec![0.0; self.level.couplings.len()];
         let mut carried: Vec<Vec<DVec2>> = self
@@ -345,8 +348,9 @@ impl Simulation {
         let contacts_wanted = self.contacts_wanted();
         while let Some((mut h, sub)) = calls.pop_front() {
             let mut prediction = None;
+            let impact_call = std::mem::take(&mut impact_call_next);
             if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
-                let plan = self.plan_call(h);
+                let plan = self.plan_call(h, !impact_call);
                 prediction = Some(plan.prediction);
                 if let Some(t) = plan.cut {
                     // The contact is made in a short call after the cut, where rapier's soft
@@ -358,6 +362,7 @@ impl Simulation {
                     }
                     if t > 0.0 {
                         calls.push_front((impact, sub));
+                        impact_call_next = true;
                         h = t;
                     } else {
                         h = impact;
