@@ -82,7 +82,8 @@ impl StepWork {
 /// How much of the pass a run's readers need: each level includes the one before.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
 pub enum FramePass {
-    /// The bodies' states at the step's ends and the links only ([`FrameAnalysis::observe_motion`]).
+    /// The bodies' states at the step's ends and the links only
+    /// ([`FrameAnalysis::observe_motion`]).
     Motion,
     /// The frame without the work of the step's forces ([`Frame::work`] is then refused): the
     /// free-body diagrams' sums, residuals, momenta and energies.

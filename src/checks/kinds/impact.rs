@@ -25,14 +25,14 @@ use glam::DVec2;
 /// what gravity gives the pair in a step starts it; it lasts while the impulse stays above 20% of
 /// the first step's and the steps change the pair's relative normal velocity by more than
 /// gravity does in a step, so a ball that lands on a pile and carries the balls above it is not
-/// in an impact for the rest of the run), and measured at the instant the pair touches (`analysis::touching`, as the
-/// questions' impact solution finds it): the states at the start of its first step carried
-/// forward to the touch and those at the end of its last carried back, each body at gravity
-/// while it flies free (not jointed, not pushed by a contact the step before; after the touch,
-/// not resting on its partner). Read at the bracket's ends instead, e was off by up to g dt / v
-/// (0.446 and 0.518 against 0.5 at 1/60 s, `tests/analysis_gaps.rs`). A bracket whose pair was
-/// not approaching faster than gravity closes a gap in two steps (a last, slow bounce settling)
-/// is listed in the note and not graded, unless no impact approached.
+/// in an impact for the rest of the run), and measured at the instant the pair touches
+/// (`analysis::touching`, as the questions' impact solution finds it): the states at the start
+/// of its first step carried forward to the touch and those at the end of its last carried
+/// back, each body at gravity while it flies free (not jointed, not pushed by a contact the step
+/// before; after the touch, not resting on its partner). Read at the bracket's ends instead, e
+/// was off by up to g dt / v (0.446 and 0.518 against 0.5 at 1/60 s, `tests/analysis_gaps.rs`).
+/// A bracket whose pair was not approaching faster than gravity closes a gap in two steps (a
+/// last, slow bounce settling) is listed in the note and not graded, unless no impact approached.
 ///
 /// Central impact (the normal through the contact passes within 1% of k_G of each body's G):
 /// theory e set in the level (the larger of the two bodies' `restitution`, the sim's combine rule),
