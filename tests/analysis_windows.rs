@@ -376,3 +376,64 @@ fn worst_windows_beyond_rounding_match_every_pair_tried() {
         );
     }
 }
+
+/// A ledger of G alone (a check about no point) finds the same linear windows as one that keeps
+/// H_O too, with rounding or without, and keeps no angular part.
+#[test]
+fn a_ledger_of_g_alone_finds_the_same_linear_windows() {
+    let (m, dt) = (2.0, 0.1);
+    let mut full = ImpulseMomentumLedger::new(0.0, DVec2::new(m, 0.0), 0.5);
+    let mut linear = ImpulseMomentumLedger::linear_only(0.0, DVec2::new(m, 0.0), 4);
+    let mut g = DVec2::new(m, 0.0);
+    for k in 1..=30 {
+        // A leak that comes and goes, so the worst window is inside the run.
+        let leak = DVec2::new((k as f64 * 0.7).sin(), (k as f64 * 0.3).cos()) * 1e-3;
+        let impulse = DVec2::new(0.3, -0.2) * dt;
+        g += impulse + leak;
+        let rounding = (1e-4, 2e-4);
+        full.record_rounded(
+            k as f64 * dt,
+            impulse,
+            0.01 * k as f64,
+            g,
+            0.5 + 0.02 * k as f64,
+            rounding,
+        );
+        linear.record_rounded(
+            k as f64 * dt,
+            impulse,
+            0.01 * k as f64,
+            g,
+            0.5 + 0.02 * k as f64,
+            rounding,
+        );
+    }
+    assert_eq!(linear.instants(), full.instants());
+    for (a, b) in [
+        (full.worst_windows(), linear.worst_windows()),
+        (
+            full.worst_windows_beyond_rounding(),
+            linear.worst_windows_beyond_rounding(),
+        ),
+    ] {
+        let lin = |w: &rigidlab::analysis::momentum::WindowBalance| {
+            (w.t1, w.t2, w.delta_g, w.linear_impulse, w.rounding_g)
+        };
+        assert_eq!(lin(&a.linear), lin(&b.linear));
+        assert_eq!(b.angular.angular_residual(), 0.0);
+        assert_eq!(b.angular.rounding_h, 0.0);
+    }
+    assert_eq!(
+        full.since_start().linear_residual(),
+        linear.since_start().linear_residual()
+    );
+    assert_eq!(linear.since_start().delta_h, 0.0);
+    let (w, v) = (
+        full.window(0.5, 2.2).unwrap(),
+        linear.window(0.5, 2.2).unwrap(),
+    );
+    assert_eq!(
+        (w.delta_g, w.linear_impulse, w.rounding_g),
+        (v.delta_g, v.linear_impulse, v.rounding_g)
+    );
+}

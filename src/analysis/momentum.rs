@@ -139,7 +139,7 @@ impl WindowBalance {
     }
 }
 
-/// One instant of an [`ImpulseMomentumLedger`].
+/// One instant of an [`ImpulseMomentumLedger`] (stored as a linear and an angular part).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct LedgerEntry {
     t: f64,
@@ -163,13 +163,36 @@ struct LedgerEntry {
 /// worst window of a run is the widest spread of r, found in [`Self::worst_windows`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImpulseMomentumLedger {
-    /// Never empty: the first instant is recorded at creation.
-    entries: Vec<LedgerEntry>,
+    /// Per recorded instant, t, G, the impulse sum and G's rounding bound. Never empty: the
+    /// first instant is recorded at creation.
+    linear: Vec<LinearPart>,
+    /// Per recorded instant, H_O, the moment sum and H_O's rounding bound; empty for a ledger of
+    /// G alone ([`Self::linear_only`]), which then stores two thirds of the bytes a step.
+    angular: Vec<AngularPart>,
+    /// Whether the ledger keeps H_O (else `angular` stays empty).
+    with_angular: bool,
     /// Copies of the first and the last entry: a step's record and the balance since the start
     /// read these instead of the history, whose ends a check on every body of a scene would
     /// otherwise fetch from memory every step.
     first: LedgerEntry,
     last: LedgerEntry,
+}
+
+/// The linear part of a [`LedgerEntry`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LinearPart {
+    t: f64,
+    g: DVec2,
+    j: DVec2,
+    rg: f64,
+}
+
+/// The angular part of a [`LedgerEntry`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct AngularPart {
+    h: f64,
+    m: f64,
+    rh: f64,
 }
 
 /// The worst windows of a ledger: the linear one (largest |G(t2) - G(t1) - integral of F dt|) and the
@@ -200,18 +223,78 @@ impl ImpulseMomentumLedger {
             rg: 0.0,
             rh: 0.0,
         };
-        let mut entries = Vec::with_capacity(instants.max(1));
-        entries.push(first);
-        Self {
-            entries,
+        Self::start(first, instants, true)
+    }
+
+    /// A ledger of G alone (IM-2), for a check about no point: H_O and the moments given to
+    /// [`Self::record_rounded`] are not kept, and its windows' angular parts are zero.
+    pub fn linear_only(t0: f64, g0: DVec2, instants: usize) -> Self {
+        Self::start(
+            LedgerEntry {
+                t: t0,
+                g: g0,
+                h: 0.0,
+                j: DVec2::ZERO,
+                m: 0.0,
+                rg: 0.0,
+                rh: 0.0,
+            },
+            instants,
+            false,
+        )
+    }
+
+    fn start(first: LedgerEntry, instants: usize, with_angular: bool) -> Self {
+        let room = |keep: bool| if keep { instants.max(1) } else { 0 };
+        let mut ledger = Self {
+            linear: Vec::with_capacity(room(true)),
+            angular: Vec::with_capacity(room(with_angular)),
+            with_angular,
             first,
             last: first,
+        };
+        ledger.push(first);
+        ledger
+    }
+
+    fn push(&mut self, e: LedgerEntry) {
+        self.linear.push(LinearPart {
+            t: e.t,
+            g: e.g,
+            j: e.j,
+            rg: e.rg,
+        });
+        if self.with_angular {
+            self.angular.push(AngularPart {
+                h: e.h,
+                m: e.m,
+                rh: e.rh,
+            });
+        }
+    }
+
+    /// The recorded instant k.
+    fn entry(&self, k: usize) -> LedgerEntry {
+        let l = &self.linear[k];
+        let a = self.angular.get(k).copied().unwrap_or(AngularPart {
+            h: 0.0,
+            m: 0.0,
+            rh: 0.0,
+        });
+        LedgerEntry {
+            t: l.t,
+            g: l.g,
+            h: a.h,
+            j: l.j,
+            m: a.m,
+            rg: l.rg,
+            rh: a.rh,
         }
     }
 
     /// Number of recorded instants (the first included).
     pub fn instants(&self) -> usize {
-        self.entries.len()
+        self.linear.len()
     }
 
     /// Records the end of a step at time `t`: the step's external impulse and its moment about O,
@@ -232,26 +315,28 @@ impl ImpulseMomentumLedger {
         rounding: (f64, f64),
     ) {
         let last = &self.last;
+        let angular = self.with_angular;
+        let kept = |x: f64| if angular { x } else { 0.0 };
         self.last = LedgerEntry {
             t,
             g,
-            h: h_o,
+            h: kept(h_o),
             j: last.j + impulse,
-            m: last.m + moment_o,
+            m: last.m + kept(moment_o),
             rg: last.rg + rounding.0,
-            rh: last.rh + rounding.1,
+            rh: last.rh + kept(rounding.1),
         };
-        self.entries.push(self.last);
+        self.push(self.last);
     }
 
     /// The recorded instant nearest to t (ties go to the earlier).
     fn index_at(&self, t: f64) -> usize {
-        let k = self.entries.partition_point(|e| e.t < t);
+        let k = self.linear.partition_point(|e| e.t < t);
         if k == 0 {
             0
-        } else if k == self.entries.len() {
+        } else if k == self.linear.len() {
             k - 1
-        } else if (self.entries[k].t - t).abs() < (t - self.entries[k - 1].t).abs() {
+        } else if (self.linear[k].t - t).abs() < (t - self.linear[k - 1].t).abs() {
             k
         } else {
             k - 1
@@ -259,7 +344,7 @@ impl ImpulseMomentumLedger {
     }
 
     fn between(&self, a: usize, b: usize) -> WindowBalance {
-        Self::balance(&self.entries[a], &self.entries[b])
+        Self::balance(&self.entry(a), &self.entry(b))
     }
 
     fn balance(e1: &LedgerEntry, e2: &LedgerEntry) -> WindowBalance {
@@ -291,7 +376,7 @@ impl ImpulseMomentumLedger {
 
     /// The balance over every window [first, t]: one per recorded instant after the first.
     pub fn from_start(&self) -> impl Iterator<Item = WindowBalance> + '_ {
-        (1..self.entries.len()).map(|k| self.between(0, k))
+        (1..self.linear.len()).map(|k| self.between(0, k))
     }
 
     /// The windows whose residuals go furthest beyond the rounding the ledger was given (see
@@ -308,20 +393,17 @@ impl ImpulseMomentumLedger {
     /// excess reported is short of the true one by at most 7.5e-5 of that window's residual.
     pub fn worst_windows_beyond_rounding(&self) -> WorstWindows {
         const DIRECTIONS: usize = 256;
-        let n = self.entries.len();
-        let rounded = self
-            .entries
-            .last()
-            .is_some_and(|e| e.rg > 0.0 || e.rh > 0.0);
+        let n = self.linear.len();
+        let rounded = self.last.rg > 0.0 || self.last.rh > 0.0;
         if n < 2 || !rounded {
             return self.worst_windows();
         }
         // The largest u_b - u_a over a < b: (a, b).
         let widest_rise = |u: &dyn Fn(&LedgerEntry) -> f64| {
-            let (mut lo, mut u_lo) = (0, u(&self.entries[0]));
+            let (mut lo, mut u_lo) = (0, u(&self.entry(0)));
             let (mut best, mut pair) = (f64::NEG_INFINITY, (0, 1));
             for b in 1..n {
-                let ub = u(&self.entries[b]);
+                let ub = u(&self.entry(b));
                 if ub - u_lo > best {
                     (best, pair) = (ub - u_lo, (lo, b));
                 }
@@ -364,7 +446,7 @@ impl ImpulseMomentumLedger {
     /// r(t2) - r(t1), so the worst angular window spans the smallest and largest r, and the worst
     /// linear window the diameter of the points r(t) (found on their convex hull).
     pub fn worst_windows(&self) -> WorstWindows {
-        let n = self.entries.len();
+        let n = self.linear.len();
         if n < 2 {
             return WorstWindows::default();
         }

@@ -166,9 +166,10 @@ impl Simulation {
                     // gap, made in a short call: else rapier bounces it over the whole call and
                     // the rebound lacks gravity's change over the call (a ball placed on a rough
                     // floor read e = (2 + g dt)/4 for 0.5).
-                    let made = w.narrow_phase.contact_pair(*h1, *h2).is_some_and(|pair| {
-                        pair.manifolds().iter().any(|m| !m.points.is_empty())
-                    });
+                    let made = w
+                        .narrow_phase
+                        .contact_pair(*h1, *h2)
+                        .is_some_and(|pair| pair.manifolds().iter().any(|m| !m.points.is_empty()));
                     if new_touches && !made {
                         plan.cut = Some(0.0);
                     }

@@ -352,7 +352,11 @@ impl FrameProbe for ImpulseMomentum {
             } else {
                 1
             };
-            ImpulseMomentumLedger::with_capacity(start, g0, h0, instants)
+            // About no point, G alone: the ledger then stores two thirds of the bytes a step.
+            match self.o {
+                Some(_) => ImpulseMomentumLedger::with_capacity(start, g0, h0, instants),
+                None => ImpulseMomentumLedger::linear_only(start, g0, instants),
+            }
         });
         let sums = match self.index {
             Some(i) => f.bodies[i].impulses,
