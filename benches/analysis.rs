@@ -151,23 +151,19 @@ fn main() {
             })
         })
     };
-    let split_kinds: Vec<_> = every
-        .level
-        .checks
-        .iter()
-        .map(|c| c.kind)
-        .filter(|&k| two_forms_of(k))
-        .collect();
+    let mut split_kinds: Vec<_> = every.level.checks.iter().map(|c| c.kind).collect();
+    split_kinds.sort_by_key(|k| k.name());
+    split_kinds.dedup();
+    split_kinds.retain(|&k| two_forms_of(k));
     let form_of = |c: &rigidlab::level::CheckDef| {
         (c.kind, split_kinds.contains(&c.kind) && c.point.is_some())
     };
     let mut forms: Vec<_> = every.level.checks.iter().map(form_of).collect();
     forms.sort_by_key(|(k, p)| (k.name(), *p));
     forms.dedup();
-    let two_forms = |k| split_kinds.contains(&k);
     let labels: Vec<String> = forms
         .iter()
-        .map(|&(k, p)| match (two_forms(k), p) {
+        .map(|&(k, p)| match (split_kinds.contains(&k), p) {
             (true, true) => format!("{} about a point", k.name()),
             (true, false) => format!("{} about G", k.name()),
             _ => k.name().to_string(),

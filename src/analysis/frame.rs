@@ -265,11 +265,8 @@ impl FrameAnalysis {
     pub fn observe_as(&mut self, snap: &Snapshot, pass: FramePass) {
         match pass {
             FramePass::Motion => self.observe_motion(snap),
-            FramePass::Diagram => {
-                self.observe_pass(snap, false);
-            }
-            FramePass::Work => {
-                self.observe_pass(snap, true);
+            _ => {
+                self.observe_pass(snap, pass == FramePass::Work);
             }
         }
     }

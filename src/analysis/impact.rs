@@ -87,14 +87,24 @@ pub fn pair_normal_impulse_linked(
         .contacts_of(a)
         .iter()
         .map(|&k| &snap.contacts[k as usize])
+        .filter(|c| pair_sign(c, a, b).is_some())
     {
-        if (c.body1 == a && c.body2 == b) || (c.body1 == b && c.body2 == a) {
-            for p in &c.points {
-                sum += p.normal_impulse;
-            }
+        for p in &c.points {
+            sum += p.normal_impulse;
         }
     }
     sum
+}
+
+/// Whether contact `c` is between a and b: +1 with a as its body1, -1 with b, else None.
+fn pair_sign(c: &crate::snapshot::ContactState, a: usize, b: usize) -> Option<f64> {
+    if c.body1 == a && c.body2 == b {
+        Some(1.0)
+    } else if c.body1 == b && c.body2 == a {
+        Some(-1.0)
+    } else {
+        None
+    }
 }
 
 /// [`pair_contact`] over the contacts `ids` (ascending: the sums add in the snapshot's order).
@@ -111,11 +121,7 @@ fn pair_contact_among(
     let (mut sa, mut sb) = (DVec2::ZERO, DVec2::ZERO);
     let mut first: Option<(DVec2, DVec2, (DVec2, DVec2))> = None;
     for c in ids.map(|k| &snap.contacts[k]) {
-        let sign = if c.body1 == a && c.body2 == b {
-            1.0
-        } else if c.body1 == b && c.body2 == a {
-            -1.0
-        } else {
+        let Some(sign) = pair_sign(c, a, b) else {
             continue;
         };
         let n = c.normal * sign;

@@ -140,7 +140,7 @@ impl WindowBalance {
 }
 
 /// One instant of an [`ImpulseMomentumLedger`] (stored as a linear and an angular part).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct LedgerEntry {
     t: f64,
     g: DVec2,
@@ -169,8 +169,6 @@ pub struct ImpulseMomentumLedger {
     /// Per recorded instant, H_O, the moment sum and H_O's rounding bound; empty for a ledger of
     /// G alone ([`Self::linear_only`]), which then stores two thirds of the bytes a step.
     angular: Vec<AngularPart>,
-    /// Whether the ledger keeps H_O (else `angular` stays empty).
-    with_angular: bool,
     /// Copies of the first and the last entry: a step's record and the balance since the start
     /// read these instead of the history, whose ends a check on every body of a scene would
     /// otherwise fetch from memory every step.
@@ -187,8 +185,29 @@ struct LinearPart {
     rg: f64,
 }
 
+impl LinearPart {
+    fn of(e: &LedgerEntry) -> Self {
+        LinearPart {
+            t: e.t,
+            g: e.g,
+            j: e.j,
+            rg: e.rg,
+        }
+    }
+}
+
+impl AngularPart {
+    fn of(e: &LedgerEntry) -> Self {
+        AngularPart {
+            h: e.h,
+            m: e.m,
+            rh: e.rh,
+        }
+    }
+}
+
 /// The angular part of a [`LedgerEntry`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct AngularPart {
     h: f64,
     m: f64,
@@ -214,73 +233,53 @@ impl ImpulseMomentumLedger {
     /// steps, known at its start: growing 100 ledgers step by step cost 12% more instructions
     /// in the 100-body bench).
     pub fn with_capacity(t0: f64, g0: DVec2, h0: f64, instants: usize) -> Self {
-        let first = LedgerEntry {
-            t: t0,
-            g: g0,
-            h: h0,
-            j: DVec2::ZERO,
-            m: 0.0,
-            rg: 0.0,
-            rh: 0.0,
-        };
-        Self::start(first, instants, true)
+        Self::start(t0, g0, Some(h0), instants)
     }
 
     /// A ledger of G alone (IM-2), for a check about no point: H_O and the moments given to
     /// [`Self::record_rounded`] are not kept, and its windows' angular parts are zero.
     pub fn linear_only(t0: f64, g0: DVec2, instants: usize) -> Self {
-        Self::start(
-            LedgerEntry {
-                t: t0,
-                g: g0,
-                h: 0.0,
-                j: DVec2::ZERO,
-                m: 0.0,
-                rg: 0.0,
-                rh: 0.0,
-            },
-            instants,
-            false,
-        )
+        Self::start(t0, g0, None, instants)
     }
 
-    fn start(first: LedgerEntry, instants: usize, with_angular: bool) -> Self {
-        let room = |keep: bool| if keep { instants.max(1) } else { 0 };
+    /// The ledger's first instant; with H_O when `h0` is given (then it keeps H_O throughout).
+    fn start(t0: f64, g0: DVec2, h0: Option<f64>, instants: usize) -> Self {
+        let first = LedgerEntry {
+            t: t0,
+            g: g0,
+            h: h0.unwrap_or(0.0),
+            ..LedgerEntry::default()
+        };
+        let room = instants.max(1);
         let mut ledger = Self {
-            linear: Vec::with_capacity(room(true)),
-            angular: Vec::with_capacity(room(with_angular)),
-            with_angular,
+            linear: Vec::with_capacity(room),
+            angular: Vec::with_capacity(if h0.is_some() { room } else { 0 }),
             first,
             last: first,
         };
-        ledger.push(first);
+        ledger.linear.push(LinearPart::of(&first));
+        if h0.is_some() {
+            ledger.angular.push(AngularPart::of(&first));
+        }
         ledger
     }
 
+    /// Whether the ledger keeps H_O: one made with it has its first instant's from the start.
+    fn keeps_angular(&self) -> bool {
+        !self.angular.is_empty()
+    }
+
     fn push(&mut self, e: LedgerEntry) {
-        self.linear.push(LinearPart {
-            t: e.t,
-            g: e.g,
-            j: e.j,
-            rg: e.rg,
-        });
-        if self.with_angular {
-            self.angular.push(AngularPart {
-                h: e.h,
-                m: e.m,
-                rh: e.rh,
-            });
+        self.linear.push(LinearPart::of(&e));
+        if self.keeps_angular() {
+            self.angular.push(AngularPart::of(&e));
         }
     }
 
     /// The recorded instant k.
     fn entry(&self, k: usize) -> LedgerEntry {
         let l = &self.linear[k];
-        let a = self.angular.get(k).copied().unwrap_or(AngularPart {
-            h: 0.0,
-            m: 0.0,
-            rh: 0.0,
-        });
+        let a = self.angular.get(k).copied().unwrap_or_default();
         LedgerEntry {
             t: l.t,
             g: l.g,
@@ -315,7 +314,7 @@ impl ImpulseMomentumLedger {
         rounding: (f64, f64),
     ) {
         let last = &self.last;
-        let angular = self.with_angular;
+        let angular = self.keeps_angular();
         let kept = |x: f64| if angular { x } else { 0.0 };
         self.last = LedgerEntry {
             t,
