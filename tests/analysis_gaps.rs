@@ -1,7 +1,7 @@
 //! The engine's known deviations from the textbook, measured and shown (issue 3): not hidden
 //! behind a tolerance, but pinned by what theory says about their sign and their order in h.
 //!
-//! Run with `cargo test --test analysis_gaps -- --nocapture` to see the figures the README quotes.
+//! Run with `cargo test --test analysis_gaps -- --nocapture` to see the figures docs/ quotes.
 
 use rigidlab::analysis::energy::{gravity_potential, kinetic_energy};
 use rigidlab::level::{self, Scene};
@@ -345,7 +345,7 @@ fn struck_bar_steps(dt: f64) -> (Vec<f64>, Vec<f64>, f64) {
 /// rest in the next step, so during that step the bar is not in fixed-axis rotation and CP-2's
 /// sum M_Q = 0 reads 35% of the blow's moment about Q in each of the two steps, with opposite
 /// signs (7.0e-2 of the `center_of_percussion` check's scale, the blow's moment about O: the
-/// check of n3_07 fails there, README known gaps), while over the two steps the pin's impulse is
+/// check of n3_07 fails there, docs/known-gaps.md), while over the two steps the pin's impulse is
 /// the whole one (0.5393 against 0.5496 N s at 1/240 s) and sum M_Q balances to 2e-7 N m s.
 /// At 1/240 s the largest step's M_Q is 1.2e-3 of the blow's.
 #[test]

@@ -137,7 +137,7 @@ fn levels_written_from_the_docs_alone_pass_untuned() {
 
 /// What a second new user's levels (tests/newuser/n2_*, 2026-11-25, written from README.md and
 /// docs/levels.md alone) found that is rigidlab's reading or the engine's start-up, not yet
-/// fixed: each measured here and listed in the README's known gaps. (Fixed the same day: H_O's
+/// fixed: each measured here and listed in docs/known-gaps.md. (Fixed the same day: H_O's
 /// scale on a bar spinning freely on its pin, read 1.00; a wheel rolling into a curb carried
 /// with g to the touching instant, as if its floor did not hold it up, 0.66% off in w'. Fixed
 /// later: the `restitution` check read e at the ends of the impact's step, 0.6031 to 0.6047 at
@@ -179,7 +179,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     ),
 ];
 
-/// Engine gaps the new user's levels run into, measured (README, "Known gaps"), each a file and
+/// Engine gaps the new user's levels run into, measured (docs/known-gaps.md), each a file and
 /// the start of the failure's line.
 const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // A fourth new user (tests/newuser/n4_*, 2026-11-26). A disc rolling down a 25-degree

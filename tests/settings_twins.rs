@@ -76,7 +76,7 @@ fn twins(scene: &Scene) -> Vec<(String, Options)> {
 }
 
 /// Pass-to-fail cases found by this test and not fixed yet, each with its numbers (open issues,
-/// named in the README's known gaps); the test fails on any other.
+/// named in docs/known-gaps.md); the test fails on any other.
 /// Open cases, each with its numbers (none now). The sliding block's G balance over a window
 /// read 1.36e-4 against 1e-4 at 16 substeps and at dt/4: f32 rounding of v at every substep,
 /// where the decrement mu g h is a few ulps of v and is rounded the same way step after step

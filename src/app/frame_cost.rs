@@ -1,7 +1,7 @@
 //! What a frame costs on a computer without a GPU, and the two choices that halve it.
 //!
 //! Measured under Xvfb with Mesa's llvmpipe on this project's 2-core machine (1440x900, the
-//! large-amplitude physical pendulum with every overlay on; README "Frame rate"):
+//! large-amplitude physical pendulum with every overlay on; docs/sandbox.md, "Frame rate"):
 //! - **Samples per pixel.** llvmpipe shades every sample on the CPU: 4x MSAA drew 12 fps, none
 //!   24 fps. On a CPU adapter the scene is drawn without MSAA (egui antialiases its own edges).
 //! - **Bevy's multi-threaded executor.** It hands each system to a task pool thread and parks

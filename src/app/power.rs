@@ -1,7 +1,7 @@
 //! Redraw only when something changes (issue 17: a school computer without a GPU spent both its
 //! cores drawing the same paused picture, main thread 100% and llvmpipe 2 x 87%). While the run
 //! is paused, with no seek, step or edit to do, the window updates on input (and every half
-//! second); playing, every frame. Measured with `ps` over 10 s paused: see the README.
+//! second); playing, every frame. Measured with `ps` over 10 s paused: see docs/sandbox.md.
 //!
 //! bevy_egui 0.42 feeds egui a `ModifiersChanged` event every frame even when no key changed;
 //! egui answers any event with an immediate repaint, so the window never waited. The repeated
