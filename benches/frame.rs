@@ -9,12 +9,13 @@
 
 use bevy::gizmos::config::DefaultGizmoConfigGroup;
 use bevy::gizmos::gizmos::GizmoBuffer;
-use bevy::prelude::Rect;
+use bevy::prelude::{Rect, Vec2};
 use rigidlab::analysis::energy;
 use rigidlab::app::draw::{self, Drawing};
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::physics::{LiveChecks, Physics};
 use rigidlab::app::quantities;
+use rigidlab::app::scene_lines;
 use rigidlab::app::view::{self, SceneIndex, View};
 use rigidlab::level;
 use rigidlab::sim::Options;
@@ -64,6 +65,15 @@ fn main() {
     let bounds = view::motion_bounds(&scene, &Options::default());
     view.bounds = bounds;
     view.fit_to(&bounds);
+    // The visible world rectangle, as the window computes it each frame (the view does not move).
+    let visible = {
+        let vp = view.viewport;
+        let (a, b) = (
+            view.to_world(Vec2::new(vp.min.x, vp.max.y)),
+            view.to_world(Vec2::new(vp.max.x, vp.min.y)),
+        );
+        (a.min(b), a.max(b))
+    };
     // Every overlay on; the diagrams are about one body in the middle of the pile.
     let ov = Overlays {
         velocity: true,
@@ -77,6 +87,8 @@ fn main() {
         selected: Some(3 + BODIES / 2),
         point: Some((3 + BODIES / 2, glam::DVec2::new(0.03, 0.0))),
         origin: glam::DVec2::ZERO,
+        // The arrow scale, hidden forces and components at the window's defaults.
+        ..Default::default()
     };
     let mut drawing = Drawing::default();
     let mut gizmos = GizmoBuffer::<DefaultGizmoConfigGroup, ()>::new();
@@ -114,8 +126,9 @@ fn main() {
         sink += quantities::angular_momentum_about(s, glam::DVec2::ZERO);
         sink += quantities::free_body_arrows(None, s, ov.selected.unwrap()).1;
         let t3 = Instant::now();
+        // As app::build_drawing draws a frame.
         drawing.clear(view.m_per_px);
-        view::scene_lines(
+        scene_lines::scene_lines(
             &phys.sim.level,
             &outlines,
             &index,
@@ -123,9 +136,14 @@ fn main() {
             view.m_per_px,
             &mut drawing,
         );
-        let scales = Scales::of(s, view.scene_size(), max_speed, view.m_per_px);
+        if let Some(i) = ov.selected {
+            scene_lines::highlight(&outlines, s, i, &mut drawing);
+        }
+        let mut scales = Scales::of(s, view.scene_size(), max_speed, view.m_per_px);
+        scales.gain = ov.arrow_scale;
+        scales.visible = Some(visible);
         overlays::build(&ov, &phys, &outlines, &scales, &mut drawing);
-        view::scale_bar(&view, &mut drawing);
+        scene_lines::scale_bar(&view, &mut drawing);
         let t4 = Instant::now();
         gizmos.list_positions.clear();
         gizmos.list_colors.clear();
