@@ -25,6 +25,12 @@ pub fn body_kinetic_energy(b: &BodyState) -> f64 {
     kinetic_energy(b.mass, b.velocity, b.inertia, b.omega)
 }
 
+/// Rate of change of the kinetic energy in general plane motion, 6/9 differentiated:
+/// dT/dt = m a_G . v_G + I_G alpha omega (the left side of the power balance, RE-11).
+pub fn kinetic_energy_rate(m: f64, v_g: DVec2, a_g: DVec2, i_g: f64, omega: f64, alpha: f64) -> f64 {
+    m * a_g.dot(v_g) + i_g * alpha * omega
+}
+
 /// Kinetic energy about the instantaneous center C: T = 1/2 I_C omega^2 with
 /// I_C = I_G + m |r_G - r_C|^2 (6/10 with MP-2).
 pub fn kinetic_energy_about_ic(m: f64, i_g: f64, r_g: DVec2, r_c: DVec2, omega: f64) -> f64 {

@@ -11,6 +11,7 @@ use super::sample::{Occasion, Sample};
 use super::snapshot_reading::{is_massive, joint_index, pair_normal_impulse, to_local};
 use super::work_and_power::path_work;
 use crate::analysis::cross;
+use crate::analysis::energy::{kinetic_energy_rate, power};
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
 use crate::level::{Component, JointKind, Quantity};
 use crate::snapshot::Snapshot;
@@ -329,7 +330,8 @@ fn power_balance(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
         let ax = f.rate(|x| Some(x.bodies[i].velocity.x))?;
         let ay = f.rate(|x| Some(x.bodies[i].velocity.y))?;
         let alpha = f.rate(|x| Some(x.bodies[i].omega))?;
-        dtdt += b.mass * DVec2::new(ax, ay).dot(b.velocity) + b.inertia * alpha * b.omega;
+        let a_g = DVec2::new(ax, ay);
+        dtdt += kinetic_energy_rate(b.mass, b.velocity, a_g, b.inertia, b.omega, alpha);
         applied += b.mass * s.gravity.dot(b.velocity);
     }
     let mut n = 0.0;
@@ -338,18 +340,15 @@ fn power_balance(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
         for l in &x.loads {
             let b = &s.bodies[l.body];
             let p = b.world_point(to_local(&x.bodies[l.body], l.point));
-            p_held += l.force.dot(point_velocity(b, p)) + l.torque * b.omega;
+            p_held += power(l.force, point_velocity(b, p), l.torque, b.omega);
         }
         for sp in &x.springs {
-            p_held += sp
-                .force_on_body1
-                .dot(point_velocity(&s.bodies[sp.body1], sp.point1))
-                + sp.couple_on_body1 * s.bodies[sp.body1].omega;
+            let (f, c) = (sp.force_on_body1, sp.couple_on_body1);
+            let b1 = &s.bodies[sp.body1];
+            p_held += power(f, point_velocity(b1, sp.point1), c, b1.omega);
             if let Some(b2) = sp.body2 {
-                p_held -= sp
-                    .force_on_body1
-                    .dot(point_velocity(&s.bodies[b2], sp.point2))
-                    + sp.couple_on_body1 * s.bodies[b2].omega;
+                let b2 = &s.bodies[b2];
+                p_held -= power(f, point_velocity(b2, sp.point2), c, b2.omega);
             }
         }
         n += 1.0;

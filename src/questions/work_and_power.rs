@@ -9,7 +9,10 @@ use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::to_local;
 use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
+use crate::analysis::energy::power;
 use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::analysis::kinematics::slip_velocity;
+use crate::analysis::Motion;
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
@@ -52,13 +55,11 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         Quantity::FrictionWork { body, other } => {
             if let (Some(i), Some(o)) = (m.body_index(s, body), m.body_index(s, other)) {
                 let mu = m.facts.friction(i, o);
+                // Each body at the step's mean velocities, where it is at the step's end.
                 let mid = |k: usize| {
-                    let mut b = s.bodies[k].clone();
-                    b.velocity = 0.5 * (prev.bodies[k].velocity + s.bodies[k].velocity);
-                    b.omega = 0.5 * (prev.bodies[k].omega + s.bodies[k].omega);
-                    b
+                    Motion::mid(&Motion::from(&prev.bodies[k]), &Motion::from(&s.bodies[k]))
                 };
-                let (bi, bo) = (mid(i), mid(o));
+                let (mi, mo) = (mid(i), mid(o));
                 for c in &s.contacts {
                     let sign = if c.body2 == i && c.body1 == o {
                         1.0
@@ -69,10 +70,9 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                     };
                     let t = c.tangent();
                     for p in &c.points {
-                        let slip =
-                            (point_velocity(&bi, p.point) - point_velocity(&bo, p.point)).dot(t);
+                        let slip = slip_velocity(&mo, &mi, p.point, c.normal);
                         m.engine_sum +=
-                            sign * p.tangent_impulse * point_velocity(&bi, p.point).dot(t);
+                            sign * p.tangent_impulse * mi.velocity_at(p.point).dot(t);
                         m.analysis_sum -= mu * p.normal_impulse.max(0.0) * slip.abs();
                     }
                 }
@@ -169,8 +169,8 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let b = &s.bodies[l.body];
             // The load's point as it is at the sample: l.point is where it was at the step's start.
             let p = b.world_point(to_local(&f.prev?.bodies[l.body], l.point));
-            let v_p = b.velocity + b.omega * (p - b.com).perp();
-            (l.force.dot(v_p) + l.torque * b.omega, None)
+            let v_p = point_velocity(b, p);
+            (power(l.force, v_p, l.torque, b.omega), None)
         }
         Quantity::FrictionWork { .. } => (m.engine_sum, Some(m.analysis_sum)),
         q => unreachable!("{q:?} is not a work or power quantity"),
@@ -227,5 +227,5 @@ fn held_work(prev: &Snapshot, s: &Snapshot, i: usize, f: DVec2, p: DVec2, m: f64
     let dt = s.time - prev.time;
     let v0 = point_velocity(b0, p);
     let v1 = point_velocity(b1, b1.world_point(to_local(b0, p)));
-    (f.dot(0.5 * (v0 + v1)) + m * 0.5 * (b0.omega + b1.omega)) * dt
+    power(f, 0.5 * (v0 + v1), m, 0.5 * (b0.omega + b1.omega)) * dt
 }

@@ -6,7 +6,9 @@ use super::{
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::{FrameAnalysis, FramePass};
-use crate::analysis::kinematics::{omega_from_angles, velocity_from_positions, wrap_angle};
+use crate::analysis::kinematics::{
+    omega_from_angles, relative_point_velocity, slip_velocity, velocity_from_positions, wrap_angle,
+};
 use crate::analysis::mass::MassProps;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
@@ -283,8 +285,9 @@ impl FrameProbe for KineticEnergyIc {
                 }
                 let c = sum / w;
                 let other = Motion::from(&s.bodies[k]);
-                let v_rel = motion.velocity_at(c) - other.velocity_at(c);
-                self.max_slip = self.max_slip.max(v_rel.dot(normal.perp()).abs());
+                let slip = slip_velocity(&other, &motion, c, normal);
+                let v_rel = relative_point_velocity(&other, &motion, c);
+                self.max_slip = self.max_slip.max(slip.abs());
                 self.max_normal = self.max_normal.max(v_rel.dot(normal).abs());
                 Some(c)
             }

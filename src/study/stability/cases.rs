@@ -5,6 +5,7 @@
 
 use super::criteria::*;
 use super::Settings;
+use crate::analysis::energy::spring_potential;
 use crate::level::{Effect, Scene};
 
 /// How a case is judged and run.
@@ -490,7 +491,7 @@ fn spring_margin(s: &Scene, st: &Settings) -> f64 {
         let p1 = glam::DVec2::new(b.position.0, b.position.1);
         let p2 = glam::DVec2::new(sp.point2.0, sp.point2.1);
         let x = (p1 - p2).length() - sp.rest_length;
-        let e0 = 0.5 * sp.stiffness * x * x;
+        let e0 = spring_potential(sp.stiffness, x);
         let w = (sp.stiffness / m).sqrt();
         // Springs are evaluated every substep: symplectic Euler at h = dt / substeps.
         num += e0 * (SpringBound::bound(w, st.dt / st.substeps.max(1) as f64) - 1.0);

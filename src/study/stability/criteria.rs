@@ -8,6 +8,7 @@
 //! (position correction, restitution, stale forces) shows as a positive excess.
 
 use crate::analysis::energy::{self, BodyMass};
+use crate::analysis::kinematics::point_velocity;
 use crate::level::{BodyKind, Level};
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
@@ -125,8 +126,8 @@ pub fn impulse_work(prev: &[Prev], s: &Snapshot) -> f64 {
             let p = &prev[imp.body];
             let r0 = imp.point - p.com;
             let r1 = imp.point - b.com;
-            let v0 = p.velocity + p.omega * r0.perp();
-            let v1 = b.velocity + b.omega * r1.perp();
+            let v0 = point_velocity(p.velocity, p.omega, r0);
+            let v1 = point_velocity(b.velocity, b.omega, r1);
             imp.impulse.dot(0.5 * (v0 + v1)) + imp.angular_impulse * 0.5 * (p.omega + b.omega)
         })
         .sum()

@@ -362,7 +362,7 @@ impl Special for SpringBound {
             };
             let m = masses.get(bi).map_or(0.0, |m| m.0);
             self.steps = self.steps.max(s.step);
-            let e = 0.5 * m * b.velocity.length_squared() + sp.energy;
+            let e = energy::kinetic_energy_translation(m, b.velocity) + sp.energy;
             let e0 = *self.e0[k].get_or_insert(e);
             if e0 > 0.0 {
                 self.ratio[k] = self.ratio[k].max(e / e0);
