@@ -11,6 +11,7 @@ use bevy::gizmos::config::DefaultGizmoConfigGroup;
 use bevy::gizmos::gizmos::GizmoBuffer;
 use bevy::prelude::{Rect, Vec2};
 use rigidlab::analysis::energy;
+use rigidlab::analysis::momentum::scene_angular_momentum_about;
 use rigidlab::app::draw::{self, Drawing};
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::physics::{LiveChecks, Physics};
@@ -123,7 +124,7 @@ fn main() {
         }
         sink += energy::system_kinetic_energy(s, energy::engine_mass)
             + energy::system_gravity_potential(s, energy::engine_mass);
-        sink += quantities::angular_momentum_about(s, glam::DVec2::ZERO);
+        sink += scene_angular_momentum_about(s, glam::DVec2::ZERO);
         sink += quantities::free_body_arrows(None, s, ov.selected.unwrap()).1;
         let t3 = Instant::now();
         // As app::build_drawing draws a frame.

@@ -27,7 +27,14 @@ pub fn body_kinetic_energy(b: &BodyState) -> f64 {
 
 /// Rate of change of the kinetic energy in general plane motion, 6/9 differentiated:
 /// dT/dt = m a_G . v_G + I_G alpha omega (the left side of the power balance, RE-11).
-pub fn kinetic_energy_rate(m: f64, v_g: DVec2, a_g: DVec2, i_g: f64, omega: f64, alpha: f64) -> f64 {
+pub fn kinetic_energy_rate(
+    m: f64,
+    v_g: DVec2,
+    a_g: DVec2,
+    i_g: f64,
+    omega: f64,
+    alpha: f64,
+) -> f64 {
     m * a_g.dot(v_g) + i_g * alpha * omega
 }
 

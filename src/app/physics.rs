@@ -8,6 +8,7 @@
 
 use super::quantities;
 use crate::analysis::energy;
+use crate::analysis::momentum::scene_angular_momentum_about;
 use crate::checks::CheckResult;
 use crate::clock::Instant;
 use crate::level::Scene;
@@ -483,7 +484,7 @@ fn series_point(s: &Snapshot) -> SeriesPoint {
         kinetic: energy::system_kinetic_energy(s, energy::engine_mass),
         gravity: energy::system_gravity_potential(s, energy::engine_mass),
         elastic: s.springs.iter().map(|sp| sp.energy).sum(),
-        h_o: quantities::angular_momentum_about(s, DVec2::ZERO),
+        h_o: scene_angular_momentum_about(s, DVec2::ZERO),
         momentum: crate::analysis::momentum::scene_linear_momentum(s),
     }
 }

@@ -399,7 +399,7 @@ fn apply_grab(state: Res<ToolState>, mut phys: ResMut<Physics>) {
         return;
     };
     let p = b.world_point(g.local);
-    let v = super::quantities::point_velocity(b, p);
+    let v = crate::analysis::kinematics::body_point_velocity(b, p);
     let w = std::f64::consts::TAU * SPRING_HZ;
     let m = b.mass;
     // F = m (w^2 (target - p) - 2 w v_p) - m g, limited to 30 m g (or 30 m w^2 x 1 m without gravity).

@@ -7,7 +7,7 @@ use super::impact_solution::Impact;
 use super::level_facts::LevelFacts;
 use super::sample::Sample;
 use super::snapshot_reading::pair_normal_impulse;
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::analysis::kinematics::body_point_velocity;
 use crate::snapshot::Snapshot;
 use std::sync::Arc;
 
@@ -167,7 +167,7 @@ impl PairTracker {
                 // The impact is over once the bodies no longer approach along its normal: then
                 // they move together (e = 0) or apart (the restitution phase is done).
                 let rel = |x: &Snapshot| {
-                    let v = |i: usize| point_velocity(&x.bodies[i], imp.point);
+                    let v = |i: usize| body_point_velocity(&x.bodies[i], imp.point);
                     (v(imp.i2) - v(imp.i1)).dot(imp.normal)
                 };
                 let approach = rel(self.pre.as_deref().unwrap_or(f.cur));

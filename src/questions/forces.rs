@@ -12,7 +12,7 @@ use super::snapshot_reading::{is_massive, joint_index, pair_normal_impulse, to_l
 use super::work_and_power::path_work;
 use crate::analysis::cross;
 use crate::analysis::energy::{kinetic_energy_rate, power};
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::analysis::kinematics::body_point_velocity;
 use crate::level::{Component, JointKind, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -314,7 +314,7 @@ fn power_balance(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
                 .joints
                 .get(k)
                 .map_or(DVec2::X, |x| DVec2::from_angle(b1.angle).rotate(x.axis));
-            (point_velocity(b2, j.anchor) - point_velocity(b1, j.anchor)).dot(axis)
+            (body_point_velocity(b2, j.anchor) - body_point_velocity(b1, j.anchor)).dot(axis)
         }
         _ => b2.omega - b1.omega,
     };
@@ -340,15 +340,15 @@ fn power_balance(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
         for l in &x.loads {
             let b = &s.bodies[l.body];
             let p = b.world_point(to_local(&x.bodies[l.body], l.point));
-            p_held += power(l.force, point_velocity(b, p), l.torque, b.omega);
+            p_held += power(l.force, body_point_velocity(b, p), l.torque, b.omega);
         }
         for sp in &x.springs {
             let (f, c) = (sp.force_on_body1, sp.couple_on_body1);
             let b1 = &s.bodies[sp.body1];
-            p_held += power(f, point_velocity(b1, sp.point1), c, b1.omega);
+            p_held += power(f, body_point_velocity(b1, sp.point1), c, b1.omega);
             if let Some(b2) = sp.body2 {
                 let b2 = &s.bodies[b2];
-                p_held -= power(f, point_velocity(b2, sp.point2), c, b2.omega);
+                p_held -= power(f, body_point_velocity(b2, sp.point2), c, b2.omega);
             }
         }
         n += 1.0;

@@ -5,8 +5,9 @@
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::joint_index;
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
-use crate::analysis::kinematics::{instantaneous_center_from_two_points, omega_about_center};
+use crate::analysis::kinematics::{
+    body_point_velocity, instantaneous_center_from_two_points, omega_about_center,
+};
 use crate::analysis::mass::parallel_axis;
 use crate::analysis::percussion::center_of_percussion_distance;
 use crate::level::{BodyKind, Quantity};
@@ -34,7 +35,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             let p = if j.body2 == li { j.anchor } else { j.anchor1 };
             let ic = link_center(s, link, known, other);
             (
-                point_velocity(l, p).length(),
+                body_point_velocity(l, p).length(),
                 ic.map(|(w, c)| (w * (p - c).length()).abs()),
             )
         }
@@ -87,7 +88,7 @@ fn link_center(s: &Snapshot, link: &str, known: &str, other: &str) -> Option<(f6
         let v = if b.kind == BodyKind::Fixed {
             DVec2::ZERO
         } else {
-            point_velocity(b, p)
+            body_point_velocity(b, p)
         };
         Some((p, v))
     };

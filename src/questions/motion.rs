@@ -9,8 +9,7 @@ use super::free_body::newton_euler;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use crate::analysis::k_cross;
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
-use crate::analysis::kinematics::point_acceleration;
+use crate::analysis::kinematics::{body_point_velocity, point_acceleration};
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
@@ -82,7 +81,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         Quantity::PointSpeed { body: b, point } => {
             let (i, x) = body(b)?;
             let local = DVec2::new(point.0, point.1);
-            let speed = |y: &BodyState| point_velocity(y, y.world_point(local)).length();
+            let speed = |y: &BodyState| body_point_velocity(y, y.world_point(local)).length();
             (speed(x), solved(i).map(|y| speed(&y)))
         }
         Quantity::PointAccel { body: b, point } => {
@@ -91,7 +90,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             // The material point's velocity in each snapshot, differenced.
             let vp = |y: &Snapshot| {
                 let b = &y.bodies[i];
-                point_velocity(b, b.world_point(local))
+                body_point_velocity(b, b.world_point(local))
             };
             let ax = f.rate(|y| Some(vp(y).x))?;
             let ay = f.rate(|y| Some(vp(y).y))?;
@@ -115,7 +114,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let (x, y) = (body(b)?.1, body(of)?.1);
             let p = x.world_point(DVec2::new(point.0, point.1));
             let q = y.world_point(DVec2::new(of_point.0, of_point.1));
-            let engine = (point_velocity(x, p) - point_velocity(y, q)).length();
+            let engine = (body_point_velocity(x, p) - body_point_velocity(y, q)).length();
             // Two points of one rigid body: v_P/Q = omega k x r_P/Q (RK-5).
             let analysis = (b == of).then(|| k_cross(x.omega, p - q).length());
             (engine, analysis)

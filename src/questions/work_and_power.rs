@@ -8,10 +8,8 @@
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::to_local;
-use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
-use crate::analysis::energy::power;
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
-use crate::analysis::kinematics::slip_velocity;
+use crate::analysis::energy::{body_kinetic_energy, power};
+use crate::analysis::kinematics::{body_point_velocity, slip_velocity};
 use crate::analysis::Motion;
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
@@ -71,8 +69,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                     let t = c.tangent();
                     for p in &c.points {
                         let slip = slip_velocity(&mo, &mi, p.point, c.normal);
-                        m.engine_sum +=
-                            sign * p.tangent_impulse * mi.velocity_at(p.point).dot(t);
+                        m.engine_sum += sign * p.tangent_impulse * mi.velocity_at(p.point).dot(t);
                         m.analysis_sum -= mu * p.normal_impulse.max(0.0) * slip.abs();
                     }
                 }
@@ -104,16 +101,16 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                     .filter(|(sp, _)| sp.body2.is_none() && sp.body1 == i)
                     .map(|(sp, sp0)| sp0.energy - sp.energy)
                     .sum();
-                kinetic_energy(b0)
+                body_kinetic_energy(b0)
                     + x.mass * s.gravity.dot(x.com - b0.com)
                     + springs
                     + m.analysis_sum
             });
             let analysis = match occ {
                 Occasion::Plain => analysis.filter(|_| m.configuration_event),
-                _ => occ.solved_state(i, s).map(|y| kinetic_energy(&y)),
+                _ => occ.solved_state(i, s).map(|y| body_kinetic_energy(&y)),
             };
-            (kinetic_energy(x), analysis)
+            (body_kinetic_energy(x), analysis)
         }
         Quantity::GroupKineticEnergy(names) | Quantity::GroupMomentum(names) => {
             let mut idx = Vec::with_capacity(names.len());
@@ -126,7 +123,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 let (mut t, mut g) = (0.0, DVec2::ZERO);
                 for &i in &idx {
                     let b = state(i)?;
-                    t += kinetic_energy(&b);
+                    t += body_kinetic_energy(&b);
                     g += b.mass * b.velocity;
                 }
                 Some(if momentum { g.length() } else { t })
@@ -169,7 +166,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let b = &s.bodies[l.body];
             // The load's point as it is at the sample: l.point is where it was at the step's start.
             let p = b.world_point(to_local(&f.prev?.bodies[l.body], l.point));
-            let v_p = point_velocity(b, p);
+            let v_p = body_point_velocity(b, p);
             (power(l.force, v_p, l.torque, b.omega), None)
         }
         Quantity::FrictionWork { .. } => (m.engine_sum, Some(m.analysis_sum)),
@@ -225,7 +222,7 @@ pub(super) fn path_work(prev: &Snapshot, s: &Snapshot, i: usize, ground: bool) -
 fn held_work(prev: &Snapshot, s: &Snapshot, i: usize, f: DVec2, p: DVec2, m: f64) -> f64 {
     let (b0, b1) = (&prev.bodies[i], &s.bodies[i]);
     let dt = s.time - prev.time;
-    let v0 = point_velocity(b0, p);
-    let v1 = point_velocity(b1, b1.world_point(to_local(b0, p)));
+    let v0 = body_point_velocity(b0, p);
+    let v1 = body_point_velocity(b1, b1.world_point(to_local(b0, p)));
     power(f, 0.5 * (v0 + v1), m, 0.5 * (b0.omega + b1.omega)) * dt
 }
