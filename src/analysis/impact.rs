@@ -7,7 +7,7 @@
 //! are the states at the ends of the bracket (general caveat 5 of concepts.md).
 
 use super::{cross, Motion};
-use crate::snapshot::Snapshot;
+use crate::snapshot::{ContactState, Snapshot};
 use glam::DVec2;
 
 /// Coefficient of restitution from the normal components of the relative velocity of the
@@ -74,30 +74,44 @@ pub fn pair_contact_linked(
     pair_contact_among(snap, a, b, links.contacts_of(a).iter().map(|&k| k as usize))
 }
 
-/// The pair's [`PairContact::normal_impulse`] alone, reading only the contacts `links` lists for
-/// a (summed in the same order: equal to the last bit), for a step that needs no more.
-pub fn pair_normal_impulse_linked(
+/// The total normal impulse over the step between bodies a and b (`b` None: between a and any
+/// body), N s: the normal impulses of the contacts' points summed in the snapshot's order, a
+/// negative one counted as zero (a contact only pushes; rapier's impulses are never negative, so
+/// for the engine's contacts this is their plain sum, the pair's
+/// [`PairContact::normal_impulse`]). With `links` (built from `snap`) only a's own contacts are
+/// visited, in the same order (the same sum to the last bit) without scanning the scene's: for
+/// a reading on every step of every body; without, every contact is scanned.
+pub fn pair_normal_impulse(
     snap: &Snapshot,
     a: usize,
-    b: usize,
-    links: &super::links::BodyLinks,
+    b: Option<usize>,
+    links: Option<&super::links::BodyLinks>,
 ) -> f64 {
     let mut sum = 0.0;
-    for c in links
-        .contacts_of(a)
-        .iter()
-        .map(|&k| &snap.contacts[k as usize])
-        .filter(|c| pair_sign(c, a, b).is_some())
-    {
-        for p in &c.points {
-            sum += p.normal_impulse;
+    let mut add = |c: &ContactState| {
+        let between = match b {
+            Some(b) => pair_sign(c, a, b).is_some(),
+            None => c.body1 == a || c.body2 == a,
+        };
+        if between {
+            for p in &c.points {
+                sum += p.normal_impulse.max(0.0);
+            }
         }
+    };
+    match links {
+        Some(links) => {
+            for &k in links.contacts_of(a) {
+                add(&snap.contacts[k as usize]);
+            }
+        }
+        None => snap.contacts.iter().for_each(add),
     }
     sum
 }
 
 /// Whether contact `c` is between a and b: +1 with a as its body1, -1 with b, else None.
-fn pair_sign(c: &crate::snapshot::ContactState, a: usize, b: usize) -> Option<f64> {
+fn pair_sign(c: &ContactState, a: usize, b: usize) -> Option<f64> {
     if c.body1 == a && c.body2 == b {
         Some(1.0)
     } else if c.body1 == b && c.body2 == a {

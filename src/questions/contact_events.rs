@@ -6,7 +6,7 @@
 use super::impact_solution::Impact;
 use super::level_facts::LevelFacts;
 use super::sample::Sample;
-use super::snapshot_reading::pair_normal_impulse;
+use crate::analysis::impact::pair_normal_impulse;
 use crate::analysis::kinematics::body_point_velocity;
 use crate::snapshot::Snapshot;
 use std::sync::Arc;
@@ -105,7 +105,7 @@ impl PairTracker {
             self.indices = Some((b, o));
         }
         let (b, o) = self.indices?;
-        let j = pair_normal_impulse(f.cur, b, o);
+        let j = pair_normal_impulse(f.cur, b, o, None);
         // "Pushing": a normal impulse above a millionth of the largest one of this contact, so that
         // round-off and position correction between bodies left resting together do not count.
         let touching = j > 1e-6 * self.peak.max(f64::MIN_POSITIVE) && j > 0.0;

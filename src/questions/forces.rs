@@ -8,10 +8,11 @@
 use super::free_body::side_impulse;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
-use super::snapshot_reading::{is_massive, joint_index, pair_normal_impulse, to_local};
+use super::snapshot_reading::{is_massive, joint_index, to_local};
 use super::work_and_power::path_work;
 use crate::analysis::cross;
 use crate::analysis::energy::{kinetic_energy_rate, power};
+use crate::analysis::impact::pair_normal_impulse;
 use crate::analysis::kinematics::body_point_velocity;
 use crate::level::{Component, JointKind, Quantity};
 use crate::snapshot::Snapshot;
@@ -121,7 +122,8 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         }
         Quantity::ContactNormalForce { body: b, other } => {
             let (i, o) = (m.body_index(s, b)?, m.body_index(s, other)?);
-            let n = f.centered(|x| Some(DVec2::new(pair_normal_impulse(x, i, Some(o)), 0.0)))?;
+            let n =
+                f.centered(|x| Some(DVec2::new(pair_normal_impulse(x, i, Some(o), None), 0.0)))?;
             (n.x, None)
         }
         Quantity::CouplingForce(name) => {

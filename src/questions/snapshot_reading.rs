@@ -1,6 +1,6 @@
 //! Small readings of a snapshot that several families share: finding a joint, a body's local
-//! coordinates and height, whether it flies free, carrying it forward in time, and a pair's
-//! normal impulse.
+//! coordinates and height, whether it flies free, carrying it forward in time (a pair's normal
+//! impulse is `analysis::impact::pair_normal_impulse`).
 
 use crate::analysis::energy::body_kinetic_energy;
 pub(super) use crate::analysis::impulse_solver::is_massive;
@@ -41,17 +41,4 @@ pub(super) fn carried_forward(b: &BodyState, tau: f64, a: DVec2) -> BodyState {
     // From the body's own G offset (the carried frame origin agrees to rounding).
     n.position = n.com - DVec2::from_angle(n.angle).rotate(b.local_com);
     n
-}
-
-/// Total normal impulse over the step between `body` and `other` (any body when None), N s.
-pub(super) fn pair_normal_impulse(s: &Snapshot, body: usize, other: Option<usize>) -> f64 {
-    s.contacts
-        .iter()
-        .filter(|c| {
-            (c.body1 == body && other.is_none_or(|o| c.body2 == o))
-                || (c.body2 == body && other.is_none_or(|o| c.body1 == o))
-        })
-        .flat_map(|c| c.points.iter())
-        .map(|p| p.normal_impulse.max(0.0))
-        .sum()
 }

@@ -8,8 +8,8 @@ use super::{
 use crate::analysis::energy::kinetic_energy;
 use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::impact::{
-    central_impact_energy_loss, measure_impact, pair_contact_linked, pair_normal_impulse_linked,
-    Bracket, ImpactDetector, PairContact,
+    central_impact_energy_loss, measure_impact, pair_contact_linked, pair_normal_impulse, Bracket,
+    ImpactDetector, PairContact,
 };
 use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
@@ -466,7 +466,7 @@ impl FrameProbe for Restitution {
             // The pair's contact in full only where an impact may start or goes on: most
             // steps of most pairs need its normal impulse alone.
             let links = fa.links(s);
-            let j_n = pair_normal_impulse_linked(s, i, k, &links);
+            let j_n = pair_normal_impulse(s, i, Some(k), Some(&links));
             let pc = (detector.in_impact() || j_n > detector.threshold)
                 .then(|| pair_contact_linked(s, i, k, &links))
                 .flatten();
