@@ -9,17 +9,14 @@
 //! - f32 carries about 7 significant digits: a body 10 km from the origin has a position ulp of
 //!   about 1 mm, so steps that move it less than that are lost, whereas f64 (16 digits) keeps them.
 
-use rigidlab::level::{parse, Scene};
+mod common;
+
+use common::parse as scene;
 use rigidlab::study::accuracy::measure::{
     conservation, full_run, reference, self_consistency, Precision, Setting,
 };
 use rigidlab::study::accuracy::metrics::{self, body_deviation, pareto_front, MassProps};
 use rigidlab::study::accuracy::{points, Plan, CSV_COLUMNS};
-use std::path::Path;
-
-fn scene(text: &str) -> Scene {
-    parse(Path::new("test.ron"), text).unwrap_or_else(|e| panic!("{e}"))
-}
 
 fn setting(dt: f64, substeps: usize, precision: Precision) -> Setting {
     Setting {

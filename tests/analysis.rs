@@ -1,6 +1,9 @@
 //! The analysis layer against hand-derived values (concepts.md equation numbers in each test)
 //! and, with proptest, the identities that must hold on any state.
 
+mod common;
+
+use common::assert_close;
 use glam::DVec2;
 use proptest::prelude::*;
 use rigidlab::analysis::energy::*;
@@ -14,22 +17,6 @@ use rigidlab::analysis::{cross, Motion};
 use rigidlab::level::{BodyDef, BodyKind, Part, Shape};
 use rigidlab::snapshot::*;
 use std::f64::consts::PI;
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * (1.0 + b.abs())
-}
-
-macro_rules! assert_close {
-    ($a:expr, $b:expr, $tol:expr) => {{
-        let (a, b) = ($a as f64, $b as f64);
-        assert!(
-            close(a, b, $tol),
-            "{} = {a} but expected {b} (tol {})",
-            stringify!($a),
-            $tol
-        );
-    }};
-}
 
 fn body(shape: Option<Shape>) -> BodyDef {
     BodyDef {

@@ -1,6 +1,9 @@
 //! The analysis functions tests/analysis.rs did not reach, each against a value derived by hand
 //! (the derivation is in the comment; concepts.md ids and MK equation numbers name the formula).
 
+mod common;
+
+use common::assert_close;
 use glam::DVec2;
 use rigidlab::analysis::energy::{
     kinetic_energy, kinetic_energy_about_ic, moment_about, work_of_impulse, work_of_pair_impulse,
@@ -14,21 +17,6 @@ use rigidlab::analysis::mass::{parallel_axis, slender_bar_inertia};
 use rigidlab::analysis::momentum::{angular_momentum_about, angular_momentum_fixed_axis};
 use rigidlab::analysis::Motion;
 use rigidlab::snapshot::{ContactPoint, ContactState, Snapshot};
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * (1.0 + b.abs())
-}
-
-macro_rules! assert_close {
-    ($a:expr, $b:expr) => {{
-        let (a, b) = ($a as f64, $b as f64);
-        assert!(
-            close(a, b, 1e-12),
-            "{} = {a} but expected {b}",
-            stringify!($a)
-        );
-    }};
-}
 
 fn motion(com: DVec2, v: DVec2, omega: f64) -> Motion {
     Motion {

@@ -2,6 +2,9 @@
 //! earlier tests reached only at zero (a_G = 0, omega = 0, dt = 0): each against a value derived
 //! by hand in the comment (concepts.md ids and MK equation numbers name the formula).
 
+mod common;
+
+use common::assert_close;
 use glam::DVec2;
 use rigidlab::analysis::kinematics::point_acceleration;
 use rigidlab::analysis::kinetics::{kinetic_moment_about, newton_euler_residual};
@@ -14,24 +17,6 @@ use rigidlab::analysis::percussion::{
     center_of_percussion, moment_about_center_of_percussion, pivot_impulse, Blow,
 };
 use rigidlab::analysis::Motion;
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * (1.0 + b.abs())
-}
-
-macro_rules! assert_close {
-    ($a:expr, $b:expr) => {
-        assert_close!($a, $b, 1e-12)
-    };
-    ($a:expr, $b:expr, $tol:expr) => {{
-        let (a, b) = ($a as f64, $b as f64);
-        assert!(
-            close(a, b, $tol),
-            "{} = {a} but expected {b}",
-            stringify!($a)
-        );
-    }};
-}
 
 #[test]
 fn impulse_momentum_residuals_over_a_window() {

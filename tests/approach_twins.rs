@@ -13,12 +13,12 @@
 //! Without the cuts (`impact_cuts: Some(false)`, rapier's speculative contact) the twins are
 //! printed for comparison: 5 of the 7 failed, by up to 1.7e-2.
 
-use rigidlab::level::{self, BodyKind, Effect, EventDef, Scene, When};
+mod common;
+
+use common::run;
+use rigidlab::level::{BodyKind, Effect, EventDef, Scene, When};
 use rigidlab::report::LevelReport;
-use rigidlab::runner;
 use rigidlab::sim::Options;
-use std::collections::HashMap;
-use std::path::Path;
 
 /// How much earlier the twins start, s.
 const T: f64 = 5.3e-3;
@@ -78,11 +78,6 @@ fn twin(scene: &Scene) -> Scene {
     s
 }
 
-fn run(scene: &Scene, opts: &Options) -> LevelReport {
-    runner::run_scene(scene, opts, &HashMap::new(), |_| {})
-        .unwrap_or_else(|e| panic!("{}: {e}", scene.file.display()))
-}
-
 /// The worst question error of a report, and the ids that failed.
 fn summary(r: &LevelReport) -> (f64, Vec<String>) {
     let worst = r.questions.iter().map(|q| q.rel_error).fold(0.0, f64::max);
@@ -103,14 +98,13 @@ fn summary(r: &LevelReport) -> (f64, Vec<String>) {
 
 #[test]
 fn impact_levels_pass_when_their_bodies_approach_from_a_distance() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let cuts = Options {
         impact_cuts: Some(true),
         ..Default::default()
     };
     let mut bad = Vec::new();
     for file in LEVELS {
-        let scene = level::load(&root.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        let scene = common::load(file);
         let base = run(&scene, &cuts);
         assert!(base.passed, "{file} fails as it is");
         let t = twin(&scene);

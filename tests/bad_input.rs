@@ -1,5 +1,7 @@
 //! Every kind of bad input gets a located error (file:line:col) that says how to fix it.
 
+mod common;
+
 use rigidlab::level::parse;
 use std::path::Path;
 
@@ -235,14 +237,8 @@ fn dynamic_body_without_mass_or_inertia() {
 }
 
 mod cli {
-    use std::process::Command;
-
     fn rigidlab(args: &[&str]) -> (i32, String, String) {
-        let out = Command::new(env!("CARGO_BIN_EXE_rigidlab"))
-            .args(args)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .output()
-            .unwrap();
+        let out = crate::common::rigidlab().args(args).output().unwrap();
         (
             out.status.code().unwrap_or(-1),
             String::from_utf8_lossy(&out.stdout).into(),

@@ -5,21 +5,14 @@
 //! ground; a bar held by two loads about its pin has sum M_O = 0 and the pin's reaction equal
 //! and opposite to the loads' sum.
 
-use rigidlab::checks::CheckResult;
-use rigidlab::level::{parse, Scene};
-use rigidlab::runner;
-use rigidlab::sim::Options;
-use std::collections::HashMap;
-use std::path::Path;
+mod common;
 
-fn scene(text: &str) -> Scene {
-    parse(Path::new("test.ron"), text).unwrap_or_else(|e| panic!("{e}"))
-}
+use common::parse as scene;
+use rigidlab::checks::CheckResult;
+use rigidlab::sim::Options;
 
 fn checks(text: &str, opts: &Options) -> Vec<CheckResult> {
-    runner::run_scene(&scene(text), opts, &HashMap::new(), |_| {})
-        .unwrap_or_else(|e| panic!("{e}"))
-        .checks
+    common::run(&scene(text), opts).checks
 }
 
 /// A ball of radius 0.1 m whose bottom starts 2 m above the ground: it falls for
@@ -122,13 +115,7 @@ const STATIC_BAR: &str = r#"Level(title: "static bar", effects: [joints],
 
 #[test]
 fn newton_euler_measures_a_mechanism_at_rest_against_the_forces_that_balance() {
-    let report = runner::run_scene(
-        &scene(STATIC_BAR),
-        &Options::default(),
-        &HashMap::new(),
-        |_| {},
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let report = common::run(&scene(STATIC_BAR), &Options::default());
     let c = &report.checks[0];
     assert!(c.passed, "{c:?}");
     // The scale is the largest force of the diagram, Q = 200 N (rapier's f32 loads: 1e-6).

@@ -2,16 +2,15 @@
 //! input (a tampered snapshot stream, or a level that states the wrong givens): a check that
 //! cannot fail checks nothing.
 
+mod common;
+
+use common::load as scene;
 use glam::DVec2;
 use rigidlab::checks::{probe_for, CheckResult};
-use rigidlab::level::{load, CheckDef, CheckKind, Level, Scene};
+use rigidlab::level::{CheckDef, CheckKind, Level, Scene};
 use rigidlab::sim::{Options, Simulation, Substepping};
 use rigidlab::snapshot::Snapshot;
 use std::path::Path;
-
-fn scene(path: &str) -> Scene {
-    load(Path::new(path)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// The level's check of this kind (the first one).
 fn check_of(level: &Level, kind: CheckKind) -> CheckDef {

@@ -1,15 +1,12 @@
 //! The command line's input and output: closed pipes and full disks, files that are not level
 //! files (FIFOs, devices, link loops, huge or non-UTF-8 files), an --out that cannot take files.
 
+mod common;
+
+use common::rigidlab;
 use rigidlab::level::{self, MAX_LEVEL_BYTES};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-
-fn rigidlab() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_rigidlab"));
-    c.current_dir(env!("CARGO_MANIFEST_DIR"));
-    c
-}
 
 /// Runs with stdout sent to `stdout`; returns (exit code, stderr).
 fn run_to(args: &[&str], stdout: Stdio) -> (i32, String) {

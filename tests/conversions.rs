@@ -4,12 +4,12 @@
 //! impulse, along Gram-Schmidt-orthogonalized rows (see `sim::joints`). These tests pin the
 //! conversion down with textbook closed forms.
 
-use rigidlab::level::parse;
+mod common;
+
 use rigidlab::sim::{Options, Simulation};
-use std::path::Path;
 
 fn sim(text: &str) -> Simulation {
-    let scene = parse(Path::new("test.ron"), text).unwrap_or_else(|e| panic!("{e}"));
+    let scene = common::parse(text);
     Simulation::new(&scene, &Options::default())
 }
 

@@ -1,14 +1,13 @@
 //! The ratio constraint (pulleys, cables, gears) and welds created at first contact.
 
+mod common;
+
+use common::parse as scene;
 use rigidlab::level::parse;
 use rigidlab::sim::{Engine, Options, Simulation};
 use std::path::Path;
 
 const G: f64 = 9.81;
-
-fn scene(text: &str) -> rigidlab::level::Scene {
-    parse(Path::new("test.ron"), text).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// Atwood machine with a massless pulley at height 5 m: the cable is 10 m long when both
 /// blocks hang at y = 0, so `y_A + y_B = 0` (the pulley's half turn is a constant).

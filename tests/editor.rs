@@ -2,6 +2,8 @@
 //! redo, refusals that leave the scene as it was, and a saved level that `rigidlab check` runs
 //! and passes against the closed form.
 
+mod common;
+
 use rigidlab::editor::{self, Edit, History, NewShape, Property};
 use rigidlab::level::{self, Effect, JointKind, Quantity, QuestionDef, Scene, When};
 use std::path::PathBuf;
@@ -293,12 +295,7 @@ fn a_disc_rolls_down_an_incline_built_in_the_editor() {
     assert!(scene.level.effects.contains(&Effect::Friction));
     let mut sim =
         rigidlab::simulation::AnySimulation::new(&scene, &rigidlab::sim::Options::default());
-    let disc = scene
-        .level
-        .bodies
-        .iter()
-        .position(|b| b.name == "disc1")
-        .unwrap();
+    let disc = common::body_index(&scene.level, "disc1");
     let v0 = sim.snapshot().bodies[disc].velocity;
     let t0 = sim.snapshot().time;
     while sim.snapshot().time < 0.4 - 1e-9 {
@@ -365,12 +362,7 @@ fn a_torsion_spring_built_in_the_editor_swings_at_its_natural_frequency() {
     scene.level.world.dt = 1.0 / 960.0;
     let mut sim =
         rigidlab::simulation::AnySimulation::new(&scene, &rigidlab::sim::Options::default());
-    let disc = scene
-        .level
-        .bodies
-        .iter()
-        .position(|b| b.name == "disc1")
-        .unwrap();
+    let disc = common::body_index(&scene.level, "disc1");
     let (mut peak, mut peak_t) = (0.0f64, 0.0);
     while sim.snapshot().time < 0.7 - 1e-9 {
         sim.step().unwrap();

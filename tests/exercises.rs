@@ -9,37 +9,18 @@
 //! `cargo test --test exercises -- --nocapture` prints every question's expected, engine and
 //! analysis values.
 
+mod common;
+
+use common::rel;
 use rigidlab::level::{self, Scene};
 use rigidlab::questions::{QuestionProbe, QuestionResult};
 use rigidlab::sim::Options;
 use rigidlab::simulation::AnySimulation;
 use std::path::{Path, PathBuf};
 
-fn level_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<_> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            if p.file_name().is_some_and(|n| n == "stress") {
-                continue;
-            }
-            level_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "ron") {
-            out.push(p);
-        }
-    }
-}
-
+/// The library's exercises: every level under levels/ but the stress scenes.
 fn all_levels() -> Vec<PathBuf> {
-    let mut v = Vec::new();
-    level_files(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("levels"),
-        &mut v,
-    );
-    v
+    common::ron_files("levels", &["stress"])
 }
 
 /// Runs a level and returns its question probes, ready to be finished.
@@ -63,15 +44,6 @@ fn run(scene: &Scene) -> Vec<QuestionProbe> {
 /// Runs a level and answers its questions.
 fn answer(scene: &Scene) -> Vec<QuestionResult> {
     run(scene).into_iter().map(|p| p.finish(None)).collect()
-}
-
-/// |x - expected| / |expected|, or |x| when the expected answer is 0.
-fn rel(x: f64, expected: f64) -> f64 {
-    if expected == 0.0 {
-        x.abs()
-    } else {
-        (x - expected).abs() / expected.abs()
-    }
 }
 
 #[test]

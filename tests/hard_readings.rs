@@ -3,52 +3,15 @@
 //! written from docs/levels.md alone by someone who had not read the code) pass at their own
 //! settings and at 1, 4 and 8 substeps. Their answers are derived by hand in their comments.
 
-use rigidlab::level::{self, Scene};
-use rigidlab::runner;
+mod common;
+
+use common::levels_in;
+use rigidlab::level::Scene;
 use rigidlab::sim::Options;
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
 
-fn levels_in(dir: &str) -> Vec<Scene> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
-    let mut files: Vec<PathBuf> = match std::fs::read_dir(&dir) {
-        Ok(d) => d
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-            .collect(),
-        Err(_) => Vec::new(),
-    };
-    files.sort();
-    files
-        .iter()
-        .map(|f| level::load(f).unwrap_or_else(|e| panic!("{e}")))
-        .collect()
-}
-
+/// What fails when `scene` runs with `opts`.
 fn failures(scene: &Scene, opts: &Options) -> Vec<String> {
-    let r = runner::run_scene(scene, opts, &HashMap::new(), |_| {})
-        .unwrap_or_else(|e| panic!("{}: {e}", scene.file.display()));
-    let mut out = Vec::new();
-    for c in r.checks.iter().filter(|c| !c.passed) {
-        out.push(format!(
-            "check {} {}: {:.3e} > {:.1e} ({})",
-            c.kind, c.subject, c.max_rel_error, c.tolerance, c.note
-        ));
-    }
-    for q in r.questions.iter().filter(|q| !q.passed) {
-        out.push(format!(
-            "question {}: expected {}, engine {} ({:.3e}), analysis {:?} ({:?}) > {:.1e} {}",
-            q.id,
-            q.expected,
-            q.engine,
-            q.rel_error,
-            q.analysis,
-            q.analysis_rel_error,
-            q.tolerance,
-            q.note
-        ));
-    }
-    out
+    common::failures(&common::run(scene, opts))
 }
 
 fn substeps(n: usize) -> (String, Options) {

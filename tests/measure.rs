@@ -3,16 +3,16 @@
 //! selected body's recorded series against the snapshot it came from.
 #![cfg(feature = "app")]
 
+mod common;
+
 use rigidlab::analysis::closed_forms::pendulum_period;
 use rigidlab::app::panels::measure::period_of;
 use rigidlab::app::panels::plots::body_csv;
 use rigidlab::app::Physics;
-use rigidlab::level;
 use rigidlab::sim::Options;
-use std::path::Path;
 
 fn played(file: &str) -> Physics {
-    let scene = level::load(Path::new(file)).unwrap();
+    let scene = common::load(file);
     let mut phys = Physics::new(scene, Options::default(), false);
     while !phys.paused {
         assert!(phys.advance());
@@ -23,13 +23,7 @@ fn played(file: &str) -> Physics {
 #[test]
 fn the_period_timer_reads_the_pendulums_exact_period() {
     let phys = played("levels/kinetics/physical_pendulum.ron");
-    let bar = phys
-        .scene
-        .level
-        .bodies
-        .iter()
-        .position(|b| b.name == "bar")
-        .unwrap();
+    let bar = common::body_index(&phys.scene.level, "bar");
     let (t, n) = period_of(&phys, bar).expect("a period over 3.6 s of swinging");
     assert!(n >= 1, "{n} periods");
     // The level's bar: I_O = 0.6669333 kg m^2, m = 2 kg, d = 0.5 m, released at 60 degrees.
@@ -49,13 +43,7 @@ fn the_period_timer_reads_the_pendulums_exact_period() {
 #[test]
 fn the_body_series_follows_the_snapshot_and_exports_every_sample() {
     let phys = played("levels/kinetics/physical_pendulum.ron");
-    let bar = phys
-        .scene
-        .level
-        .bodies
-        .iter()
-        .position(|b| b.name == "bar")
-        .unwrap();
+    let bar = common::body_index(&phys.scene.level, "bar");
     let series = &phys.body_series[bar];
     let last = series.last().unwrap();
     let s = phys.snapshot();

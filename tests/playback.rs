@@ -1,16 +1,16 @@
 //! Play, pause and reset as the keys and the playback panel do them (src/app/playback.rs).
 #![cfg(feature = "app")]
 
+mod common;
+
 use glam::DVec2;
 use rigidlab::app::playback::{restart, toggle_play};
 use rigidlab::app::tools::ToolState;
 use rigidlab::app::Physics;
-use rigidlab::level;
 use rigidlab::sim::Options;
-use std::path::Path;
 
 fn pendulum_at_its_end() -> Physics {
-    let scene = level::load(Path::new("levels/kinetics/simple_pendulum.ron")).unwrap();
+    let scene = common::load("levels/kinetics/simple_pendulum.ron");
     let mut phys = Physics::new(scene, Options::default(), false);
     while !phys.paused {
         assert!(phys.advance());
@@ -69,15 +69,9 @@ fn reset_restores_the_stop_and_clears_the_impulse_arrow() {
 /// the live checks see every step again.
 #[test]
 fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
-    let scene = level::load(Path::new("levels/kinetics/physical_pendulum.ron")).unwrap();
+    let scene = common::load("levels/kinetics/physical_pendulum.ron");
     let mut phys = Physics::new(scene, Options::default(), false);
-    let bar = phys
-        .scene
-        .level
-        .bodies
-        .iter()
-        .position(|b| b.name == "bar")
-        .unwrap();
+    let bar = common::body_index(&phys.scene.level, "bar");
     let mut kept = None;
     for step in 0..120u64 {
         if step == 40 {
@@ -121,7 +115,7 @@ fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
 /// A budget-limited seek goes on next frame from where it stopped and ends at the same state.
 #[test]
 fn a_seek_within_a_frames_budget_resumes_next_frame() {
-    let scene = level::load(Path::new("levels/kinetics/physical_pendulum.ron")).unwrap();
+    let scene = common::load("levels/kinetics/physical_pendulum.ron");
     let mut phys = Physics::new(scene.clone(), Options::default(), false);
     for _ in 0..200 {
         assert!(phys.advance());

@@ -12,44 +12,18 @@
 //! Also: the settings a run reports are the resolved ones (`--substeps 8` is what the checks,
 //! the snapshot and the report see).
 
+mod common;
+
+use common::run;
 use rayon::prelude::*;
-use rigidlab::level::{self, Scene};
-use rigidlab::report::LevelReport;
+use rigidlab::level::Scene;
 use rigidlab::runner;
 use rigidlab::sim::{Options, Simulation, Substepping};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
 
-fn level_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<_> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for p in entries {
-        if p.is_dir() {
-            level_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "ron") {
-            out.push(p);
-        }
-    }
-}
-
+/// Every level of the library, the stress scenes too.
 fn library() -> Vec<Scene> {
-    let mut files = Vec::new();
-    level_files(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("levels"),
-        &mut files,
-    );
-    files
-        .iter()
-        .map(|f| level::load(f).unwrap_or_else(|e| panic!("{e}")))
-        .collect()
-}
-
-fn run(scene: &Scene, opts: &Options) -> LevelReport {
-    runner::run_scene(scene, opts, &HashMap::new(), |_| {})
-        .unwrap_or_else(|e| panic!("{}: {e}", scene.file.display()))
+    common::ron_files("levels", &[]).iter().map(common::load).collect()
 }
 
 /// The twins of a level: (name, overrides).
@@ -167,10 +141,7 @@ fn more_accuracy_never_turns_a_pass_into_a_failure() {
 
 #[test]
 fn the_checks_see_the_resolved_settings() {
-    let scene = level::load(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("levels/kinetics/physical_pendulum.ron"),
-    )
-    .unwrap();
+    let scene = common::load("levels/kinetics/physical_pendulum.ron");
     assert_ne!(
         scene.level.world.substeps, 8,
         "the test needs an override that differs"
