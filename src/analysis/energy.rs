@@ -38,6 +38,13 @@ pub fn kinetic_energy_rate(
     m * a_g.dot(v_g) + i_g * alpha * omega
 }
 
+/// The angular speed of a body in fixed-axis rotation about O after the forces on it did work U,
+/// from omega_1: work-energy (WE-9) with T = 1/2 I_O omega^2 (6/8),
+/// |omega_2| = sqrt(omega_1^2 + 2 U / I_O); zero when U takes more than T_1 (the body stops).
+pub fn fixed_axis_speed_after_work(i_o: f64, omega1: f64, work: f64) -> f64 {
+    (omega1 * omega1 + 2.0 * work / i_o).max(0.0).sqrt()
+}
+
 /// Kinetic energy about the instantaneous center C: T = 1/2 I_C omega^2 with
 /// I_C = I_G + m |r_G - r_C|^2 (6/10 with MP-2).
 pub fn kinetic_energy_about_ic(m: f64, i_g: f64, r_g: DVec2, r_c: DVec2, omega: f64) -> f64 {

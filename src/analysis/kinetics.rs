@@ -611,3 +611,21 @@ pub fn kinetic_moment_fixed_axis(i_o: f64, alpha: f64) -> f64 {
 pub fn kinetic_force(m: f64, a_g: DVec2) -> DVec2 {
     m * a_g
 }
+
+/// The pin reaction on a body in fixed-axis rotation about a fixed pin O (PL-8, PL-12):
+/// R = m a_G - sum F, with alpha = sum M_O / I_O (6/4) and a_G = alpha k x r - omega^2 r (RK-10
+/// about O, which does not move), r = r_G - r_O. `force` is the resultant of the applied forces
+/// (all but the pin's) and `moment_o` their moment about O with the applied couples; `i_o` is
+/// I_O = I_G + m |r|^2 (MP-2, `mass::parallel_axis`), positive.
+pub fn fixed_axis_reaction(
+    m: f64,
+    i_o: f64,
+    r: DVec2,
+    force: DVec2,
+    moment_o: f64,
+    omega: f64,
+) -> DVec2 {
+    let alpha = moment_o / i_o;
+    let a_g = super::kinematics::point_acceleration(DVec2::ZERO, alpha, omega, r);
+    kinetic_force(m, a_g) - force
+}

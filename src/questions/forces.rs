@@ -11,9 +11,11 @@ use super::sample::{Occasion, Sample};
 use super::snapshot_reading::{is_massive, joint_index, to_local};
 use super::work_and_power::path_work;
 use crate::analysis::cross;
-use crate::analysis::energy::{kinetic_energy_rate, power};
+use crate::analysis::energy::{fixed_axis_speed_after_work, kinetic_energy_rate, power};
 use crate::analysis::impact::pair_normal_impulse;
 use crate::analysis::kinematics::body_point_velocity;
+use crate::analysis::kinetics::fixed_axis_reaction;
+use crate::analysis::mass::parallel_axis;
 use crate::level::{Component, JointKind, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -177,11 +179,11 @@ fn component_of(c: Component, v: DVec2, g: DVec2, o: DVec2) -> f64 {
     }
 }
 
-/// Fixed-axis rotation (PL-8, PL-12): the pivot reaction on the moving body, R = m a_G - sum F,
-/// with alpha = sum M_O / I_O and a_G = alpha k x r - omega^2 r; omega from work-energy
-/// (omega^2 = omega0^2 + 2 U / I_O with the work of gravity, loads and springs), its sign the
-/// engine's. Applies when one side of a revolute joint is fixed and the moving body has no
-/// other joint or contact.
+/// Fixed-axis rotation (PL-8, PL-12): the pivot reaction on the moving body,
+/// `analysis::kinetics::fixed_axis_reaction`, with the applied forces held around the sample and
+/// omega from work-energy (`analysis::energy::fixed_axis_speed_after_work` with the work of
+/// gravity, loads and springs since the start), its sign the engine's. Applies when one side of
+/// a revolute joint is fixed and the moving body has no other joint or contact.
 fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
     let s = f.cur;
     let js = if s.joints.is_empty() {
@@ -220,7 +222,7 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
     }
     let b = &s.bodies[mb];
     let r = b.com - o;
-    let i_o = b.inertia + b.mass * r.length_squared();
+    let i_o = parallel_axis(b.inertia, b.mass, r.length());
     if i_o <= 0.0 {
         return None;
     }
@@ -248,15 +250,13 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
         force += fl / count;
         moment += ml / count;
     }
-    let alpha = moment / i_o;
     // omega from work-energy: gravity's work is m g . (G - G0); loads' and springs' along the path.
     let init = m.init.as_ref()?;
     let b0 = &init.bodies[mb];
     let work = b.mass * s.gravity.dot(b.com - b0.com) + m.analysis_sum;
-    let w2 = b0.omega * b0.omega + 2.0 * work / i_o;
-    let omega = w2.max(0.0).sqrt() * if b.omega < 0.0 { -1.0 } else { 1.0 };
-    let a_g = r.perp() * alpha - r * omega * omega;
-    Some(b.mass * a_g - force)
+    let turning = if b.omega < 0.0 { -1.0 } else { 1.0 };
+    let omega = fixed_axis_speed_after_work(i_o, b0.omega, work) * turning;
+    Some(fixed_axis_reaction(b.mass, i_o, r, force, moment, omega))
 }
 
 /// The motor's effort from the textbook: virtual work with the inertia forces (VW-2, VW-5; MK
