@@ -32,6 +32,10 @@ pub mod snapshot;
 pub mod study;
 
 /// The simulation stage compiled against rapier2d-f64 (same source as `sim`).
+// Loading `sim`'s files a second time is the point (duplicate_mod). The shared source converts
+// between f64 and rapier's real with `as`, which widens or narrows in `sim` (f32) and is the
+// identity here; `sim` is still linted for casts that do nothing (unnecessary_cast).
+#[allow(clippy::duplicate_mod, clippy::unnecessary_cast)]
 #[path = "sim"]
 pub mod sim64 {
     pub(crate) use rapier2d_f64 as rapier;

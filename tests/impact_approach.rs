@@ -8,13 +8,13 @@
 //! - a wheel (disc r = 0.5 m, m = 2 kg, I_G = m r^2 / 2) rolling at v = 2 m/s (omega = -v/r) into
 //!   the corner C of a curb of height h = 0.2 m, plastic and without slip at C (no gravity, so
 //!   nothing else acts): H_C is conserved,
-//!     H_C = I_G w0 + (r_G/C x m v)_z = -1 - 1.2 = -2.2 N m s,  I_C = I_G + m r^2 = 0.75 kg m^2,
-//!     w' = H_C / I_C = w0 (1 - 2h/(3r)) = -2.933333 rad/s,  v_G' = w' k x r_G/C = (0.88, 1.173333) m/s
+//!   H_C = I_G w0 + (r_G/C x m v)_z = -1 - 1.2 = -2.2 N m s,  I_C = I_G + m r^2 = 0.75 kg m^2,
+//!   w' = H_C / I_C = w0 (1 - 2h/(3r)) = -2.933333 rad/s,  v_G' = w' k x r_G/C = (0.88, 1.173333) m/s
 //!   (r_G/C = (-0.4, 0.3) m at contact; friction needed |J_t/J_n| = 0.167 < mu = 1);
 //! - two equal discs (1 kg, r = 0.1 m), A at 2 m/s along x striking B at rest with the line of
 //!   centers at 30 degrees, frictionless, e = 0.8 (IM-9, IM-11): along n = (cos 30, sin 30),
 //!   v_An' = v_An (1 - e)/2, v_Bn' = v_An (1 + e)/2, tangential parts unchanged:
-//!     v_A' = (0.65, -0.7794229) m/s, v_B' = (1.35, 0.7794229) m/s.
+//!   v_A' = (0.65, -0.7794229) m/s, v_B' = (1.35, 0.7794229) m/s.
 //!
 //! rapier alone solves an impact as a speculative contact made within its prediction distance
 //! (2 cm), bouncing a new contact at the end of the call before the bodies touch, with the normal

@@ -12,11 +12,11 @@ use rigidlab::app::view::{self, View};
 use rigidlab::app::Physics;
 use rigidlab::level;
 use rigidlab::sim::Options;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The labels of `file` at mid-run with every overlay on, in a 650 x 762 px view (the sandbox's
 /// scene area in a 1280 x 800 window), placed. Returns (labels, bodies on screen, view).
-fn placed(file: &PathBuf) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
+fn placed(file: &Path) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
     let scene = level::load(file).unwrap();
     let mut phys = Physics::new(scene.clone(), Options::default(), false);
     phys.stop_at_end = false;
@@ -151,7 +151,7 @@ fn crowded_labels_fan_out_around_their_point_and_off_the_body() {
         home: Vec2::new(150.0, 140.0),
         size: Vec2::new(60.0, 16.0),
     };
-    let rects = labels::place(&[want, want, want], &[body.clone()], view);
+    let rects = labels::place(&[want, want, want], std::slice::from_ref(&body), view);
     for (k, r) in rects.iter().enumerate() {
         assert!(!rect_hits_polygon(r, &body), "label {k} on the body: {r:?}");
         for q in &rects[..k] {

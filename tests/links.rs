@@ -31,8 +31,8 @@ fn compare_on(file: &str, steps: usize) -> (usize, usize) {
         let s = sim.step().expect("the level runs").clone();
         links.rebuild(&s);
         let n = s.bodies.len();
-        for i in 0..n {
-            let one = Before::One(i, &before[i]);
+        for (i, b) in before[..n].iter().enumerate() {
+            let one = Before::One(i, b);
             let scanned = visit(|v| for_each_external_impulse(one, &s, s.substeps, |k| k == i, v));
             let linked = visit(|v| {
                 for_each_external_impulse_linked(one, &s, s.substeps, &links, |k| k == i, v)

@@ -44,8 +44,8 @@ fn measure(k: f64, dt: f64, substeps: usize, duration: f64) -> (f64, f64) {
 fn four_substeps_meet_the_symplectic_euler_bound_at_h() {
     // omega dt = 0.5 with 4 substeps: h = dt/4, omega h = 0.125. Symplectic Euler keeps a
     // modified energy, so E/E0 <= 1/(1 - omega h/2) = 1.0667 (held-over-substep springs grew x2.5e4).
-    let (k, dt, n) = (900.0, 1.0 / 60.0, 4);
-    let w = (k as f64).sqrt();
+    let (k, dt, n) = (900.0_f64, 1.0 / 60.0, 4);
+    let w = k.sqrt();
     let h = dt / n as f64;
     let (worst, period) = measure(k, dt, n, 10.0);
     let bound = 1.0 / (1.0 - w * h / 2.0);
@@ -76,8 +76,8 @@ fn four_substeps_meet_the_symplectic_euler_bound_at_h() {
 fn substeps_tighten_the_bound_like_a_smaller_step() {
     // omega dt = 1.9 is near the limit with 1 substep (bound 1/(1-0.95) = 20); with 4 substeps
     // omega h = 0.475 and the bound falls to 1/(1 - 0.2375) = 1.311.
-    let k = 12996.0;
-    let w = (k as f64).sqrt();
+    let k: f64 = 12996.0;
+    let w = k.sqrt();
     let dt = 1.0 / 60.0;
     for n in [1usize, 4] {
         let (worst, _) = measure(k, dt, n, 5.0);

@@ -362,7 +362,7 @@ impl ImpulseMomentumLedger {
     /// The balance over [t1, t2], each end taken at the nearest recorded instant. `None` when
     /// t2 < t1 (or either is NaN).
     pub fn window(&self, t1: f64, t2: f64) -> Option<WindowBalance> {
-        if !(t2 >= t1) {
+        if t2 < t1 || t1.is_nan() || t2.is_nan() {
             return None;
         }
         Some(self.between(self.index_at(t1), self.index_at(t2)))

@@ -372,16 +372,19 @@ fn least_squares(rows: &[(Vec<f64>, f64)], n: usize) -> Option<Vec<f64>> {
             return None;
         }
         m.swap(c, p);
-        for r in 0..n {
+        // Row c is read while the others are written: take it out for the sweep.
+        let pivot = std::mem::take(&mut m[c]);
+        for (r, row) in m.iter_mut().enumerate() {
             if r != c {
-                let f = m[r][c] / m[c][c];
+                let f = row[c] / pivot[c];
                 if f != 0.0 {
-                    for k in c..=n {
-                        m[r][k] -= f * m[c][k];
+                    for (x, p) in row[c..].iter_mut().zip(&pivot[c..]) {
+                        *x -= f * p;
                     }
                 }
             }
         }
+        m[c] = pivot;
     }
     Some((0..n).map(|i| m[i][n] / m[i][i]).collect())
 }

@@ -77,7 +77,7 @@ fn count_frame(
     }
     // RIGIDLAB_FPS_LOG=1 prints the rate every 120 frames: how the figures in docs/sandbox.md for a
     // software-rendered window were measured, and a way to check a school computer.
-    if rate.frames % WINDOW as u64 == 0 && std::env::var_os("RIGIDLAB_FPS_LOG").is_some() {
+    if rate.frames.is_multiple_of(WINDOW as u64) && std::env::var_os("RIGIDLAB_FPS_LOG").is_some() {
         if let Some(ms) = rate.median_ms() {
             info!("frame rate: {:.1} fps (median frame {ms:.1} ms)", 1e3 / ms);
         }

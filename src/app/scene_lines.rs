@@ -254,8 +254,7 @@ pub fn scale_bar(view: &View, d: &mut Drawing) {
     let len = [1.0, 2.0, 5.0, 10.0]
         .into_iter()
         .map(|k| k * mag)
-        .filter(|l| *l <= target)
-        .last()
+        .rfind(|l| *l <= target)
         .unwrap_or(mag);
     let vp = view.viewport;
     let a = view.to_world(Vec2::new(vp.min.x + 20.0, vp.max.y - 24.0));

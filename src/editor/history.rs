@@ -44,7 +44,7 @@ impl History {
             ) => a == b,
             _ => false,
         };
-        if !(merges && !self.undo.is_empty()) {
+        if !merges || self.undo.is_empty() {
             self.undo.push(scene.level.clone());
             if self.undo.len() > KEEP {
                 self.undo.remove(0);

@@ -118,9 +118,10 @@ impl Effect {
 }
 
 /// Floating-point precision of the engine (rapier2d or rapier2d-f64).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
+    #[default]
     F32,
     F64,
 }
@@ -145,12 +146,6 @@ impl Precision {
             Precision::F32 => "f32",
             Precision::F64 => "f64",
         }
-    }
-}
-
-impl Default for Precision {
-    fn default() -> Self {
-        Precision::F32
     }
 }
 

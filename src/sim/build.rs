@@ -223,12 +223,14 @@ pub(crate) fn joint(j: &JointDef, b1: &BodyDef, b2: &BodyDef) -> GenericJoint {
 /// rapier's parameters for one step of the resolved settings (split substeps change `dt` and
 /// `num_solver_iterations` around each call, see `world::Simulation::step`).
 pub(crate) fn integration_parameters(s: &Settings) -> IntegrationParameters {
-    let mut p = IntegrationParameters::default();
-    p.dt = s.dt as Real;
-    p.num_solver_iterations = s.substeps;
-    p.num_internal_pgs_iterations = s.solver_iterations;
-    p.max_ccd_substeps = if s.effects.has(Effect::Ccd) { 1 } else { 0 };
-    p.contact_recycling = s.contact_recycling;
+    let mut p = IntegrationParameters {
+        dt: s.dt as Real,
+        num_solver_iterations: s.substeps,
+        num_internal_pgs_iterations: s.solver_iterations,
+        max_ccd_substeps: if s.effects.has(Effect::Ccd) { 1 } else { 0 },
+        contact_recycling: s.contact_recycling,
+        ..Default::default()
+    };
     if let Some(hz) = s.contact_hz {
         // Contacts with fixed bodies stay twice as stiff, as in rapier's defaults (30/60 Hz).
         p.contact_softness.natural_frequency = hz as Real;

@@ -82,7 +82,7 @@ impl Simulation {
             for _sweep in 0..64 {
                 let mut worst: f64 = 0.0;
                 for (k, ts) in terms.iter().enumerate() {
-                    let (mut num, mut den, mut size) = (0.0, 0.0, 0.0);
+                    let (mut num, mut den, mut size) = (0.0_f64, 0.0, 0.0);
                     for &(b, c, r) in ts {
                         let (q, v, w) = self.coordinate(b, c);
                         let x = if pass == 0 { v } else { q };
@@ -97,7 +97,7 @@ impl Simulation {
                     // alone: rapier's f32 velocity would not change, but the impulse would still
                     // be counted in lambda (the massive Atwood pulley's alpha from its diagram
                     // read 2.2e-3 off at 8 substeps from such uncounted-but-recorded sweeps).
-                    if pass == 0 && (num as f64).abs() <= 4.0 * super::PRECISION.epsilon() * size {
+                    if pass == 0 && num.abs() <= 4.0 * super::PRECISION.epsilon() * size {
                         continue;
                     }
                     let target = if pass == 0 {

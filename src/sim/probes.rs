@@ -13,8 +13,6 @@ impl Simulation {
     /// pose drifts less than `contact_recycle_distance` (5 cm), and a recycled manifold keeps the
     /// distances of its last full update. A resting stack then reports 0 while its boxes overlap
     /// by millimetres (see the report of issue 7).
-    // The cast is a no-op for f64 rapier but widens f32.
-    #[allow(clippy::unnecessary_cast)]
     pub fn deepest_overlap(&self) -> f64 {
         let world = &self.world;
         let mut worst: f64 = 0.0;

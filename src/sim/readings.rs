@@ -1,8 +1,6 @@
 //! Reading the engine into the snapshot: bodies, contacts and joints after a rapier call, and
 //! the sums of several calls' impulses over one step (split substeps).
 
-#![allow(clippy::unnecessary_cast)]
-
 use super::rapier::prelude::*;
 use super::world::{to_d, wrap_pi, Simulation};
 use super::{build, joints};

@@ -75,7 +75,7 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st:
                 } else {
                     ui.label(
                         rich(
-                            format!("rigidlab measured this run; answer first to see it"),
+                            "rigidlab measured this run; answer first to see it",
                             palette::OUTLINE,
                         )
                         .small(),
@@ -86,11 +86,11 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st:
     }
 }
 
+/// A typed answer's grade: (answer, relative error, passed), or why the answer could not be read.
+pub type Grade = Result<(f64, f64, bool), String>;
+
 /// What the student reads after submitting an answer, and whether it was right.
-pub fn grade_message(
-    q: &crate::level::QuestionDef,
-    g: &Result<(f64, f64, bool), String>,
-) -> (String, bool) {
+pub fn grade_message(q: &crate::level::QuestionDef, g: &Grade) -> (String, bool) {
     match g {
         Ok((_, err, true)) => (
             format!(
@@ -122,7 +122,7 @@ pub fn grade_message(
 
 /// Grades a typed answer with the level's own rule (the core's [`crate::questions::grade_answer`]),
 /// after converting a unit typed with it (`523.4 in/s`) to the question's (`questions::units`).
-pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Result<(f64, f64, bool), String> {
+pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Grade {
     let v = crate::questions::units::answer_in(text, &q.unit)?;
     let g = crate::questions::grade_answer(q, v);
     Ok((g.answer, g.rel_error, g.passed))

@@ -21,7 +21,7 @@ mod tool_controls;
 mod tour;
 
 pub use capture::{capture, save};
-pub use exercise::{grade, grade_message};
+pub use exercise::{grade, grade_message, Grade};
 pub use level_browser::{Browser, Entry};
 pub use overlay_controls::legend_entries;
 pub use solver::study_error;
@@ -59,8 +59,8 @@ use tool_controls::tool_controls;
 #[derive(Resource, Debug, Clone)]
 pub struct UiState {
     pub answers: Vec<String>,
-    /// A student's grade per question: (answer, relative error, passed).
-    pub grades: Vec<Option<Result<(f64, f64, bool), String>>>,
+    /// A student's grade per question.
+    pub grades: Vec<Option<Grade>>,
     /// Where each answer box was drawn last frame (egui points = CSS pixels in the page; the web
     /// page publishes them so a browser test can click into a box and type).
     pub answer_boxes: Vec<Option<egui::Rect>>,

@@ -361,7 +361,7 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
             }
         }
     }
-    if !(lo <= hi) {
+    if lo > hi || lo.is_nan() || hi.is_nan() {
         return;
     }
     let pad = ((hi - lo) * 0.08).max(1e-9 * hi.abs().max(1.0));

@@ -49,7 +49,7 @@ pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
     match phys.step_times.median_ms() {
         // A web page's clock ticks in 0.1 ms steps (browsers coarsen `performance.now()`): a
         // faster step reads 0, which is no measurement.
-        Some(ms) if ms == 0.0 => {
+        Some(0.0) => {
             ui.label("step time: under the clock's resolution (0.1 ms in a web page)");
         }
         Some(ms) => {
