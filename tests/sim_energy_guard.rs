@@ -1,8 +1,8 @@
-//! The energy-explosion guard (`sim::energy`): it stops an exploding scene with a clear error
+//! The energy-explosion guard (`sim::explosion_guard`): it stops an exploding scene with a clear error
 //! and leaves every shipped level alone.
 
 use rigidlab::level::{collect_files, load, parse};
-use rigidlab::sim::energy::SUSTAIN;
+use rigidlab::sim::explosion_guard::SUSTAIN;
 use rigidlab::sim::{Options, Simulation};
 use std::path::{Path, PathBuf};
 use std::process::Command;

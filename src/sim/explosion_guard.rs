@@ -1,5 +1,9 @@
-//! The energy-explosion guard: stops a run whose mechanical energy grows far beyond what the
-//! level's initial state and the work put in can explain.
+//! The explosion guard: stops a run whose mechanical energy grows far beyond what the level's
+//! initial state and the work put in can explain.
+//!
+//! Its energies and works are the guard's own engine-side sums over the snapshot, not the
+//! analysis stage's readings: `sim` runs before `analysis` in the data flow and does not import it
+//! (tests/stage_layers.rs), and a test against 1e3 times a reference needs no textbook reading.
 //!
 //! E = T + V_g + V_s (eqs. 6/9, 3/21, 3/23 of MK over all bodies and springs). A closed,
 //! conservative system keeps E = E0; rapier's solvers only lose energy (contact and joint
@@ -10,7 +14,7 @@
 //! with E_scale = T0 + V_s0 + sum over dynamic bodies of m (|g| 1 m + (1 m/s)^2 / 2): every body
 //! dropping 1 m and moving at 1 m/s, so that scenes starting at rest have a scale.
 
-use crate::snapshot::Snapshot;
+use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 
 /// E - E0 may exceed the reference energy this many times, for at most [`SUSTAIN`] seconds.
@@ -46,27 +50,27 @@ pub struct EnergyGuard {
     prev_coord: Vec<f64>,
 }
 
-/// The guard's energy scale: T + V_g + V_s of a snapshot, J (V_g from the origin). The guard's
-/// own sum, not `analysis::energy::system_mechanical_energy`: the simulation runs before the
-/// analysis stage in the data flow and does not import it, and an explosion test against 1e3
-/// times a reference needs no textbook reading.
+/// The guard's energy scale: T + V_g + V_s of a snapshot, J (V_g from the origin), with each
+/// body's T as [`motion_energy`] and each spring's energy as the snapshot reports it.
 pub fn energy_scale(s: &Snapshot) -> f64 {
     let bodies: f64 = s
         .bodies
         .iter()
-        .map(|b| {
-            0.5 * b.mass * b.velocity.length_squared() + 0.5 * b.inertia * b.omega * b.omega
-                - b.mass * s.gravity.dot(b.com)
-        })
+        .map(|b| motion_energy(b) - b.mass * s.gravity.dot(b.com))
         .sum();
     bodies + s.springs.iter().map(|sp| sp.energy).sum::<f64>()
 }
 
-/// A body point's velocity v_G + w x r for the guard's work sums (see [`energy_scale`] for
-/// why it is not the analysis layer's).
-/// The velocity of point p of a body (RK-6, `analysis::k_cross`: the one definition).
+/// The energy of a body's motion as the engine holds it, 1/2 m v_G^2 + 1/2 I_G omega^2 from the
+/// snapshot's m, I_G, v_G and omega, J: the guard's one sum of it (see the module's note).
+pub fn motion_energy(b: &BodyState) -> f64 {
+    0.5 * b.mass * b.velocity.length_squared() + 0.5 * b.inertia * b.omega * b.omega
+}
+
+/// The velocity of the body point now at p, from G's velocity and omega (`perp` is k x), for the
+/// guard's work sums (see the module's note).
 fn velocity_at((com, v, w): (DVec2, DVec2, f64), p: DVec2) -> DVec2 {
-    v + crate::analysis::k_cross(w, p - com)
+    v + (p - com).perp() * w
 }
 
 fn kin(s: &Snapshot, i: usize) -> (DVec2, DVec2, f64) {
@@ -77,13 +81,7 @@ fn kin(s: &Snapshot, i: usize) -> (DVec2, DVec2, f64) {
 impl EnergyGuard {
     pub fn new(s: &Snapshot) -> Self {
         let g = s.gravity.length();
-        let t0: f64 = s
-            .bodies
-            .iter()
-            .map(|b| {
-                0.5 * b.mass * b.velocity.length_squared() + 0.5 * b.inertia * b.omega * b.omega
-            })
-            .sum();
+        let t0: f64 = s.bodies.iter().map(motion_energy).sum();
         let v0: f64 = s.springs.iter().map(|sp| sp.energy).sum();
         let unit: f64 = s.bodies.iter().map(|b| b.mass * (g + 0.5)).sum();
         EnergyGuard {

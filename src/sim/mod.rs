@@ -14,7 +14,7 @@ pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precis
 
 mod build;
 mod couplings;
-pub mod energy;
+pub mod explosion_guard;
 mod impacts;
 mod interventions;
 pub mod joints;

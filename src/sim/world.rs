@@ -5,7 +5,7 @@ use super::profiles::{sample1, sample2};
 use super::rapier::prelude::*;
 use super::readings::{merge_contacts, merge_joints, place_at_step_end};
 use crate::level::*;
-use crate::sim::energy::{EnergyGuard, FACTOR, SUSTAIN};
+use crate::sim::explosion_guard::{motion_energy, EnergyGuard, FACTOR, SUSTAIN};
 use crate::sim::options::{Options, SimError};
 use crate::sim::settings::{Settings, Substepping};
 use crate::snapshot::*;
@@ -38,7 +38,7 @@ pub struct Simulation {
     pub(super) forced_bodies: Vec<usize>,
     /// Each torsion spring's rest angle, rad (its own, or the relative angle at t = 0).
     pub(super) torsion_rest: Vec<f64>,
-    /// Energy-explosion guard (see `sim::energy`).
+    /// Energy-explosion guard (see `sim::explosion_guard`).
     pub energy: EnergyGuard,
     /// Whether the snapshot carries the step's contacts (`Simulation::set_contact_readings`).
     pub(super) contact_readings: bool,
@@ -482,7 +482,7 @@ impl Simulation {
     }
 
     /// Stops a run whose mechanical energy grew FACTOR times beyond its initial scale plus the
-    /// work put in (see `sim::energy`).
+    /// work put in (see `sim::explosion_guard`).
     fn energy_guard(&mut self) -> Result<(), SimError> {
         let Some((gain, reference)) = self.energy.check(&self.snapshot) else {
             return Ok(());
@@ -492,12 +492,7 @@ impl Simulation {
         let body = s
             .bodies
             .iter()
-            .max_by(|a, b| {
-                let t = |b: &BodyState| {
-                    b.mass * b.velocity.length_squared() + b.inertia * b.omega * b.omega
-                };
-                t(a).total_cmp(&t(b))
-            })
+            .max_by(|a, b| motion_energy(a).total_cmp(&motion_energy(b)))
             .map_or(String::new(), |b| b.name.clone());
         Err(SimError {
             step: s.step,

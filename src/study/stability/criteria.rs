@@ -10,6 +10,7 @@
 use crate::analysis::energy::{self, BodyMass};
 use crate::analysis::kinematics::point_velocity;
 use crate::level::{BodyKind, Level};
+use crate::sim::explosion_guard::coordinate_change;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
@@ -142,9 +143,7 @@ pub fn motor_work(prev_coords: &[f64], s: &Snapshot) -> f64 {
     s.joints
         .iter()
         .zip(prev_coords)
-        .map(|(j, c0)| {
-            j.motor_impulse * crate::sim::energy::coordinate_change(j.coordinate, *c0) / s.dt
-        })
+        .map(|(j, c0)| j.motor_impulse * coordinate_change(j.coordinate, *c0) / s.dt)
         .sum()
 }
 
