@@ -5,7 +5,7 @@
 //! - [`view`], [`draw`], [`geometry`]: camera, filled bodies, outlines, joints, springs, ground;
 //! - [`overlays`]: the textbook's vectors and diagrams, from the snapshot ([`quantities`]);
 //! - [`panels`] and [`tools`]: the egui panels and the mouse tools of the sandbox window;
-//! - [`render`]: the same scene drawn into a PNG without a window.
+//! - [`render`](mod@render): the same scene drawn into a PNG without a window.
 
 pub mod blows;
 pub mod draw;

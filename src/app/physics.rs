@@ -449,7 +449,7 @@ impl Physics {
         self.prev_velocities = Some((before, s.dt));
         // Trails: one point every step, but no closer than needed for a smooth curve.
         let keep_every = ((1.0 / 120.0) / s.dt).round().max(1.0) as u64;
-        if s.step % keep_every == 0 {
+        if s.step.is_multiple_of(keep_every) {
             for (trail, b) in self.trails.iter_mut().zip(&s.bodies) {
                 if trail.len() == TRAIL_LEN {
                     trail.pop_front();
@@ -457,7 +457,7 @@ impl Physics {
                 trail.push_back(b.com);
             }
         }
-        if s.step % self.series_every == 0 {
+        if s.step.is_multiple_of(self.series_every) {
             let p = series_point(s);
             self.series.push(p);
             self.record_bodies();

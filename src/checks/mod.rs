@@ -44,8 +44,8 @@ pub struct CheckResult {
 pub trait Probe {
     /// Called with the initial snapshot (step 0) and then after every step.
     fn observe(&mut self, snap: &Snapshot);
-    /// Whether the probe reads the shared per-step [`Frame`] (then [`Probe::observe_frame`] is
-    /// called instead of [`Probe::observe`]).
+    /// Whether the probe reads the shared per-step [`Frame`](crate::analysis::frame::Frame)
+    /// (then [`Probe::observe_frame`] is called instead of [`Probe::observe`]).
     fn wants_frame(&self) -> bool {
         false
     }

@@ -405,7 +405,7 @@ fn conservation_on<E: StudyEngine>(
 #[derive(Debug, Clone)]
 pub struct Reference {
     pub setting: Setting,
-    /// states[k] = bodies at t = k dt.
+    /// `states[k]` = bodies at t = k dt.
     pub states: Vec<Vec<BodyState>>,
     pub stopped: Option<String>,
 }
