@@ -37,6 +37,10 @@ pub enum Command {
         /// (repeatable).
         #[arg(long = "answer", value_parser = parse_answer)]
         answers: Vec<(String, String)>,
+        /// Do not search finer settings for a failing level (by default the cheapest settings
+        /// that pass, up to 32x the level's cost, are reported under it as its advice).
+        #[arg(long)]
+        no_advice: bool,
         #[command(flatten)]
         solver: SolverArgs,
     },
@@ -198,8 +202,9 @@ pub fn main() -> ExitCode {
             paths,
             json,
             answers,
+            no_advice,
             solver,
-        }) => check(&paths, json, answers, &solver),
+        }) => check(&paths, json, answers, !no_advice, &solver),
         Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
         Some(Command::Play { level }) => play(level),
         Some(Command::Study { study }) => crate::study::main(study),
@@ -216,6 +221,7 @@ fn check(
     paths: &[PathBuf],
     json: bool,
     answer_list: Vec<(String, String)>,
+    advice: bool,
     solver: &SolverArgs,
 ) -> ExitCode {
     let opts = match solver.options() {
@@ -263,7 +269,25 @@ fn check(
                 if let Some(b) = bar {
                     b.finish_and_clear();
                 }
-                r
+                if !advice {
+                    return r;
+                }
+                // A level the engine failed (or that stopped early): the cheapest settings
+                // that pass, searched within a bound (study::advice).
+                match r {
+                    Ok(mut report) if crate::study::advice::engine_failed(&report) => {
+                        report.advice =
+                            Some(crate::study::advice::advise(&scene, &opts, report.wall_ms));
+                        Ok(report)
+                    }
+                    Err(e @ RunError::Sim { .. }) => {
+                        stderr!("{e}");
+                        let mut report = failed(f, &e.to_string());
+                        report.advice = Some(crate::study::advice::advise(&scene, &opts, 0.0));
+                        Ok(report)
+                    }
+                    other => other,
+                }
             });
         match run {
             Ok(r) => levels.push(r),

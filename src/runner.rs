@@ -216,5 +216,6 @@ fn run_with(
         checks,
         questions,
         error: None,
+        advice: None,
     })
 }

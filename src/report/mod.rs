@@ -34,6 +34,63 @@ pub struct LevelReport {
     /// Set when the run stopped early (explosion, non-finite state).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// For a level the engine failed: the cheapest settings that pass, or that none within the
+    /// search's bound does (`study::advice`; `rigidlab check --no-advice` leaves it out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub advice: Option<Advice>,
+}
+
+/// What a failing level's settings search found (`study::advice`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Advice {
+    /// The cheapest settings tried at which every check and question passes.
+    Settings {
+        settings: AdvisedSettings,
+        /// Estimated cost against the level's own run: steps x substeps, f64 at 1.25x f32.
+        cost_ratio: f64,
+        /// The advised run's wall time against the failing run's, measured in this check (None
+        /// when the failing run stopped early).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        wall_ratio: Option<f64>,
+    },
+    /// No candidate up to `none_within` times the level's own cost passes; `why` says what
+    /// that means.
+    NoneWithin { none_within: f64, why: String },
+}
+
+/// Solver settings the advice names (the level's solver iterations and effects unchanged).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct AdvisedSettings {
+    /// The physics step, s (`--dt`).
+    pub dt: f64,
+    /// Substeps per step (`--substeps`).
+    pub substeps: usize,
+    /// The engine's floating point (`--precision`).
+    pub precision: crate::level::Precision,
+}
+
+impl Advice {
+    /// The table's line under a failing level.
+    pub fn line(&self) -> String {
+        match self {
+            Advice::Settings {
+                settings: s,
+                cost_ratio,
+                wall_ratio,
+            } => format!(
+                "advice: passes with --dt {} --substeps {} --precision {} ({cost_ratio}x the level's cost, estimated{})",
+                s.dt,
+                s.substeps,
+                match s.precision {
+                    crate::level::Precision::F32 => "f32",
+                    crate::level::Precision::F64 => "f64",
+                },
+                wall_ratio.map_or(String::new(), |w| format!("; {w:.1}x its wall time here"))
+            ),
+            Advice::NoneWithin { why, .. } => format!("advice: {why}"),
+        }
+    }
 }
 
 impl LevelReport {
@@ -51,6 +108,7 @@ impl LevelReport {
             checks: Vec::new(),
             questions: Vec::new(),
             error: Some(error.to_string()),
+            advice: None,
         }
     }
 }
@@ -84,6 +142,9 @@ pub fn table(report: &Report) -> String {
         );
         if let Some(e) = &l.error {
             out += &format!("    error: {e}\n");
+        }
+        if let Some(a) = &l.advice {
+            out += &format!("    {}\n", a.line());
         }
         for c in &l.checks {
             out += &format!(

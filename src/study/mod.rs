@@ -1,6 +1,7 @@
 //! Studies over many runs: what accuracy costs in time, and whether hard cases stay stable.
 
 pub mod accuracy;
+pub mod advice;
 pub mod stability;
 
 use clap::Subcommand;
