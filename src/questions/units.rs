@@ -8,49 +8,60 @@
 
 use std::f64::consts::PI;
 
-/// A unit's size in SI and its dimension: exponents of kg, m, s (radians are dimensionless).
+/// A unit's size in SI and its dimension: exponents of kg, m, s, and of the angle.
+///
+/// The angle is dimensionless in SI (a rad/s is a 1/s), but a cycle is 2 pi rad: so that an
+/// angular rate typed in Hz or rev/s converts with 2 pi, angles carry an exponent of their own
+/// (rad, deg, rev, and Hz = rev/s, rpm = rev/min). Two units agree when kg, m and s agree and
+/// either their angle exponents agree or one of them names no angle (a `1/s` is read as rad/s).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Unit {
     pub factor: f64,
     pub dims: [i32; 3],
+    pub angle: i32,
 }
+
+/// The largest power a unit may be raised to (`s^-2`, `m^3`; a kg m^2 s^-3 needs 3).
+const MAX_POWER: i32 = 12;
 
 const LBF: f64 = 4.448_221_615_260_5;
 const FT: f64 = 0.3048;
 
-/// The units an answer or a question may name.
-const TABLE: &[(&str, f64, [i32; 3])] = &[
-    ("1", 1.0, [0, 0, 0]),
-    ("rad", 1.0, [0, 0, 0]),
-    ("deg", PI / 180.0, [0, 0, 0]),
-    ("rev", 2.0 * PI, [0, 0, 0]),
-    ("m", 1.0, [0, 1, 0]),
-    ("cm", 0.01, [0, 1, 0]),
-    ("mm", 1e-3, [0, 1, 0]),
-    ("km", 1e3, [0, 1, 0]),
-    ("in", 0.0254, [0, 1, 0]),
-    ("ft", FT, [0, 1, 0]),
-    ("yd", 0.9144, [0, 1, 0]),
-    ("mi", 1609.344, [0, 1, 0]),
-    ("kg", 1.0, [1, 0, 0]),
-    ("g", 1e-3, [1, 0, 0]),
-    ("slug", LBF / FT, [1, 0, 0]),
-    ("s", 1.0, [0, 0, 1]),
-    ("ms", 1e-3, [0, 0, 1]),
-    ("min", 60.0, [0, 0, 1]),
-    ("h", 3600.0, [0, 0, 1]),
-    ("Hz", 1.0, [0, 0, -1]),
-    ("rpm", 2.0 * PI / 60.0, [0, 0, -1]),
-    ("N", 1.0, [1, 1, -2]),
-    ("kN", 1e3, [1, 1, -2]),
-    ("lb", LBF, [1, 1, -2]),
-    ("lbf", LBF, [1, 1, -2]),
-    ("kip", 1e3 * LBF, [1, 1, -2]),
-    ("J", 1.0, [1, 2, -2]),
-    ("kJ", 1e3, [1, 2, -2]),
-    ("W", 1.0, [1, 2, -3]),
-    ("kW", 1e3, [1, 2, -3]),
-    ("hp", 550.0 * FT * LBF, [1, 2, -3]),
+/// The units an answer or a question may name: name, size in SI, exponents of kg, m, s, and
+/// of the angle.
+const TABLE: &[(&str, f64, [i32; 3], i32)] = &[
+    ("1", 1.0, [0, 0, 0], 0),
+    ("rad", 1.0, [0, 0, 0], 1),
+    ("deg", PI / 180.0, [0, 0, 0], 1),
+    ("rev", 2.0 * PI, [0, 0, 0], 1),
+    ("m", 1.0, [0, 1, 0], 0),
+    ("cm", 0.01, [0, 1, 0], 0),
+    ("mm", 1e-3, [0, 1, 0], 0),
+    ("km", 1e3, [0, 1, 0], 0),
+    ("in", 0.0254, [0, 1, 0], 0),
+    ("ft", FT, [0, 1, 0], 0),
+    ("yd", 0.9144, [0, 1, 0], 0),
+    ("mi", 1609.344, [0, 1, 0], 0),
+    ("kg", 1.0, [1, 0, 0], 0),
+    ("g", 1e-3, [1, 0, 0], 0),
+    ("slug", LBF / FT, [1, 0, 0], 0),
+    ("s", 1.0, [0, 0, 1], 0),
+    ("ms", 1e-3, [0, 0, 1], 0),
+    ("min", 60.0, [0, 0, 1], 0),
+    ("h", 3600.0, [0, 0, 1], 0),
+    // Cycles per second and per minute: 2 pi rad/s and 2 pi/60 rad/s as angular rates.
+    ("Hz", 2.0 * PI, [0, 0, -1], 1),
+    ("rpm", 2.0 * PI / 60.0, [0, 0, -1], 1),
+    ("N", 1.0, [1, 1, -2], 0),
+    ("kN", 1e3, [1, 1, -2], 0),
+    ("lb", LBF, [1, 1, -2], 0),
+    ("lbf", LBF, [1, 1, -2], 0),
+    ("kip", 1e3 * LBF, [1, 1, -2], 0),
+    ("J", 1.0, [1, 2, -2], 0),
+    ("kJ", 1e3, [1, 2, -2], 0),
+    ("W", 1.0, [1, 2, -3], 0),
+    ("kW", 1e3, [1, 2, -3], 0),
+    ("hp", 550.0 * FT * LBF, [1, 2, -3], 0),
 ];
 
 impl Unit {
@@ -61,6 +72,7 @@ impl Unit {
         let mut u = Unit {
             factor: 1.0,
             dims: [0; 3],
+            angle: 0,
         };
         let (num, den) = match text.split_once('/') {
             Some((n, d)) => (n, Some(d)),
@@ -85,25 +97,45 @@ impl Unit {
                     ),
                     None => (factor, 1),
                 };
-                let (_, f, d) = TABLE.iter().find(|(n, _, _)| *n == name).ok_or_else(|| {
-                    let known: Vec<&str> = TABLE.iter().map(|(n, _, _)| *n).collect();
-                    format!("unknown unit `{name}`; known: {}", known.join(", "))
-                })?;
+                if power.abs() > MAX_POWER {
+                    return Err(format!(
+                        "`{factor}`: a power of at most {MAX_POWER} (and at least -{MAX_POWER})"
+                    ));
+                }
+                let (_, f, d, a) =
+                    TABLE.iter().find(|(n, _, _, _)| *n == name).ok_or_else(|| {
+                        let known: Vec<&str> = TABLE.iter().map(|(n, _, _, _)| *n).collect();
+                        format!("unknown unit `{name}`; known: {}", known.join(", "))
+                    })?;
                 let p = sign * power;
                 u.factor *= f.powi(p);
+                // Bounded powers of bounded exponents, summed over a bounded text: no overflow
+                // but for texts of millions of factors, which checked sums refuse too.
+                let add = |e: i32, x: i32| e.checked_add(x * p).filter(|v| v.abs() <= 4 * MAX_POWER);
                 for k in 0..3 {
-                    u.dims[k] += d[k] * p;
+                    u.dims[k] = add(u.dims[k], d[k]).ok_or_else(|| {
+                        format!("`{text}`: the unit's powers are too large to be a unit")
+                    })?;
                 }
+                u.angle = add(u.angle, *a)
+                    .ok_or_else(|| format!("`{text}`: the unit's powers are too large to be a unit"))?;
             }
         }
         Ok(u)
     }
 
-    /// The dimension in words, for error messages: "kg m^2 s^-3".
+    /// Whether a value in this unit converts to `other`: kg, m and s agree, and the angle does
+    /// or one of the two names none (then it is taken in radians).
+    pub fn converts_to(&self, other: &Unit) -> bool {
+        self.dims == other.dims
+            && (self.angle == other.angle || self.angle == 0 || other.angle == 0)
+    }
+
+    /// The dimension in words, for error messages: "kg m^2 s^-3", "rad s^-1".
     pub fn dimension(&self) -> String {
-        let parts: Vec<String> = ["kg", "m", "s"]
+        let parts: Vec<String> = ["kg", "m", "s", "rad"]
             .iter()
-            .zip(self.dims)
+            .zip(self.dims.into_iter().chain([self.angle]))
             .filter(|(_, e)| *e != 0)
             .map(|(n, e)| {
                 if e == 1 {
@@ -143,7 +175,7 @@ pub fn answer_in(text: &str, asked: &str) -> Result<f64, String> {
     let want = Unit::parse(asked).map_err(|e| {
         format!("the question's unit `{asked}` cannot be converted to ({e}); give a plain number in {asked}")
     })?;
-    if given.dims != want.dims {
+    if !given.converts_to(&want) {
         return Err(format!(
             "`{unit}` is {} but the question asks for {asked} ({})",
             given.dimension(),
@@ -188,6 +220,25 @@ mod tests {
         assert!(close(answer_in("1 ft*lb", "N m").unwrap(), FT * LBF));
         assert!(close(answer_in("-3,5 m/s^2", "m/s^2").unwrap(), -3.5));
         assert!(close(answer_in("1e3 g", "kg").unwrap(), 1.0));
+        // Angular rates in cycles: 1 Hz = 1 rev/s = 2 pi rad/s = 60 rpm.
+        assert!(close(answer_in("1 Hz", "rad/s").unwrap(), 2.0 * PI));
+        assert!(close(answer_in("0.5 rev/s", "rad/s").unwrap(), PI));
+        assert!(close(answer_in("60 rpm", "Hz").unwrap(), 1.0));
+        assert!(close(answer_in("6.283185307179586 rad/s", "Hz").unwrap(), 1.0));
+        // A frequency asked in Hz and typed in 1/s, a rate asked in 1/s typed in rad/s.
+        assert!(close(answer_in("3 1/s", "rad/s").unwrap(), 3.0));
+        assert!(close(answer_in("3 rad/s", "1/s").unwrap(), 3.0));
+    }
+
+    #[test]
+    fn powers_are_bounded_and_never_wrap() {
+        // 2 x 2147483647 + 1 wraps to -1 in i32: read as 1/s, it graded an answer in s^... right.
+        let e = answer_in("1.67 s^2147483647*s^2147483647*s", "rad/s").unwrap_err();
+        assert!(e.contains("power of at most 12"), "{e}");
+        let many = format!("1 {}", vec!["s^12"; 10].join("*"));
+        let e = answer_in(&many, "s").unwrap_err();
+        assert!(e.contains("too large"), "{e}");
+        assert!(close(answer_in("1 m^3", "m^3").unwrap(), 1.0));
     }
 
     #[test]
