@@ -48,3 +48,189 @@ fn the_end_of_a_lasting_contact_is_not_graded_against_an_impact_solution() {
     assert!(q.note.contains("not impulsive"), "{}", q.note);
     assert!(q.passed, "{q:?}");
 }
+
+/// Runs a level text and returns its questions.
+fn questions(text: &str) -> Vec<rigidlab::questions::QuestionResult> {
+    let scene = parse(Path::new("applies.ron"), text).unwrap_or_else(|e| panic!("{e}"));
+    runner::run_scene(&scene, &Options::default(), &HashMap::new(), |_| {})
+        .unwrap()
+        .questions
+}
+
+/// The period of a compound pendulum with a torsion spring on its pin, by an independent
+/// reference: I_O theta'' = -m g d sin(theta) - k theta integrated with RK4 at 1e-5 s, the period
+/// as the time between two successive downward zero crossings of omega (interpolated).
+fn torsion_pendulum_period_rk4(i_o: f64, mgd: f64, k: f64, theta0: f64) -> f64 {
+    let f = |th: f64| (-mgd * th.sin() - k * th) / i_o;
+    let (mut th, mut w, h) = (theta0, 0.0f64, 1e-5);
+    let mut t = 0.0;
+    let mut crossings = Vec::new();
+    while crossings.len() < 2 {
+        let (k1t, k1w) = (w, f(th));
+        let (k2t, k2w) = (w + 0.5 * h * k1w, f(th + 0.5 * h * k1t));
+        let (k3t, k3w) = (w + 0.5 * h * k2w, f(th + 0.5 * h * k2t));
+        let (k4t, k4w) = (w + h * k3w, f(th + h * k3t));
+        let w1 = w + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w);
+        th += h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t);
+        if w > 0.0 && w1 <= 0.0 {
+            crossings.push(t + h * w / (w - w1));
+        }
+        w = w1;
+        t += h;
+    }
+    crossings[1] - crossings[0]
+}
+
+/// A bar (m = 2 kg, L = 1 m, pinned at its end: I_O = m L^2 / 3, d = L / 2) on a torsion spring
+/// of k = 5 N m/rad to the ground, relaxed hanging, released at `theta0` from the vertical: the
+/// pendulum period's analysis takes the spring (the energy integral), where it used to be the
+/// elliptic-integral period of gravity alone (23% long for k = 5 against m g d = 9.81 N m/rad).
+fn torsion_pendulum(theta0: f64, damping: f64) -> String {
+    let (s, c) = theta0.sin_cos();
+    format!(
+        r#"Level(title: "torsion pendulum", effects: [gravity, joints, springs{damp}],
+        world: (dt: 0.002083333333333333, substeps: 8, duration: 4.0),
+        bodies: [
+            (name: "ground", kind: fixed),
+            (name: "bar", shape: Box(width: 0.02, height: 1.0), mass: 2.0, inertia: 0.16666666666666666,
+             angle: {theta0}, position: ({x}, {y})),
+        ],
+        joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor2: (0.0, 0.5))],
+        torsion_springs: [(name: "coil", body1: "bar", stiffness: 5.0, rest_angle: Some(0.0){c_field})],
+        questions: [(id: "T", ask: "period", unit: "s", expected: 1.0, tolerance: 1.0,
+            quantity: PendulumPeriod(body: "bar", joint: "pin"), at: End, why: "read")],
+        )"#,
+        damp = if damping > 0.0 { ", damping" } else { "" },
+        c_field = if damping > 0.0 { format!(", damping: {damping}") } else { String::new() },
+        x = 0.5 * s,
+        y = -0.5 * c,
+    )
+}
+
+#[test]
+fn a_pendulums_period_takes_its_torsion_spring() {
+    let (m, l, k) = (2.0, 1.0, 5.0);
+    let (i_o, mgd) = (m * l * l / 3.0, m * G * l / 2.0);
+    for theta0 in [0.05f64, 0.8] {
+        let q = &questions(&torsion_pendulum(theta0, 0.0))[0];
+        let reference = torsion_pendulum_period_rk4(i_o, mgd, k, theta0);
+        let analysis = q.analysis.expect("an analysis");
+        // The energy integral against the RK4 reference: both converged far below 1e-6.
+        assert!((analysis / reference - 1.0).abs() < 1e-6, "{analysis} {reference}");
+        // Small swings: 2 pi sqrt(I_O / (m g d + k)) = 1.3405 s (gravity alone: 1.6383 s).
+        if theta0 < 0.1 {
+            let small = 2.0 * std::f64::consts::PI * (i_o / (mgd + k)).sqrt();
+            assert!((reference / small - 1.0).abs() < 1e-3, "{reference} {small}");
+        }
+        // The engine agrees with it (rapier's pinned swing: within 1e-2 at 1/480 s, 8 substeps).
+        assert!((q.engine / reference - 1.0).abs() < 1e-2, "{q:?} {reference}");
+        assert!(q.note.is_empty(), "{}", q.note);
+    }
+}
+
+#[test]
+fn a_pendulum_period_with_a_damper_says_its_analysis_does_not_apply() {
+    let q = &questions(&torsion_pendulum(0.3, 0.5))[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("analysis not applicable") && q.note.contains("damper"), "{}", q.note);
+}
+
+/// A pendulum pinned to a cart that rolls free: its pivot moves, so the fixed-pivot period does
+/// not apply (the new user's 4.93 s for 1.343 s).
+#[test]
+fn a_pendulum_on_a_moving_support_says_its_analysis_does_not_apply() {
+    let text = r#"Level(title: "pendulum on a cart", effects: [gravity, joints],
+        world: (dt: 0.004166666666666667, substeps: 4, duration: 3.0),
+        bodies: [
+            (name: "ground", kind: fixed),
+            (name: "cart", shape: Box(width: 0.4, height: 0.2), mass: 3.0),
+            (name: "bob", shape: Circle(radius: 0.05), mass: 1.0, position: (0.5, -0.866)),
+        ],
+        joints: [
+            (name: "rail", kind: prismatic, body1: "ground", body2: "cart", axis: (1.0, 0.0)),
+            (name: "pin", kind: revolute, body1: "cart", body2: "bob", anchor2: (-0.5, 0.866)),
+        ],
+        questions: [(id: "T", ask: "period", unit: "s", expected: 1.343, tolerance: 1e-2,
+            quantity: PendulumPeriod(body: "bob", joint: "pin"), at: End, why: "read")],
+        )"#;
+    let q = &questions(text)[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("free body") && q.note.contains("fixed pivot"), "{}", q.note);
+}
+
+/// A block held by two springs, one along x and one at 60 degrees: 2 pi sqrt(m / sum k) adds
+/// stiffnesses of springs in one line, so it does not apply (0.411 s for 0.673 s).
+#[test]
+fn a_spring_period_with_springs_at_an_angle_says_its_analysis_does_not_apply() {
+    let text = r#"Level(title: "two springs", effects: [springs],
+        world: (dt: 0.002, substeps: 4, duration: 2.0),
+        bodies: [(name: "block", shape: Circle(radius: 0.05), mass: 1.0, position: (0.05, 0.0))],
+        springs: [
+            (name: "a", body1: "block", point2: (-1.0, 0.0), stiffness: 100.0, rest_length: 1.0),
+            (name: "b", body1: "block", point2: (0.5, 0.866), stiffness: 100.0, rest_length: 1.0),
+        ],
+        questions: [(id: "T", ask: "period", unit: "s", expected: 0.5, tolerance: 1.0,
+            quantity: SpringPeriod("block"), at: End, why: "read")],
+        )"#;
+    let q = &questions(text)[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("not in line"), "{}", q.note);
+}
+
+/// A block (m = 1 kg) on a spring k = 100 N/m with a damper c = 2 N s/m, pulled 0.1 m and
+/// released: underdamped, T_d = 2 pi / sqrt(k/m - (c/2m)^2) = 2 pi / sqrt(99) = 0.631484 s
+/// (the undamped 0.628319 s is 0.5% short).
+#[test]
+fn a_damped_spring_mass_period_is_the_damped_period() {
+    let text = r#"Level(title: "damped", effects: [springs, damping],
+        world: (dt: 0.001, substeps: 4, duration: 3.0),
+        bodies: [(name: "block", shape: Circle(radius: 0.05), mass: 1.0, position: (0.1, 0.0))],
+        springs: [(name: "s", body1: "block", point2: (-1.0, 0.0), stiffness: 100.0, rest_length: 1.0, damping: 2.0)],
+        questions: [(id: "T", ask: "damped period", unit: "s", expected: 0.6314840, tolerance: 2e-3,
+            quantity: SpringPeriod("block"), at: End, why: "symplectic Euler at h = 0.25 ms")],
+        )"#;
+    let q = &questions(text)[0];
+    let t_d = 2.0 * std::f64::consts::PI / 99f64.sqrt();
+    assert!((q.analysis.unwrap() / t_d - 1.0).abs() < 1e-12, "{q:?}");
+    assert!(q.passed, "{q:?}");
+}
+
+/// A ball (m = 1 kg) strikes a rough floor obliquely (v = (3, -4) m/s, e = 0.5, mu = 0.2):
+/// the normal impulse is m (1 + e) |v_n| = 6 N s, which is what the engine's `ContactImpulse`
+/// reads; the analysis is the same normal part of the impulse solution (it was the whole
+/// impulse, sqrt(6^2 + 1.2^2) = 6.12 N s with the friction's 1.2 N s: 2% off on every rough
+/// impact).
+#[test]
+fn contact_impulse_compares_the_normal_parts() {
+    let text = r#"Level(title: "rough oblique", effects: [contacts, friction, restitution],
+        world: (dt: 0.001, substeps: 4, duration: 0.2),
+        bodies: [
+            (name: "floor", kind: fixed, shape: Box(width: 10.0, height: 0.2), position: (0.0, -0.1), friction: 0.2, restitution: 0.5),
+            (name: "ball", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, 0.2), velocity: (3.0, -4.0), friction: 0.2, restitution: 0.5),
+        ],
+        questions: [(id: "J", ask: "normal impulse", unit: "N s", expected: 6.0, tolerance: 1e-2,
+            quantity: ContactImpulse(body: "ball", other: "floor"), at: ContactEnds(body: "ball", other: "floor"), why: "read")],
+        )"#;
+    let q = &questions(text)[0];
+    let a = q.analysis.expect("an impact analysis");
+    assert!((a - 6.0).abs() < 6e-2, "{q:?}");
+    assert!((q.engine - 6.0).abs() < 6e-2, "{q:?}");
+}
+
+/// A ball set down on the floor: it never leaves it, so its restitution cannot be measured, and
+/// the note says why (it was NaN with the generic "could not be read").
+#[test]
+fn restitution_of_a_contact_that_lasts_says_why() {
+    let text = r#"Level(title: "lasting", effects: [gravity, contacts, restitution],
+        world: (dt: 0.004166666666666667, substeps: 4, duration: 0.5),
+        bodies: [
+            (name: "floor", kind: fixed, shape: Box(width: 10.0, height: 0.2), position: (0.0, -0.1)),
+            (name: "ball", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, 0.11), velocity: (0.0, -0.5), restitution: 0.0),
+        ],
+        questions: [(id: "e", ask: "e", unit: "1", expected: 0.0, tolerance: 1e-2,
+            quantity: Restitution(body: "ball", other: "floor"), at: End, why: "read")],
+        )"#;
+    let q = &questions(text)[0];
+    assert!(!q.passed, "{q:?}");
+    assert!(q.note.contains("lasts to the end of the run"), "{}", q.note);
+}

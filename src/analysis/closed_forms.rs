@@ -30,10 +30,98 @@ pub fn pendulum_period(i_o: f64, m: f64, g: f64, d: f64, theta0: f64) -> f64 {
     4.0 * (i_o / (m * g * d)).sqrt() * elliptic_k((0.5 * theta0).sin())
 }
 
+/// Period of a one-degree-of-freedom conservative oscillation from the energy integral: a
+/// coordinate q with constant generalized inertia `inertia` in a potential `v(q)`, started at
+/// q0 with rate qdot0, swings between the turning points q_a < q_b where V = E, and
+/// T = 2 ∫_{q_a}^{q_b} dq / sqrt(2 (E - V(q)) / I), with E = 1/2 I qdot0^2 + V(q0)
+/// (the work-energy equation RE-7, T1 + V1 = T2 + V2, solved for the rate and integrated over a
+/// swing). For the pendulum V = m g d (1 - cos q) it is [`pendulum_period`]; it also takes a
+/// torsion spring on the pivot, V = m g d (1 - cos q) + 1/2 k (q - q_s)^2, which no closed form
+/// does.
+///
+/// None when the motion does not turn back within `reach` of q0 on both sides (it goes over
+/// the top) or q0 is an equilibrium at rest.
+pub fn energy_integral_period(
+    inertia: f64,
+    v: impl Fn(f64) -> f64,
+    q0: f64,
+    qdot0: f64,
+    reach: f64,
+) -> Option<f64> {
+    let e = 0.5 * inertia * qdot0 * qdot0 + v(q0);
+    // E - V, positive inside the swing.
+    let room = |q: f64| e - v(q);
+    let scale = e.abs().max(v(q0 + reach).abs()).max(f64::MIN_POSITIVE);
+    let at_rest = room(q0) <= 1e-14 * scale;
+    // Started at rest, q0 is one turning point: the swing goes downhill from it.
+    let h = reach * 1e-6;
+    let downhill_right = v(q0 + h) < v(q0 - h);
+    let turning = |dir: f64| -> Option<f64> {
+        if at_rest && (dir > 0.0) != downhill_right {
+            return Some(q0);
+        }
+        // March out until V passes E, then bisect the bracket to the last bit.
+        let n = 4096;
+        let step = reach / n as f64;
+        let mut inside = q0;
+        for k in 1..=n {
+            let q = q0 + dir * step * k as f64;
+            if room(q) <= 0.0 {
+                let (mut a, mut b) = (inside, q);
+                for _ in 0..200 {
+                    let m = 0.5 * (a + b);
+                    if m == a || m == b {
+                        break;
+                    }
+                    if room(m) > 0.0 {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+                return Some(0.5 * (a + b));
+            }
+            inside = q;
+        }
+        None
+    };
+    // At rest where the slope is below what the curvature gives over h: an equilibrium.
+    if at_rest && (v(q0 + h) - v(q0 - h)).abs() <= (v(q0 + h) + v(q0 - h) - 2.0 * v(q0)).abs() {
+        return None;
+    }
+    let (qa, qb) = (turning(-1.0)?, turning(1.0)?);
+    if qb <= qa {
+        return None;
+    }
+    // q = c + r sin(u): the square-root ends of 1/sqrt(E - V) become a smooth integrand in u,
+    // integrated by the midpoint rule (no evaluation at the ends, where it is 0/0).
+    let (c, r) = (0.5 * (qa + qb), 0.5 * (qb - qa));
+    let n = 8192;
+    let du = PI / n as f64;
+    let mut sum = 0.0;
+    for k in 0..n {
+        let u = -0.5 * PI + (k as f64 + 0.5) * du;
+        let w = room(c + r * u.sin()).max(0.0);
+        if w > 0.0 {
+            sum += r * u.cos() / (2.0 * w / inertia).sqrt();
+        }
+    }
+    Some(2.0 * sum * du)
+}
+
 /// Period of a mass m on springs of total stiffness k: T = 2 pi sqrt(m / k) (free vibration,
 /// omega_n = sqrt(k / m)).
 pub fn spring_mass_period(m: f64, k: f64) -> f64 {
     2.0 * PI * (m / k).sqrt()
+}
+
+/// Period of a mass m on springs of total stiffness k with viscous dampers of total c, while
+/// underdamped: T_d = 2 pi / omega_d, omega_d = sqrt(k / m - (c / 2m)^2) = omega_n sqrt(1 -
+/// zeta^2), zeta = c / (2 sqrt(k m)) (damped free vibration; the velocity's zero crossings are
+/// T_d apart). None at or past critical damping, where the motion does not oscillate.
+pub fn damped_period(m: f64, k: f64, c: f64) -> Option<f64> {
+    let w2 = k / m - (c / (2.0 * m)).powi(2);
+    (w2 > 0.0).then(|| 2.0 * PI / w2.sqrt())
 }
 
 /// Reduced mass of two bodies joined by a spring, m1 m2 / (m1 + m2): their relative motion
@@ -92,5 +180,34 @@ mod tests {
         assert!((t / t0 - 1.180_340_599_016_096).abs() < 1e-12, "{}", t / t0);
         // Small amplitude tends to the linear period.
         assert!((pendulum_period(2.0 / 3.0, 2.0, g, 0.5, 1e-4) / t0 - 1.0).abs() < 1e-8);
+    }
+
+    #[test]
+    fn energy_integral_period_is_the_elliptic_period_and_the_spring_period() {
+        let (g, m, d, i_o) = (9.81, 2.0, 0.5, 2.0 / 3.0);
+        // Gravity alone: the elliptic-integral period at every amplitude, from rest at the
+        // amplitude or from the bottom with the speed that reaches it.
+        for deg in [5.0f64, 60.0, 120.0, 170.0] {
+            let a = deg.to_radians();
+            let exact = pendulum_period(i_o, m, g, d, a);
+            let v = |q: f64| m * g * d * (1.0 - q.cos());
+            let from_rest = energy_integral_period(i_o, v, a, 0.0, 2.0 * PI).unwrap();
+            let w0 = (2.0 * m * g * d * (1.0 - a.cos()) / i_o).sqrt();
+            let from_bottom = energy_integral_period(i_o, v, 0.0, -w0, 2.0 * PI).unwrap();
+            assert!((from_rest / exact - 1.0).abs() < 1e-8, "{deg}: {from_rest} {exact}");
+            assert!((from_bottom / exact - 1.0).abs() < 1e-8, "{deg}: {from_bottom} {exact}");
+        }
+        // A torsion spring alone: 2 pi sqrt(I / k) at any amplitude and about any rest angle.
+        let k = 5.0;
+        let t = energy_integral_period(i_o, |q: f64| 0.5 * k * (q - 0.3).powi(2), 1.2, 0.7, 20.0);
+        assert!((t.unwrap() / (2.0 * PI * (i_o / k).sqrt()) - 1.0).abs() < 1e-8);
+        // Small swings with both: 2 pi sqrt(I_O / (m g d + k)).
+        let v = |q: f64| m * g * d * (1.0 - q.cos()) + 0.5 * k * q * q;
+        let t = energy_integral_period(i_o, v, 1e-3, 0.0, 2.0 * PI).unwrap();
+        assert!((t / (2.0 * PI * (i_o / (m * g * d + k)).sqrt()) - 1.0).abs() < 1e-6);
+        // Over the top (no turning point) and at rest at the equilibrium: no period.
+        let v = |q: f64| m * g * d * (1.0 - q.cos());
+        assert!(energy_integral_period(i_o, v, 0.0, 20.0, 2.0 * PI).is_none());
+        assert!(energy_integral_period(i_o, v, 0.0, 0.0, 2.0 * PI).is_none());
     }
 }

@@ -43,6 +43,22 @@ pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
     }
 }
 
+/// Why an impact quantity has no engine value at the end of the run, when the pair says: it
+/// never touched, its first contact was not an impact, or the contact never let go.
+pub(super) fn why_missing(m: &Meter) -> Option<String> {
+    let p = m.pair.as_ref()?;
+    Some(match (&m.q, p.phase) {
+        (_, ContactPhase::Before) => "the two bodies never touched in the run".into(),
+        (Quantity::Restitution { .. } | Quantity::EnergyLost { .. }, _) if p.impact.is_none() => {
+            "the first contact was not an impact (the bodies were not approaching when they touched)".into()
+        }
+        (Quantity::Restitution { .. } | Quantity::ReboundHeight { .. }, _) if p.release.is_none() => {
+            "the contact lasts to the end of the run: this needs the state after the bodies part (a lasting contact's impulse and energy are ContactImpulse and EnergyLost)".into()
+        }
+        _ => return None,
+    })
+}
+
 /// The quantity at the sample.
 pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     let s = f.cur;
@@ -116,14 +132,18 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
         Quantity::ContactImpulse { body: b, .. } => {
             let i = m.body_index(s, b)?;
             let p = p?;
-            // The impact solution's impulse on the body, m |v' - v|, when nothing else acts on
-            // it impulsively (no joint).
+            // The normal part of the impact solution's impulse on the body, m |(v' - v) . n|,
+            // when nothing else acts on it impulsively (no joint): the engine's value is the
+            // contact's normal impulse, so a rough impact's friction impulse is not in either.
             let jointed = s.joints.iter().any(|j| j.body1 == i || j.body2 == i);
             let analysis = p
                 .impact
                 .as_ref()
                 .filter(|_| !jointed && p.not_impulsive().is_none())
-                .map(|imp| imp.pre[i].mass * (imp.post[i].velocity - imp.pre[i].velocity).length());
+                .map(|imp| {
+                    let dv = imp.post[i].velocity - imp.pre[i].velocity;
+                    imp.pre[i].mass * dv.dot(imp.normal).abs()
+                });
             (p.contact_impulse(), analysis)
         }
         q => unreachable!("{q:?} is not an impact quantity"),

@@ -19,6 +19,31 @@ pub(super) struct BodyInfo {
     pub disc: Option<f64>,
     /// The textbook mass properties (the shape's formula with the level's mass or density).
     pub textbook: crate::analysis::mass::MassProps,
+    /// The body has linear or angular damping.
+    pub damped: bool,
+    /// The level's loads on the body (by name).
+    pub loads: Vec<String>,
+}
+
+/// A spring of the level (linear or torsion), as the analyses' preconditions read it.
+#[derive(Debug, Clone)]
+pub(super) struct SpringInfo {
+    pub name: String,
+    pub torsion: bool,
+    pub body1: usize,
+    /// None: the other end is held by the ground.
+    pub body2: Option<usize>,
+    /// k, N/m or N m/rad.
+    pub stiffness: f64,
+    /// c, N s/m or N m s/rad.
+    pub damping: f64,
+}
+
+impl SpringInfo {
+    /// Whether body i is one of the spring's ends.
+    pub fn holds(&self, i: usize) -> bool {
+        self.body1 == i || self.body2 == Some(i)
+    }
 }
 
 /// A joint's kind, bodies and geometry, in the level's order (the snapshots' order too).
@@ -32,6 +57,8 @@ pub(super) struct JointInfo {
     pub anchor2: DVec2,
     /// The slide axis in body1's frame (unit).
     pub axis: DVec2,
+    /// The joint has a motor.
+    pub motor: bool,
 }
 
 /// Level data some analyses need beyond the snapshot (declared coefficients, joint geometry).
@@ -40,6 +67,8 @@ pub struct LevelFacts {
     pub(super) bodies: Vec<BodyInfo>,
     /// The level's joints (empty without the `joints` effect).
     pub(super) joints: Vec<JointInfo>,
+    /// The level's springs, linear then torsion (empty without the `springs` effect).
+    pub(super) springs: Vec<SpringInfo>,
     /// Each body's index by name, in the level's order (which the run's snapshots keep).
     names: HashMap<String, usize>,
 }
@@ -66,6 +95,15 @@ impl LevelFacts {
                     },
                     disc: b.disc_radius(),
                     textbook: crate::analysis::mass::of_body(b, crate::level::DEFAULT_DENSITY),
+                    damped: has(Effect::Damping)
+                        && (b.linear_damping.unwrap_or(0.0) != 0.0
+                            || b.angular_damping.unwrap_or(0.0) != 0.0),
+                    loads: level
+                        .loads
+                        .iter()
+                        .filter(|l| l.body == b.name)
+                        .map(|l| l.name.clone())
+                        .collect(),
                 })
                 .collect(),
             joints: if has(Effect::Joints) {
@@ -79,8 +117,30 @@ impl LevelFacts {
                         body2: index(&j.body2),
                         anchor2: v(j.anchor2),
                         axis: v(j.axis).normalize_or(DVec2::X),
+                        motor: has(Effect::Motors) && j.motor.is_some(),
                     })
                     .collect()
+            } else {
+                Vec::new()
+            },
+            springs: if has(Effect::Springs) {
+                let linear = level.springs.iter().map(|x| SpringInfo {
+                    name: x.name.clone(),
+                    torsion: false,
+                    body1: index(&x.body1),
+                    body2: x.body2.as_deref().map(index),
+                    stiffness: x.stiffness,
+                    damping: x.damping,
+                });
+                let torsion = level.torsion_springs.iter().map(|x| SpringInfo {
+                    name: x.name.clone(),
+                    torsion: true,
+                    body1: index(&x.body1),
+                    body2: x.body2.as_deref().map(index),
+                    stiffness: x.stiffness,
+                    damping: x.damping,
+                });
+                linear.chain(torsion).collect()
             } else {
                 Vec::new()
             },

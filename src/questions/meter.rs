@@ -43,6 +43,10 @@ pub(super) struct Meter {
     pub load_constant: bool,
     /// Read at a configuration event (not a fixed time): see `Quantity::KineticEnergy`.
     pub configuration_event: bool,
+    /// Why the quantity's analysis does not apply to this scene (a precondition of its formula
+    /// that the scene breaks), set by the family: then the analysis is None and the question is
+    /// graded on the engine alone, saying so.
+    pub inapplicable: Option<String>,
 }
 
 impl Meter {
@@ -71,6 +75,7 @@ impl Meter {
             first_load: None,
             load_constant: true,
             configuration_event: true,
+            inapplicable: None,
         }
     }
 
@@ -97,6 +102,15 @@ impl Meter {
         }
     }
 
+    /// Why the quantity has no engine value, where its family can tell (an impact that never
+    /// happened or never ended).
+    pub fn why_missing(&self) -> Option<String> {
+        match self.q.family() {
+            QuantityFamily::Impacts => impacts::why_missing(self),
+            _ => None,
+        }
+    }
+
     /// The quantity at the sample (NaN when it cannot be read there).
     pub fn read(&self, f: &Sample, occ: Occasion) -> Reading {
         let value = match self.q.family() {
@@ -112,7 +126,7 @@ impl Meter {
         Reading {
             t: f.cur.time,
             engine,
-            analysis: analysis.filter(|a| a.is_finite()),
+            analysis: analysis.filter(|a| a.is_finite() && self.inapplicable.is_none()),
         }
     }
 }

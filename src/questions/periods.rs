@@ -3,12 +3,22 @@
 //! The engine's period is the mean time between successive zero crossings of the same
 //! direction of the body's velocity (angular for a pendulum, along the spring for a spring
 //! mass), i.e. between its extremes; the analyses are the exact large-amplitude pendulum period
-//! (PL-5 with the elliptic integral) and 2 pi sqrt(m / k).
+//! (PL-5 with the elliptic integral, or the energy integral where a torsion spring to the ground
+//! acts on the pivot) and 2 pi sqrt(m / k), damped where the springs' dampers act.
+//!
+//! Each analysis holds for the scene its formula was derived for, and says why when the scene
+//! is another ([`Meter::inapplicable`]): the pendulum swings on a fixed pin under gravity and
+//! torsion springs to the ground alone (no other joint, spring, load, motor or damping); the
+//! spring mass moves along its springs' one line, on linear springs and dampers alone (no
+//! torsion spring, load, pin or body damping). Contacts during the run are not looked at.
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::joint_index;
-use crate::analysis::closed_forms::{pendulum_period, reduced_mass, spring_mass_period};
+use crate::analysis::closed_forms::{
+    damped_period, energy_integral_period, pendulum_period, reduced_mass, spring_mass_period,
+};
+use crate::level::{BodyKind, JointKind};
 pub(super) use crate::analysis::oscillation::Crossings;
 use crate::level::Quantity;
 use crate::snapshot::Snapshot;
@@ -17,9 +27,10 @@ use glam::DVec2;
 /// Follows the oscillating velocity over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     match &m.q {
-        Quantity::PendulumPeriod { body, .. } => {
+        Quantity::PendulumPeriod { body, joint } => {
             if let Some(i) = m.body_index(s, body) {
                 if m.crossings.is_empty() {
+                    m.inapplicable = pendulum_breaks(m, s, i, joint);
                     m.crossings.add(prev.time, prev.bodies[i].omega);
                 }
                 m.crossings.add(s.time, s.bodies[i].omega);
@@ -43,6 +54,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         .find(|x| !x.torsion && (x.body1 == i || x.body2 == Some(i)));
                     m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
                     m.spring_partner = spring_partner(init, i);
+                    m.inapplicable = spring_mass_breaks(m, init, i);
                     if let Some(a) = m.spring_axis {
                         m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
                     }
@@ -90,36 +102,187 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 Some(j) => reduced_mass(s.bodies[i].mass, s.bodies[j].mass),
                 None => s.bodies[i].mass,
             };
-            (
-                m.crossings.period(),
-                (k > 0.0).then(|| spring_mass_period(mass, k)),
-            )
+            // The dampers of the body's springs (the level's c; 0 without the `damping` effect).
+            let c: f64 = m
+                .facts
+                .springs
+                .iter()
+                .filter(|x| !x.torsion && x.holds(i))
+                .map(|x| x.damping)
+                .sum();
+            let theory = if c > 0.0 {
+                damped_period(mass, k, c)
+            } else {
+                (k > 0.0).then(|| spring_mass_period(mass, k))
+            };
+            (m.crossings.period(), theory)
         }
         q => unreachable!("{q:?} is not a period"),
     })
 }
 
-/// The exact large-amplitude period of a body swinging about the joint's fixed anchor,
-/// from the engine's initial state.
+/// The exact large-amplitude period of a body swinging about the joint's fixed anchor, from the
+/// engine's initial state: the elliptic integral under gravity alone, the energy integral with
+/// the torsion springs that hold the body to the ground.
 fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f64> {
     let i = m.body_index(s, body)?;
     let j = &s.joints[joint_index(s, joint)?];
     let o = if j.body2 == i { j.anchor1 } else { j.anchor };
-    let b0 = &m.init.as_ref()?.bodies[i];
+    let init = m.init.as_ref()?;
+    let b0 = &init.bodies[i];
     let g = s.gravity.length();
     let r = b0.com - o;
     let d = r.length();
-    if g <= 0.0 || d <= 0.0 {
-        return None;
-    }
     let i_o = b0.inertia + b0.mass * d * d;
-    let cos_phi = r.dot(s.gravity / g) / d;
-    let one_minus_cos = (1.0 - cos_phi) + i_o * b0.omega * b0.omega / (2.0 * b0.mass * g * d);
-    if one_minus_cos >= 2.0 {
-        return None;
+    // Torsion springs on the body (to the ground: pendulum_breaks refuses others), each with its
+    // deflection at the start and the sign the body's angle enters it with.
+    let springs: Vec<(f64, f64, f64)> = m
+        .facts
+        .springs
+        .iter()
+        .filter(|x| x.torsion && x.holds(i))
+        .filter_map(|x| {
+            let now = init.springs.iter().find(|y| y.torsion && y.name == x.name)?;
+            let sign = if x.body1 == i { 1.0 } else { -1.0 };
+            Some((x.stiffness, now.extension, sign))
+        })
+        .collect();
+    if springs.is_empty() {
+        if g <= 0.0 || d <= 0.0 {
+            return None;
+        }
+        let cos_phi = r.dot(s.gravity / g) / d;
+        let one_minus_cos = (1.0 - cos_phi) + i_o * b0.omega * b0.omega / (2.0 * b0.mass * g * d);
+        if one_minus_cos >= 2.0 {
+            return None;
+        }
+        let theta0 = (1.0 - one_minus_cos).clamp(-1.0, 1.0).acos();
+        return Some(pendulum_period(i_o, b0.mass, g, d, theta0));
     }
-    let theta0 = (1.0 - one_minus_cos).clamp(-1.0, 1.0).acos();
-    Some(pendulum_period(i_o, b0.mass, g, d, theta0))
+    // phi: OG's angle from straight down (counter-clockwise), which turns with the body.
+    let phi0 = if g > 0.0 && d > 0.0 {
+        let down = s.gravity / g;
+        down.perp_dot(r).atan2(down.dot(r))
+    } else {
+        0.0
+    };
+    let v = |phi: f64| {
+        let turned = phi - phi0;
+        let elastic: f64 = springs
+            .iter()
+            .map(|(k, x0, sign)| 0.5 * k * (x0 + sign * turned).powi(2))
+            .sum();
+        b0.mass * g * d * (1.0 - phi.cos()) + elastic
+    };
+    energy_integral_period(i_o, v, phi0, b0.omega, 4.0 * std::f64::consts::PI)
+}
+
+/// Why the pendulum period's analysis does not fit the scene: it is the period of body i
+/// swinging on a fixed pin under gravity and torsion springs to the ground, nothing else.
+fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<String> {
+    let facts = &m.facts;
+    let j = facts.joints.iter().find(|x| x.name == joint)?;
+    let body = |k: usize| s.bodies.get(k).map_or("?", |b| b.name.as_str());
+    if j.kind != JointKind::Revolute {
+        return Some(format!("joint \"{joint}\" is not a pin (revolute)"));
+    }
+    let pivot = if j.body1 == i { j.body2 } else { j.body1 };
+    match s.bodies.get(pivot).map(|b| b.kind) {
+        Some(BodyKind::Fixed) | None => {}
+        Some(BodyKind::Kinematic) => {
+            return Some(format!(
+                "the pin is on \"{}\", a kinematic body the level moves: the period formula is for a fixed pivot",
+                body(pivot)
+            ))
+        }
+        Some(BodyKind::Dynamic) => {
+            return Some(format!(
+                "the pin is on \"{}\", a free body: the period formula is for a fixed pivot",
+                body(pivot)
+            ))
+        }
+    }
+    if j.motor {
+        return Some(format!("joint \"{joint}\" has a motor"));
+    }
+    if let Some(other) = facts
+        .joints
+        .iter()
+        .find(|x| x.name != joint && (x.body1 == i || x.body2 == i))
+    {
+        return Some(format!("joint \"{}\" also holds the body", other.name));
+    }
+    for x in facts.springs.iter().filter(|x| x.holds(i)) {
+        if !x.torsion {
+            return Some(format!(
+                "spring \"{}\" acts on the body (the formula takes gravity and torsion springs to the ground)",
+                x.name
+            ));
+        }
+        if x.damping != 0.0 {
+            return Some(format!(
+                "torsion spring \"{}\" has a damper (c = {} N m s/rad): the formula is the undamped period",
+                x.name, x.damping
+            ));
+        }
+        let other = if x.body1 == i { x.body2 } else { Some(x.body1) };
+        if let Some(o) = other.filter(|&o| s.bodies.get(o).is_some_and(|b| b.kind != BodyKind::Fixed)) {
+            return Some(format!(
+                "torsion spring \"{}\" joins the body to \"{}\", which moves",
+                x.name,
+                body(o)
+            ));
+        }
+    }
+    let info = facts.bodies.get(i)?;
+    if info.damped {
+        return Some("the body is damped: the formula is the undamped period".into());
+    }
+    if let Some(load) = info.loads.first() {
+        return Some(format!("load \"{load}\" acts on the body"));
+    }
+    None
+}
+
+/// Why the spring-mass period's analysis does not fit the scene: body i (with its partner, if
+/// any) moves along the one line of its linear springs, under them and their dampers alone.
+fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
+    let facts = &m.facts;
+    let axis = m.spring_axis?;
+    for x in facts.springs.iter().filter(|x| x.holds(i)) {
+        if x.torsion {
+            return Some(format!("torsion spring \"{}\" acts on the body", x.name));
+        }
+        let line = s
+            .springs
+            .iter()
+            .find(|y| !y.torsion && y.name == x.name)
+            .map(|y| y.point2 - y.point1);
+        if let Some(l) = line.filter(|l| l.length() > 0.0) {
+            if axis.perp_dot(l.normalize()).abs() > 1e-6 {
+                return Some(format!(
+                    "spring \"{}\" is not in line with the others: 2 pi sqrt(m / sum k) adds the stiffnesses of springs in one line",
+                    x.name
+                ));
+            }
+        }
+    }
+    if let Some(j) = facts.joints.iter().find(|x| {
+        (x.body1 == i || x.body2 == i) && !(x.kind == JointKind::Prismatic && !x.motor)
+    }) {
+        return Some(format!(
+            "joint \"{}\" holds the body (only a slider along the springs leaves the formula's motion)",
+            j.name
+        ));
+    }
+    let info = facts.bodies.get(i)?;
+    if info.damped {
+        return Some("the body is damped (body damping, not a spring's damper)".into());
+    }
+    if let Some(load) = info.loads.first() {
+        return Some(format!("load \"{load}\" acts on the body"));
+    }
+    None
 }
 
 /// The free body at the other end of every spring of body i, when there is one and only one

@@ -340,9 +340,18 @@ impl QuestionProbe {
         }
         let r = self.value.unwrap_or(Reading::MISSING);
         if r.engine.is_nan() && self.note.is_empty() {
-            self.note = match self.def.at {
-                When::Time(t) if t <= 0.0 => "the quantity could not be read at t = 0: the engine reports joint reactions and contact forces from its first step on (ask at a later time, or at an event)".into(),
+            self.note = match (self.meter.why_missing(), &self.def.at) {
+                (Some(why), _) => why,
+                (None, When::Time(t)) if *t <= 0.0 => "the quantity could not be read at t = 0: the engine reports joint reactions and contact forces from its first step on (ask at a later time, or at an event)".into(),
                 _ => "the quantity could not be read (too few oscillations, no contact, or a missing item)".into(),
+            };
+        }
+        if let Some(why) = &self.meter.inapplicable {
+            let said = format!("analysis not applicable: {why}; graded on the engine alone");
+            self.note = if self.note.is_empty() {
+                said
+            } else {
+                format!("{}; {said}", self.note)
             };
         }
         QuestionResult::new(&self.def, r, self.note, student)
