@@ -3,7 +3,7 @@
 //! the cost is a benchmark matter, this file holds the values).
 
 use rigidlab::level::Profile;
-use rigidlab::sim::{sample1, sample2};
+use rigidlab::sim::{scalar_profile_at, vector_profile_at};
 
 #[test]
 fn a_long_table_interpolates_linearly_and_holds_its_ends() {
@@ -13,13 +13,16 @@ fn a_long_table_interpolates_linearly_and_holds_its_ends() {
         .collect();
     let p = Profile::Table(rows.clone());
     for &t in &[0.0, 1e-3, 0.0125, 7.3456, 50.0, 99.9985, 99.999] {
-        assert!((sample1(&p, t) - (3.0 * t + 1.0)).abs() < 1e-9, "t = {t}");
+        assert!(
+            (scalar_profile_at(&p, t) - (3.0 * t + 1.0)).abs() < 1e-9,
+            "t = {t}"
+        );
     }
     // Held beyond the ends.
-    assert_eq!(sample1(&p, -5.0), 1.0);
-    assert_eq!(sample1(&p, 1e6), rows[rows.len() - 1].1);
+    assert_eq!(scalar_profile_at(&p, -5.0), 1.0);
+    assert_eq!(scalar_profile_at(&p, 1e6), rows[rows.len() - 1].1);
     // On a row exactly: that row's value.
-    assert_eq!(sample1(&p, rows[4321].0), rows[4321].1);
+    assert_eq!(scalar_profile_at(&p, rows[4321].0), rows[4321].1);
 }
 
 #[test]
@@ -29,7 +32,7 @@ fn vector_tables_interpolate_each_component() {
         (2.0, (4.0, 6.0)),
         (3.0, (4.0, 0.0)),
     ]);
-    assert_eq!(sample2(&p, 1.0), (2.0, 8.0));
-    assert_eq!(sample2(&p, 2.5), (4.0, 3.0));
-    assert_eq!(sample2(&p, 9.0), (4.0, 0.0));
+    assert_eq!(vector_profile_at(&p, 1.0), (2.0, 8.0));
+    assert_eq!(vector_profile_at(&p, 2.5), (4.0, 3.0));
+    assert_eq!(vector_profile_at(&p, 9.0), (4.0, 0.0));
 }

@@ -26,8 +26,9 @@
 //! - `snapshot_reading`: small readings of a snapshot the families share;
 //! - `result`: the result a question reports, and grading a student's answer.
 //!
-//! Adding a quantity: its variant in `level/format.rs` (with its [`QuantityFamily`]), its
-//! references in `level/validate.rs`, and its reading in its family's file.
+//! Adding a quantity: its variant in `level/format/exercise.rs` (with its [`QuantityFamily`]),
+//! its references in `level/validate/exercise.rs`, its reading in its family's file, and a
+//! question with a known answer that asks it (tests/quantity_coverage.rs looks for one).
 //!
 //! [`QuantityFamily`]: crate::level::QuantityFamily
 

@@ -17,7 +17,9 @@ fn interp<T: Copy>(rows: &[(f64, T)], t: f64, lerp: impl Fn(T, T, f64) -> T) -> 
     lerp(a.1, b.1, (t - a.0) / (b.0 - a.0))
 }
 
-pub fn sample2(p: &Profile<V2>, t: f64) -> V2 {
+/// The value at time t of a vector profile (a load's force): its constant, or its table
+/// interpolated linearly and held beyond its ends.
+pub fn vector_profile_at(p: &Profile<V2>, t: f64) -> V2 {
     match p {
         Profile::Constant(v) => *v,
         Profile::Table(rows) => interp(rows, t, |a, b, s| {
@@ -26,7 +28,8 @@ pub fn sample2(p: &Profile<V2>, t: f64) -> V2 {
     }
 }
 
-pub fn sample1(p: &Profile<f64>, t: f64) -> f64 {
+/// The value at time t of a scalar profile (a load's torque), as [`vector_profile_at`].
+pub fn scalar_profile_at(p: &Profile<f64>, t: f64) -> f64 {
     match p {
         Profile::Constant(v) => *v,
         Profile::Table(rows) => interp(rows, t, |a, b, s| a + (b - a) * s),

@@ -1,7 +1,7 @@
 //! The running simulation of one level (compiled once per precision, see `sim/mod.rs`).
 
 use super::build;
-use super::profiles::{sample1, sample2};
+use super::profiles::{scalar_profile_at, vector_profile_at};
 use super::rapier::prelude::*;
 use super::readings::{merge_contacts, merge_joints, place_at_step_end};
 use crate::level::*;
@@ -298,13 +298,19 @@ impl Simulation {
             let i = self.body_index[&l.body];
             let rb = &self.world.bodies[self.bodies[i]];
             let p = *rb.position() * build::v(l.point);
-            let mut f = l.force.as_ref().map_or((0.0, 0.0), |f| sample2(f, t_mid));
+            let mut f = l
+                .force
+                .as_ref()
+                .map_or((0.0, 0.0), |f| vector_profile_at(f, t_mid));
             if l.follow_body {
                 let r =
                     DVec2::from_angle(rb.rotation().angle() as f64).rotate(DVec2::new(f.0, f.1));
                 f = (r.x, r.y);
             }
-            let m = l.torque.as_ref().map_or(0.0, |m| sample1(m, t_mid));
+            let m = l
+                .torque
+                .as_ref()
+                .map_or(0.0, |m| scalar_profile_at(m, t_mid));
             // Held in the body frame: the point of application moves with the body.
             loads.push((i, build::v(l.point), build::v(f), m as Real));
             self.snapshot.loads.push(LoadState {

@@ -43,7 +43,7 @@ pub fn capture(level: &Level, s: &Snapshot) -> Level {
     // Load tables continue from now: the value at t first, then the rows still to come.
     for l in out.loads.iter_mut() {
         if let Some(level::Profile::Table(rows)) = &mut l.force {
-            let now = crate::sim::sample2(&level::Profile::Table(rows.clone()), t);
+            let now = crate::sim::vector_profile_at(&level::Profile::Table(rows.clone()), t);
             let mut new = vec![(0.0, now)];
             new.extend(
                 rows.iter()
@@ -53,7 +53,7 @@ pub fn capture(level: &Level, s: &Snapshot) -> Level {
             *rows = new;
         }
         if let Some(level::Profile::Table(rows)) = &mut l.torque {
-            let now = crate::sim::sample1(&level::Profile::Table(rows.clone()), t);
+            let now = crate::sim::scalar_profile_at(&level::Profile::Table(rows.clone()), t);
             let mut new = vec![(0.0, now)];
             new.extend(
                 rows.iter()
