@@ -10,8 +10,9 @@ use super::contact_events::{ContactPhase, PairEvent, PairTracker};
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::{body_mechanical_energy, carried_forward, height, is_massive};
-use crate::analysis::energy::body_kinetic_energy as kinetic_energy;
-use crate::analysis::kinematics::body_point_velocity as point_velocity;
+use crate::analysis::energy::body_kinetic_energy;
+use crate::analysis::impact::coefficient_of_restitution;
+use crate::analysis::kinematics::body_point_velocity;
 use crate::level::Quantity;
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -96,9 +97,10 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             };
             let rel = |snap: &Snapshot| {
                 let (b1, b2) = (at(snap, imp.i1), at(snap, imp.i2));
-                (point_velocity(&b2, imp.point) - point_velocity(&b1, imp.point)).dot(imp.normal)
+                (body_point_velocity(&b2, imp.point) - body_point_velocity(&b1, imp.point))
+                    .dot(imp.normal)
             };
-            let e = -rel(post) / rel(pre);
+            let e = coefficient_of_restitution(rel(pre), rel(post));
             (e, Some(m.facts.restitution(imp.i1, imp.i2)))
         }
         Quantity::EnergyLost { body: b, other } => {
@@ -124,7 +126,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             let analysis = p.impact.as_ref().map(|imp| {
                 [i, o]
                     .iter()
-                    .map(|&k| kinetic_energy(&imp.pre[k]) - kinetic_energy(&imp.post[k]))
+                    .map(|&k| body_kinetic_energy(&imp.pre[k]) - body_kinetic_energy(&imp.post[k]))
                     .sum::<f64>()
             });
             (e(pre) - e(post), analysis)

@@ -18,6 +18,7 @@ use super::snapshot_reading::joint_index;
 use crate::analysis::closed_forms::{
     damped_period, energy_integral_period, pendulum_period, reduced_mass, spring_mass_period,
 };
+use crate::analysis::mass::parallel_axis;
 use crate::level::{BodyKind, JointKind};
 pub(super) use crate::analysis::oscillation::Crossings;
 use crate::level::Quantity;
@@ -133,7 +134,7 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
     let g = s.gravity.length();
     let r = b0.com - o;
     let d = r.length();
-    let i_o = b0.inertia + b0.mass * d * d;
+    let i_o = parallel_axis(b0.inertia, b0.mass, d);
     // Torsion springs on the body (to the ground: pendulum_breaks refuses others), each with its
     // deflection at the start and the sign the body's angle enters it with.
     let springs: Vec<(f64, f64, f64)> = m
