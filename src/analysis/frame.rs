@@ -695,3 +695,68 @@ impl Pass<'_> {
         }
     }
 }
+
+/// A body's free-body diagram against its kinetic diagram over consecutive steps, as the
+/// `newton_euler` check sums them (6/1): the mean sum F and sum M_G of the steps' impulses, and
+/// the mean m a_G and I_G alpha of the velocity change over the same steps. The window draws
+/// these, so its "=" holds exactly where the check's residuals are small.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DiagramBalance {
+    /// Mean sum F over the steps, N.
+    pub force: DVec2,
+    /// Mean sum M_G (moments of the forces about G and couples), N m.
+    pub moment_g: f64,
+    /// m a_G with a_G = (v_G at the end - v_G at the start) / the steps' time, N.
+    pub mass_acceleration: DVec2,
+    /// I_G alpha likewise, N m.
+    pub inertia_alpha: f64,
+    /// The steps' total time, s.
+    pub time: f64,
+}
+
+impl DiagramBalance {
+    /// sum F - m a_G, N.
+    pub fn force_residual(&self) -> DVec2 {
+        self.force - self.mass_acceleration
+    }
+
+    /// sum M_G - I_G alpha, N m.
+    pub fn moment_residual(&self) -> f64 {
+        self.moment_g - self.inertia_alpha
+    }
+}
+
+/// The [`DiagramBalance`] of body i over the steps between consecutive `snapshots` (the first
+/// only starts the first step), each step's [`BodyFrame`] weighted by its length. None when the
+/// snapshots close no step or the body has no mass.
+pub fn diagram_balance<'a>(
+    snapshots: impl IntoIterator<Item = &'a Snapshot>,
+    i: usize,
+) -> Option<DiagramBalance> {
+    let mut pass = FrameAnalysis::new();
+    let mut sum = DiagramBalance::default();
+    for s in snapshots {
+        pass.observe_as(s, FramePass::Diagram);
+        let b = s.bodies.get(i)?;
+        if !pass.stepped() || b.mass <= 0.0 {
+            continue;
+        }
+        let f = &pass.frame().bodies[i];
+        let dt = s.dt;
+        sum.force += f.force * dt;
+        sum.moment_g += f.moment_g * dt;
+        sum.mass_acceleration += b.mass * f.acceleration * dt;
+        sum.inertia_alpha += b.inertia * f.angular_acceleration * dt;
+        sum.time += dt;
+    }
+    (sum.time > 0.0).then(|| {
+        let t = sum.time;
+        DiagramBalance {
+            force: sum.force / t,
+            moment_g: sum.moment_g / t,
+            mass_acceleration: sum.mass_acceleration / t,
+            inertia_alpha: sum.inertia_alpha / t,
+            time: t,
+        }
+    })
+}

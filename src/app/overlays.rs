@@ -7,6 +7,7 @@ use super::geometry::{self, Outline};
 use super::physics::Physics;
 use super::quantities::{self, ForceKind};
 use super::view::palette;
+use crate::analysis::frame::{diagram_balance, DiagramBalance};
 use crate::snapshot::{BodyKind, Snapshot};
 use bevy::prelude::*;
 use glam::DVec2;
@@ -341,9 +342,13 @@ pub fn build(
                 continue;
             }
             // Mean forces over the last frame's steps when the step is short
-            // (see free_body_arrows_mean).
+            // (see free_body_arrows_mean): the steps between the snapshots kept, the same
+            // steps the kinetic diagram's balance is taken over.
             let (forces, couple) = if phys.recent.len() > 1 {
-                quantities::free_body_arrows_mean(quantities::with_previous(&phys.recent), i)
+                quantities::free_body_arrows_mean(
+                    quantities::with_previous(&phys.recent).skip(1),
+                    i,
+                )
             } else {
                 quantities::free_body_arrows(None, s, i)
             };
@@ -434,29 +439,15 @@ pub fn build(
                 }
             }
             if ov.kinetic {
-                // The acceleration over the same window as the forces.
-                let a = match (phys.recent.front(), phys.recent.back()) {
-                    (Some(first), Some(last))
-                        if phys.recent.len() > 1 && last.time > first.time =>
-                    {
-                        let (b0, b1) = (&first.bodies[i], &last.bodies[i]);
-                        let t = last.time - first.time;
-                        Some(((b1.velocity - b0.velocity) / t, (b1.omega - b0.omega) / t))
-                    }
-                    _ => acc.as_ref().map(|acc| acc[i]),
+                // sum F, sum M_G, m a_G and I_G alpha as the newton_euler check sums them, over
+                // the same steps as the arrows (analysis::frame::diagram_balance).
+                let balance = if phys.recent.len() > 1 {
+                    diagram_balance(&phys.recent, i)
+                } else {
+                    None
                 };
-                if let Some(a) = a {
-                    kinetic_diagram(
-                        i,
-                        s,
-                        outlines,
-                        a,
-                        (&forces, couple),
-                        scales,
-                        labels,
-                        &mut copies,
-                        d,
-                    );
+                if let Some(balance) = balance {
+                    kinetic_diagram(i, s, outlines, &balance, scales, labels, &mut copies, d);
                 }
             }
         }
@@ -573,15 +564,15 @@ fn extent(o: &Outline, com: DVec2) -> f64 {
 }
 
 /// The kinetic diagram of body `i` drawn to the right of it: m a_G at G and I_G alpha as a curl
-/// (MK art. 6/2: the free-body diagram "equals" the kinetic diagram). The label gives sum F too,
-/// so the student sees Newton's law hold (to the O(dt) of the difference quotient).
+/// (MK art. 6/2: the free-body diagram "equals" the kinetic diagram). The label gives sum F and
+/// sum M_G too, from the same sums the `newton_euler` check compares (`balance`), so the student
+/// sees Newton's law hold to the check's residual.
 #[allow(clippy::too_many_arguments)]
 fn kinetic_diagram(
     i: usize,
     s: &Snapshot,
     outlines: &[Outline],
-    (a, alpha): (DVec2, f64),
-    (forces, couple): (&[quantities::Force], f64),
+    balance: &DiagramBalance,
     scales: &Scales,
     labels: bool,
     copies: &mut Vec<geometry::Bounds>,
@@ -632,23 +623,16 @@ fn kinetic_diagram(
     }
     let g = b.com + shift;
     d.prims.push(Prim::Circle(g, 3.0 * px, palette::OUTLINE));
-    let ma = a * b.mass;
+    let ma = balance.mass_acceleration;
     let tip = scales.arrow(g, ma, scales.force);
     d.prims.push(Prim::Arrow(g, tip, palette::ACCEL));
-    let ia = b.inertia * alpha;
+    let ia = balance.inertia_alpha;
     // alpha is a difference quotient: a couple below 1e-3 of (force scale x body size) is noise
     // (a sliding block shows 1e-7 N m), drawn as none; the label keeps the number.
     if ia.abs() > 1e-3 * scales.force * r {
         d.prims.push(Prim::Curl(g, 14.0, ia, palette::ACCEL));
     }
-    let sum: DVec2 = forces.iter().map(|f| f.force).sum();
-    // Sum of moments about G of the free-body diagram's forces and couples (PL-1, MK eq. 6/1's
-    // sum M_G = I_G alpha, the rotational half of "FBD = KD").
-    let sum_m: f64 = forces
-        .iter()
-        .map(|f| crate::analysis::energy::moment_about(b.com, f.point, f.force))
-        .sum::<f64>()
-        + couple;
+    let (sum, sum_m) = (balance.force, balance.moment_g);
     d.label(b.com + 0.5 * shift, Vec2::ZERO, "=", palette::TEXT);
     if labels {
         d.tip_label(

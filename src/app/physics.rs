@@ -166,8 +166,9 @@ pub struct Physics {
     frame_ms: f64,
     /// Steps were dropped recently to keep the window responsive.
     pub behind: bool,
-    /// The last steps' snapshots when a frame spans several steps (small dt, few bodies), oldest
-    /// first, for diagrams averaged over a frame; empty otherwise.
+    /// The snapshots of the last frame's steps and the one they start from (a frame spans at
+    /// least one step), oldest first, for the diagrams averaged over a frame; empty beyond
+    /// `RECENT_MAX_BODIES` bodies.
     pub recent: VecDeque<Snapshot>,
     /// The state at t = 0 (checks start from it even when the first step ran before they looked).
     pub initial: Snapshot,
@@ -293,7 +294,8 @@ impl Physics {
         }
     }
 
-    /// How many steps one displayed frame (1/60 s) spans: the window of the averaged diagrams.
+    /// How many steps one displayed frame (1/60 s) spans: the window of the averaged diagrams
+    /// (1 beyond `RECENT_MAX_BODIES` bodies, where they are not averaged).
     pub fn frame_window(&self) -> usize {
         if self.sim.snapshot().bodies.len() > RECENT_MAX_BODIES {
             return 1;
@@ -436,7 +438,13 @@ impl Physics {
             let new = super::blows::in_step(&before, self.sim.snapshot());
             self.blows.extend(new);
         }
-        let window = self.frame_window();
+        // The frame's steps and the state they start from: the diagrams are averaged over
+        // them, the forces and m a_G over the same steps (analysis::frame::diagram_balance).
+        let window = if self.sim.snapshot().bodies.len() > RECENT_MAX_BODIES {
+            0
+        } else {
+            self.frame_window() + 1
+        };
         if window > 1 {
             if self.recent.len() >= window {
                 self.recent.pop_front();
