@@ -18,6 +18,7 @@ use super::snapshot_reading::joint_index;
 use crate::analysis::closed_forms::{
     damped_period, energy_integral_period, pendulum_period, reduced_mass, spring_mass_period,
 };
+use crate::analysis::energy::spring_potential;
 use crate::analysis::mass::parallel_axis;
 use crate::level::{BodyKind, JointKind};
 pub(super) use crate::analysis::oscillation::Crossings;
@@ -171,7 +172,7 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
         let turned = phi - phi0;
         let elastic: f64 = springs
             .iter()
-            .map(|(k, x0, sign)| 0.5 * k * (x0 + sign * turned).powi(2))
+            .map(|(k, x0, sign)| spring_potential(*k, x0 + sign * turned))
             .sum();
         b0.mass * g * d * (1.0 - phi.cos()) + elastic
     };
