@@ -112,8 +112,8 @@ impl Unit {
                 // Bounded powers of bounded exponents, summed over a bounded text: no overflow
                 // but for texts of millions of factors, which checked sums refuse too.
                 let add = |e: i32, x: i32| e.checked_add(x * p).filter(|v| v.abs() <= 4 * MAX_POWER);
-                for k in 0..3 {
-                    u.dims[k] = add(u.dims[k], d[k]).ok_or_else(|| {
+                for (dim, x) in u.dims.iter_mut().zip(d) {
+                    *dim = add(*dim, *x).ok_or_else(|| {
                         format!("`{text}`: the unit's powers are too large to be a unit")
                     })?;
                 }
@@ -235,7 +235,7 @@ mod tests {
         // 2 x 2147483647 + 1 wraps to -1 in i32: read as 1/s, it graded an answer in s^... right.
         let e = answer_in("1.67 s^2147483647*s^2147483647*s", "rad/s").unwrap_err();
         assert!(e.contains("power of at most 12"), "{e}");
-        let many = format!("1 {}", vec!["s^12"; 10].join("*"));
+        let many = format!("1 {}", ["s^12"; 10].join("*"));
         let e = answer_in(&many, "s").unwrap_err();
         assert!(e.contains("too large"), "{e}");
         assert!(close(answer_in("1 m^3", "m^3").unwrap(), 1.0));

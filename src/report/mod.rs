@@ -407,7 +407,7 @@ fn write_all_and_flush(out: &mut impl Write, text: &str) -> std::io::Result<()> 
     out.flush()
 }
 
-/// The exit code for output that could not be written (see [`print`]).
+/// The exit code for output that could not be written (see [`print()`]).
 pub fn output_failed(e: &std::io::Error) -> ExitCode {
     if e.kind() == std::io::ErrorKind::BrokenPipe {
         return ExitCode::from(CLOSED_PIPE);
