@@ -227,7 +227,7 @@ impl FrameAnalysis {
     /// The last frame computed.
     ///
     /// Panics when the run observes its snapshots with [`Self::observe_motion`], which computes
-    /// none: a reader of the frame must be declared (`checks::Probe::needs_diagram`).
+    /// none: a reader of the frame must be declared (`checks::Probe::frame_pass`).
     pub fn frame(&self) -> &Frame {
         assert!(
             self.frame_current,

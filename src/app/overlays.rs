@@ -8,6 +8,8 @@ use super::physics::Physics;
 use super::quantities::{self, ForceKind};
 use super::view::palette;
 use crate::analysis::frame::{diagram_balance, DiagramBalance};
+use crate::analysis::kinematics::body_point_velocity;
+use crate::analysis::momentum::scene_angular_momentum_about;
 use crate::snapshot::{BodyKind, Snapshot};
 use bevy::prelude::*;
 use glam::DVec2;
@@ -220,7 +222,7 @@ pub fn build(
         if let Some((i, local)) = ov.point.filter(|(i, _)| *i < s.bodies.len()) {
             let b = &s.bodies[i];
             let p = b.world_point(local);
-            let v = quantities::point_velocity(b, p);
+            let v = body_point_velocity(b, p);
             let tip = scales.arrow(p, v, scales.speed);
             d.prims.push(Prim::Dot(p, 3.0, palette::VELOCITY));
             d.prims.push(Prim::Arrow(p, tip, palette::VELOCITY));
@@ -457,7 +459,7 @@ pub fn build(
 
     if ov.momentum {
         let o = ov.origin;
-        let h = quantities::angular_momentum_about(s, o);
+        let h = scene_angular_momentum_about(s, o);
         d.prims.push(Prim::Dot(o, 3.0, palette::MOMENTUM));
         d.prims.push(Prim::Curl(
             o,

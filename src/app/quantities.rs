@@ -10,10 +10,6 @@ use crate::analysis::Motion;
 use crate::snapshot::{BodyKind, BodyState, Snapshot};
 use glam::DVec2;
 
-pub use crate::analysis::energy::body_kinetic_energy;
-pub use crate::analysis::kinematics::body_point_velocity as point_velocity;
-pub use crate::analysis::momentum::scene_angular_momentum_about as angular_momentum_about;
-
 /// Instantaneous center of zero velocity C (RK-11), drawn only within a million body sizes of G:
 /// farther, the body translates to the eye (the center is at infinity).
 pub fn instant_center(b: &BodyState, size: f64) -> Option<DVec2> {
@@ -234,6 +230,7 @@ fn arrows_of(s: &Snapshot, imp: &StepImpulse) -> Vec<(ForceKind, usize, DVec2)> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::kinematics::body_point_velocity;
 
     fn body(v: DVec2, w: f64) -> BodyState {
         BodyState {
@@ -257,9 +254,9 @@ mod tests {
         let b = body(DVec2::new(3.0, 0.0), -3.0 / r);
         let c = instant_center(&b, 1.0).unwrap();
         assert!((c - DVec2::new(1.0, 2.0 - r)).length() < 1e-12, "{c}");
-        assert!(point_velocity(&b, c).length() < 1e-12);
+        assert!(body_point_velocity(&b, c).length() < 1e-12);
         // The top point moves at 2 v_G.
-        let top = point_velocity(&b, DVec2::new(1.0, 2.0 + r));
+        let top = body_point_velocity(&b, DVec2::new(1.0, 2.0 + r));
         assert!((top - DVec2::new(6.0, 0.0)).length() < 1e-12);
     }
 
