@@ -108,8 +108,8 @@ fn code_lines(src: &str) -> Vec<String> {
             };
             match end {
                 Some(e) => {
-                    for k in i..=e {
-                        blank(&mut out, c[k]);
+                    for &ch in &c[i..=e] {
+                        blank(&mut out, ch);
                     }
                     i = e + 1;
                 }
