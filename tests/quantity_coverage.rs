@@ -75,7 +75,11 @@ fn level_questions(places: &mut Places, test_sources: &str) {
     let mut files = common::ron_files("levels", &[]);
     for f in common::ron_files("tests", &[]) {
         let rel = f.strip_prefix(&root).unwrap_or(&f).to_path_buf();
-        let folder = rel.parent().unwrap_or(Path::new("")).to_string_lossy().to_string();
+        let folder = rel
+            .parent()
+            .unwrap_or(Path::new(""))
+            .to_string_lossy()
+            .to_string();
         let file = rel.to_string_lossy().to_string();
         if test_sources.contains(&format!("\"{folder}\""))
             || test_sources.contains(&format!("\"{folder}/"))
@@ -192,11 +196,21 @@ fn the_quantity_list_is_read_from_the_source() {
     let v = quantity_variants();
     // Spot checks of the reading: the first variant, a unit variant, struct variants, the last.
     assert_eq!(v.first().map(String::as_str), Some("X"), "{v:?}");
-    for name in ["Time", "PointX", "JointReaction", "MotorTorque", "GroupMomentum"] {
+    for name in [
+        "Time",
+        "PointX",
+        "JointReaction",
+        "MotorTorque",
+        "GroupMomentum",
+    ] {
         assert!(v.iter().any(|n| n == name), "{name} not read: {v:?}");
     }
     // Field names of struct variants (`body`, `window`) are not variants.
-    assert!(v.iter().all(|n| n.starts_with(|c: char| c.is_ascii_uppercase())), "{v:?}");
+    assert!(
+        v.iter()
+            .all(|n| n.starts_with(|c: char| c.is_ascii_uppercase())),
+        "{v:?}"
+    );
     let mut sorted = v.clone();
     sorted.sort();
     sorted.dedup();
@@ -227,7 +241,11 @@ fn every_quantity_is_asked_with_a_known_answer() {
             }
         }
     }
-    println!("{} quantities, {} asked", variants.len(), variants.len() - missing.len());
+    println!(
+        "{} quantities, {} asked",
+        variants.len(),
+        variants.len() - missing.len()
+    );
     assert!(
         missing.is_empty(),
         "no question with an expected answer asks for {missing:?}: add a library level (levels/<topic>/) \

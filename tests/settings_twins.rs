@@ -23,7 +23,10 @@ use std::collections::HashMap;
 
 /// Every level of the library, the stress scenes too.
 fn library() -> Vec<Scene> {
-    common::ron_files("levels", &[]).iter().map(common::load).collect()
+    common::ron_files("levels", &[])
+        .iter()
+        .map(common::load)
+        .collect()
 }
 
 /// The twins of a level: (name, overrides).

@@ -40,10 +40,7 @@ pub fn ron_files(dir: impl AsRef<Path>, skip: &[&str]) -> Vec<PathBuf> {
         entries.sort();
         for p in entries {
             if p.is_dir() {
-                if !p
-                    .file_name()
-                    .is_some_and(|n| skip.iter().any(|s| n == *s))
-                {
+                if !p.file_name().is_some_and(|n| skip.iter().any(|s| n == *s)) {
                     walk(&p, skip, out);
                 }
             } else if p.extension().is_some_and(|x| x == "ron") {
