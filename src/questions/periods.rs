@@ -270,7 +270,8 @@ fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
         }
     }
     if let Some(j) = facts.joints.iter().find(|x| {
-        (x.body1 == i || x.body2 == i) && !(x.kind == JointKind::Prismatic && !x.motor)
+        let free_slider = x.kind == JointKind::Prismatic && !x.motor;
+        (x.body1 == i || x.body2 == i) && !free_slider
     }) {
         return Some(format!(
             "joint \"{}\" holds the body (only a slider along the springs leaves the formula's motion)",
