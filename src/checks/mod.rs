@@ -40,6 +40,54 @@ pub struct CheckResult {
     pub note: String,
 }
 
+impl CheckResult {
+    /// What never passes (docs/analysis-and-checks.md): a result that compared no sample, or
+    /// whose theory, engine value, errors or scale are not finite, fails, and its note says which
+    /// value and why. A value that is not finite reads as null in the JSON report: the note is
+    /// what tells that null from a number, so a null never stands for a pass.
+    pub fn never_absurd(mut self) -> Self {
+        let mut why = Vec::new();
+        if self.samples == 0 {
+            why.push(
+                "it compared nothing (no sample: its body never appeared in the run or its window, \
+                 or the event it is about never happened)"
+                    .to_string(),
+            );
+        }
+        let values = [
+            ("theory", self.theory),
+            ("engine", self.engine),
+            ("max_abs_error", self.max_abs_error),
+            ("max_rel_error", self.max_rel_error),
+            ("final_abs_error", self.final_abs_error),
+            ("final_rel_error", self.final_rel_error),
+            ("scale", self.scale),
+        ];
+        let bad: Vec<String> = values
+            .iter()
+            .filter(|(_, v)| !v.is_finite())
+            .map(|(n, v)| format!("{n} = {v}"))
+            .collect();
+        if !bad.is_empty() {
+            why.push(format!(
+                "not finite: {} (null in the JSON): a value past f64's range (an overflow, or \
+                 a division by a step too small to divide by) is no comparison",
+                bad.join(", ")
+            ));
+        }
+        if !why.is_empty() {
+            self.passed = false;
+            let fails = format!("FAILS: {}", why.join("; "));
+            self.note = if self.note.is_empty() {
+                fails
+            } else {
+                format!("{fails}; {}", self.note)
+            };
+        }
+        self
+    }
+}
+
 /// Observes every snapshot of a run.
 pub trait Probe {
     /// Called with the initial snapshot (step 0) and then after every step.
@@ -173,6 +221,7 @@ impl ErrorTrack {
             why: def.why.clone(),
             note,
         }
+        .never_absurd()
     }
 }
 

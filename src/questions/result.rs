@@ -82,6 +82,25 @@ impl QuestionResult {
         // expected answer: a right engine number for the wrong reason is not a pass.
         let passed =
             rel_error <= def.tolerance && analysis_rel_error.is_none_or(|a| a <= def.tolerance);
+        // What never passes (docs/analysis-and-checks.md): a value that is not finite fails (its
+        // error is infinite) and, unless the note already says why a value is missing, the note
+        // says which, since the JSON shows it as null.
+        let mut note = note;
+        if note.is_empty() {
+            let bad: Vec<String> = [("engine", Some(r.engine)), ("analysis", r.analysis)]
+                .iter()
+                .filter_map(|(what, v)| {
+                    v.filter(|v| !v.is_finite())
+                        .map(|v| format!("{what} = {v}"))
+                })
+                .collect();
+            if !bad.is_empty() {
+                note = format!(
+                    "{}: not finite (null in the JSON), so the question fails",
+                    bad.join(", ")
+                );
+            }
+        }
         QuestionResult {
             id: def.id.clone(),
             ask: def.ask.clone(),

@@ -1,8 +1,8 @@
 //! Energy checks: `kinetic_energy_g`, `kinetic_energy_ic`, `work_energy`.
 
 use super::{
-    body_def, cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_index,
-    subject_of, subject_set, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
+    body_def, cached_body, dynamic_body, framed, misconfigured, observed_nothing, result, scale_or,
+    subject_index, subject_of, subject_set, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::{FrameAnalysis, FramePass};
@@ -132,11 +132,16 @@ impl Probe for KineticEnergyG {
                 String::new()
             }
         );
-        result(
+        let r = result(
             &self.def,
             subject_of(&self.def),
             Summary::from_worst(self.last, &self.worst, scale, note),
-        )
+        );
+        if self.max_t == 0.0 {
+            observed_nothing(r, "T was 0 at every step (the body never moved)")
+        } else {
+            r
+        }
     }
 }
 
@@ -326,11 +331,16 @@ impl FrameProbe for KineticEnergyIc {
                 self.at_infinity
             );
         }
-        result(
+        let r = result(
             &self.def,
             subject_of(&self.def),
             Summary::from_worst(self.last, &self.worst, scale, note),
-        )
+        );
+        if self.max_t == 0.0 {
+            observed_nothing(r, "T was 0 at every step (the body never moved)")
+        } else {
+            r
+        }
     }
 }
 
@@ -661,10 +671,18 @@ impl FrameProbe for WorkEnergy {
                 note += &format!("; drift rate {:+.3e} J/s", slope);
             }
         }
-        result(
+        let r = result(
             &self.def,
             subject_of(&self.def),
             Summary::from_worst(self.last, &self.worst, scale, note),
-        )
+        );
+        if self.scale == 0.0 {
+            observed_nothing(
+                r,
+                "no energy flowed: T, the changes of V and the work stayed 0 at every step (the subject never moved)",
+            )
+        } else {
+            r
+        }
     }
 }

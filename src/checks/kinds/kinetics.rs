@@ -153,7 +153,15 @@ impl FrameProbe for NewtonEuler {
             self.substeps,
             s.dt,
         );
-        let beyond = |r: f64, res: f64| (r - res).max(0.0);
+        // A residual that is not finite (1/dt overflowing at a tiny dt, forces past f32's
+        // range) is infinitely wrong: inf - inf would be NaN, which max(0) turned into 0.
+        let beyond = |r: f64, res: f64| {
+            if r.is_finite() {
+                (r - res).max(0.0)
+            } else {
+                f64::INFINITY
+            }
+        };
         // The force level: the largest of the sum, m a_G, the weight and the largest single
         // force of the diagram (in statics the sum and m a_G vanish while a piston's force and
         // the pin's reaction balancing it do not), and a couple's size over k_G.
@@ -167,18 +175,28 @@ impl FrameProbe for NewtonEuler {
             .max(sums.largest_couple * inv_dt / k)
             .max(res_f)
             .max(1e-12);
+        // A ratio that is NaN (an infinite residual against an infinite force level) is an
+        // infinite error: f64::max would drop it in favour of the other ratio.
+        let ratio = |num: f64, den: f64| {
+            let r = num / den;
+            if r.is_nan() {
+                f64::INFINITY
+            } else {
+                r
+            }
+        };
         let rel = match self.p {
             None => {
                 // 6/1: the body's free-body diagram over the step, from the shared frame.
                 let (df, dm) = (bf.force_residual.length(), bf.moment_residual);
                 self.f.add(df, s.time);
                 self.last = (bf.force.length(), ma.length());
-                let force = beyond(df, res_f) / fs;
+                let force = ratio(beyond(df, res_f), fs);
                 if self.locked {
                     force
                 } else {
                     self.m.add(dm, s.time);
-                    force.max(beyond(dm.abs(), res_m) / (fs * k))
+                    force.max(ratio(beyond(dm.abs(), res_m), fs * k))
                 }
             }
             Some(p) => {
@@ -201,7 +219,7 @@ impl FrameProbe for NewtonEuler {
                 self.mp.add(sum_m - kinetic, s.time);
                 self.last = (sum_m, kinetic);
                 let res_p = res_m + res_f * (r_g - p).length();
-                beyond(worst, res_p) / (fs * k.max((b.com - p).length()))
+                ratio(beyond(worst, res_p), fs * k.max((b.com - p).length()))
             }
         };
         if self.rel.covers(s.time) && (rel > self.rel.max || self.rel.samples == 0) {

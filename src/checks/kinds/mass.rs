@@ -57,9 +57,18 @@ impl Probe for MassProperties {
         }
         let t = self.theory;
         let k_g = radius_of_gyration(t.inertia, t.mass);
-        let rel = |a: f64, b: f64| (a - b).abs() / a.abs().max(f64::MIN_POSITIVE);
+        // NaN (inf against inf) is infinitely wrong: f64::max would drop it.
+        let rel = |a: f64, b: f64| {
+            let e = (a - b).abs() / a.abs().max(f64::MIN_POSITIVE);
+            if e.is_nan() {
+                f64::INFINITY
+            } else {
+                e
+            }
+        };
         let e_m = rel(t.mass, b.mass);
         let e_c = (b.local_com - t.com).length() / if k_g > 0.0 { k_g } else { 1.0 };
+        let e_c = if e_c.is_nan() { f64::INFINITY } else { e_c };
         let e_i = if self.rotation_locked {
             0.0
         } else {

@@ -154,7 +154,23 @@ impl Summary {
     }
 }
 
+/// A check's result, held to what never passes ([`CheckResult::never_absurd`]).
 pub(super) fn result(def: &CheckDef, subject: String, s: Summary) -> CheckResult {
+    unchecked_result(def, subject, s).never_absurd()
+}
+
+/// A check whose quantity was zero at every step it compared (a body that never moved, energy
+/// that never flowed) observed nothing: it fails, and says so (docs/analysis-and-checks.md,
+/// "What never passes"); 0 against 0 is no agreement.
+pub(super) fn observed_nothing(mut r: CheckResult, what: &str) -> CheckResult {
+    r.passed = false;
+    r.note = format!("FAILS: it compared nothing: {what}; {}", r.note);
+    r
+}
+
+/// A check's result as its probe summed it up (a misconfigured check, which fails already and
+/// says why).
+fn unchecked_result(def: &CheckDef, subject: String, s: Summary) -> CheckResult {
     CheckResult {
         kind: kind_name(def.kind).to_string(),
         subject,
@@ -287,7 +303,7 @@ impl Probe for Misconfigured {
     }
     fn observe(&mut self, _: &Snapshot) {}
     fn finish(self: Box<Self>) -> CheckResult {
-        result(
+        unchecked_result(
             &self.def,
             self.subject,
             Summary {
