@@ -1,18 +1,25 @@
 //! Nothing absurd passes (issue 32; docs/analysis-and-checks.md, "What never passes"): a check
 //! whose theory, engine value or residual is not finite fails and says which; a check that
-//! compared nothing fails.
+//! compared nothing fails; a spring far too stiff for the step is warned about before the run,
+//! and the run stops when rapier's speed cap, not the spring, holds the body.
 //!
 //! Expected values come from the rule or from the formulas, never from the engine's output:
 //! - dt = 5e-324 s: 1 / dt overflows f64, so every force the free-body diagram reads (impulse / dt)
 //!   is infinite;
 //! - gravity 1e300 m/s^2 is past f32's range (3.4e38): the engine's state cannot hold it;
 //! - I_O = I_G + m d^2 about a point 1e155 m away is 1 kg x 1e310 m^2, past f64's 1.8e308;
+//! - a 0.5 kg block on a spring k with h = dt / substeps = 1e-4 s has k h^2 / m = 2e-8 k: 2e7 at
+//!   k = 1e15 (far above symplectic Euler's stability bound of 4), and its spring, stretched
+//!   0.1 m, asks a speed change k 0.1 h / m = 2e-5 k m/s per substep: 2e10 m/s at 1e15, past
+//!   rapier's 400 m/s cap; 2e25 m/s at 1e30, whose square overflows f32 (rapier then scales the
+//!   velocity by 400 / inf = 0 and the block never moves).
 
 mod common;
 
 use common::{parse, rigidlab, run};
 use rigidlab::checks::CheckResult;
-use rigidlab::sim::Options;
+use rigidlab::level;
+use rigidlab::sim::{Options, Simulation};
 use std::path::{Path, PathBuf};
 
 fn temp_dir(tag: &str) -> PathBuf {
@@ -157,4 +164,94 @@ fn an_energy_check_on_a_body_that_never_moved_fails() {
     let moving = text.replace("mass: 1.0)", "mass: 1.0, velocity: (1.0, 0.0))");
     let r = run(&parse(&moving), &Options::default());
     assert!(r.checks.iter().all(|c| c.passed), "{:?}", r.checks);
+}
+
+fn spring_level(k: &str) -> String {
+    format!(
+        r#"Level(title: "stiff spring", effects: [springs],
+  world: (dt: 0.0001, substeps: 1, duration: 0.1),
+  bodies: [(name: "block", shape: Box(width: 0.1, height: 0.1), mass: 0.5, position: (0.6, 0.0), lock_rotation: true)],
+  springs: [(name: "spring", body1: "block", point2: (0.0, 0.0), stiffness: {k}, rest_length: 0.5)],
+  checks: [
+    (kind: kinetic_energy_g, body: "block", tolerance: 1e-2, why: "test"),
+    (kind: work_energy, body: "block", tolerance: 1e-2, why: "test"),
+  ])"#
+    )
+}
+
+#[test]
+fn a_spring_at_k_1e15_stops_at_the_speed_cap() {
+    let scene = parse(&spring_level("1e15"));
+    let err = Simulation::new(&scene, &Options::default())
+        .run(|_| {})
+        .unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("speed cap") && msg.contains("exploded"),
+        "{msg}"
+    );
+    assert_eq!(err.body, "block");
+    // Within PINNED_STEPS = 10 steps of the first step at the cap (the first step: a speed
+    // change of 2e10 m/s).
+    assert!(err.step <= 20, "fired at step {}", err.step);
+    let (code, json) = check_json(&write(&spring_level("1e15"), "k1e15"));
+    assert_eq!(code, 1, "{json:#}");
+    assert!(json["levels"][0]["error"]
+        .as_str()
+        .unwrap()
+        .contains("speed cap"));
+}
+
+#[test]
+fn a_spring_at_k_1e30_that_moves_nothing_stops() {
+    let scene = parse(&spring_level("1e30"));
+    let err = Simulation::new(&scene, &Options::default())
+        .run(|_| {})
+        .unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("has not moved") && msg.contains("spring \"spring\""),
+        "{msg}"
+    );
+    let (code, json) = check_json(&write(&spring_level("1e30"), "k1e30"));
+    assert_eq!(code, 1, "{json:#}");
+}
+
+#[test]
+fn a_spring_too_stiff_for_the_step_is_warned_about_where_its_stiffness_is() {
+    for (k, ratio) in [("1e15", "2.000e7"), ("1e30", "2.000e22")] {
+        let text = spring_level(k);
+        let file = write(&text, &format!("warn{k}"));
+        let (_, warnings) = level::load_with_warnings(&file).unwrap();
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        // Located at the spring's `stiffness:`.
+        let (line, col) = text
+            .lines()
+            .enumerate()
+            .find_map(|(i, l)| l.find("stiffness").map(|c| (i + 1, c + 1)))
+            .unwrap();
+        let w = warnings[0].to_string();
+        assert!(
+            w.contains(&format!("{}:{line}:{col}:", file.display()))
+                && w.contains(&format!("k h^2 / m = {ratio}")),
+            "{w}"
+        );
+        // `check` prints it on stderr.
+        let out = rigidlab()
+            .args(["check", file.to_str().unwrap(), "--no-advice"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("warning: spring \"spring\": k h^2 / m"),
+            "{err}"
+        );
+    }
+    // At k = 50 N/m, k h^2 / m = 1e-6: no warning, and the level runs to its end.
+    let text = spring_level("50.0");
+    let (_, warnings) = level::load_with_warnings(&write(&text, "soft")).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert!(Simulation::new(&parse(&text), &Options::default())
+        .run(|_| {})
+        .is_ok());
 }

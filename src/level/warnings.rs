@@ -25,6 +25,67 @@ pub fn find(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
     if level.effects.contains(&Effect::Joints) {
         out.extend(joint_velocities(file, text, level));
     }
+    if level.effects.contains(&Effect::Springs) {
+        out.extend(stiff_springs(file, text, level));
+    }
+    out
+}
+
+/// k h^2 / m above this warns: symplectic Euler, the engine's update, is unstable past
+/// omega h = 2, k h^2 / m = 4 (the one-step map's trace 2 - k h^2 / m leaves [-2, 2]).
+pub const STIFF_SPRING: f64 = 4.0;
+
+/// A body's mass as the level gives it (its `mass`, else density times area), kg; None for a
+/// body that is not dynamic or has no area.
+fn body_mass(b: &BodyDef) -> Option<f64> {
+    if b.kind != BodyKind::Dynamic {
+        return None;
+    }
+    let m = b.mass.unwrap_or_else(|| {
+        b.density.unwrap_or(super::DEFAULT_DENSITY)
+            * b.shape.as_ref().map_or(0.0, super::validate::shape_area)
+    });
+    (m > 0.0).then_some(m)
+}
+
+/// Springs too stiff for the step: k h^2 / m far above 1 (h = dt / substeps, m the body's mass,
+/// or the pair's reduced mass m1 m2 / (m1 + m2) between two moving bodies). The engine's update
+/// then grows the motion every substep until rapier's 400 m/s speed cap holds it (k h^2 / m of
+/// 1e10 and more throws the body back and forth at the cap), and far beyond, where one substep's
+/// velocity change overflows f32, the body does not move at all: the run then stops
+/// (`sim::explosion_guard`), and this says why before it starts.
+fn stiff_springs(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
+    let h = level.world.dt / level.world.substeps.max(1) as f64;
+    let body = |n: &str| level.bodies.iter().find(|b| b.name == n);
+    let loc = Locator::new(text);
+    let mut out = Vec::new();
+    for s in &level.springs {
+        let m1 = body(&s.body1).and_then(body_mass);
+        let m2 = s.body2.as_deref().and_then(body).and_then(body_mass);
+        let m = match (m1, m2) {
+            (Some(a), Some(b)) => a * b / (a + b),
+            (Some(a), None) | (None, Some(a)) => a,
+            (None, None) => continue,
+        };
+        let ratio = s.stiffness * h * h / m;
+        if ratio.is_nan() || ratio <= STIFF_SPRING {
+            continue;
+        }
+        // The stiffness at which k h^2 / m = 1, and the step at which it is 1 for this k.
+        let k_ok = m / (h * h);
+        let dt_ok = (m / s.stiffness).sqrt() * level.world.substeps.max(1) as f64;
+        out.push(LevelWarning(LevelError::new(
+            file,
+            loc.field_pos("springs", &s.name, "stiffness"),
+            format!(
+                "spring \"{}\": k h^2 / m = {ratio:.3e} (k = {:.3e} N/m, h = dt / substeps = {h:.3e} s, m = {m:.4e} kg), far above 1: the engine's update is unstable past 4, so the spring throws its body about until rapier's 400 m/s speed cap holds it (or, past f32's range, does not move it at all)",
+                s.name, s.stiffness
+            ),
+            format!(
+                "lower the stiffness to about {k_ok:.3e} N/m or less, or make dt at most {dt_ok:.3e} s (or add substeps) so that k h^2 / m is 1 or less"
+            ),
+        )));
+    }
     out
 }
 

@@ -14,8 +14,33 @@
 //! with E_scale = T0 + V_s0 + sum over dynamic bodies of m (|g| 1 m + (1 m/s)^2 / 2): every body
 //! dropping 1 m and moving at 1 m/s, so that scenes starting at rest have a scale.
 
+//!
+//! The speed cap. rapier clamps every body's speed at its `max_linear_velocity` after each
+//! substep (400 m/s by default), so a scene that explodes does not diverge: a block on a spring
+//! far too stiff for the step (k h^2 / m >> 1) is thrown back and forth at the cap every
+//! substep, its energy bounded by the cap, and the energy test above never fires. Past that, a
+//! spring so stiff that one substep's velocity change overflows f32 when rapier takes its length
+//! (|F h / m| > 1.8e19 m/s) has its velocity scaled by 400 / inf = 0: the body does not move at
+//! all and every check reads a quiet scene. [`EnergyGuard::check_speed_cap`] stops both:
+//! a body at the cap that reverses or stays put ([`PINNED_STEPS`] steps running), and a body
+//! that stays put while a spring pulls it with a force that would change its speed by more than
+//! [`ENORMOUS`] times the cap in one substep.
+
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
+
+/// Steps running a body may stay pinned at rapier's speed cap, or held still under an enormous
+/// spring force, before the run stops: one step can be a blow; ten running is the engine's cap,
+/// not the scene's motion.
+pub const PINNED_STEPS: u32 = 10;
+
+/// A spring force is enormous when one substep of it would change its body's speed by more than
+/// this many times rapier's speed cap (4e8 m/s at the default 400 m/s).
+pub const ENORMOUS: f64 = 1e6;
+
+/// A speed within this fraction of the cap counts as at the cap (rapier scales the velocity to
+/// the cap in f32).
+const AT_CAP: f64 = 1e-3;
 
 /// E - E0 may exceed the reference energy this many times, for at most [`SUSTAIN`] seconds.
 ///
@@ -48,6 +73,17 @@ pub struct EnergyGuard {
     /// State before the step: (mass center, velocity, omega) per body, joint coordinates.
     prev: Vec<(DVec2, DVec2, f64)>,
     prev_coord: Vec<f64>,
+    /// Per body: steps running pinned at the speed cap ([`EnergyGuard::check_speed_cap`]).
+    at_cap: Vec<u32>,
+    /// Per body: steps running held still under an enormous spring force.
+    held: Vec<u32>,
+}
+
+/// Why [`EnergyGuard::check_speed_cap`] stopped a run: the body's index and what happened.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpeedCapStop {
+    pub body: usize,
+    pub what: String,
 }
 
 /// The guard's energy scale: T + V_g + V_s of a snapshot, J (V_g from the origin), with each
@@ -93,6 +129,8 @@ impl EnergyGuard {
             longest_above: 0.0,
             prev: Vec::new(),
             prev_coord: Vec::new(),
+            at_cap: Vec::new(),
+            held: Vec::new(),
         }
     }
 
@@ -179,6 +217,90 @@ impl EnergyGuard {
             self.above_since = None;
             None
         }
+    }
+}
+
+impl EnergyGuard {
+    /// Stops a run that rapier's speed cap (`cap`, m/s) holds rather than the scene's forces
+    /// (see the module's note), once it has held for [`PINNED_STEPS`] steps running:
+    /// - a dynamic body at the cap at the step's end that reversed or stayed put over the step
+    ///   (|v - v_before| > cap / 2, or it moved less than cap dt / 2): thrown back and forth at
+    ///   the cap, not cruising at it as a fast bullet does;
+    /// - a dynamic body that did not move at all (same mass center, zero velocity) while a spring
+    ///   pulled it with a force F whose velocity change over one substep, |F| h / m with
+    ///   h = dt / substeps, exceeds [`ENORMOUS`] times the cap.
+    ///
+    /// Called after [`Self::record`] and the step (`now`: the state after it).
+    pub fn check_speed_cap(&mut self, now: &Snapshot, cap: f64) -> Option<SpeedCapStop> {
+        let n = now.bodies.len();
+        if self.prev.len() != n || !(cap.is_finite() && cap > 0.0) {
+            return None;
+        }
+        self.at_cap.resize(n, 0);
+        self.held.resize(n, 0);
+        let dynamic = |b: &BodyState| b.kind == crate::level::BodyKind::Dynamic && b.mass > 0.0;
+        let h = now.dt / now.substeps.max(1) as f64;
+        // The largest velocity change per substep a spring asks of each body, and which spring.
+        let mut pull: Vec<(f64, usize, f64)> = vec![(0.0, 0, 0.0); n];
+        for (k, sp) in now.springs.iter().enumerate() {
+            if sp.torsion {
+                continue;
+            }
+            let f = sp.force_on_body1.length();
+            for i in std::iter::once(sp.body1).chain(sp.body2) {
+                let b = &now.bodies[i];
+                if dynamic(b) {
+                    let dv = f * h / b.mass;
+                    if dv.is_nan() || dv > pull[i].0 {
+                        pull[i] = (dv, k, f);
+                    }
+                }
+            }
+        }
+        for (i, b) in now.bodies.iter().enumerate() {
+            if !dynamic(b) {
+                self.at_cap[i] = 0;
+                self.held[i] = 0;
+                continue;
+            }
+            let (com0, v0, _) = self.prev[i];
+            let speed = b.velocity.length();
+            let moved = (b.com - com0).length();
+            let pinned = speed >= (1.0 - AT_CAP) * cap
+                && ((b.velocity - v0).length() > 0.5 * cap || moved < 0.5 * cap * now.dt);
+            self.at_cap[i] = if pinned { self.at_cap[i] + 1 } else { 0 };
+            let still = b.com == com0 && b.velocity == DVec2::ZERO;
+            let (dv, k, f) = pull[i];
+            let held = still && (dv.is_nan() || dv > ENORMOUS * cap);
+            self.held[i] = if held { self.held[i] + 1 } else { 0 };
+            if self.at_cap[i] >= PINNED_STEPS {
+                return Some(SpeedCapStop {
+                    body: i,
+                    what: format!(
+                        "has been held at rapier's speed cap of {cap} m/s for {PINNED_STEPS} \
+                         steps running, thrown back and forth rather than moving: its motion is \
+                         the cap's, not the scene's; the scene exploded (a spring or a contact \
+                         too stiff for the step); try a smaller dt or more substeps"
+                    ),
+                });
+            }
+            if self.held[i] >= PINNED_STEPS {
+                let name = &now.springs[k].name;
+                return Some(SpeedCapStop {
+                    body: i,
+                    what: format!(
+                        "has not moved for {PINNED_STEPS} steps while spring \"{name}\" pulls it \
+                         with {f:.3e} N, a speed change of {dv:.3e} m/s per substep \
+                         (h = {h:.3e} s, m = {m} kg), past rapier's speed cap of {cap} m/s: \
+                         the engine cannot integrate this spring at this step (k h^2 / m far \
+                         above 1) and dropped the motion; lower the spring's stiffness, or \
+                         the step",
+                        m = b.mass
+                    ),
+                });
+            }
+        }
+        None
     }
 }
 

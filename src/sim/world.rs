@@ -484,6 +484,7 @@ impl Simulation {
             .collect();
         self.energy.add_work(&self.snapshot);
         self.energy_guard()?;
+        self.speed_cap_guard()?;
         Ok(&self.snapshot)
     }
 
@@ -510,6 +511,22 @@ impl Simulation {
                  and impulses) for {SUSTAIN} s: the scene exploded; try a smaller dt or more \
                  substeps"
             ),
+        })
+    }
+
+    /// Stops a run that rapier's speed cap holds rather than the scene's forces (see
+    /// `sim::explosion_guard`).
+    fn speed_cap_guard(&mut self) -> Result<(), SimError> {
+        let cap = self.world.integration_parameters.max_linear_velocity() as f64;
+        let Some(stop) = self.energy.check_speed_cap(&self.snapshot, cap) else {
+            return Ok(());
+        };
+        let s = &self.snapshot;
+        Err(SimError {
+            step: s.step,
+            time: s.time,
+            body: s.bodies[stop.body].name.clone(),
+            quantity: stop.what,
         })
     }
 

@@ -68,8 +68,8 @@ pub(super) fn polygon_area(points: &[V2]) -> f64 {
         / 2.0
 }
 
-/// Area of a shape, m^2 (what mass by density multiplies).
-pub(super) fn shape_area(s: &Shape) -> f64 {
+/// Area of a shape, m^2 (what mass by density multiplies; also `level::warnings`'s masses).
+pub(in crate::level) fn shape_area(s: &Shape) -> f64 {
     use std::f64::consts::PI;
     match s {
         Shape::Circle { radius } => PI * radius * radius,

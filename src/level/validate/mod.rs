@@ -14,6 +14,7 @@ mod exercise;
 mod forces;
 mod joints;
 
+pub(super) use bodies::shape_area;
 use bodies::*;
 use effects::*;
 use events::*;
