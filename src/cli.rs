@@ -477,8 +477,32 @@ fn play(level: PathBuf) -> ExitCode {
     }
 }
 
+/// `render --out`: the renderer writes PNG only, and never over the level it draws. Checked
+/// before anything is read or written, so a refused `--out` leaves any file there as it was.
+fn render_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), String> {
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if ext.as_deref() != Some("png") {
+        return Err(format!(
+            "error: --out {}: rigidlab render writes PNG images only\n  help: give a file name ending in .png",
+            out.display()
+        ));
+    }
+    if crate::files::same_file(level, out) {
+        return Err(format!(
+            "error: --out {} is the level file being drawn\n  help: give another file for the image",
+            out.display()
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(feature = "app")]
 fn render(level: PathBuf, time: f64, out: PathBuf) -> ExitCode {
+    if let Err(e) = render_out(&level, &out) {
+        return bad(e);
+    }
     let scene = match level::load(&level) {
         Ok(s) => s,
         Err(e) => return bad(e),
@@ -509,6 +533,9 @@ fn play(_: PathBuf) -> ExitCode {
 }
 
 #[cfg(not(feature = "app"))]
-fn render(_: PathBuf, _: f64, _: PathBuf) -> ExitCode {
+fn render(level: PathBuf, _: f64, out: PathBuf) -> ExitCode {
+    if let Err(e) = render_out(&level, &out) {
+        return bad(e);
+    }
     no_app()
 }

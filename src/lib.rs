@@ -22,6 +22,7 @@ pub mod checks;
 pub mod cli;
 pub mod clock;
 pub mod editor;
+pub mod files;
 pub mod level;
 pub mod questions;
 pub mod report;

@@ -334,10 +334,13 @@ fn frame_of(image: &Image, out: Option<&Path>) -> Result<Frame, String> {
         .map_err(|e| format!("rigidlab render: cannot read the rendered image: {e}"))?;
     let rgba = dynamic.to_rgba8();
     if let Some(path) = out {
-        dynamic
-            .to_rgb8()
-            .save(path)
-            .map_err(|e| format!("rigidlab render: cannot write {}: {e}", path.display()))?;
+        // Encoded in memory, then written whole beside the destination and renamed over it: a
+        // failed render leaves an earlier image as it was.
+        let rgb = dynamic.to_rgb8();
+        let write = |e: String| format!("rigidlab render: cannot write {}: {e}", path.display());
+        let bytes = crate::files::png_bytes(rgb.width(), rgb.height(), false, rgb.as_raw())
+            .map_err(write)?;
+        crate::files::write_replacing(path, &bytes).map_err(|e| write(e.to_string()))?;
     }
     Ok(Frame {
         width: rgba.width(),
