@@ -389,6 +389,11 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
         Ok(s) => s,
         Err(e) => return bad(e),
     };
+    if let Some(out) = csv.as_deref() {
+        if let Err(e) = csv_out(path, out) {
+            return bad(e);
+        }
+    }
     let mut writer = match csv.as_deref().map(CsvWriter::create).transpose() {
         Ok(w) => w,
         Err(e) => return bad(format!("cannot write the CSV file: {e}")),
@@ -435,6 +440,29 @@ fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> Exi
             ExitCode::from(1)
         }
     }
+}
+
+/// `run --csv FILE`: none of the files the run writes (FILE and its joints, contacts and springs
+/// beside it) may be the level it runs, by canonical path or inode, or a folder. Checked before
+/// the run, so a refused `--csv` touches nothing.
+fn csv_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), String> {
+    for f in report::csv_files(out) {
+        if crate::files::same_file(level, &f) {
+            return Err(format!(
+                "error: --csv {}: the run would write {}, the level file it runs\n  help: give another file for the CSV",
+                out.display(),
+                f.display()
+            ));
+        }
+    }
+    if out.is_dir() {
+        return Err(format!(
+            "error: --csv {} is a folder\n  help: give a file name, e.g. {}",
+            out.display(),
+            out.join("run.csv").display()
+        ));
+    }
+    Ok(())
 }
 
 /// Where a window cannot open, say so and point to the headless commands.

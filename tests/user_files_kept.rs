@@ -39,6 +39,8 @@ fn names(dir: &Path) -> Vec<String> {
 }
 
 const FREE_FALL: &str = "levels/kinematics/free_fall.ron";
+/// A pendulum: its run writes joints beside the bodies.
+const PENDULUM: &str = "levels/kinetics/classic_physical_pendulum_small.ron";
 
 #[test]
 fn render_refuses_a_format_it_cannot_write_before_touching_the_file() {
@@ -80,5 +82,87 @@ fn render_refuses_a_format_it_cannot_write_before_touching_the_file() {
         "no temporary file left: {:?}",
         names(&dir)
     );
+    let _ = fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn run_refuses_a_csv_that_is_its_level() {
+    // Before: `run L.ron --csv L.ron` replaced the level with the CSV and exited 0.
+    let dir = temp_dir("csv-level");
+    let original = fs::read(repo_path(FREE_FALL)).unwrap();
+    fs::write(dir.join("L.ron"), &original).unwrap();
+    fs::create_dir(dir.join("sub")).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(dir.join("L.ron"), dir.join("link.ron")).unwrap();
+    fs::hard_link(dir.join("L.ron"), dir.join("hard.ron")).unwrap();
+    // A level whose name is the joints file of the CSV asked for.
+    fs::write(dir.join("out_joints.csv"), &original).unwrap();
+    let mut cases = vec![
+        ("L.ron", "L.ron"),
+        ("L.ron", "./sub/../L.ron"),
+        ("L.ron", "hard.ron"),
+        ("out_joints.csv", "out.csv"),
+    ];
+    if cfg!(unix) {
+        cases.push(("L.ron", "link.ron"));
+        cases.push(("link.ron", "L.ron"));
+    }
+    for (level, csv) in cases {
+        let (code, err) = run_in(&dir, &["run", level, "--csv", csv]);
+        assert_eq!(code, 2, "run {level} --csv {csv}: {err}");
+        assert!(err.contains("level file"), "run {level} --csv {csv}: {err}");
+        assert_eq!(fs::read(dir.join("L.ron")).unwrap(), original);
+        assert_eq!(fs::read(dir.join("out_joints.csv")).unwrap(), original);
+        assert!(!dir.join("out.csv").exists(), "refused before the run");
+    }
+    // A folder is refused before the run too.
+    let (code, err) = run_in(&dir, &["run", "L.ron", "--csv", "sub"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("folder"), "{err}");
+    let _ = fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_runs_csv_files_are_replaced_together() {
+    // What the pendulum's run writes, in a fresh folder.
+    let fresh = temp_dir("csv-fresh");
+    let level = repo_path(PENDULUM);
+    let (code, err) = run_in(
+        &fresh,
+        &["run", level.to_str().unwrap(), "--csv", "out.csv"],
+    );
+    assert!(code == 0 || code == 1, "{err}");
+    let written = names(&fresh);
+    assert!(
+        written.contains(&"out.csv".to_string()) && written.contains(&"out_joints.csv".to_string()),
+        "{written:?}"
+    );
+    // In a folder holding an earlier run's files of every kind, the same run leaves the same
+    // files: each rewritten or, where this run has no such rows, removed. Before: the earlier
+    // run's out_contacts.csv and out_springs.csv stayed beside the new out.csv.
+    let dir = temp_dir("csv-stale");
+    for f in [
+        "out.csv",
+        "out_joints.csv",
+        "out_contacts.csv",
+        "out_springs.csv",
+    ] {
+        fs::write(dir.join(f), "an earlier run\n").unwrap();
+    }
+    fs::write(dir.join("notes.txt"), "the user's\n").unwrap();
+    let (code, err) = run_in(&dir, &["run", level.to_str().unwrap(), "--csv", "out.csv"]);
+    assert!(code == 0 || code == 1, "{err}");
+    let mut expected = written.clone();
+    expected.push("notes.txt".into());
+    expected.sort();
+    assert_eq!(names(&dir), expected, "no stale sibling, no temporary file");
+    for f in &written {
+        assert_eq!(
+            fs::read(dir.join(f)).unwrap(),
+            fs::read(fresh.join(f)).unwrap(),
+            "{f} rewritten"
+        );
+    }
+    let _ = fs::remove_dir_all(&fresh);
     let _ = fs::remove_dir_all(&dir);
 }

@@ -1,6 +1,7 @@
 //! Stage 5: reports. The JSON contract, the terminal table and the per-step CSV.
 
 use crate::checks::CheckResult;
+use crate::files::Pending;
 use crate::questions::QuestionResult;
 use crate::snapshot::Snapshot;
 use serde::{Deserialize, Serialize};
@@ -194,13 +195,22 @@ pub fn table(report: &Report) -> String {
 
 /// Writes the per-step snapshots as CSV: bodies to `path`, and joints, contacts and springs
 /// beside it (`<stem>_joints.csv`, `<stem>_contacts.csv`, `<stem>_springs.csv`) when the scene has them.
+///
+/// Each file is written to a temporary file beside it and renamed over its name only by
+/// [`CsvWriter::finish`], once the run is complete: a run that fails leaves the files of an
+/// earlier run as they were. A run's files go together: `finish` removes a sibling an earlier
+/// run left that this run does not write (its scene has no contacts, say), so the folder never
+/// mixes two runs.
 pub struct CsvWriter {
-    bodies: csv::Writer<std::fs::File>,
-    joints: Option<csv::Writer<std::fs::File>>,
-    contacts: Option<csv::Writer<std::fs::File>>,
-    springs: Option<csv::Writer<std::fs::File>>,
+    bodies: csv::Writer<Pending>,
+    joints: Option<csv::Writer<Pending>>,
+    contacts: Option<csv::Writer<Pending>>,
+    springs: Option<csv::Writer<Pending>>,
     path: PathBuf,
 }
+
+/// The kinds of row written beside the bodies' CSV, in [`csv_files`]'s order after it.
+const SIBLINGS: [&str; 3] = ["joints", "contacts", "springs"];
 
 fn sibling(path: &Path, suffix: &str) -> PathBuf {
     let stem = path
@@ -209,9 +219,17 @@ fn sibling(path: &Path, suffix: &str) -> PathBuf {
     path.with_file_name(format!("{stem}_{suffix}.csv"))
 }
 
+/// Every file a run with `--csv path` may write: `path`, then its joints, contacts and springs
+/// beside it.
+pub fn csv_files(path: &Path) -> Vec<PathBuf> {
+    std::iter::once(path.to_path_buf())
+        .chain(SIBLINGS.iter().map(|s| sibling(path, s)))
+        .collect()
+}
+
 impl CsvWriter {
     pub fn create(path: &Path) -> std::io::Result<Self> {
-        let mut bodies = csv::Writer::from_path(path)?;
+        let mut bodies = csv::Writer::from_writer(Pending::create(path)?);
         bodies.write_record([
             "step", "time", "body", "x", "y", "angle", "com_x", "com_y", "vx", "vy", "omega",
             "mass", "inertia",
@@ -226,12 +244,12 @@ impl CsvWriter {
     }
 
     fn side(
-        slot: &mut Option<csv::Writer<std::fs::File>>,
+        slot: &mut Option<csv::Writer<Pending>>,
         path: PathBuf,
         header: &[&str],
     ) -> std::io::Result<()> {
         if slot.is_none() {
-            let mut w = csv::Writer::from_path(path)?;
+            let mut w = csv::Writer::from_writer(Pending::create(&path)?);
             w.write_record(header)?;
             *slot = Some(w);
         }
@@ -368,15 +386,31 @@ impl CsvWriter {
         Ok(())
     }
 
-    pub fn finish(mut self) -> std::io::Result<()> {
-        self.bodies.flush()?;
-        for w in [&mut self.joints, &mut self.contacts, &mut self.springs]
-            .into_iter()
-            .flatten()
+    /// Puts the run's files in place: each written file renamed over its name, and a sibling
+    /// an earlier run left that this run did not write removed.
+    pub fn finish(self) -> std::io::Result<()> {
+        let done = |w: csv::Writer<Pending>| -> std::io::Result<Pending> {
+            w.into_inner()
+                .map_err(|e| std::io::Error::other(e.error().to_string()))
+        };
+        let bodies = done(self.bodies)?;
+        let mut sides = Vec::new();
+        for (suffix, w) in SIBLINGS
+            .iter()
+            .zip([self.joints, self.contacts, self.springs])
         {
-            w.flush()?;
+            sides.push((sibling(&self.path, suffix), w.map(done).transpose()?));
         }
-        Ok(())
+        for (path, w) in sides {
+            match w {
+                Some(file) => file.commit()?,
+                None => match std::fs::symlink_metadata(&path) {
+                    Ok(m) if m.is_file() => std::fs::remove_file(&path)?,
+                    _ => {}
+                },
+            }
+        }
+        bodies.commit()
     }
 }
 
