@@ -166,3 +166,49 @@ fn a_runs_csv_files_are_replaced_together() {
     let _ = fs::remove_dir_all(&fresh);
     let _ = fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn study_accuracy_exits_2_when_a_plot_cannot_be_written() {
+    // Before: "cannot draw the plot" on stderr, and exit 0.
+    let dir = temp_dir("study");
+    let out = dir.join("out");
+    // A folder where the level's plot goes.
+    fs::create_dir_all(out.join("kinematics_free_fall.png")).unwrap();
+    let level = repo_path(FREE_FALL);
+    let (code, err) = run_in(
+        &dir,
+        &[
+            "study",
+            "accuracy",
+            level.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quick",
+        ],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("cannot write the plot"), "{err}");
+    // The files that could be written are.
+    assert!(out.join("accuracy.csv").is_file() && out.join("summary.md").is_file());
+    // And with nothing in the way, exit 0 and the plot.
+    fs::remove_dir(out.join("kinematics_free_fall.png")).unwrap();
+    let (code, err) = run_in(
+        &dir,
+        &[
+            "study",
+            "accuracy",
+            level.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quick",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.join("kinematics_free_fall.png").is_file());
+    assert_eq!(
+        names(&out),
+        ["accuracy.csv", "kinematics_free_fall.png", "summary.md"],
+        "no temporary file left"
+    );
+    let _ = fs::remove_dir_all(&dir);
+}

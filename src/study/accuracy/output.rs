@@ -47,17 +47,23 @@ pub fn main(args: Args) -> ExitCode {
         stderr!("cannot write {}: {e}", csv_path.display());
         return ExitCode::from(2);
     }
+    // Every file the study writes is checked: a plot that cannot be written is said and makes
+    // the exit code 2, after the other files are written.
     let mut plots = Vec::new();
+    let mut failed_plots = 0;
     for st in &studies {
         let file = plot_file(&st.name, &args.format);
         match summary::plot_level(st, &args.out.join(&file)) {
             Ok(()) => plots.push((st.name.clone(), file)),
-            Err(e) => stderr!("{}: cannot draw the plot: {e}", st.name),
+            Err(e) => {
+                stderr!("error: {}: cannot write the plot: {e}", st.name);
+                failed_plots += 1;
+            }
         }
     }
     let md = summary::markdown(&studies, &skipped, &plan, &plots);
     let md_path = args.out.join("summary.md");
-    if let Err(e) = std::fs::write(&md_path, md) {
+    if let Err(e) = crate::files::write_replacing(&md_path, md.as_bytes()) {
         stderr!("cannot write {}: {e}", md_path.display());
         return ExitCode::from(2);
     }
@@ -70,6 +76,10 @@ pub fn main(args: Args) -> ExitCode {
     );
     for (name, why) in &skipped {
         stderr!("skipped {name}: {why}");
+    }
+    if failed_plots > 0 {
+        stderr!("error: {failed_plots} plot(s) could not be written");
+        return ExitCode::from(2);
     }
     if skipped
         .iter()
@@ -100,18 +110,19 @@ pub fn writable_folder(dir: &Path) -> Result<(), String> {
         })
 }
 
+/// accuracy.csv, written whole (crate::files): a failure leaves an earlier one as it was.
 fn write_csv(path: &Path, studies: &[LevelStudy]) -> Result<(), String> {
-    let mut w = csv::Writer::from_path(path).map_err(|e| e.to_string())?;
+    let file = crate::files::Pending::create(path).map_err(|e| e.to_string())?;
+    let mut w = csv::Writer::from_writer(file);
+    // A study with no level still gets its header.
+    if studies.iter().all(|s| s.rows.is_empty()) {
+        w.write_record(CSV_COLUMNS).map_err(|e| e.to_string())?;
+    }
     for st in studies {
         for r in &st.rows {
             w.serialize(r).map_err(|e| e.to_string())?;
         }
     }
-    // A study with no level still gets its header.
-    if studies.iter().all(|s| s.rows.is_empty()) {
-        drop(w);
-        std::fs::write(path, format!("{}\n", CSV_COLUMNS.join(","))).map_err(|e| e.to_string())?;
-        return Ok(());
-    }
-    w.flush().map_err(|e| e.to_string())
+    let file = w.into_inner().map_err(|e| e.error().to_string())?;
+    file.commit().map_err(|e| e.to_string())
 }

@@ -76,22 +76,31 @@ pub fn draw(path: &Path, caption: &str, panels: &[Panel]) -> Result<(), String> 
     let w = 640 * panels.len().max(1) as u32;
     let h = 560;
     let svg = path.extension().is_some_and(|e| e == "svg");
+    // Drawn in memory, then written whole (crate::files): a plot that cannot be written is an
+    // error the study reports, and an earlier plot stays as it was.
+    let write = |bytes: &[u8]| {
+        crate::files::write_replacing(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    };
     if svg {
-        let root = SVGBackend::new(path, (w, h)).into_drawing_area();
-        draw_on(root, caption, panels)
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
+            draw_on(root, caption, panels)?;
+        }
+        write(text.as_bytes())
     } else {
         let mut rgb = vec![0u8; (w * h * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
             draw_on(root, caption, panels)?;
         }
-        write_palette_png(path, w, h, &rgb)
+        write(&palette_png(w, h, &rgb)?)
     }
 }
 
 /// Writes an RGB image as an 8-bit palette PNG: a plot has few colours (its anti-aliased edges
 /// aside), so 256 chosen by NeuQuant look the same at a quarter of the RGB file's size.
-fn write_palette_png(path: &Path, w: u32, h: u32, rgb: &[u8]) -> Result<(), String> {
+fn palette_png(w: u32, h: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
     let rgba: Vec<u8> = rgb
         .chunks_exact(3)
         .flat_map(|p| [p[0], p[1], p[2], 255])
@@ -106,16 +115,20 @@ fn write_palette_png(path: &Path, w: u32, h: u32, rgb: &[u8]) -> Result<(), Stri
         .chunks_exact(4)
         .map(|p| quant.index_of(p) as u8)
         .collect();
-    let file = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
-    enc.set_color(png::ColorType::Indexed);
-    enc.set_depth(png::BitDepth::Eight);
-    enc.set_palette(palette);
-    enc.set_compression(png::Compression::Best);
-    let mut writer = enc.write_header().map_err(|e| e.to_string())?;
-    writer
-        .write_image_data(&indices)
-        .map_err(|e| format!("{}: {e}", path.display()))
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, w, h);
+        enc.set_color(png::ColorType::Indexed);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_palette(palette);
+        enc.set_compression(png::Compression::Best);
+        let mut writer = enc.write_header().map_err(|e| e.to_string())?;
+        writer
+            .write_image_data(&indices)
+            .map_err(|e| e.to_string())?;
+        writer.finish().map_err(|e| e.to_string())?;
+    }
+    Ok(out)
 }
 
 fn draw_on<DB: DrawingBackend>(
