@@ -124,6 +124,8 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
     assert_eq!(phys(&app).scene.level, before);
 
     let dir = std::env::temp_dir().join(format!("rigidlab-editor-app-{}", std::process::id()));
+    // Fresh: a save never replaces a file, so an old one would be the one checked below.
+    let _ = std::fs::remove_dir_all(&dir);
     let path = dir.join("saved-levels/pendulum.ron");
     let (note, ok) = send(&mut app, EditorCommand::Save(path.clone()));
     assert!(ok, "{note}");

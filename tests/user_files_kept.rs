@@ -212,3 +212,146 @@ fn study_accuracy_exits_2_when_a_plot_cannot_be_written() {
     );
     let _ = fs::remove_dir_all(&dir);
 }
+
+#[cfg(feature = "app")]
+mod window {
+    use super::*;
+    use bevy::app::ScheduleRunnerPlugin;
+    use bevy::asset::RenderAssetUsages;
+    use bevy::prelude::*;
+    use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+    use bevy::time::TimeUpdateStrategy;
+    use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
+    use rigidlab::app::user_files;
+    use rigidlab::app::PhysicsPlugin;
+    use std::time::Duration;
+
+    #[test]
+    fn every_new_scene_is_saved_beside_the_others() {
+        // Before: each new scene saved to saved-levels/my-scene-saved.ron, the second over the
+        // first.
+        let dir = temp_dir("editor");
+        let mut app = App::new();
+        app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
+            .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
+            .add_plugins(PhysicsPlugin {
+                scene: rigidlab::editor::empty_scene(PathBuf::from("my-scene.ron")),
+                options: Default::default(),
+                paused: true,
+            })
+            .add_plugins(EditorPlugin);
+        app.update();
+        let path = dir.join("saved-levels/my-scene-saved.ron");
+        let mut saved = Vec::new();
+        for i in 0..3 {
+            app.world_mut().write_message(EditorCommand::New);
+            app.update();
+            // Each scene different: a bar at a height of its own.
+            app.world_mut().write_message(EditorCommand::Apply(
+                rigidlab::app::editor::Placeable::Bar
+                    .edit_at(glam::DVec2::new(0.0, 1.0 + i as f64), 4.0),
+            ));
+            app.update();
+            app.world_mut()
+                .write_message(EditorCommand::Save(path.clone()));
+            app.update();
+            let ed = app.world().resource::<Editor>();
+            let (note, ok) = ed.note.clone().unwrap();
+            assert!(ok, "{note}");
+            let used = ed.just_saved.clone().unwrap();
+            assert!(note.contains(&used.display().to_string()), "{note}");
+            saved.push(used);
+        }
+        assert_eq!(
+            saved,
+            [
+                path.clone(),
+                dir.join("saved-levels/my-scene-saved-2.ron"),
+                dir.join("saved-levels/my-scene-saved-3.ron")
+            ]
+        );
+        for (i, f) in saved.iter().enumerate() {
+            let level = rigidlab::level::load(f).unwrap().level;
+            let y = level
+                .bodies
+                .iter()
+                .find(|b| b.name == "bar1")
+                .unwrap()
+                .position
+                .1;
+            assert!(
+                (y - (1.0 + i as f64)).abs() < 1e-9,
+                "{}: y = {y}",
+                f.display()
+            );
+        }
+        assert_eq!(names(&dir.join("saved-levels")).len(), 3);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    fn image(rgba: [u8; 4]) -> Image {
+        Image::new_fill(
+            Extent3d {
+                width: 4,
+                height: 2,
+                depth_or_array_layers: 1,
+            },
+            TextureDimension::D2,
+            &rgba,
+            TextureFormat::Rgba8UnormSrgb,
+            RenderAssetUsages::default(),
+        )
+    }
+
+    #[test]
+    fn screenshots_are_named_by_level_and_never_overwritten() {
+        // Before: named by time alone (rigidlab-0.000s.png), the second level's over the first's.
+        let a = user_files::screenshot_path(Path::new("levels/kinetics/simple_pendulum.ron"), 0.0);
+        let b = user_files::screenshot_path(Path::new("levels/energy/spring.ron"), 0.0);
+        assert_ne!(a, b);
+        assert_eq!(a, Path::new("screenshots/simple_pendulum-0.000s.png"));
+        let dir = temp_dir("screenshots");
+        let path = dir.join("shots").join(a.file_name().unwrap());
+        let m1 = user_files::save_screenshot(&image([255, 0, 0, 255]), &path).unwrap();
+        let m2 = user_files::save_screenshot(&image([0, 0, 255, 255]), &path).unwrap();
+        assert!(
+            m1.contains("saved") && m1.contains(&path.display().to_string()),
+            "{m1}"
+        );
+        let second = dir.join("shots/simple_pendulum-0.000s-2.png");
+        assert!(m2.contains(&second.display().to_string()), "{m2}");
+        let first = fs::read(&path).unwrap();
+        assert_eq!(&first[..8], b"\x89PNG\r\n\x1a\n");
+        assert_ne!(first, fs::read(&second).unwrap(), "each its own picture");
+        // A folder that cannot take it (a file where the folder goes): said, not "saved".
+        fs::write(dir.join("blocked"), "a file").unwrap();
+        let e =
+            user_files::save_screenshot(&image([0; 4]), &dir.join("blocked/shot.png")).unwrap_err();
+        assert!(e.contains("not saved") && e.contains("blocked"), "{e}");
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_csv_export_never_replaces_an_earlier_one() {
+        let dir = temp_dir("exports");
+        let path = dir.join("exports/pendulum-bar.csv");
+        let m1 = user_files::deliver(&path, b"first\n", "text/csv").unwrap();
+        let m2 = user_files::deliver(&path, b"second\n", "text/csv").unwrap();
+        assert!(m1.starts_with("saved"), "{m1}");
+        assert!(
+            m2.contains("pendulum-bar-2.csv") && m2.contains("kept"),
+            "{m2}"
+        );
+        assert_eq!(fs::read_to_string(&path).unwrap(), "first\n");
+        assert_eq!(
+            fs::read_to_string(dir.join("exports/pendulum-bar-2.csv")).unwrap(),
+            "second\n"
+        );
+        assert_eq!(
+            names(&dir.join("exports")).len(),
+            2,
+            "no temporary file left"
+        );
+        let _ = fs::remove_dir_all(&dir);
+    }
+}

@@ -21,6 +21,8 @@ pub enum EditorCommand {
     /// A new scene: a ground line and nothing else.
     New,
     /// Writes the scene as a level file (a download in the browser), checked by loading it back.
+    /// A file already at the path is never replaced: the scene goes under the first free
+    /// numbered name beside it (`name-2.ron`, ...), which [`Editor::just_saved`] holds.
     Save(PathBuf),
 }
 
@@ -33,7 +35,8 @@ pub struct Editor {
     /// The level the history belongs to (`Physics::view_generation`: a newly opened level
     /// starts a new history).
     level_generation: u64,
-    /// The file just saved (the level browser rescans).
+    /// The file just saved (the level browser rescans): the path asked for, or the numbered
+    /// name it went under where that was taken.
     pub just_saved: Option<PathBuf>,
 }
 
@@ -88,9 +91,10 @@ fn run_commands(
             }
             EditorCommand::Save(path) => {
                 ed.note = Some(
-                    match super::panels::capture::save_level(&phys.scene, path) {
-                        Ok(m) => {
-                            ed.just_saved = Some(path.clone());
+                    // A file already there is kept: the scene goes under a numbered name.
+                    match super::panels::capture::save_level_as(&phys.scene, path) {
+                        Ok((used, m)) => {
+                            ed.just_saved = Some(used);
                             (m, true)
                         }
                         Err(e) => (e, false),

@@ -4,7 +4,7 @@
 use super::super::physics::Physics;
 use crate::level::{self, BodyKind, Level, Scene};
 use crate::snapshot::Snapshot;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The current state as a level (t becomes 0): poses and velocities from the snapshot; events still
 /// to come are shifted; checks and questions, which are about the exercise from its start, are
@@ -81,8 +81,14 @@ pub fn save(phys: &Physics, path: &Path) -> Result<String, String> {
 }
 
 /// Writes a level and reads it back: it must parse, validate, and be equal; then it goes to the
-/// user's file (a download in the browser).
+/// user's file (a download in the browser). A file already at `path` is kept: the level goes under
+/// a numbered name beside it (`user_files::deliver`).
 pub fn save_level(scene: &Scene, path: &Path) -> Result<String, String> {
+    save_level_as(scene, path).map(|(_, m)| m)
+}
+
+/// [`save_level`], with the file the level was written to.
+pub fn save_level_as(scene: &Scene, path: &Path) -> Result<(PathBuf, String), String> {
     let level = &scene.level;
     let text = level::to_ron(level);
     let back = level::parse(path, &text)
@@ -90,8 +96,8 @@ pub fn save_level(scene: &Scene, path: &Path) -> Result<String, String> {
     if &back.level != level {
         return Err("not saved: the level read back differs from the scene".into());
     }
-    let done = super::super::user_files::deliver(path, text.as_bytes(), "text/plain")?;
-    Ok(format!("{done} (loads back identically)"))
+    let (used, done) = super::super::user_files::deliver_as(path, text.as_bytes(), "text/plain")?;
+    Ok((used, format!("{done} (loads back identically)")))
 }
 
 /// The file name the save field starts with: the level's own stem with `-saved`, in the folder

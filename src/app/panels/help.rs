@@ -91,7 +91,7 @@ const KEYS: &[(&str, &str)] = &[
     ("Ctrl+Y, Ctrl+Shift+Z", "redo"),
     (
         "F12",
-        "screenshot into screenshots/ (downloaded in a web page)",
+        "screenshot into screenshots/LEVEL-TIMEs.png, never over an earlier one (downloaded in a web page)",
     ),
     ("F1 or ?", "this help"),
 ];

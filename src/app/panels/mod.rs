@@ -352,12 +352,12 @@ fn panels(
         ctx.memory_mut(|m| m.stop_text_input());
     }
     phys.track(ov.selected);
-    if let Some(saved) = editor.just_saved.take() {
-        // A level saved into the folder the browser lists shows there at once.
+    if editor.just_saved.take().is_some() {
+        // A level saved into the folder the browser lists shows there at once. The save field
+        // keeps the name asked for: saving again keeps both files (the next numbered name).
         if !browser.embedded {
             *browser = Browser::scan(&browser.root.clone());
         }
-        st.save_path = saved.display().to_string();
     }
     if load.is_none() {
         load = st.pending_open.take();

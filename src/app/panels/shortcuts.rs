@@ -6,10 +6,11 @@ use super::super::overlays::Overlays;
 use super::super::physics::Physics;
 use super::super::playback::{restart, step_back, toggle_play};
 use super::super::tools::{Tool, ToolState};
+use super::super::user_files;
 use super::super::view::View;
 use super::UiState;
 use bevy::prelude::*;
-use bevy::render::view::screenshot::{save_to_disk, Screenshot};
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 
 /// The shortcuts, as a Bevy system (ignored while egui has the keyboard, e.g. in an answer box).
 #[allow(clippy::too_many_arguments)]
@@ -88,23 +89,21 @@ pub(super) fn keys(
         }
     }
     if keys.just_pressed(KeyCode::F12) {
-        let name = screenshot_path(phys.snapshot().time);
-        ui.message = Some((format!("screenshot saved to {name}"), true));
-        commands
-            .spawn(Screenshot::primary_window())
-            .observe(save_to_disk(name));
-    }
-}
-
-/// Where F12 puts a screenshot: `screenshots/` of the working directory in the window (made if
-/// missing), a download in the web page.
-fn screenshot_path(t: f64) -> String {
-    let name = format!("rigidlab-{t:.3}s.png");
-    if cfg!(target_arch = "wasm32") {
-        return name;
-    }
-    match std::fs::create_dir_all("screenshots") {
-        Ok(()) => format!("screenshots/{name}"),
-        Err(_) => name,
+        // Named by level and time, with a counter where the name is taken; the status line
+        // says where it went once it is written, or why it could not be.
+        let path = user_files::screenshot_path(&phys.scene.file, phys.snapshot().time);
+        ui.message = Some((format!("taking a screenshot for {}", path.display()), true));
+        commands.spawn(Screenshot::primary_window()).observe(
+            move |shot: On<ScreenshotCaptured>, mut ui: ResMut<UiState>| {
+                let result = user_files::save_screenshot(&shot.image, &path);
+                if let Err(e) = &result {
+                    warn!("{e}");
+                }
+                ui.message = Some(match result {
+                    Ok(m) => (m, true),
+                    Err(e) => (e, false),
+                });
+            },
+        );
     }
 }
