@@ -232,8 +232,8 @@ impl<'a> Locator<'a> {
                     if key == "name" || key == "id" {
                         let value = value.trim_start();
                         let open = code.len() - value.len();
-                        if value.starts_with('"') {
-                            if let Some(len) = value[1..].find('"') {
+                        if let Some(quoted) = value.strip_prefix('"') {
+                            if let Some(len) = quoted.find('"') {
                                 items
                                     .entry(&text[open + 1..open + 1 + len])
                                     .or_default()
