@@ -222,6 +222,7 @@ mod window {
     use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
     use bevy::time::TimeUpdateStrategy;
     use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
+    use rigidlab::app::prefs::{self, Prefs};
     use rigidlab::app::user_files;
     use rigidlab::app::PhysicsPlugin;
     use std::time::Duration;
@@ -352,6 +353,155 @@ mod window {
             2,
             "no temporary file left"
         );
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    const GOOD: &str = "(\n    tour_done: true,\n    arrow_scale: 2.0,\n    time_scale: 0.5,\n    labels: false,\n    trails: true,\n)\n";
+
+    #[test]
+    fn good_preferences_load_and_save_whole() {
+        let dir = temp_dir("prefs-good");
+        let path = dir.join("rigidlab/prefs.ron");
+        fs::create_dir_all(path.parent().unwrap()).unwrap();
+        fs::write(&path, GOOD).unwrap();
+        let (p, file) = prefs::load_from(&path);
+        assert_eq!(file.problem, None);
+        assert!(file.can_save);
+        assert_eq!(p.time_scale, 0.5);
+        assert!(!p.labels && p.tour_done);
+        let changed = Prefs { trails: false, ..p };
+        changed.save(&file).unwrap();
+        assert_eq!(prefs::load_from(&path).0, changed);
+        assert_eq!(names(path.parent().unwrap()), ["prefs.ron"]);
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// Loads `text` as prefs.ron in a fresh folder: the problem said, and the folder's files.
+    fn load_bad(name: &str, text: &str) -> (String, PathBuf) {
+        let dir = temp_dir(name);
+        let path = dir.join("prefs.ron");
+        fs::write(&path, text).unwrap();
+        let (p, file) = prefs::load_from(&path);
+        assert_eq!(p, Prefs::default(), "{name}");
+        let problem = file
+            .problem
+            .clone()
+            .unwrap_or_else(|| panic!("{name}: no problem said"));
+        assert!(
+            file.can_save,
+            "{name}: moved aside, so the window may write its own"
+        );
+        assert!(!path.exists(), "{name}: moved aside");
+        assert_eq!(
+            fs::read_to_string(dir.join("prefs.ron.bad")).unwrap(),
+            text,
+            "{name}: kept whole"
+        );
+        (problem, dir)
+    }
+
+    #[test]
+    fn a_preferences_file_with_a_typo_is_reported_and_kept() {
+        // Before: ignored whole, and at the first toggle replaced by the defaults, silently.
+        let typo = GOOD.replace("labels: false", "labels: flase");
+        let (problem, dir) = load_bad("prefs-typo", &typo);
+        let path = dir.join("prefs.ron");
+        assert!(
+            problem.contains(&format!("{}:5:", path.display())),
+            "path:line:col: {problem}"
+        );
+        assert!(problem.contains("prefs.ron.bad"), "{problem}");
+        // The window then saves its own; the user's file stays as .bad.
+        let (p, file) = prefs::load_from(&path);
+        assert_eq!(
+            file.problem, None,
+            "no file now: the defaults, nothing to say"
+        );
+        p.save(&file).unwrap();
+        assert_eq!(fs::read_to_string(dir.join("prefs.ron.bad")).unwrap(), typo);
+        // A second bad file does not replace the first .bad: a counter.
+        fs::write(&path, "(time_scale: )").unwrap();
+        let (_, file) = prefs::load_from(&path);
+        let problem = file.problem.unwrap();
+        assert!(problem.contains("prefs.ron-2.bad"), "{problem}");
+        assert_eq!(fs::read_to_string(dir.join("prefs.ron.bad")).unwrap(), typo);
+        assert_eq!(
+            fs::read_to_string(dir.join("prefs.ron-2.bad")).unwrap(),
+            "(time_scale: )"
+        );
+        // A misspelt field name is a typo too (it was dropped without a word).
+        let (problem, _) = load_bad("prefs-field", &GOOD.replace("trails:", "trials:"));
+        assert!(
+            problem.contains(":6:") && problem.contains("trials"),
+            "{problem}"
+        );
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_time_scale_the_window_cannot_run_at_is_refused_with_its_line() {
+        // Before: -1.0 or inf panicked at start (exit 101) without naming the file.
+        for (name, v) in [
+            ("prefs-negative", "-1.0"),
+            ("prefs-inf", "inf"),
+            ("prefs-nan", "NaN"),
+            ("prefs-zero", "0.0"),
+        ] {
+            let (problem, dir) = load_bad(name, &GOOD.replace("0.5", v));
+            let path = dir.join("prefs.ron");
+            assert!(
+                problem.contains(&format!("{}:4:5: time_scale", path.display())),
+                "{name}: {problem}"
+            );
+            let _ = fs::remove_dir_all(&dir);
+        }
+        let (problem, dir) = load_bad("prefs-arrow", &GOOD.replace("2.0", "1e9"));
+        assert!(problem.contains(":3:5: arrow_scale"), "{problem}");
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// `load_from` on another thread, which must answer within 10 s.
+    fn load_within(path: PathBuf) -> (Prefs, prefs::PrefsFile) {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = tx.send(prefs::load_from(&path));
+        });
+        rx.recv_timeout(Duration::from_secs(10))
+            .expect("prefs are read without blocking")
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_a_device_or_a_huge_file_is_not_read_as_preferences() {
+        // Before: a FIFO blocked the window's start; a link to /dev/zero was read without end.
+        let dir = temp_dir("prefs-special");
+        let fifo = dir.join("fifo.ron");
+        assert!(std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success());
+        let (p, file) = load_within(fifo.clone());
+        assert_eq!(p, Prefs::default());
+        let problem = file.problem.unwrap();
+        assert!(
+            problem.contains("FIFO") && problem.contains("fifo.ron"),
+            "{problem}"
+        );
+        assert!(dir.join("fifo.ron.bad").exists() && !fifo.exists());
+
+        let zero = dir.join("zero.ron");
+        std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+        let (_, file) = load_within(zero.clone());
+        let problem = file.problem.unwrap();
+        assert!(problem.contains("device"), "{problem}");
+
+        let big = dir.join("big.ron");
+        fs::write(&big, " ".repeat(prefs::MAX_PREFS_BYTES as usize + 1)).unwrap();
+        let (_, file) = load_within(big.clone());
+        let problem = file.problem.unwrap();
+        assert!(problem.contains("larger than"), "{problem}");
+        assert!(dir.join("big.ron.bad").exists());
         let _ = fs::remove_dir_all(&dir);
     }
 }

@@ -330,7 +330,10 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
     });
     app.add_plugins(ScenePlugin { legend: false });
     app.insert_resource(browser);
-    app.insert_resource(prefs::Prefs::load());
+    // A preferences file that is wrong is reported (stderr now, the status line at the first
+    // frame) and moved aside, never fatal (prefs.rs).
+    let (prefs, prefs_file) = prefs::Prefs::load();
+    app.insert_resource(prefs).insert_resource(prefs_file);
     app.add_plugins((
         panels::PanelsPlugin,
         tools::ToolsPlugin,

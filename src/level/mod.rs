@@ -50,26 +50,20 @@ pub fn load_with_warnings(path: &Path) -> Result<(Scene, Vec<LevelWarning>), Lev
 
 /// A level file's bytes: a regular file of at most [`MAX_LEVEL_BYTES`].
 fn read(path: &Path) -> Result<Vec<u8>, LevelError> {
-    let cannot = |e: std::io::Error| {
-        LevelError::new(
+    read_regular(path, MAX_LEVEL_BYTES).map_err(|e| match e {
+        ReadError::Io(e) => LevelError::new(
             path,
             (0, 0),
             format!("cannot read the level file: {e}"),
             "check the path and the file's permissions",
-        )
-    };
-    // stat before open: opening a FIFO would wait for a writer.
-    let meta = std::fs::metadata(path).map_err(cannot)?;
-    if !meta.is_file() {
-        return Err(LevelError::new(
+        ),
+        ReadError::NotRegular(kind) => LevelError::new(
             path,
             (0, 0),
-            format!("not a regular file: {}", file_kind(&meta)),
+            format!("not a regular file: {kind}"),
             "give a level file (.ron) or a folder of them",
-        ));
-    }
-    let too_big = || {
-        LevelError::new(
+        ),
+        ReadError::TooBig(_) => LevelError::new(
             path,
             (0, 0),
             format!(
@@ -77,18 +71,50 @@ fn read(path: &Path) -> Result<Vec<u8>, LevelError> {
                 MAX_LEVEL_BYTES >> 20
             ),
             "check that this is a level file (the library's largest, 900 bodies, is 273 KiB)",
-        )
-    };
-    if meta.len() > MAX_LEVEL_BYTES {
-        return Err(too_big());
+        ),
+    })
+}
+
+/// Why [`read_regular`] read nothing.
+#[derive(Debug)]
+pub enum ReadError {
+    /// The file could not be opened or read (missing, no permission, ...).
+    Io(std::io::Error),
+    /// A FIFO, a device, a socket or a folder: what [`file_kind`] calls it.
+    NotRegular(&'static str),
+    /// Larger than the limit, bytes.
+    TooBig(u64),
+}
+
+impl std::fmt::Display for ReadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ReadError::Io(e) => write!(f, "{e}"),
+            ReadError::NotRegular(kind) => write!(f, "not a regular file: {kind}"),
+            ReadError::TooBig(limit) => write!(f, "the file is larger than {limit} bytes"),
+        }
+    }
+}
+
+/// The bytes of a regular file of at most `limit` bytes, as levels are read (and the window's
+/// preferences): the path is stat'ed before it is opened (opening a FIFO would wait for a
+/// writer), a device or a link to one is refused, and no more than `limit` + 1 bytes are read
+/// (a file that grows after the stat is still refused).
+pub fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
+    let meta = std::fs::metadata(path).map_err(ReadError::Io)?;
+    if !meta.is_file() {
+        return Err(ReadError::NotRegular(file_kind(&meta)));
+    }
+    if meta.len() > limit {
+        return Err(ReadError::TooBig(limit));
     }
     let mut bytes = Vec::new();
     std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_LEVEL_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(cannot)?;
-    if bytes.len() as u64 > MAX_LEVEL_BYTES {
+        .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
+        .map_err(ReadError::Io)?;
+    if bytes.len() as u64 > limit {
         // It grew after the stat.
-        return Err(too_big());
+        return Err(ReadError::TooBig(limit));
     }
     Ok(bytes)
 }

@@ -31,7 +31,7 @@ use super::editor::{Editor, EditorCommand};
 use super::frame_rate::FrameRate;
 use super::overlays::Overlays;
 use super::physics::{LiveChecks, Physics};
-use super::prefs::Prefs;
+use super::prefs::{Prefs, PrefsFile};
 use super::tools::ToolState;
 use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
@@ -180,10 +180,11 @@ fn panels(
     mut time: ResMut<Time<Virtual>>,
     windows: Query<&Window>,
     rate: Option<Res<FrameRate>>,
-    (mut editor, mut edits, mut prefs): (
+    (mut editor, mut edits, mut prefs, prefs_file): (
         ResMut<Editor>,
         MessageWriter<EditorCommand>,
         Option<ResMut<Prefs>>,
+        Option<Res<PrefsFile>>,
     ),
 ) -> Result {
     let rate = rate.map(|r| r.clone()).unwrap_or_default();
@@ -198,6 +199,9 @@ fn panels(
             ov.arrow_scale = p.arrow_scale;
             ov.labels = p.labels;
             ov.trails = p.trails;
+        }
+        if let Some(problem) = prefs_file.as_deref().and_then(|f| f.problem.clone()) {
+            st.message = Some((problem, false));
         }
     }
     if st.save_for.as_ref() != Some(&phys.scene.file) {
@@ -330,7 +334,8 @@ fn panels(
         };
         if now != *p {
             *p = now;
-            if let Err(e) = p.save() {
+            let file = prefs_file.as_deref().cloned().unwrap_or_default();
+            if let Err(e) = p.save(&file) {
                 st.message = Some((format!("preferences not saved: {e}"), false));
             }
         }
