@@ -10,6 +10,7 @@ use super::sample::{Occasion, Sample};
 use super::snapshot_reading::to_local;
 use crate::analysis::energy::{body_kinetic_energy, power};
 use crate::analysis::kinematics::{body_point_velocity, slip_velocity};
+use crate::analysis::momentum::linear_momentum;
 use crate::analysis::Motion;
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
@@ -124,7 +125,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 for &i in &idx {
                     let b = state(i)?;
                     t += body_kinetic_energy(&b);
-                    g += b.mass * b.velocity;
+                    g += linear_momentum(b.mass, b.velocity);
                 }
                 Some(if momentum { g.length() } else { t })
             };

@@ -4,6 +4,7 @@
 //! returns numbers; nothing touches the engine.
 
 use crate::analysis::energy::BodyMass;
+use crate::analysis::momentum;
 use crate::level::{BodyKind, Effect, EventDef, JointDef, JointKind, Level};
 use crate::snapshot::{BodyState, JointState, Snapshot};
 use glam::DVec2;
@@ -75,7 +76,7 @@ pub fn textbook_mass(m: &[MassProps]) -> impl Fn(usize, &BodyState) -> BodyMass 
 /// Linear momentum L = sum of m v_G (IM-1), kg m/s.
 pub fn linear_momentum(s: &Snapshot, m: &[MassProps]) -> DVec2 {
     massive(&s.bodies, m)
-        .map(|(b, m, _)| m.mass * b.velocity)
+        .map(|(b, m, _)| momentum::linear_momentum(m.mass, b.velocity))
         .sum()
 }
 
@@ -89,7 +90,9 @@ pub fn momentum_scale(s: &Snapshot, m: &[MassProps]) -> f64 {
 /// Angular momentum about the origin H_O = sum of (r_G x m v_G + I_G w) (IM-5 with H_G = I_G w, MK eq. 6/13), kg m^2/s.
 pub fn angular_momentum(s: &Snapshot, m: &[MassProps]) -> f64 {
     massive(&s.bodies, m)
-        .map(|(b, m, g)| g.perp_dot(m.mass * b.velocity) + m.inertia * b.omega)
+        .map(|(b, m, g)| {
+            momentum::angular_momentum_about(m.mass, m.inertia, g, b.velocity, b.omega, DVec2::ZERO)
+        })
         .sum()
 }
 
