@@ -234,3 +234,37 @@ fn restitution_of_a_contact_that_lasts_says_why() {
     assert!(!q.passed, "{q:?}");
     assert!(q.note.contains("lasts to the end of the run"), "{}", q.note);
 }
+
+/// A reading at an instant inside the step where an impact happens takes the state before the
+/// impact, carried to that instant (issue 29, class 3). A ball (r = 0.1 m) dropped from rest onto
+/// a floor (e = 0.5) touches at t_c = 40.75 dt = 0.169792 s (dt = 1/240 s), three quarters into
+/// its step. Its center crosses y = r + 3 mm at t_x = sqrt(2 (y0 - 0.103) / g), 1.8 ms earlier, in
+/// the same step, at v_y = -g t_x; at the step's end it is back up at about y = 0.1009 m,
+/// rebounding at +0.85 m/s. Interpolated between the step's ends, both the crossing and the
+/// reading mixed in the rebound. Tolerance: rapier's symplectic Euler puts the ball g h t / 2 =
+/// 0.87 mm low at t = 0.17 s (h = dt / 4), so it crosses 0.5 ms early: 3e-3 in t and v_y.
+#[test]
+fn a_crossing_inside_an_impact_step_reads_the_state_before_the_impact() {
+    let dt: f64 = 1.0 / 240.0;
+    let y0 = 0.1 + 0.5 * G * (40.75 * dt).powi(2);
+    let t_x = (2.0 * (y0 - 0.103) / G).sqrt();
+    let text = format!(
+        r#"Level(title: "crossing before a bounce", effects: [gravity, contacts, restitution],
+        world: (dt: {dt}, substeps: 4, duration: 0.3),
+        bodies: [
+            (name: "floor", kind: fixed, shape: Box(width: 4.0, height: 0.2), position: (0.0, -0.1), restitution: 0.5),
+            (name: "ball", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, {y0}), restitution: 0.5),
+        ],
+        questions: [
+            (id: "vy", ask: "v_y at 3 mm above touching", unit: "m/s", expected: {vy}, tolerance: 5e-3,
+             quantity: Vy("ball"), at: Crossing(of: Y("ball"), value: 0.103), why: "symplectic Euler's O(h) lead"),
+            (id: "t", ask: "when", unit: "s", expected: {t_x}, tolerance: 5e-3,
+             quantity: Time, at: Crossing(of: Y("ball"), value: 0.103), why: "as vy"),
+        ],
+        )"#,
+        vy = -G * t_x,
+    );
+    let q = questions(&text);
+    assert!(q[0].passed, "{:?}", q[0]);
+    assert!(q[1].passed, "{:?}", q[1]);
+}

@@ -3,7 +3,7 @@
 //! turning the reading into a [`QuestionResult`].
 
 use super::contact_events::{PairEvent, PairTracker};
-use super::impact_solution::{Blow, NO_IMPACT};
+use super::impact_solution::{Blow, Impact, NO_IMPACT};
 use super::level_facts::LevelFacts;
 use super::meter::Meter;
 use super::result::QuestionResult;
@@ -194,7 +194,7 @@ impl QuestionProbe {
                 if t >= at {
                     self.value = Some(match self.last {
                         Some(l) if l.t < at && t > l.t => {
-                            Reading::lerp(l, r, (at - l.t) / (t - l.t))
+                            self.between(sample, l, r, (at - l.t) / (t - l.t))
                         }
                         _ => r,
                     });
@@ -235,8 +235,12 @@ impl QuestionProbe {
                         && s0 != 0.0
                         && (sig == 0.0 || (s0 > 0.0) != (sig > 0.0));
                     if crossed {
-                        let f = s0 / (s0 - sig);
-                        self.value = Some(Reading::lerp(l, r, f));
+                        // Where the step had an impact, the crossing is found on the path the
+                        // step's start state takes without it (the end state is past it).
+                        let f = self
+                            .crossing_before_contact(sample, value, s0)
+                            .unwrap_or(s0 / (s0 - sig));
+                        self.value = Some(self.between(sample, l, r, f));
                         self.done = true;
                     }
                 }
@@ -309,6 +313,70 @@ impl QuestionProbe {
         }
     }
 
+    /// The reading a fraction `f` into the step from the last reading `l` to this sample's `r`:
+    /// interpolated, unless a contact began pushing in the step (an impact), whose end state
+    /// must not leak into an instant before it. Then the state at the start of the step is
+    /// carried to the instant (`carried_to`) and read there.
+    fn between(&self, sample: &Sample, l: Reading, r: Reading, f: f64) -> Reading {
+        let Some(prev) = sample.prev else {
+            return Reading::lerp(l, r, f);
+        };
+        let Some(t_c) = contact_began(&self.facts, prev, sample.cur) else {
+            return Reading::lerp(l, r, f);
+        };
+        let tau = f * (sample.cur.time - prev.time);
+        // At or after the touch, the step's end state (the first after the impact).
+        if prev.time + tau >= t_c {
+            return r;
+        }
+        let at = Arc::new(carried_to(prev, tau));
+        let window = [Arc::clone(prev), Arc::clone(&at)];
+        let carried = Sample {
+            prev: Some(prev),
+            cur: &at,
+            next: None,
+            window: &window,
+        };
+        self.meter.read(&carried, Occasion::Plain)
+    }
+
+    /// In a step where a contact began, the fraction of the step at which the trigger quantity
+    /// reaches `value` on the path carried from the step's start (`carried_to`), found by
+    /// bisection; None when no contact began or that path does not reach it within the step.
+    fn crossing_before_contact(&self, sample: &Sample, value: f64, s0: f64) -> Option<f64> {
+        let prev = sample.prev?;
+        let trigger = self.trigger.as_ref()?;
+        let t_c = contact_began(&self.facts, prev, sample.cur)?;
+        let dt = sample.cur.time - prev.time;
+        let signal = |f: f64| {
+            let at = Arc::new(carried_to(prev, f * dt));
+            let window = [Arc::clone(prev), Arc::clone(&at)];
+            let carried = Sample {
+                prev: Some(prev),
+                cur: &at,
+                next: None,
+                window: &window,
+            };
+            trigger.read(&carried, Occasion::Plain).engine - value
+        };
+        let end = signal(1.0);
+        if !end.is_finite() || (end > 0.0) == (s0 > 0.0) && end != 0.0 {
+            return None;
+        }
+        let (mut a, mut b) = (0.0, 1.0);
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if (signal(m) > 0.0) == (s0 > 0.0) {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        // Only a crossing before the touch is one on this path.
+        let f = 0.5 * (a + b);
+        (prev.time + f * dt < t_c).then_some(f)
+    }
+
     /// Reads the quantity right after the impulse events of the sample's step, with the blow's
     /// impulse-momentum solution as the analysis.
     fn read_after_blow(&mut self, sample: &Sample) {
@@ -356,6 +424,50 @@ impl QuestionProbe {
         }
         QuestionResult::new(&self.def, r, self.note, student)
     }
+}
+
+/// When a contact that did not push in the step before `cur` first touched in the step that
+/// led to it (an impact inside the step): the earliest such touch, as the impact solution finds
+/// it from the step's start state (`Impact::find`). None when no contact began, or none of those
+/// that began was an approach.
+fn contact_began(facts: &LevelFacts, prev: &Snapshot, cur: &Snapshot) -> Option<f64> {
+    let pushed_before = |a: usize, b: usize| {
+        prev.contacts
+            .iter()
+            .any(|c| c.pushes() && ((c.body1, c.body2) == (a, b) || (c.body1, c.body2) == (b, a)))
+    };
+    cur.contacts
+        .iter()
+        .filter(|c| c.pushes() && !pushed_before(c.body1, c.body2))
+        .filter_map(|c| Impact::find(facts, prev, cur, c.body1, Some(c.body2)))
+        .map(|imp| imp.t_c)
+        .min_by(f64::total_cmp)
+}
+
+/// `s` carried `tau` seconds on, as its state says the bodies move before any new contact:
+/// bodies flying free (no joint, coupling, or contact that pushed in the step before) under
+/// gravity, other moving bodies at their velocity.
+fn carried_to(s: &Snapshot, tau: f64) -> Snapshot {
+    use crate::analysis::touching::flies_free;
+    use crate::snapshot::BodyKind;
+    let mut out = s.clone();
+    for (i, b) in out.bodies.iter_mut().enumerate() {
+        if b.kind == BodyKind::Fixed {
+            continue;
+        }
+        let held = s
+            .contacts
+            .iter()
+            .any(|c| (c.body1 == i || c.body2 == i) && c.pushes());
+        let a = if flies_free(s, i) && !held {
+            s.gravity
+        } else {
+            glam::DVec2::ZERO
+        };
+        *b = super::snapshot_reading::carried_forward(b, tau, a);
+    }
+    out.time = s.time + tau;
+    out
 }
 
 /// The initial snapshot as the questions read it. Its mass centers are rapier's pose times
