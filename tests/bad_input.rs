@@ -592,3 +592,187 @@ fn a_bad_check_window_is_rejected() {
     )
     .unwrap();
 }
+
+/// An Atwood machine over a 2 kg pulley of radius 0.1 m on a pin (issue 30's machine), with the
+/// cable's `over` and extra text to replace.
+fn pulley_level(cable: &str, questions: &str) -> String {
+    format!(
+        r#"Level(
+  title: "pulley",
+  effects: [gravity, joints],
+  world: (dt: 0.01, duration: 0.5),
+  bodies: [
+    (name: "ground", kind: fixed),
+    (name: "pulley", shape: Circle(radius: 0.1), mass: 2.0),
+    (name: "hook", shape: Circle(radius: 0.05), mass: 0.5, position: (0.0, -0.3)),
+    (name: "A", shape: Box(width: 0.1, height: 0.1), mass: 3.0, position: (-0.1, -1.0), lock_rotation: true),
+    (name: "B", shape: Box(width: 0.1, height: 0.1), mass: 2.0, position: (0.1, -1.0), lock_rotation: true),
+  ],
+  joints: [
+    (name: "axle", kind: revolute, body1: "ground", body2: "pulley"),
+    (name: "hanger", kind: revolute, body1: "pulley", body2: "hook", anchor2: (0.0, 0.3)),
+  ],
+  couplings: [
+    {cable}
+  ],
+  questions: [
+{questions}
+  ],
+)"#
+    )
+}
+
+const CABLE: &str = r#"(name: "cable", terms: [(body: "A", coordinate: y, ratio: 1.0), (body: "pulley", coordinate: angle, ratio: -0.1), (body: "B", coordinate: y, ratio: 1.0), (body: "pulley", coordinate: angle, ratio: 0.1)], over: Some("pulley")),"#;
+
+#[test]
+fn a_question_unit_must_be_its_quantitys_si_unit() {
+    let question = |unit: &str, quantity: &str| {
+        format!(
+            "    (id: \"q\", ask: \"a\", unit: \"{unit}\", expected: 1.0, tolerance: 0.1, quantity: {quantity}, at: Time(0.1)),"
+        )
+    };
+    // The SI units parse and pass, with the units of the same size and dimension.
+    for (unit, quantity) in [
+        ("m/s", "Speed(\"A\")"),
+        ("rad/s", "Omega(\"pulley\")"),
+        ("1/s", "Omega(\"pulley\")"),
+        ("N", "JointForce(\"axle\")"),
+        ("N m", "KineticEnergy(\"A\")"),
+        ("kg m^2 s^-2", "KineticEnergy(\"A\")"),
+        ("1", "Angle(\"pulley\")"),
+        ("N s", "JointImpulse(joint: \"axle\")"),
+    ] {
+        parse(
+            Path::new("ok.ron"),
+            &pulley_level(CABLE, &question(unit, quantity)),
+        )
+        .unwrap_or_else(|e| panic!("{unit} for {quantity}: {e}"));
+    }
+    for (unit, quantity, needle) in [
+        // Not a unit.
+        ("furlong", "Distance(\"A\")", "unknown unit `furlong`"),
+        ("m/s/s", "Ay(\"A\")", "one `/`"),
+        // Another dimension: a force for a speed, a speed for an angular velocity.
+        (
+            "N",
+            "Speed(\"A\")",
+            "Speed in \"N\" (kg m s^-2), but Speed is m s^-1 (m/s)",
+        ),
+        ("m/s", "Omega(\"pulley\")", "but Omega is s^-1 rad (rad/s)"),
+        (
+            "J",
+            "LoadPower(\"push\")",
+            "but LoadPower is kg m^2 s^-3 (W)",
+        ),
+        // The dimension but not the size: levels are in SI.
+        ("mm", "X(\"A\")", "which is 0.001 m"),
+        ("rpm", "Omega(\"pulley\")", "rad/s: not the SI unit"),
+    ] {
+        let text = pulley_level(CABLE, &question(unit, quantity)).replace(
+                "  questions: [",
+                "  loads: [(name: \"push\", body: \"A\", force: Constant((1.0, 0.0)))],\n  questions: [",
+            );
+        let (line, col, msg) = error_of(&text);
+        let (l, c) = (
+            line_of(&text, "unit: \""),
+            text.lines().nth(line - 1).unwrap().find("unit:").unwrap() + 1,
+        );
+        assert_eq!((line, col), (l, c), "{msg}");
+        assert!(msg.contains(needle), "{needle:?} not in {msg}");
+        assert!(msg.contains("help: write `unit: \""), "{msg}");
+    }
+    // A motor's torque is N m on a pin, its force N on a slider; a torsion spring's deflection
+    // is rad. Only the first holds here (a pin): N for it is refused.
+    let motor = pulley_level(CABLE, &question("N", "MotorTorque(joint: \"axle\")"))
+        .replace(
+            "effects: [gravity, joints]",
+            "effects: [gravity, joints, motors]",
+        )
+        .replace(
+            "body2: \"pulley\")",
+            "body2: \"pulley\", motor: Velocity(target: 1.0))",
+        );
+    let (_, _, msg) = error_of(&motor);
+    assert!(
+        msg.contains("but MotorTorque is kg m^2 s^-2 (N m)"),
+        "{msg}"
+    );
+    parse(
+        Path::new("ok.ron"),
+        &motor.replace("unit: \"N\"", "unit: \"N m\""),
+    )
+    .unwrap();
+}
+
+#[test]
+fn a_cable_over_a_body_it_does_not_turn_is_rejected() {
+    // `hook` hangs from the pulley; no coupling turns it: it is not a pulley.
+    let cable = CABLE.replace("over: Some(\"pulley\")", "over: Some(\"hook\")");
+    let text = pulley_level(&cable, "");
+    let (line, col, msg) = error_of(&text);
+    let over = text.find("over: Some(\"hook\")").unwrap();
+    let line_start = text[..over].rfind('\n').unwrap() + 1;
+    assert_eq!(
+        (line, col),
+        (line_of(&text, "over:"), over - line_start + 1),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("runs over \"hook\", which no coupling term turns"),
+        "{msg}"
+    );
+    assert!(msg.contains("coordinate: angle"), "{msg}");
+    // Over the pulley it turns, the level is valid.
+    parse(Path::new("ok.ron"), &pulley_level(CABLE, "")).unwrap();
+}
+
+#[test]
+fn a_coupling_ratio_outside_1e_6_to_1e6_is_rejected() {
+    for ratio in ["1e200", "-1e7", "1e-7", "1e-200"] {
+        let cable = CABLE.replacen("ratio: -0.1", &format!("ratio: {ratio}"), 1);
+        let text = pulley_level(&cable, "");
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, "name: \"cable\""), "{msg}");
+        assert!(msg.contains("outside the 1e-6 to 1e6"), "{ratio}: {msg}");
+        assert!(msg.contains("over- or underflows"), "{msg}");
+    }
+    for ratio in ["1e6", "-1e-6"] {
+        let cable = CABLE.replacen("ratio: -0.1", &format!("ratio: {ratio}"), 1);
+        parse(Path::new("ok.ron"), &pulley_level(&cable, "")).unwrap();
+    }
+}
+
+#[test]
+fn a_cable_that_turns_a_pulley_without_over_is_warned_about() {
+    // Issue 30: the axle read 19.62 N (the pulley's weight) for 67.04 N until `over` was added.
+    let dir = std::env::temp_dir().join(format!("rigidlab-over-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("no_over.ron");
+    let text = pulley_level(&CABLE.replace(", over: Some(\"pulley\")", ""), "");
+    std::fs::write(&path, &text).unwrap();
+    let (_, warnings) = rigidlab::level::load_with_warnings(&path).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let w = warnings[0].to_string();
+    assert!(
+        w.starts_with(&format!(
+            "{}:{}:12: warning: coupling \"cable\" turns \"pulley\" but names no `over`",
+            path.display(),
+            line_of(&text, "name: \"cable\"")
+        )),
+        "{w}"
+    );
+    assert!(w.contains("help: add `over: Some(\"pulley\")`"), "{w}");
+    // With `over`, no warning; nor for a cable that turns no body (y_A + y_B = const), nor for
+    // a body the cable both pulls and turns (a yo-yo), nor for gears.
+    for cable in [
+        CABLE.to_string(),
+        r#"(name: "cable", terms: [(body: "A", coordinate: y, ratio: 1.0), (body: "B", coordinate: y, ratio: 1.0)]),"#.to_string(),
+        r#"(name: "cable", terms: [(body: "A", coordinate: y, ratio: 1.0), (body: "A", coordinate: angle, ratio: 0.05)]),"#.replace("lock_rotation: true", ""),
+        r#"(name: "cable", terms: [(body: "pulley", coordinate: angle, ratio: 1.0), (body: "hook", coordinate: angle, ratio: 1.0)]),"#.to_string(),
+    ] {
+        std::fs::write(&path, pulley_level(&cable, "").replace("lock_rotation: true", "")).unwrap();
+        let (_, warnings) = rigidlab::level::load_with_warnings(&path).unwrap();
+        assert!(warnings.is_empty(), "{cable}: {warnings:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 mod exercise;
 pub use exercise::*;
+pub mod units;
 
 /// Body kind.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

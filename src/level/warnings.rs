@@ -8,7 +8,8 @@
 //! off), so a pin between two coincident bodies is not warned about.
 
 use super::{
-    BodyDef, BodyKind, Effect, JointKind, Level, LevelError, LevelWarning, Locator, Shape, V2,
+    BodyDef, BodyKind, Coordinate, CouplingDef, Effect, JointKind, Level, LevelError, LevelWarning,
+    Locator, Shape, V2,
 };
 use std::collections::HashMap;
 use std::path::Path;
@@ -24,6 +25,7 @@ pub fn find(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
     }
     if level.effects.contains(&Effect::Joints) {
         out.extend(joint_velocities(file, text, level));
+        out.extend(cables_without_carrier(file, text, level));
     }
     if level.effects.contains(&Effect::Springs) {
         out.extend(stiff_springs(file, text, level));
@@ -56,7 +58,14 @@ fn body_mass(b: &BodyDef) -> Option<f64> {
 /// (`sim::explosion_guard`), and this says why before it starts.
 fn stiff_springs(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
     let h = level.world.dt / level.world.substeps.max(1) as f64;
-    let body = |n: &str| level.bodies.iter().find(|b| b.name == n);
+    // By name, once: a search per joint was quadratic in a long chain.
+    let bodies: HashMap<&str, &BodyDef> = level
+        .bodies
+        .iter()
+        .map(|b| (b.name.as_str(), b))
+        .rev()
+        .collect();
+    let body = |n: &str| bodies.get(n).copied();
     let loc = Locator::new(text);
     let mut out = Vec::new();
     for s in &level.springs {
@@ -181,6 +190,66 @@ fn joint_velocities(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning>
                     j.kind.describe()
                 )
             },
+        )));
+    }
+    out
+}
+
+/// Couplings that turn a pulley but name no `over`: the cable's pull on the bodies of its x and
+/// y terms is then borne by no axle, and the pulley's joints read without it (issue 30: an
+/// Atwood machine's axle read 19.62 N, the pulley's weight, for 67.04 N until `over` was added).
+/// A pulley is a dynamic body the coupling turns (an angle term) and does not also pull (a yo-yo,
+/// a block-and-tackle sheave, move with the cable); gears pull along no x or y term.
+fn cables_without_carrier(file: &Path, text: &str, level: &Level) -> Vec<LevelWarning> {
+    let candidates: Vec<&CouplingDef> = level
+        .couplings
+        .iter()
+        .filter(|c| c.over.is_none() && !c.gears)
+        .filter(|c| c.terms.iter().any(|t| t.coordinate != Coordinate::Angle))
+        .collect();
+    if candidates.is_empty() {
+        return Vec::new();
+    }
+    let bodies: HashMap<&str, &BodyDef> =
+        level.bodies.iter().map(|b| (b.name.as_str(), b)).collect();
+    let turns = |b: &str| {
+        bodies
+            .get(b)
+            .is_some_and(|b| b.kind == BodyKind::Dynamic && !b.lock_rotation)
+    };
+    let loc = Locator::new(text);
+    let mut out = Vec::new();
+    for c in candidates {
+        let pulls = |b: &str| {
+            c.terms
+                .iter()
+                .any(|t| t.body == b && t.coordinate != Coordinate::Angle)
+        };
+        let Some(pulley) = c
+            .terms
+            .iter()
+            .find(|t| t.coordinate == Coordinate::Angle && turns(&t.body) && !pulls(&t.body))
+        else {
+            continue;
+        };
+        let mut pulled: Vec<&str> = Vec::new();
+        for t in c.terms.iter().filter(|t| t.coordinate != Coordinate::Angle) {
+            if !pulled.contains(&t.body.as_str()) {
+                pulled.push(&t.body);
+            }
+        }
+        let p = &pulley.body;
+        out.push(LevelWarning(LevelError::new(
+            file,
+            loc.item_pos("couplings", &c.name),
+            format!(
+                "coupling \"{}\" turns \"{p}\" but names no `over`: its pull on {} is borne by no axle, so \"{p}\"'s joints read without the cable (an Atwood pulley's axle read 19.62 N, its weight, for 67.04 N)",
+                c.name,
+                pulled.join(", ")
+            ),
+            format!(
+                "add `over: Some(\"{p}\")` to the coupling: the pulley then carries the cable and its axle bears the strands' pull (leave it out only for a massless peg whose load no check or question reads)"
+            ),
         )));
     }
     out

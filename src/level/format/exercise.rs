@@ -290,6 +290,88 @@ pub enum Quantity {
     GroupMomentum(Vec<String>),
 }
 
+impl Quantity {
+    /// The quantity's SI unit, as docs/levels.md's table of quantities gives it: a question's
+    /// `unit` must parse (`level::units`) to a unit of this size and dimension (validation;
+    /// `1/s` passes for rad/s, `J` for N m). Levels are in SI, and a question's `expected` is
+    /// compared with the engine's SI values as it is. Two depend on what they name in `level`:
+    /// a motor's `MotorTorque` is N m on a pin and N on a slider, and a torsion spring's
+    /// `SpringExtension` is rad.
+    pub fn si_unit(&self, level: &Level) -> &'static str {
+        use Quantity as Q;
+        match self {
+            Q::X(_)
+            | Q::Y(_)
+            | Q::Distance(_)
+            | Q::PointX { .. }
+            | Q::PointY { .. }
+            | Q::RelativeDistance(..)
+            | Q::ReboundHeight { .. }
+            | Q::PercussionDistance { .. } => "m",
+            Q::SpringExtension(s) => {
+                if level.torsion_springs.iter().any(|t| t.name == *s) {
+                    "rad"
+                } else {
+                    "m"
+                }
+            }
+            Q::Angle(_) | Q::Direction(_) | Q::RelativeAngle(..) => "rad",
+            Q::Vx(_)
+            | Q::Vy(_)
+            | Q::Speed(_)
+            | Q::PointSpeed { .. }
+            | Q::RelativeSpeed(..)
+            | Q::RelativePointSpeed { .. }
+            | Q::PinSpeed { .. } => "m/s",
+            Q::Omega(_) | Q::LinkOmega { .. } => "rad/s",
+            Q::Ax(_)
+            | Q::Ay(_)
+            | Q::Accel(_)
+            | Q::PointAccel { .. }
+            | Q::RollingAcceleration { .. } => "m/s^2",
+            Q::Alpha(_) => "rad/s^2",
+            Q::Time | Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => "s",
+            Q::JointForce(_)
+            | Q::ContactForce(_)
+            | Q::ContactNormalForce { .. }
+            | Q::CouplingForce(_)
+            | Q::JointReaction { .. }
+            | Q::RollingFriction { .. } => "N",
+            Q::JointImpulse { .. } | Q::ContactImpulse { .. } | Q::GroupMomentum(_) => "N s",
+            Q::MotorTorque { joint, .. } => {
+                let slider = level
+                    .joints
+                    .iter()
+                    .any(|j| j.name == *joint && j.kind == JointKind::Prismatic);
+                if slider {
+                    "N"
+                } else {
+                    "N m"
+                }
+            }
+            Q::KineticEnergy(_)
+            | Q::GravityWork(_)
+            | Q::SpringWork(_)
+            | Q::LoadWork(_)
+            | Q::FrictionWork { .. }
+            | Q::EnergyLost { .. }
+            | Q::GroupKineticEnergy(_) => "J",
+            Q::LoadPower(_) => "W",
+            Q::RollingFrictionNeeded { .. } | Q::Restitution { .. } => "1",
+        }
+    }
+
+    /// The variant's name, for messages: `Omega`, `JointReaction`.
+    pub fn variant_name(&self) -> String {
+        let debug = format!("{self:?}");
+        debug
+            .split(|c: char| !c.is_alphanumeric())
+            .next()
+            .unwrap_or_default()
+            .to_string()
+    }
+}
+
 /// The family a quantity belongs to: the file of `src/questions/` that reads it, so that adding
 /// a quantity touches this file (the variant, its doc and its family), `validate.rs` and one
 /// family file.

@@ -6,8 +6,8 @@ pub(super) fn check(v: &V, i: usize, c: &CheckDef) -> R {
     let pos = v.loc.nth_in_section("checks", i);
     for (field, name) in [("body", &c.body), ("other", &c.other)] {
         if let Some(n) = name {
-            let is_body = v.level.bodies.iter().any(|b| &b.name == n);
-            let is_joint = v.level.joints.iter().any(|j| &j.name == n);
+            let is_body = v.bodies.contains_key(n.as_str());
+            let is_joint = v.joints.contains_key(n.as_str());
             if !is_body && !is_joint {
                 return Err(v.err(
                     pos,
@@ -82,6 +82,7 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
     for (kind, name) in quantity_refs(&q.quantity) {
         question_ref(v, q, kind, name, "quantity")?;
     }
+    question_unit(v, q)?;
     match &q.at {
         When::Time(t) | When::Max(t) | When::Min(t) => {
             v.non_negative(*t, "question time", "s", at("at"))?
@@ -197,17 +198,61 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         _ => {}
     }
     if let Quantity::MotorTorque { joint: j, .. } = &q.quantity {
-        if v.level
-            .joints
-            .iter()
-            .any(|d| &d.name == j && d.motor.is_none())
-        {
+        if v.joints.get(j.as_str()).is_some_and(|d| d.motor.is_none()) {
             return Err(v.err(
                 at("quantity"),
                 format!("question \"{}\" asks for the motor torque of joint \"{j}\", which has no motor", q.id),
                 "give the joint a `motor`, or ask for its reaction",
             ));
         }
+    }
+    Ok(())
+}
+
+/// A question's `unit` must parse and be its quantity's SI unit (`Quantity::si_unit`): the same
+/// dimension and size, since `expected` is compared with the engine's SI value as it is and a
+/// student's answer is converted to this unit (a `furlong` was accepted, and `N` for a speed).
+fn question_unit(v: &V, q: &QuestionDef) -> R {
+    use crate::level::units::Unit;
+    let si = q.quantity.si_unit(v.level);
+    let want = Unit::parse(si).expect("every quantity's SI unit is in the unit table");
+    let what = q.quantity.variant_name();
+    let at = || v.loc.field_pos("questions", &q.id, "unit");
+    let help = format!(
+        "write `unit: \"{si}\"`, {what}'s unit (levels are in SI units; docs/levels.md lists each quantity's), and give `expected` in it"
+    );
+    let given = Unit::parse(&q.unit).map_err(|e| {
+        v.err(
+            at(),
+            format!(
+                "question \"{}\" has the unit \"{}\", which is not a unit: {e}",
+                q.id, q.unit
+            ),
+            help.clone(),
+        )
+    })?;
+    if !given.converts_to(&want) {
+        return Err(v.err(
+            at(),
+            format!(
+                "question \"{}\" gives {what} in \"{}\" ({}), but {what} is {} ({si})",
+                q.id,
+                q.unit,
+                given.dimension(),
+                want.dimension()
+            ),
+            help,
+        ));
+    }
+    if (given.factor - 1.0).abs() > 1e-12 {
+        return Err(v.err(
+            at(),
+            format!(
+                "question \"{}\" gives {what} in \"{}\", which is {} {si}: not the SI unit the engine's value is compared in",
+                q.id, q.unit, given.factor
+            ),
+            help,
+        ));
     }
     Ok(())
 }
@@ -286,8 +331,8 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
 pub(super) fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field: &str) -> R {
     let l = v.level;
     let known = match kind {
-        "body" => l.bodies.iter().any(|b| b.name == name),
-        "joint" => l.joints.iter().any(|j| j.name == name),
+        "body" => v.bodies.contains_key(name),
+        "joint" => v.joints.contains_key(name),
         "spring" => {
             l.springs.iter().any(|s| s.name == name)
                 || l.torsion_springs.iter().any(|t| t.name == name)

@@ -2,6 +2,12 @@
 
 use super::*;
 
+/// The smallest and largest size of a coupling ratio: a strand count, or a radius in m. Outside,
+/// the coupling's effective mass (ratio^2 / m) leaves what f64 and the f32 engine hold: a ratio of
+/// 1e200 squared to inf, and the coupling applied no impulse at all.
+pub(super) const RATIO_MIN: f64 = 1e-6;
+pub(super) const RATIO_MAX: f64 = 1e6;
+
 pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
     let pos = v.loc.item_pos("couplings", &c.name);
     v.need(
@@ -32,6 +38,19 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
                 "remove the term or give it a non-zero ratio",
             ));
         }
+        if !(RATIO_MIN..=RATIO_MAX).contains(&t.ratio.abs()) {
+            return Err(v.err(
+                pos,
+                format!(
+                    "coupling \"{}\" has the ratio {} for body \"{}\", outside the {RATIO_MIN:e} to {RATIO_MAX:e} a ratio may be in size",
+                    c.name, t.ratio, t.body
+                ),
+                "a ratio is a strand count (x and y terms) or a drum's or gear's radius in m (angle \
+                 terms); past this range the coupling's effective mass (ratio^2 / m) over- or \
+                 underflows and the coupling does nothing (a ratio of 1e200 squares to inf): write \
+                 the ratio in SI, within 1e-6 to 1e6 in size",
+            ));
+        }
     }
     if !any_dynamic {
         return Err(v.err(
@@ -52,13 +71,7 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
                 "a pair of external gears is r1 angle1 + r2 angle2 = const with r1, r2 their pitch radii (m, the same sign)",
             ));
         }
-        let pos = |n: &str| {
-            v.level
-                .bodies
-                .iter()
-                .find(|b| b.name == n)
-                .map_or((0.0, 0.0), |b| b.position)
-        };
+        let pos = |n: &str| v.bodies.get(n).map_or((0.0, 0.0), |b| b.position);
         let (p1, p2) = (pos(&c.terms[0].body), pos(&c.terms[1].body));
         let d = ((p2.0 - p1.0).powi(2) + (p2.1 - p1.1).powi(2)).sqrt();
         let sum = c.terms[0].ratio.abs() + c.terms[1].ratio.abs();
@@ -100,6 +113,23 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
                 ),
                 "`over` is for a cable whose strands pull bodies along x or y; a gear pair \
                  (angle terms only) exerts no net pull: drop `over`",
+            ));
+        }
+        let turns = |t: &CouplingTerm| t.body == *over && t.coordinate == Coordinate::Angle;
+        let turned =
+            c.terms.iter().any(turns) || v.level.couplings.iter().flat_map(|k| &k.terms).any(turns);
+        if !turned {
+            return Err(v.err(
+                v.loc.field_pos("couplings", &c.name, "over"),
+                format!(
+                    "coupling \"{}\" runs over \"{over}\", which no coupling term turns: it is not a pulley",
+                    c.name
+                ),
+                format!(
+                    "`over` names the pulley the cable wraps, which the cable turns: add its angle \
+                     term, `(body: \"{over}\", coordinate: angle, ratio: r)` with r its radius in m \
+                     (signed as the cable winds), or drop `over`"
+                ),
             ));
         }
     }

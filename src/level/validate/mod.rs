@@ -4,7 +4,7 @@
 
 use super::error::{LevelError, Locator};
 use super::format::*;
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 mod bodies;
@@ -26,6 +26,10 @@ struct V<'a> {
     file: &'a Path,
     loc: Locator<'a>,
     level: &'a Level,
+    /// The bodies and joints by name (the first of a name), built once: a search of the list
+    /// for every reference was quadratic in a long chain (30,000 pins: 2.0 s, 0.09 s for 5,000).
+    bodies: HashMap<&'a str, &'a BodyDef>,
+    joints: HashMap<&'a str, &'a JointDef>,
 }
 
 type R = Result<(), LevelError>;
@@ -132,23 +136,19 @@ impl V<'_> {
         item: &str,
         field: &str,
     ) -> Result<&BodyDef, LevelError> {
-        self.level
-            .bodies
-            .iter()
-            .find(|b| b.name == name)
-            .ok_or_else(|| {
-                let known: Vec<_> = self
-                    .level
-                    .bodies
-                    .iter()
-                    .map(|b| format!("\"{}\"", b.name))
-                    .collect();
-                self.err(
-                    self.loc.field_pos(section, item, field),
-                    format!("{field} names the body \"{name}\", which does not exist"),
-                    format!("use one of the bodies: {}", known.join(", ")),
-                )
-            })
+        self.bodies.get(name).copied().ok_or_else(|| {
+            let known: Vec<_> = self
+                .level
+                .bodies
+                .iter()
+                .map(|b| format!("\"{}\"", b.name))
+                .collect();
+            self.err(
+                self.loc.field_pos(section, item, field),
+                format!("{field} names the body \"{name}\", which does not exist"),
+                format!("use one of the bodies: {}", known.join(", ")),
+            )
+        })
     }
 }
 
@@ -157,6 +157,18 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
         file,
         loc: Locator::new(text),
         level,
+        bodies: level
+            .bodies
+            .iter()
+            .rev()
+            .map(|b| (b.name.as_str(), b))
+            .collect(),
+        joints: level
+            .joints
+            .iter()
+            .rev()
+            .map(|j| (j.name.as_str(), j))
+            .collect(),
     };
     world(&v)?;
     v.unique("bodies", level.bodies.iter().map(|b| b.name.as_str()))?;
