@@ -1,4 +1,4 @@
-//! The analysis functions tests/analysis.rs did not reach, each against a value derived by hand
+//! The analysis functions tests/analysis_textbook.rs did not reach, each against a value derived by hand
 //! (the derivation is in the comment; concepts.md ids and MK equation numbers name the formula).
 
 mod common;

@@ -6,7 +6,7 @@
 //! - a student's right answer (the expected one, and one just inside the student tolerance) is
 //!   graded as right, and a wrong one (just outside it) as wrong, without changing the engine's grade.
 //!
-//! `cargo test --test exercises -- --nocapture` prints every question's expected, engine and
+//! `cargo test --test questions_library -- --nocapture` prints every question's expected, engine and
 //! analysis values.
 
 mod common;

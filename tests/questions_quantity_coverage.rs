@@ -4,17 +4,17 @@
 //! (src/level/format/exercise.rs) as text, so a variant added there is seen here without
 //! anyone updating a list. A variant is covered when some question with an `expected` answer
 //! asks for it (`quantity: Variant`):
-//! - in a level of the library (levels/, every folder: tests/exercises.rs runs the exercises,
-//!   tests/settings_twins.rs every level at finer settings);
+//! - in a level of the library (levels/, every folder: tests/questions_library.rs runs the exercises,
+//!   tests/checks_settings_twins.rs every level at finer settings);
 //! - in a level file under tests/ whose folder a test names (tests/newuser/ and
-//!   tests/hard_readings/ are run by tests/hard_readings.rs);
+//!   tests/hard_readings/ are run by tests/questions_untuned_levels.rs);
 //! - or in a level a test writes inline (RON text in a tests/*.rs file, the question's
 //!   parentheses holding an `expected:`), or a `QuestionDef` it builds (`quantity:
 //!   Quantity::Variant` beside an `expected:`).
 //!
 //! That the expected answers come from theory (a closed form or a derivation worked in the
 //! level's comments) and not from the engine is the reviewers' part: this test only finds the
-//! quantities nobody asks for. `cargo test --release --test quantity_coverage -- --nocapture`
+//! quantities nobody asks for. `cargo test --release --test questions_quantity_coverage -- --nocapture`
 //! prints where each is asked.
 
 mod common;

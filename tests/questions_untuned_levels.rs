@@ -120,7 +120,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     ("n2_03b_wheel_curb_from_8mm.ron", "question vGx_after"),
     ("n2_03b_wheel_curb_from_8mm.ron", "question lost"),
     // rapier's soft wall at 16 substeps: the wall force at 55 degrees reads 2.6e-2 low (the
-    // ladder's known gap, tests/ladder_release.rs).
+    // ladder's known gap, tests/questions_ladder_release.rs).
     ("n2_11_ladder_omega_at_55.ron", "question N_wall"),
     // A disc set spinning on a rough floor: rapier reports a round body on a soft contact with a
     // step-end velocity of about -g h (-0.0102 m/s at h = 1/960 s) while its position stays.
@@ -172,7 +172,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n4_11_ball_pinned_bar_touch.ron", "question"),
     ("n4_12_ball_pinned_bar_gap.ron", "question"),
     // rapier's soft wall contact stops pushing early and in bursts: 2.9e-2 high at dt = 1e-4 s,
-    // 2.7e-3 at 5e-5 s, 1e-4 at 16 substeps (tests/ladder_release.rs has the series).
+    // 2.7e-3 at 5e-5 s, 1e-4 at 16 substeps (tests/questions_ladder_release.rs has the series).
     ("ladder_leaves_wall_70deg.ron", "question top_height"),
     ("ladder_leaves_wall_70deg.ron", "question time_leaves"),
     // The soft pin dissipates energy, first order in dt (the pendulum's known gap): a link swung
@@ -192,7 +192,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("pendulum_period_120deg.ron", "question period"),
     // rapier solves an impact as a speculative contact up to one step before touching, with that
     // step's normal: from 10 cm, v_A'x reads 2.6% low at dt = 1/60 s (first order in dt:
-    // tests/impact_approach.rs).
+    // tests/sim_impact_approach.rs).
     ("oblique_discs_e08_approach_10cm.ron", "question vAx"),
     ("oblique_discs_e08_approach_10cm.ron", "check restitution"),
     // rapier's plastic contact is not quite plastic: the wheel leaves the curb's corner with
