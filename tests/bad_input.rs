@@ -734,6 +734,13 @@ fn a_coupling_ratio_outside_1e_6_to_1e6_is_rejected() {
         let (line, _, msg) = error_of(&text);
         assert_eq!(line, line_of(&text, "name: \"cable\""), "{msg}");
         assert!(msg.contains("outside the 1e-6 to 1e6"), "{ratio}: {msg}");
+        // Written as typed, not as 200 digits.
+        if ratio == "1e200" {
+            assert!(
+                msg.contains("has the ratio 1e200 for body \"pulley\""),
+                "{msg}"
+            );
+        }
         assert!(msg.contains("over- or underflows"), "{msg}");
     }
     for ratio in ["1e6", "-1e-6"] {

@@ -42,7 +42,7 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
             return Err(v.err(
                 pos,
                 format!(
-                    "coupling \"{}\" has the ratio {} for body \"{}\", outside the {RATIO_MIN:e} to {RATIO_MAX:e} a ratio may be in size",
+                    "coupling \"{}\" has the ratio {:?} for body \"{}\", outside the {RATIO_MIN:e} to {RATIO_MAX:e} a ratio may be in size",
                     c.name, t.ratio, t.body
                 ),
                 "a ratio is a strand count (x and y terms) or a drum's or gear's radius in m (angle \
