@@ -450,7 +450,8 @@ mod window {
             let (problem, dir) = load_bad(name, &GOOD.replace("0.5", v));
             let path = dir.join("prefs.ron");
             assert!(
-                problem.contains(&format!("{}:4:5: time_scale", path.display())),
+                problem.contains(&format!("{}:4:5: time_scale", path.display()))
+                    && problem.contains("takes 1/64 to 8"),
                 "{name}: {problem}"
             );
             let _ = fs::remove_dir_all(&dir);

@@ -98,14 +98,14 @@ impl Prefs {
                 e.code
             )
         })?;
-        for (key, v, (lo, hi)) in [
-            ("time_scale", p.time_scale, TIME_SCALES),
-            ("arrow_scale", p.arrow_scale, ARROW_SCALES),
+        for (key, v, (lo, hi), range) in [
+            ("time_scale", p.time_scale, TIME_SCALES, "1/64 to 8"),
+            ("arrow_scale", p.arrow_scale, ARROW_SCALES, "0.25 to 4"),
         ] {
             if !(v.is_finite() && (lo..=hi).contains(&v)) {
                 let (line, col) = position_of(text, key);
                 return Err(format!(
-                    "{}:{line}:{col}: {key} {v} is out of range: the window takes {lo} to {hi}",
+                    "{}:{line}:{col}: {key} {v} is out of range: the window takes {range}",
                     path.display()
                 ));
             }
