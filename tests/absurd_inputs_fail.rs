@@ -203,6 +203,35 @@ fn a_spring_at_k_1e15_stops_at_the_speed_cap() {
 }
 
 #[test]
+fn a_body_cruising_at_the_speed_cap_runs_on() {
+    // Falling at v0, g takes it to the 400 m/s cap in (400 - v0) / g and it falls on at the cap:
+    // steady motion, not an explosion. Near the origin at v0 = 395 m/s (the cap at 0.51 s of
+    // 2 s; each step's 6.7 m resolved), and 1e5 m down at dt = 1e-5 s in 4 substeps and
+    // v0 = 399.95 m/s (the cap at 5.1 ms of 10 ms), where a substep's 1 mm is less than half
+    // an f32 ulp of the position (7.8 mm): the position does not change at all, which must not
+    // read as a body thrown back and forth at the cap.
+    for (y, v0, dt, substeps, duration) in [
+        ("0.0", "395.0", "0.016666666666666666", 1, "2.0"),
+        ("-1e5", "399.95", "1e-5", 4, "0.01"),
+    ] {
+        let text = format!(
+            r#"Level(title: "falling at the cap", effects: [gravity],
+  world: (dt: {dt}, substeps: {substeps}, duration: {duration}),
+  bodies: [(name: "b", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, {y}), velocity: (0.0, -{v0}))])"#
+        );
+        let mut sim = Simulation::new(&parse(&text), &Options::default());
+        let mut at_cap = 0;
+        let run = sim.run(|s| {
+            if s.bodies[0].velocity.length() > 399.99 {
+                at_cap += 1;
+            }
+        });
+        assert!(run.is_ok(), "y = {y}: {run:?}");
+        assert!(at_cap > 10, "y = {y}: {at_cap} steps at the cap");
+    }
+}
+
+#[test]
 fn a_spring_at_k_1e30_that_moves_nothing_stops() {
     let scene = parse(&spring_level("1e30"));
     let err = Simulation::new(&scene, &Options::default())

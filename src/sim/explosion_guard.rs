@@ -224,8 +224,9 @@ impl EnergyGuard {
     /// Stops a run that rapier's speed cap (`cap`, m/s) holds rather than the scene's forces
     /// (see the module's note), once it has held for [`PINNED_STEPS`] steps running:
     /// - a dynamic body at the cap at the step's end that reversed or stayed put over the step
-    ///   (|v - v_before| > cap / 2, or it moved less than cap dt / 2): thrown back and forth at
-    ///   the cap, not cruising at it as a fast bullet does;
+    ///   (|v - v_before| > cap / 2, or it moved less than cap dt / 2 where the precision
+    ///   resolves that much travel): thrown back and forth at the cap, not cruising at it as a
+    ///   fast bullet or a long free fall does;
     /// - a dynamic body that did not move at all (same mass center, zero velocity) while a spring
     ///   pulled it with a force F whose velocity change over one substep, |F| h / m with
     ///   h = dt / substeps, exceeds [`ENORMOUS`] times the cap.
@@ -266,8 +267,14 @@ impl EnergyGuard {
             let (com0, v0, _) = self.prev[i];
             let speed = b.velocity.length();
             let moved = (b.com - com0).length();
+            // Staying put is judged only where the precision resolves the step's travel: far
+            // from the origin in f32 a body cruising at the cap can move by whole ulps or not at
+            // all (a free fall at 400 m/s, 1e-5 s steps, 1e5 m down: 4 mm a step, ulp 8 mm).
+            let resolved =
+                0.5 * cap * now.dt > 4.0 * now.precision.epsilon() * b.com.length().max(1.0);
             let pinned = speed >= (1.0 - AT_CAP) * cap
-                && ((b.velocity - v0).length() > 0.5 * cap || moved < 0.5 * cap * now.dt);
+                && ((b.velocity - v0).length() > 0.5 * cap
+                    || (resolved && moved < 0.5 * cap * now.dt));
             self.at_cap[i] = if pinned { self.at_cap[i] + 1 } else { 0 };
             let still = b.com == com0 && b.velocity == DVec2::ZERO;
             let (dv, k, f) = pull[i];
