@@ -157,7 +157,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
 const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // A fifth new user (tests/newuser/n5_*, 2026-11-26), docs/known-gaps.md. A ball placed on
     // a rough floor with topspin gets too little normal impulse in its first step (the spinning
-    // contact's gap, tests/engine_gap_spinning_contact.rs): the spin reaches -30 rad/s 2.2 ms late
+    // contact's gap, tests/sim_spinning_contact_gap.rs): the spin reaches -30 rad/s 2.2 ms late
     // (1.08e-2; 7.3e-3 at 8 and 16 substeps; passes at dt/2, which check's advice names).
     ("n5_02_ball_topspin.ron", "question t_w30"),
     // A cue ball drawn back at 60 rad/s turns 0.93 rad a step; the contact point rapier keeps
