@@ -167,7 +167,8 @@ pub(super) fn fmt(x: f64) -> String {
 
 /// The egui system: lays out the side panels and the status bar, and leaves the rest of the
 /// window to the scene; opens the level the browser asked for.
-#[allow(clippy::too_many_arguments)]
+// A Bevy system takes what it reads as parameters, at most 16 (hence the tuple's).
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn panels(
     mut contexts: EguiContexts,
     mut phys: ResMut<Physics>,
