@@ -70,6 +70,10 @@ pub enum Command {
         /// The image to write: PNG only (FILE.png), written whole.
         #[arg(long)]
         out: PathBuf,
+        /// Draw even when stepping to --time is estimated past the time or memory budget
+        /// (runner::budget), which otherwise refuses it.
+        #[arg(long)]
+        allow_long: bool,
     },
 }
 
@@ -97,8 +101,8 @@ pub struct SolverArgs {
     /// before the bodies touch, with the normal of the approach): to measure the difference.
     #[arg(long)]
     pub no_impact_cuts: bool,
-    /// Run even when steps x substeps x iterations x bodies is past the cost budget
-    /// (runner::COST_BUDGET), which otherwise refuses the run.
+    /// Run even when the run is estimated past the time or memory budget (runner::budget:
+    /// 600 s, 4096 MB), which otherwise refuses it.
     #[arg(long)]
     pub allow_long: bool,
     /// The engine's floating point: f32 (rapier2d) or f64 (rapier2d-f64); default: the
@@ -116,12 +120,13 @@ fn parse_precision(s: &str) -> Result<level::Precision, String> {
 }
 
 impl SolverArgs {
-    /// Refuses a run past the cost budget, unless `--allow-long`.
+    /// Refuses a run estimated past the time or memory budget, unless `--allow-long`.
     pub fn budget(&self, scene: &level::Scene, opts: &Options) -> Result<(), LevelError> {
         if self.allow_long {
             return Ok(());
         }
-        runner::Cost::of(&scene.level, opts).within_budget(&scene.file)
+        runner::Estimate::of(&scene.level, opts, runner::Mode::Check, None)
+            .within_budget(&scene.file)
     }
 
     pub fn options(&self) -> Result<Options, String> {
@@ -210,7 +215,12 @@ pub fn main() -> ExitCode {
         Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
         Some(Command::Play { level }) => play(level),
         Some(Command::Study { study }) => crate::study::main(study),
-        Some(Command::Render { level, time, out }) => render(level, time, out),
+        Some(Command::Render {
+            level,
+            time,
+            out,
+            allow_long,
+        }) => render(level, time, out, allow_long),
     }
 }
 
@@ -352,18 +362,20 @@ fn load_warned(path: &std::path::Path) -> Result<level::Scene, LevelError> {
     Ok(scene)
 }
 
-/// Runs estimated to take longer than this many body-iterations (about 5 s at the 0.25 us per
-/// body-iteration measured for runner::COST_BUDGET) show a progress bar.
-const PROGRESS_FROM: f64 = 2e7;
+/// Runs estimated to take longer than this many seconds (runner::budget) show a progress bar.
+const PROGRESS_FROM: f64 = 5.0;
 
 /// A progress bar with the steps and the estimated time for a long run, drawn only when stderr is
 /// a terminal: a pipe or a CI log stays silent.
 fn progress_bar(scene: &level::Scene, opts: &Options) -> Option<ProgressBar> {
-    let cost = runner::Cost::of(&scene.level, opts);
-    if cost.total() < PROGRESS_FROM || !std::io::stderr().is_terminal() {
+    let estimate = runner::Estimate::of(&scene.level, opts, runner::Mode::Check, None);
+    if estimate.seconds < PROGRESS_FROM || !std::io::stderr().is_terminal() {
         return None;
     }
-    let bar = ProgressBar::with_draw_target(Some(cost.steps as u64), ProgressDrawTarget::stderr());
+    let bar = ProgressBar::with_draw_target(
+        Some(estimate.work.steps as u64),
+        ProgressDrawTarget::stderr(),
+    );
     bar.set_style(
         ProgressStyle::with_template("{msg} {bar:30} {pos}/{len} steps  {elapsed} (eta {eta})")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -507,6 +519,26 @@ fn play(level: PathBuf) -> ExitCode {
     }
 }
 
+/// `render --time`: a finite time >= 0 whose steps (the window steps at the level's dt) are
+/// estimated within the run budget, unless `--allow-long`.
+fn render_budget(scene: &level::Scene, time: f64, allow_long: bool) -> Result<(), String> {
+    if !(time.is_finite() && time >= 0.0) {
+        return Err("error: --time must be a finite time >= 0 s".into());
+    }
+    if allow_long {
+        return Ok(());
+    }
+    let steps = (time / scene.level.world.dt).round();
+    runner::Estimate::of(
+        &scene.level,
+        &Options::default(),
+        runner::Mode::Render,
+        Some(steps),
+    )
+    .within_budget(&scene.file)
+    .map_err(|e| e.to_string())
+}
+
 /// `render --out`: the renderer writes PNG only, and never over the level it draws. Checked
 /// before anything is read or written, so a refused `--out` leaves any file there as it was.
 fn render_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), String> {
@@ -529,7 +561,7 @@ fn render_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), Stri
 }
 
 #[cfg(feature = "app")]
-fn render(level: PathBuf, time: f64, out: PathBuf) -> ExitCode {
+fn render(level: PathBuf, time: f64, out: PathBuf, allow_long: bool) -> ExitCode {
     if let Err(e) = render_out(&level, &out) {
         return bad(e);
     }
@@ -537,8 +569,8 @@ fn render(level: PathBuf, time: f64, out: PathBuf) -> ExitCode {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
-    if !(time.is_finite() && time >= 0.0) {
-        return bad("--time must be a finite time >= 0 s");
+    if let Err(e) = render_budget(&scene, time, allow_long) {
+        return bad(e);
     }
     match crate::app::render(&scene, time, &out) {
         Ok(()) => ExitCode::SUCCESS,
@@ -563,8 +595,15 @@ fn play(_: PathBuf) -> ExitCode {
 }
 
 #[cfg(not(feature = "app"))]
-fn render(level: PathBuf, _: f64, out: PathBuf) -> ExitCode {
+fn render(level: PathBuf, time: f64, out: PathBuf, allow_long: bool) -> ExitCode {
     if let Err(e) = render_out(&level, &out) {
+        return bad(e);
+    }
+    let scene = match level::load(&level) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    if let Err(e) = render_budget(&scene, time, allow_long) {
         return bad(e);
     }
     no_app()

@@ -16,6 +16,9 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
+pub mod budget;
+pub use budget::{Estimate, Mode, Work, MEMORY_BUDGET_MB, TIME_BUDGET_S};
+
 /// Why a level could not be run to the end.
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
@@ -25,61 +28,6 @@ pub enum RunError {
     /// The scene exploded or became non-finite: reported as a failed level.
     #[error("{file}: the simulation stopped at {source}\n  help: a smaller dt, more substeps, or less extreme values usually fix this")]
     Sim { file: String, source: SimError },
-}
-
-/// The cost budget of one run, in body-iterations: [`Cost::total`] past this is refused unless
-/// the user allows long runs (`--allow-long`). The library's costliest level at its own settings,
-/// stress/joint_grid_30 (600 steps x 16 substeps x 1 iteration x 900 bodies = 8.6e6), checks in
-/// 2.2 s on this machine (0.25 us per body-iteration; a level of a few bodies pays about 1 us,
-/// its per-step overhead included); the budget is 115 times that, 4 to 15 minutes of stepping.
-pub const COST_BUDGET: f64 = 1e9;
-
-/// What a run will cost before it starts: steps x substeps x solver iterations x bodies
-/// (f64, so that `--dt 1e-300` gives a number, not an overflow).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Cost {
-    pub steps: f64,
-    pub substeps: usize,
-    pub iterations: usize,
-    pub bodies: usize,
-}
-
-impl Cost {
-    /// The cost of running `level` with the command line's overrides.
-    pub fn of(level: &Level, opts: &Options) -> Cost {
-        let w = &level.world;
-        Cost {
-            // As Simulation::total_steps counts them.
-            steps: (w.duration / opts.dt.unwrap_or(w.dt)).round().max(1.0),
-            substeps: opts.substeps.unwrap_or(w.substeps),
-            iterations: opts.solver_iterations.unwrap_or(w.solver_iterations),
-            bodies: level.bodies.len().max(1),
-        }
-    }
-
-    pub fn total(&self) -> f64 {
-        self.steps * self.substeps as f64 * self.iterations as f64 * self.bodies as f64
-    }
-
-    /// Bad input (exit 2) when the run would cost more than [`COST_BUDGET`].
-    pub fn within_budget(&self, file: &Path) -> Result<(), LevelError> {
-        if self.total() <= COST_BUDGET {
-            return Ok(());
-        }
-        Err(LevelError::new(
-            file,
-            (0, 0),
-            format!(
-                "this run would cost {:.2e} body-iterations ({:.3e} steps x {} substeps x {} iterations x {} bodies), past the budget of {COST_BUDGET:.0e}",
-                self.total(),
-                self.steps,
-                self.substeps,
-                self.iterations,
-                self.bodies
-            ),
-            "pass --allow-long to run it anyway, or use a larger --dt, fewer --substeps or --iterations, or a shorter world.duration",
-        ))
-    }
 }
 
 /// Loads and runs a level file.

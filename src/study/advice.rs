@@ -5,14 +5,15 @@
 //! substeps multiplied by the same, and the engine in f64 where the level ran in f32. Each
 //! candidate's cost is estimated against the level's own run (steps x substeps, f64 at
 //! [`F64_COST`] times f32) and candidates are tried cheapest first, up to [`MAX_COST_RATIO`] times
-//! the level's own cost and [`SEARCH_BUDGET`] times it over the whole search. The first that
+//! the level's own cost and [`SEARCH_BUDGET`] times it over the whole search, and within the
+//! time budget of one run (`runner::budget`) over the whole search. The first that
 //! passes is the advice; it is a real run's verdict, so rerunning the level with the advised
-//! settings passes (tests/advice.rs). When none passes, the failure does not go away with
+//! settings passes (tests/study_advice.rs). When none passes, the failure does not go away with
 //! accuracy within the bound: an engine limit (docs/known-gaps.md) or a wrong expected answer.
 
 use crate::level::{Precision, Scene};
 use crate::report::{Advice, AdvisedSettings, LevelReport};
-use crate::runner::{self, COST_BUDGET};
+use crate::runner::{self, Estimate, Mode, TIME_BUDGET_S};
 use crate::sim::{Options, Settings};
 use std::collections::HashMap;
 
@@ -82,6 +83,7 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
     let precision = opts.precision.unwrap_or(scene.level.world.precision);
     let own = Settings::resolve(&scene.level, opts, precision);
     let mut spent = 0.0;
+    let mut spent_s = 0.0;
     let mut searched_to = 0.0;
     let none = HashMap::new();
     for c in candidates(own.precision) {
@@ -95,12 +97,14 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
             precision: Some(c.precision),
             ..opts.clone()
         };
-        // A candidate past the run budget is not tried (and the search is bounded by it).
-        let cost = runner::Cost::of(&scene.level, &options);
-        if cost.total() > COST_BUDGET {
+        // A candidate past the run budget is not tried, and the whole search stays within the
+        // time budget of one run (runner::budget): the candidates come cheapest first.
+        let estimate = Estimate::of(&scene.level, &options, Mode::Check, None);
+        if !estimate.fits() || spent_s + estimate.seconds > TIME_BUDGET_S {
             break;
         }
         spent += c.cost_ratio;
+        spent_s += estimate.seconds;
         let Ok(r) = runner::run_graded(scene, &options, &none, |_| {}) else {
             searched_to = c.cost_ratio;
             continue;

@@ -38,8 +38,7 @@ pub struct Args {
     /// Run every case for 1e5 steps (recorded settings only; implies --allow-long).
     #[arg(long)]
     pub long: bool,
-    /// Run even when a case's steps x substeps x iterations x bodies is past the cost budget
-    /// (runner::COST_BUDGET).
+    /// Run even when a case is estimated past the time or memory budget (runner::budget).
     #[arg(long)]
     pub allow_long: bool,
     /// Recorded settings only: skip the comparison runs at rapier's defaults.
@@ -524,13 +523,16 @@ pub fn main(args: Args) -> ExitCode {
                 continue; // reported when the case runs
             };
             let set = plan.overrides.apply(&Settings::recorded(&scene, s));
-            let cost = crate::runner::Cost {
-                steps: (scene.level.world.duration / set.dt).round().max(1.0),
-                substeps: set.substeps,
-                iterations: set.iterations,
-                bodies: scene.level.bodies.len().max(1),
+            let opts = crate::sim::Options {
+                dt: Some(set.dt),
+                substeps: Some(set.substeps),
+                solver_iterations: Some(set.iterations),
+                precision: set.f64.then_some(level::Precision::F64),
+                ..Default::default()
             };
-            if let Err(e) = cost.within_budget(p) {
+            let estimate =
+                crate::runner::Estimate::of(&scene.level, &opts, crate::runner::Mode::Check, None);
+            if let Err(e) = estimate.within_budget(p) {
                 stderr!("{e}");
                 return ExitCode::from(2);
             }

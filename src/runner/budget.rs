@@ -1,0 +1,383 @@
+//! What a run will cost before it starts, in seconds and megabytes, and the budget that refuses
+//! a run past it (bad input, exit 2, unless `--allow-long`).
+//!
+//! The estimate adds measured unit costs over what the level and the overrides say the run
+//! will do: rapier calls (one a step, or one a substep where substeps are split:
+//! [`Substepping`]), bodies and constraints (joints and potential contact pairs) per substep and
+//! per solver iteration, contact pairs made and kept, questions and checks per step, and the
+//! history a check keeps. `check`, `run`, `study stability` and `render --time` all price their
+//! run here. The table in docs/cli.md compares the estimate with the measured wall time and
+//! peak memory (within 3x on the library and on adversarial levels, tests/budget/).
+//!
+//! # The unit costs
+//!
+//! Measured on 2026-11-26 on this 2-core machine (release build, the other cores busy with other
+//! builds at times), with `tools/budget_measure.sh` (`/usr/bin/time -v`: wall time and
+//! "Maximum resident set size") on the levels `tools/budget_levels.py --calib DIR` writes, each
+//! run long enough to take 0.2 to 2 s, and the per-step costs taken as differences between
+//! levels that differ in one thing:
+//!
+//! - [`START_S`]: a one-ball level of 6 steps: 0.01 s.
+//! - [`CALL_US`]: one ball, 1e6 steps of one rapier call: 1.31 s; a spring split into 100
+//!   substeps, 3600 steps (360,000 calls): 0.58 s, 1.6 us a call.
+//! - [`BODY_STEP_US`], [`BODY_SUBSTEP_US`]: 1000 free discs, 3600 steps at 1 substep: 0.21 s;
+//!   1800 steps at 16 substeps: 0.32 s (and 0.32 s at 8 iterations: iterations cost a body
+//!   without constraints nothing).
+//! - [`SUBSTEP_US`]: one free ball, 1200 steps of 1000 substeps: 0.11 s.
+//! - [`ROW_SUBSTEP_US`], [`ROW_ITERATION_US`] (a joint or a contact pair, per substep and per
+//!   substep-iteration): a chain of 200 links, 3600 steps at 8 substeps: 0.34 s at 1 iteration,
+//!   0.67 s at 8 (0.008 us a joint-substep-iteration); 1800 steps at 32 substeps: 0.49 s (0.035
+//!   us a joint-substep); a pendulum at 1000 substeps, 1200 steps: 0.25 s (0.12 us); a chain of
+//!   40 at 96 substeps, 600 steps: 0.24 s (0.09 us). 0.06 us is their middle: the cost of a
+//!   joint's substep falls with the joints in the island.
+//! - [`PAIR_STEP_US`]: the library's contact levels (stress/pyramid_20, vertical_stack,
+//!   card_house, arch, newtons_cradle), fitted after the terms above.
+//! - [`PAIR_MADE_NS`]: rapier makes a contact pair in time proportional to the pairs its bodies
+//!   already have (`NarrowPhase::add_pair`, 89% of the run in `perf`): 1000 discs at one point
+//!   (499,500 pairs, each body in 999) took 16.7 s for one step, 18.9 s for six.
+//! - [`QUESTION_STEP_US`]: 10^4 questions on one ball, 600 steps: 1.02 s, 0.09 s of it loading.
+//! - [`CHECK_STEP_US`]: an `impulse_momentum` check over 1e6 steps: 2.07 s against 1.31 s without.
+//! - [`BASE_MB`] and the per-item memory: the peak of a one-ball run (31.3 MB); 1000 discs at
+//!   one point 1282 MB, 300 at one point 124 MB (2.1 to 2.5 KB a pair); 10^4 questions 66.5 MB
+//!   (3.4 KB each); 1000 free bodies 32.6 MB; the `impulse_momentum` check over 1e6 steps
+//!   77.1 MB (48 bytes a step, as `ImpulseMomentumLedger` stores them).
+//! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
+
+use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError, Shape};
+use crate::sim::{Options, Settings, Substepping};
+use std::path::Path;
+
+/// The time budget of one run, s: past it a run is refused unless `--allow-long`.
+pub const TIME_BUDGET_S: f64 = 600.0;
+/// The memory budget of one run, MB (2^20 bytes): past it a run is refused unless `--allow-long`.
+pub const MEMORY_BUDGET_MB: f64 = 4096.0;
+
+/// The process's start and the level's load, s.
+pub const START_S: f64 = 0.01;
+/// One rapier call (`PhysicsPipeline::step`) with its reading into the snapshot, us.
+pub const CALL_US: f64 = 1.3;
+/// One body read into a step's snapshot and its step's bookkeeping, us.
+pub const BODY_STEP_US: f64 = 0.05;
+/// One substep of a rapier call, whatever it holds, us.
+pub const SUBSTEP_US: f64 = 0.08;
+/// One body integrated in one substep, us.
+pub const BODY_SUBSTEP_US: f64 = 0.008;
+/// One constraint (a joint or a potential contact pair) prepared in one substep, us.
+pub const ROW_SUBSTEP_US: f64 = 0.06;
+/// One constraint solved in one solver iteration of one substep (a body-substep-iteration of
+/// the solver), us.
+pub const ROW_ITERATION_US: f64 = 0.008;
+/// One potential contact pair in the narrow phase, per step, us.
+pub const PAIR_STEP_US: f64 = 0.1;
+/// Making one contact pair, per pair its two bodies already have, ns (paid once, when the pairs
+/// of bodies that overlap at the start are made).
+pub const PAIR_MADE_NS: f64 = 17.0;
+/// One question watching one step, us.
+pub const QUESTION_STEP_US: f64 = 0.15;
+/// One check observing one step, us.
+pub const CHECK_STEP_US: f64 = 0.8;
+/// The engine's part of a step in f64 against f32 (rapier2d-f64 against rapier2d: 1.2x to 1.3x
+/// over the library, docs/accuracy.md; `study::advice::F64_COST`).
+pub const F64_COST: f64 = 1.25;
+/// The process itself: the binary and the allocator's start, MB.
+pub const BASE_MB: f64 = 32.0;
+/// A body, KB.
+pub const BODY_KB: f64 = 1.5;
+/// A joint, KB.
+pub const JOINT_KB: f64 = 4.0;
+/// A potential contact pair (rapier's pair, manifold and solver rows), KB.
+pub const PAIR_KB: f64 = 2.5;
+/// A question, KB.
+pub const QUESTION_KB: f64 = 3.4;
+/// `render`: the renderer's start, its first frame and the PNG, s and MB.
+pub const RENDER_S: f64 = 0.8;
+pub const RENDER_MB: f64 = 200.0;
+
+/// Contact pairs past this many are not counted further (the memory alone is past any budget).
+const PAIRS_COUNTED: f64 = 1e7;
+
+/// Which command runs the level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Mode {
+    /// `check`, `study stability`: the checks and questions observe each step.
+    Check,
+    /// `run`: also writes the snapshots as CSV when asked.
+    Run,
+    /// `render --time T`: the window's physics to T, then one frame.
+    Render,
+}
+
+/// What a run will do, counted from the level and the overrides before it starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Work {
+    /// Steps (f64, so that `--dt 1e-300` gives a number, not an overflow).
+    pub steps: f64,
+    pub substeps: usize,
+    pub iterations: usize,
+    /// rapier calls a step: 1, or `substeps` where substeps are split.
+    pub calls_per_step: usize,
+    pub bodies: usize,
+    pub joints: usize,
+    /// Pairs of colliding bodies whose boxes overlap (within 1 cm) at the start.
+    pub pairs: f64,
+    /// Sum over those pairs of the pairs their two bodies are in (what making them costs).
+    pub pair_degrees: f64,
+    pub questions: usize,
+    pub checks: usize,
+    /// Bytes the checks keep per step (their histories).
+    pub history_bytes_per_step: f64,
+    /// The engine in f64 (rapier2d-f64), whose steps cost [`F64_COST`] times f32's.
+    pub f64: bool,
+}
+
+/// The estimate of one run: its [`Work`] priced with the unit costs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    pub work: Work,
+    pub mode: Mode,
+    pub seconds: f64,
+    pub megabytes: f64,
+}
+
+impl Work {
+    /// The work of running `level` with the command line's overrides for `steps` steps (None:
+    /// world.duration / dt).
+    pub fn of(level: &Level, opts: &Options, steps: Option<f64>) -> Work {
+        let precision = opts.precision.unwrap_or(level.world.precision);
+        let set = Settings::resolve(level, opts, precision);
+        let steps = steps.unwrap_or_else(|| {
+            // As Simulation::total_steps counts them.
+            (level.world.duration / opts.dt.unwrap_or(level.world.dt))
+                .round()
+                .max(1.0)
+        });
+        let (pairs, pair_degrees) = if set.effects.has(Effect::Contacts) {
+            contact_pairs(level)
+        } else {
+            (0.0, 0.0)
+        };
+        let history_bytes_per_step = level
+            .checks
+            .iter()
+            .map(|c| match c.kind {
+                // ImpulseMomentumLedger: (t, G, J, |G|) 48 bytes, and (H, M, |H|) 24 more about a point.
+                CheckKind::ImpulseMomentum => {
+                    if c.point.is_some() {
+                        72.0
+                    } else {
+                        48.0
+                    }
+                }
+                // WorkEnergy: (t, E - E_theory) a step, for the drift rate.
+                CheckKind::WorkEnergy => 16.0,
+                _ => 0.0,
+            })
+            .sum();
+        Work {
+            steps,
+            substeps: set.substeps,
+            iterations: set.solver_iterations,
+            calls_per_step: if set.substepping == Substepping::Split {
+                set.substeps
+            } else {
+                1
+            },
+            bodies: level.bodies.len(),
+            joints: level.joints.len(),
+            pairs,
+            pair_degrees,
+            questions: level.questions.len(),
+            checks: level.checks.len(),
+            history_bytes_per_step,
+            f64: precision == crate::level::Precision::F64,
+        }
+    }
+
+    /// One step, us.
+    pub fn step_us(&self) -> f64 {
+        let rows = self.joints as f64 + self.pairs;
+        let engine = if self.f64 { F64_COST } else { 1.0 };
+        engine
+            * (self.calls_per_step as f64 * CALL_US
+                + self.bodies as f64 * BODY_STEP_US
+                + self.substeps as f64
+                    * (SUBSTEP_US
+                        + self.bodies as f64 * BODY_SUBSTEP_US
+                        + rows * (ROW_SUBSTEP_US + self.iterations as f64 * ROW_ITERATION_US))
+                + self.pairs * PAIR_STEP_US)
+            + self.questions as f64 * QUESTION_STEP_US
+            + self.checks as f64 * CHECK_STEP_US
+    }
+}
+
+impl Estimate {
+    /// The estimate of running `level` with the overrides, as `mode` runs it, for `steps` steps
+    /// (None: world.duration / dt).
+    pub fn of(level: &Level, opts: &Options, mode: Mode, steps: Option<f64>) -> Estimate {
+        Self::price(Work::of(level, opts, steps), mode)
+    }
+
+    /// The unit costs applied to `work`: the formula docs/cli.md states.
+    pub fn price(work: Work, mode: Mode) -> Estimate {
+        let mut seconds =
+            START_S + work.steps * work.step_us() * 1e-6 + work.pair_degrees * PAIR_MADE_NS * 1e-9;
+        let mut megabytes = BASE_MB
+            + (work.bodies as f64 * BODY_KB
+                + work.joints as f64 * JOINT_KB
+                + work.pairs * PAIR_KB
+                + work.questions as f64 * QUESTION_KB)
+                / 1024.0
+            + work.steps * work.history_bytes_per_step / 1048576.0;
+        if mode == Mode::Render {
+            seconds += RENDER_S;
+            megabytes += RENDER_MB;
+        }
+        Estimate {
+            work,
+            mode,
+            seconds,
+            megabytes,
+        }
+    }
+
+    /// Whether the run fits the time and the memory budgets.
+    pub fn fits(&self) -> bool {
+        self.seconds <= TIME_BUDGET_S && self.megabytes <= MEMORY_BUDGET_MB
+    }
+
+    /// Bad input (exit 2), located at the level file, when the run would take more than
+    /// [`TIME_BUDGET_S`] or [`MEMORY_BUDGET_MB`].
+    pub fn within_budget(&self, file: &Path) -> Result<(), LevelError> {
+        if self.fits() {
+            return Ok(());
+        }
+        let w = &self.work;
+        let mut what = format!(
+            "{:.3e} steps x {} substeps x {} iterations, {} bodies, {} joints",
+            w.steps, w.substeps, w.iterations, w.bodies, w.joints
+        );
+        if w.pairs > 0.0 {
+            what += &format!(", {:.0} contact pairs", w.pairs);
+        }
+        if w.questions > 0 {
+            what += &format!(", {} questions", w.questions);
+        }
+        if w.history_bytes_per_step > 0.0 {
+            what += &format!(", checks keeping {} bytes a step", w.history_bytes_per_step);
+        }
+        Err(LevelError::new(
+            file,
+            (0, 0),
+            format!(
+                "this run is estimated to take {} and {} ({what}), past the budget of {TIME_BUDGET_S:.0} s and {MEMORY_BUDGET_MB:.0} MB",
+                seconds_text(self.seconds),
+                megabytes_text(self.megabytes),
+            ),
+            "pass --allow-long to run it anyway, or use a larger --dt, fewer --substeps or --iterations, or a shorter world.duration (or --time)",
+        ))
+    }
+}
+
+fn seconds_text(s: f64) -> String {
+    if s < 1e5 {
+        format!("{s:.1} s")
+    } else {
+        format!("{s:.2e} s")
+    }
+}
+
+fn megabytes_text(mb: f64) -> String {
+    if mb < 1e5 {
+        format!("{mb:.0} MB")
+    } else {
+        format!("{mb:.2e} MB")
+    }
+}
+
+/// An axis-aligned box, (min, max).
+type Aabb = ((f64, f64), (f64, f64));
+
+/// The box of a shape placed at `at` turned by `angle`.
+fn shape_box(shape: &Shape, at: (f64, f64), angle: f64) -> Aabb {
+    let (s, c) = angle.sin_cos();
+    let place = |p: (f64, f64)| (at.0 + c * p.0 - s * p.1, at.1 + s * p.0 + c * p.1);
+    let points = |ps: &[(f64, f64)], r: f64| {
+        let mut b = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for &p in ps {
+            let q = place(p);
+            b.0 = (b.0.0.min(q.0 - r), b.0.1.min(q.1 - r));
+            b.1 = (b.1.0.max(q.0 + r), b.1.1.max(q.1 + r));
+        }
+        b
+    };
+    match shape {
+        Shape::Circle { radius } => points(&[(0.0, 0.0)], *radius),
+        Shape::Box { width, height } => {
+            let (w, h) = (width / 2.0, height / 2.0);
+            points(&[(-w, -h), (w, -h), (w, h), (-w, h)], 0.0)
+        }
+        Shape::Capsule { length, radius } => {
+            points(&[(-length / 2.0, 0.0), (length / 2.0, 0.0)], *radius)
+        }
+        Shape::Polygon { points: ps } => points(ps, 0.0),
+        Shape::Segment { a, b } => points(&[*a, *b], 0.0),
+        Shape::Compound { parts } => {
+            let mut b = (
+                (f64::INFINITY, f64::INFINITY),
+                (f64::NEG_INFINITY, f64::NEG_INFINITY),
+            );
+            for p in parts {
+                let q = shape_box(&p.shape, place(p.offset), angle + p.angle);
+                b.0 = (b.0.0.min(q.0.0), b.0.1.min(q.0.1));
+                b.1 = (b.1.0.max(q.1.0), b.1.1.max(q.1.1));
+            }
+            b
+        }
+    }
+}
+
+/// The potential contact pairs at the start: pairs of bodies with shapes, not both fixed, whose
+/// boxes overlap within 1 cm; and the sum over them of the pairs each pair's bodies are in.
+/// A sweep along x; counting stops past [`PAIRS_COUNTED`].
+fn contact_pairs(level: &Level) -> (f64, f64) {
+    const MARGIN: f64 = 0.01;
+    let mut boxes: Vec<(Aabb, bool)> = level
+        .bodies
+        .iter()
+        .filter_map(|b| {
+            let shape = b.shape.as_ref()?;
+            let bb = shape_box(shape, b.position, b.angle);
+            let finite = [bb.0.0, bb.0.1, bb.1.0, bb.1.1]
+                .iter()
+                .all(|v| v.is_finite());
+            finite.then_some((bb, b.kind == BodyKind::Fixed))
+        })
+        .collect();
+    boxes.sort_by(|a, b| a.0.0.0.total_cmp(&b.0.0.0));
+    let mut degree = vec![0usize; boxes.len()];
+    let mut pairs = 0.0;
+    'sweep: for i in 0..boxes.len() {
+        let (a, fixed_a) = boxes[i];
+        for j in i + 1..boxes.len() {
+            let (b, fixed_b) = boxes[j];
+            if b.0.0 > a.1.0 + MARGIN {
+                break;
+            }
+            if fixed_a && fixed_b || b.0.1 > a.1.1 + MARGIN || a.0.1 > b.1.1 + MARGIN {
+                continue;
+            }
+            degree[i] += 1;
+            degree[j] += 1;
+            pairs += 1.0;
+            if pairs >= PAIRS_COUNTED {
+                break 'sweep;
+            }
+        }
+    }
+    // Sum over the pairs of their bodies' pairs: sum over the bodies of d^2.
+    let pair_degrees = degree.iter().map(|&d| (d as f64).powi(2)).sum();
+    (pairs, pair_degrees)
+}
