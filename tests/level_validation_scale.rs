@@ -66,9 +66,11 @@ fn sixty_thousand_bodies_on_one_line_validate_in_linear_time() {
     // machine does not fail it, and the time is printed: 5 s in release, 30 s unoptimized.
     let bound = if cfg!(debug_assertions) { 30.0 } else { 5.0 };
     assert!(t_large < bound, "60,000 bodies took {t_large:.3} s");
-    // Six times the bodies: linear is x6; quadratic was x36.
+    // Six times the bodies: linear is x6; quadratic was x36. The bound is their geometric mean
+    // (x14.7), halfway between the two on a log scale: x10.1 was seen once on a machine loaded
+    // by other builds, where a bound of 10 failed a linear run.
     assert!(
-        t_large / t_small < 10.0,
+        t_large / t_small < 14.7,
         "10,000 bodies {t_small:.3} s, 60,000 {t_large:.3} s: not linear"
     );
 }
@@ -82,9 +84,9 @@ fn thirty_thousand_questions_validate_in_linear_time() {
         t_large / t_small
     );
     // Ten times the questions: linear is x10 (x14 measured, the larger file outgrowing the caches);
-    // quadratic was x100.
+    // quadratic was x100. The bound is their geometric mean, x31.6 (see the bodies' test).
     assert!(
-        t_large / t_small < 25.0,
+        t_large / t_small < 31.6,
         "3,000 questions {t_small:.3} s, 30,000 {t_large:.3} s: not linear"
     );
 }
