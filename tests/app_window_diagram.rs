@@ -55,7 +55,11 @@ fn balances(file: &str, frame: usize) {
                 continue;
             };
             windows += 1;
-            let scale_f = bal.force.length().max(bal.mass_acceleration.length()).max(1e-9);
+            let scale_f = bal
+                .force
+                .length()
+                .max(bal.mass_acceleration.length())
+                .max(1e-9);
             let fr = bal.force_residual().length() / scale_f.max(b.mass * 9.81);
             let mr = bal.moment_residual().abs() / (scale_f.max(b.mass * 9.81) * size);
             assert!(

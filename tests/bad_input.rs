@@ -497,7 +497,11 @@ fn the_library_is_well_within_the_run_budget() {
     for f in rigidlab::level::collect_files(&["levels".into()]).unwrap() {
         let scene = rigidlab::level::load(&f).unwrap();
         let e = Estimate::of(&scene.level, &Default::default(), Mode::Check, None);
-        assert!(e.megabytes * 50.0 < MEMORY_BUDGET_MB, "{}: {e:?}", f.display());
+        assert!(
+            e.megabytes * 50.0 < MEMORY_BUDGET_MB,
+            "{}: {e:?}",
+            f.display()
+        );
         if e.seconds > worst.0 {
             worst = (e.seconds, f.display().to_string());
         }

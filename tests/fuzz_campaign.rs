@@ -19,7 +19,7 @@ use rigidlab::level::{self, LevelError};
 use rigidlab::runner::{self, Estimate, Mode};
 use rigidlab::sim::Options;
 use std::collections::HashMap;
-use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::{Duration, Instant};

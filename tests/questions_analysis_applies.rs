@@ -101,7 +101,11 @@ fn torsion_pendulum(theta0: f64, damping: f64) -> String {
             quantity: PendulumPeriod(body: "bar", joint: "pin"), at: End, why: "read")],
         )"#,
         damp = if damping > 0.0 { ", damping" } else { "" },
-        c_field = if damping > 0.0 { format!(", damping: {damping}") } else { String::new() },
+        c_field = if damping > 0.0 {
+            format!(", damping: {damping}")
+        } else {
+            String::new()
+        },
         x = 0.5 * s,
         y = -0.5 * c,
     )
@@ -116,14 +120,23 @@ fn a_pendulums_period_takes_its_torsion_spring() {
         let reference = torsion_pendulum_period_rk4(i_o, mgd, k, theta0);
         let analysis = q.analysis.expect("an analysis");
         // The energy integral against the RK4 reference: both converged far below 1e-6.
-        assert!((analysis / reference - 1.0).abs() < 1e-6, "{analysis} {reference}");
+        assert!(
+            (analysis / reference - 1.0).abs() < 1e-6,
+            "{analysis} {reference}"
+        );
         // Small swings: 2 pi sqrt(I_O / (m g d + k)) = 1.3405 s (gravity alone: 1.6383 s).
         if theta0 < 0.1 {
             let small = 2.0 * std::f64::consts::PI * (i_o / (mgd + k)).sqrt();
-            assert!((reference / small - 1.0).abs() < 1e-3, "{reference} {small}");
+            assert!(
+                (reference / small - 1.0).abs() < 1e-3,
+                "{reference} {small}"
+            );
         }
         // The engine agrees with it (rapier's pinned swing: within 1e-2 at 1/480 s, 8 substeps).
-        assert!((q.engine / reference - 1.0).abs() < 1e-2, "{q:?} {reference}");
+        assert!(
+            (q.engine / reference - 1.0).abs() < 1e-2,
+            "{q:?} {reference}"
+        );
         assert!(q.note.is_empty(), "{}", q.note);
     }
 }
@@ -132,7 +145,11 @@ fn a_pendulums_period_takes_its_torsion_spring() {
 fn a_pendulum_period_with_a_damper_says_its_analysis_does_not_apply() {
     let q = &questions(&torsion_pendulum(0.3, 0.5))[0];
     assert_eq!(q.analysis, None, "{q:?}");
-    assert!(q.note.contains("analysis not applicable") && q.note.contains("damper"), "{}", q.note);
+    assert!(
+        q.note.contains("analysis not applicable") && q.note.contains("damper"),
+        "{}",
+        q.note
+    );
 }
 
 /// A pendulum pinned to a cart that rolls free: its pivot moves, so the fixed-pivot period does
@@ -155,7 +172,11 @@ fn a_pendulum_on_a_moving_support_says_its_analysis_does_not_apply() {
         )"#;
     let q = &questions(text)[0];
     assert_eq!(q.analysis, None, "{q:?}");
-    assert!(q.note.contains("free body") && q.note.contains("fixed pivot"), "{}", q.note);
+    assert!(
+        q.note.contains("free body") && q.note.contains("fixed pivot"),
+        "{}",
+        q.note
+    );
 }
 
 /// A block held by two springs, one along x and one at 60 degrees: 2 pi sqrt(m / sum k) adds

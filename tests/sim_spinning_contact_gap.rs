@@ -57,7 +57,11 @@ fn a_disc_spun_on_a_floor_loses_part_of_its_first_normal_impulse() {
     }
     // omega = -20 rad/s: none at all in the first step, at every step and substep count; the
     // disc then sinks 3.3 mm at 1/60 s and 4 substeps, 0.4 mm at 1/240 s, 0.08 mm at 1/960 s.
-    for (dt, deepest) in [(1.0 / 60.0, 4e-3), (1.0 / 240.0, 6e-4), (1.0 / 960.0, 1.5e-4)] {
+    for (dt, deepest) in [
+        (1.0 / 60.0, 4e-3),
+        (1.0 / 240.0, 6e-4),
+        (1.0 / 960.0, 1.5e-4),
+    ] {
         let (n, sink) = spin_kick(-20.0, dt, 4);
         assert!(n.abs() < 1e-6, "dt {dt}: {n}");
         assert!(-sink < deepest, "dt {dt}: sank {sink}");

@@ -51,9 +51,14 @@ fn a_level_that_more_accuracy_fixes_gets_settings_that_pass() {
     };
     assert!(*cost_ratio > 1.0 && *cost_ratio <= MAX_COST_RATIO, "{a:?}");
     let w = &s.level.world;
-    assert!(settings.dt < w.dt || settings.substeps > w.substeps || settings.precision != w.precision);
+    assert!(
+        settings.dt < w.dt || settings.substeps > w.substeps || settings.precision != w.precision
+    );
     let rerun = run(&s, &advised(&a).unwrap());
-    assert!(!engine_failed(&rerun), "the advised settings pass when rerun: {a:?}");
+    assert!(
+        !engine_failed(&rerun),
+        "the advised settings pass when rerun: {a:?}"
+    );
 }
 
 /// A ball striking a pinned bar with e = 0.8: rapier's e is 0.754 at every setting
@@ -89,8 +94,17 @@ fn check_prints_the_advice_and_no_advice_turns_it_off() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let advice = &json["levels"][0]["advice"];
     assert!(advice["settings"]["dt"].as_f64().unwrap() > 0.0, "{advice}");
-    assert!(advice["settings"]["substeps"].as_u64().unwrap() >= 1, "{advice}");
-    assert!(matches!(advice["settings"]["precision"].as_str(), Some("f32" | "f64")), "{advice}");
+    assert!(
+        advice["settings"]["substeps"].as_u64().unwrap() >= 1,
+        "{advice}"
+    );
+    assert!(
+        matches!(
+            advice["settings"]["precision"].as_str(),
+            Some("f32" | "f64")
+        ),
+        "{advice}"
+    );
     assert!(advice["cost_ratio"].as_f64().unwrap() > 1.0, "{advice}");
     let out = Command::new(bin)
         .args(["check", failing, "--json", "--no-advice"])

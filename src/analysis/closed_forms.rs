@@ -194,8 +194,14 @@ mod tests {
             let from_rest = energy_integral_period(i_o, v, a, 0.0, 2.0 * PI).unwrap();
             let w0 = (2.0 * m * g * d * (1.0 - a.cos()) / i_o).sqrt();
             let from_bottom = energy_integral_period(i_o, v, 0.0, -w0, 2.0 * PI).unwrap();
-            assert!((from_rest / exact - 1.0).abs() < 1e-8, "{deg}: {from_rest} {exact}");
-            assert!((from_bottom / exact - 1.0).abs() < 1e-8, "{deg}: {from_bottom} {exact}");
+            assert!(
+                (from_rest / exact - 1.0).abs() < 1e-8,
+                "{deg}: {from_rest} {exact}"
+            );
+            assert!(
+                (from_bottom / exact - 1.0).abs() < 1e-8,
+                "{deg}: {from_bottom} {exact}"
+            );
         }
         // A torsion spring alone: 2 pi sqrt(I / k) at any amplitude and about any rest angle.
         let k = 5.0;

@@ -20,9 +20,9 @@ use crate::analysis::closed_forms::{
 };
 use crate::analysis::energy::spring_potential;
 use crate::analysis::mass::parallel_axis;
-use crate::level::{BodyKind, JointKind};
 pub(super) use crate::analysis::oscillation::Crossings;
 use crate::level::Quantity;
+use crate::level::{BodyKind, JointKind};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
@@ -144,7 +144,10 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
         .iter()
         .filter(|x| x.torsion && x.holds(i))
         .filter_map(|x| {
-            let now = init.springs.iter().find(|y| y.torsion && y.name == x.name)?;
+            let now = init
+                .springs
+                .iter()
+                .find(|y| y.torsion && y.name == x.name)?;
             let sign = if x.body1 == i { 1.0 } else { -1.0 };
             Some((x.stiffness, now.extension, sign))
         })
@@ -228,7 +231,9 @@ fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<Str
             ));
         }
         let other = if x.body1 == i { x.body2 } else { Some(x.body1) };
-        if let Some(o) = other.filter(|&o| s.bodies.get(o).is_some_and(|b| b.kind != BodyKind::Fixed)) {
+        if let Some(o) =
+            other.filter(|&o| s.bodies.get(o).is_some_and(|b| b.kind != BodyKind::Fixed))
+        {
             return Some(format!(
                 "torsion spring \"{}\" joins the body to \"{}\", which moves",
                 x.name,

@@ -308,8 +308,8 @@ fn shape_box(shape: &Shape, at: (f64, f64), angle: f64) -> Aabb {
         );
         for &p in ps {
             let q = place(p);
-            b.0 = (b.0.0.min(q.0 - r), b.0.1.min(q.1 - r));
-            b.1 = (b.1.0.max(q.0 + r), b.1.1.max(q.1 + r));
+            b.0 = (b.0 .0.min(q.0 - r), b.0 .1.min(q.1 - r));
+            b.1 = (b.1 .0.max(q.0 + r), b.1 .1.max(q.1 + r));
         }
         b
     };
@@ -331,8 +331,8 @@ fn shape_box(shape: &Shape, at: (f64, f64), angle: f64) -> Aabb {
             );
             for p in parts {
                 let q = shape_box(&p.shape, place(p.offset), angle + p.angle);
-                b.0 = (b.0.0.min(q.0.0), b.0.1.min(q.0.1));
-                b.1 = (b.1.0.max(q.1.0), b.1.1.max(q.1.1));
+                b.0 = (b.0 .0.min(q.0 .0), b.0 .1.min(q.0 .1));
+                b.1 = (b.1 .0.max(q.1 .0), b.1 .1.max(q.1 .1));
             }
             b
         }
@@ -350,23 +350,23 @@ fn contact_pairs(level: &Level) -> (f64, f64) {
         .filter_map(|b| {
             let shape = b.shape.as_ref()?;
             let bb = shape_box(shape, b.position, b.angle);
-            let finite = [bb.0.0, bb.0.1, bb.1.0, bb.1.1]
+            let finite = [bb.0 .0, bb.0 .1, bb.1 .0, bb.1 .1]
                 .iter()
                 .all(|v| v.is_finite());
             finite.then_some((bb, b.kind == BodyKind::Fixed))
         })
         .collect();
-    boxes.sort_by(|a, b| a.0.0.0.total_cmp(&b.0.0.0));
+    boxes.sort_by(|a, b| a.0 .0 .0.total_cmp(&b.0 .0 .0));
     let mut degree = vec![0usize; boxes.len()];
     let mut pairs = 0.0;
     'sweep: for i in 0..boxes.len() {
         let (a, fixed_a) = boxes[i];
         for j in i + 1..boxes.len() {
             let (b, fixed_b) = boxes[j];
-            if b.0.0 > a.1.0 + MARGIN {
+            if b.0 .0 > a.1 .0 + MARGIN {
                 break;
             }
-            if fixed_a && fixed_b || b.0.1 > a.1.1 + MARGIN || a.0.1 > b.1.1 + MARGIN {
+            if fixed_a && fixed_b || b.0 .1 > a.1 .1 + MARGIN || a.0 .1 > b.1 .1 + MARGIN {
                 continue;
             }
             degree[i] += 1;

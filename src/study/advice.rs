@@ -128,7 +128,11 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
             "no finer step, more substeps{} up to {searched_to}x the level's cost passes: \
              the failure does not shrink with accuracy, an engine limit (docs/known-gaps.md) \
              or an expected answer to recheck",
-            if own.precision == Precision::F32 { " or f64" } else { "" }
+            if own.precision == Precision::F32 {
+                " or f64"
+            } else {
+                ""
+            }
         ),
     }
 }
@@ -141,10 +145,18 @@ mod tests {
     fn candidates_are_cheapest_first_and_bounded() {
         let c = candidates(Precision::F32);
         assert!(c.windows(2).all(|w| w[0].cost_ratio <= w[1].cost_ratio));
-        assert!(c.iter().all(|x| x.cost_ratio > 1.0 && x.cost_ratio <= MAX_COST_RATIO));
+        assert!(c
+            .iter()
+            .all(|x| x.cost_ratio > 1.0 && x.cost_ratio <= MAX_COST_RATIO));
         // f64 at the level's own step and substeps comes first (1.25x), then 2x substeps.
-        assert_eq!((c[0].dt_div, c[0].sub_mul, c[0].precision), (1, 1, Precision::F64));
-        assert_eq!((c[1].dt_div, c[1].sub_mul, c[1].precision), (1, 2, Precision::F32));
+        assert_eq!(
+            (c[0].dt_div, c[0].sub_mul, c[0].precision),
+            (1, 1, Precision::F64)
+        );
+        assert_eq!(
+            (c[1].dt_div, c[1].sub_mul, c[1].precision),
+            (1, 2, Precision::F32)
+        );
         assert_eq!((c[2].dt_div, c[2].sub_mul), (2, 1));
         // A level already in f64 is never advised f32.
         assert!(candidates(Precision::F64)
