@@ -329,15 +329,7 @@ impl QuestionProbe {
         if prev.time + tau >= t_c {
             return r;
         }
-        let at = Arc::new(carried_to(prev, tau));
-        let window = [Arc::clone(prev), Arc::clone(&at)];
-        let carried = Sample {
-            prev: Some(prev),
-            cur: &at,
-            next: None,
-            window: &window,
-        };
-        self.meter.read(&carried, Occasion::Plain)
+        read_carried(&self.meter, prev, tau)
     }
 
     /// In a step where a contact began, the fraction of the step at which the trigger quantity
@@ -348,17 +340,7 @@ impl QuestionProbe {
         let trigger = self.trigger.as_ref()?;
         let t_c = contact_began(&self.facts, prev, sample.cur)?;
         let dt = sample.cur.time - prev.time;
-        let signal = |f: f64| {
-            let at = Arc::new(carried_to(prev, f * dt));
-            let window = [Arc::clone(prev), Arc::clone(&at)];
-            let carried = Sample {
-                prev: Some(prev),
-                cur: &at,
-                next: None,
-                window: &window,
-            };
-            trigger.read(&carried, Occasion::Plain).engine - value
-        };
+        let signal = |f: f64| read_carried(trigger, prev, f * dt).engine - value;
         let end = signal(1.0);
         if !end.is_finite() || (end > 0.0) == (s0 > 0.0) && end != 0.0 {
             return None;
@@ -442,6 +424,19 @@ fn contact_began(facts: &LevelFacts, prev: &Snapshot, cur: &Snapshot) -> Option<
         .filter_map(|c| Impact::find(facts, prev, cur, c.body1, Some(c.body2)))
         .map(|imp| imp.t_c)
         .min_by(f64::total_cmp)
+}
+
+/// `meter`'s reading of the snapshot `prev` carried `tau` seconds on ([`carried_to`]).
+fn read_carried(meter: &Meter, prev: &Arc<Snapshot>, tau: f64) -> Reading {
+    let at = Arc::new(carried_to(prev, tau));
+    let window = [Arc::clone(prev), Arc::clone(&at)];
+    let carried = Sample {
+        prev: Some(prev),
+        cur: &at,
+        next: None,
+        window: &window,
+    };
+    meter.read(&carried, Occasion::Plain)
 }
 
 /// `s` carried `tau` seconds on, as its state says the bodies move before any new contact:
