@@ -94,6 +94,22 @@ impl Pending {
     }
 }
 
+/// Renames `from` onto `name` if no file has that name: the name is reserved first
+/// (`create_new`), so an earlier file is never renamed over. None when it is taken.
+fn rename_onto_new(from: &Path, name: &Path) -> io::Result<Option<PathBuf>> {
+    match OpenOptions::new().write(true).create_new(true).open(name) {
+        Ok(_) => match fs::rename(from, name) {
+            Ok(()) => Ok(Some(name.to_path_buf())),
+            Err(e) => {
+                let _ = fs::remove_file(name);
+                Err(e)
+            }
+        },
+        Err(e) if e.kind() == io::ErrorKind::AlreadyExists => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
 /// Links the finished temporary file under the first free name (a hard link fails where the name
 /// is taken, so no file is replaced); where the file system has no hard links, the name is
 /// reserved with an empty file made with `create_new` and the temporary file renamed over it.
@@ -105,18 +121,8 @@ fn claim(tmp: &Path, dest: &Path) -> io::Result<PathBuf> {
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
             Err(_) => {}
         }
-        match OpenOptions::new().write(true).create_new(true).open(&name) {
-            Ok(_) => {
-                return match fs::rename(tmp, &name) {
-                    Ok(()) => Ok(name),
-                    Err(e) => {
-                        let _ = fs::remove_file(&name);
-                        Err(e)
-                    }
-                };
-            }
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(e),
+        if let Some(name) = rename_onto_new(tmp, &name)? {
+            return Ok(name);
         }
     }
     Err(io::Error::new(
@@ -213,20 +219,8 @@ pub fn move_aside(path: &Path, suffix: &str) -> io::Result<PathBuf> {
     aside.push(suffix);
     let aside = PathBuf::from(aside);
     for n in 1..=MAX_COUNTER {
-        let name = numbered(&aside, n);
-        // The name is reserved first (create_new), so an earlier file is never renamed over.
-        match OpenOptions::new().write(true).create_new(true).open(&name) {
-            Ok(_) => {
-                return match fs::rename(path, &name) {
-                    Ok(()) => Ok(name),
-                    Err(e) => {
-                        let _ = fs::remove_file(&name);
-                        Err(e)
-                    }
-                };
-            }
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(e),
+        if let Some(name) = rename_onto_new(path, &numbered(&aside, n))? {
+            return Ok(name);
         }
     }
     Err(io::Error::new(
