@@ -562,16 +562,10 @@ fn render_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), Stri
 
 #[cfg(feature = "app")]
 fn render(level: PathBuf, time: f64, out: PathBuf, allow_long: bool) -> ExitCode {
-    if let Err(e) = render_out(&level, &out) {
-        return bad(e);
-    }
-    let scene = match level::load(&level) {
+    let scene = match render_scene(&level, time, &out, allow_long) {
         Ok(s) => s,
-        Err(e) => return bad(e),
+        Err(code) => return code,
     };
-    if let Err(e) = render_budget(&scene, time, allow_long) {
-        return bad(e);
-    }
     match crate::app::render(&scene, time, &out) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => bad(e),
@@ -596,15 +590,22 @@ fn play(_: PathBuf) -> ExitCode {
 
 #[cfg(not(feature = "app"))]
 fn render(level: PathBuf, time: f64, out: PathBuf, allow_long: bool) -> ExitCode {
-    if let Err(e) = render_out(&level, &out) {
-        return bad(e);
+    match render_scene(&level, time, &out, allow_long) {
+        Ok(_) => no_app(),
+        Err(code) => code,
     }
-    let scene = match level::load(&level) {
-        Ok(s) => s,
-        Err(e) => return bad(e),
-    };
-    if let Err(e) = render_budget(&scene, time, allow_long) {
-        return bad(e);
-    }
-    no_app()
+}
+
+/// What `render` checks before drawing, with or without the sandbox: the output (a PNG that is
+/// not the level), the level, and the run's budget up to `time`.
+fn render_scene(
+    level: &std::path::Path,
+    time: f64,
+    out: &std::path::Path,
+    allow_long: bool,
+) -> Result<level::Scene, ExitCode> {
+    render_out(level, out).map_err(bad)?;
+    let scene = level::load(level).map_err(bad)?;
+    render_budget(&scene, time, allow_long).map_err(bad)?;
+    Ok(scene)
 }
