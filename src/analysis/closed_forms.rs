@@ -148,6 +148,23 @@ pub fn rolling_friction_needed(theta: f64, k_g: f64, r: f64) -> f64 {
     theta.tan() * k_g * k_g / (k_g * k_g + r * r)
 }
 
+/// A round body (radius r, centroidal radius of gyration k_G) sliding on a level floor, its
+/// contact point slipping at `slip0`, m/s: the time until it rolls,
+/// t = |slip0| / (mu g (1 + r^2 / k_G^2)). Friction mu m g decelerates G at mu g and turns the
+/// body at mu m g r / I_G, so the slip v_G + omega r falls at mu g (1 + r^2/k_G^2) (6/1 with
+/// F = mu N, RK-8 when it stops): v0 / (3 mu g) for a disc, 2 v0 / (7 mu g) for a sphere.
+pub fn slide_to_roll_time(slip0: f64, mu: f64, g: f64, k_g: f64, r: f64) -> f64 {
+    slip0.abs() / (mu * g * (1.0 + r * r / (k_g * k_g)))
+}
+
+/// The same body's mass-center velocity once it rolls, from v0 along the floor and omega0
+/// (counterclockwise): friction's line passes through the contact line, so the angular
+/// momentum about a point of it, I_G omega - m r v, is kept (6/15), and rolling means
+/// omega = -v / r: v = r (r v0 - k_G^2 omega0) / (k_G^2 + r^2) (2/3 v0 for a disc without spin).
+pub fn speed_when_rolling(v0: f64, omega0: f64, k_g: f64, r: f64) -> f64 {
+    r * (r * v0 - k_g * k_g * omega0) / (k_g * k_g + r * r)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -140,6 +140,18 @@ pub fn slip_velocity(a: &super::Motion, b: &super::Motion, p: DVec2, normal: DVe
     relative_point_velocity(a, b, p).dot(normal.perp())
 }
 
+/// The slip of body b on body a in `snap`: the tangential velocity of b's contact point relative
+/// to a's at their (impulse-weighted) contact point, along t = k x n with n the contact normal
+/// from a into b, m/s (RK-8: zero while b rolls or sticks on a). None when they do not touch.
+pub fn contact_slip(snap: &crate::snapshot::Snapshot, a: usize, b: usize) -> Option<f64> {
+    let c = super::impact::pair_contact(snap, a, b)?;
+    let (ma, mb) = (
+        super::Motion::from(&snap.bodies[a]),
+        super::Motion::from(&snap.bodies[b]),
+    );
+    Some(slip_velocity(&ma, &mb, c.point, c.normal))
+}
+
 /// Angular velocity of the line from A to B from the two points' velocities:
 /// omega = (r_{B/A} x v_{B/A})_z / |r_{B/A}|^2 (RK-6 solved for omega).
 pub fn omega_from_two_points(r_a: DVec2, v_a: DVec2, r_b: DVec2, v_b: DVec2) -> f64 {

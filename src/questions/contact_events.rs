@@ -6,9 +6,10 @@
 use super::impact_solution::Impact;
 use super::level_facts::LevelFacts;
 use super::sample::Sample;
-use crate::analysis::impact::pair_normal_impulse;
+use crate::analysis::impact::{pair_contact, pair_normal_impulse};
 use crate::analysis::kinematics::body_point_velocity;
 use crate::snapshot::Snapshot;
+use glam::DVec2;
 use std::sync::Arc;
 
 /// The moments of a pair's first contact.
@@ -63,6 +64,10 @@ pub(super) struct PairTracker {
     /// delivered over the same steps, N s (see [`PairTracker::not_impulsive`]).
     contact_impulse: f64,
     weight_impulse: f64,
+    /// The contact's whole impulse on `body` (normal and friction) summed from the touch, N s,
+    /// and the last normal of the pair seen, pointing into `body`.
+    contact_vector: DVec2,
+    normal_into_body: Option<DVec2>,
     /// The snapshot before the first touch (the pre-impact state).
     pub pre: Option<Arc<Snapshot>>,
     /// The impact the first touch was (None when the bodies were not approaching).
@@ -87,6 +92,8 @@ impl PairTracker {
             peak: 0.0,
             contact_impulse: 0.0,
             weight_impulse: 0.0,
+            contact_vector: DVec2::ZERO,
+            normal_into_body: None,
             impulsive_end: None,
             pre: None,
             impact: None,
@@ -114,6 +121,7 @@ impl PairTracker {
         if touching && !matches!(self.phase, ContactPhase::Released | ContactPhase::Again) {
             self.contact_impulse += j;
             self.weight_impulse += weights_step;
+            self.add_vector(f.cur, b, o);
         }
         let event = match self.phase {
             ContactPhase::Before if touching => {
@@ -199,6 +207,38 @@ impl PairTracker {
     /// The normal impulse the contact has transmitted since the touch, N s.
     pub fn contact_impulse(&self) -> f64 {
         self.contact_impulse
+    }
+
+    /// The whole impulse (normal and friction) the contact has given `body` since the touch,
+    /// N s, and the contact's normal into `body` (None before the touch).
+    pub fn contact_vector(&self) -> (DVec2, Option<DVec2>) {
+        (self.contact_vector, self.normal_into_body)
+    }
+
+    /// Adds the step's contact impulse on body b from o (from any body when None).
+    fn add_vector(&mut self, s: &Snapshot, b: usize, o: Option<usize>) {
+        let mut others: Vec<usize> = match o {
+            Some(o) => vec![o],
+            None => s
+                .contacts
+                .iter()
+                .filter_map(|c| {
+                    (c.body1 == b)
+                        .then_some(c.body2)
+                        .or((c.body2 == b).then_some(c.body1))
+                })
+                .collect(),
+        };
+        // A pair with several manifolds appears once: pair_contact sums them all.
+        others.sort_unstable();
+        others.dedup();
+        for k in others {
+            // pair_contact(s, k, b): the normal from k into b and the impulse on b.
+            if let Some(c) = pair_contact(s, k, b) {
+                self.contact_vector += c.impulse_on_b;
+                self.normal_into_body.get_or_insert(c.normal);
+            }
+        }
     }
 
     /// The contact has ended (or is quiet and may be ending at the end of the run).

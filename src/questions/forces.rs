@@ -5,18 +5,18 @@
 //! reaction (PL-8, PL-12), the blow's impulse-momentum solution for a pin impulse (RM-10), and
 //! the one-degree-of-freedom power balance for a motor (RE-11).
 
-use super::free_body::side_impulse;
+use super::free_body::{contact_needed, side_impulse};
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::{is_massive, joint_index, to_local};
 use super::work_and_power::path_work;
 use crate::analysis::cross;
 use crate::analysis::energy::{fixed_axis_speed_after_work, kinetic_energy_rate, power};
-use crate::analysis::impact::pair_normal_impulse;
-use crate::analysis::kinematics::body_point_velocity;
+use crate::analysis::impact::{pair_contact, pair_normal_impulse};
+use crate::analysis::kinematics::{body_point_velocity, contact_slip};
 use crate::analysis::kinetics::fixed_axis_reaction;
 use crate::analysis::mass::parallel_axis;
-use crate::level::{Component, JointKind, Quantity};
+use crate::level::{Component, ContactComponent, JointKind, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
@@ -128,6 +128,25 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 f.centered(|x| Some(DVec2::new(pair_normal_impulse(x, i, Some(o), None), 0.0)))?;
             (n.x, None)
         }
+        Quantity::ContactForceFrom {
+            body: b,
+            other,
+            component,
+        } => {
+            let (i, o) = (m.body_index(s, b)?, m.body_index(s, other)?);
+            if s.is_initial() {
+                return None;
+            }
+            // The pair's frame at the sample, n from `other` into `body` (pair_contact(s, o, i)).
+            let n = pair_contact(s, o, i)
+                .or_else(|| f.next.and_then(|x| pair_contact(x, o, i)))?
+                .normal;
+            let force = f.centered(|x| {
+                Some(pair_contact(x, o, i).map_or(DVec2::ZERO, |c| c.impulse_on_b))
+            })?;
+            let analysis = contact_force_analysis(m, f, i, o, n, *component);
+            (contact_component(*component, force, n), analysis)
+        }
         Quantity::CouplingForce(name) => {
             let k = s
                 .couplings
@@ -165,6 +184,59 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         }
         q => unreachable!("{q:?} is not a force quantity"),
     })
+}
+
+/// A contact's force or impulse `v` on a body as `c` names it, with `n` the contact normal into
+/// the body and t = k x n.
+pub(super) fn contact_component(c: ContactComponent, v: DVec2, n: DVec2) -> f64 {
+    match c {
+        ContactComponent::Normal => v.dot(n),
+        ContactComponent::Tangential => v.dot(n.perp()),
+        ContactComponent::Friction => v.dot(n.perp()).abs(),
+        ContactComponent::X => v.x,
+        ContactComponent::Y => v.y,
+        ContactComponent::Magnitude => v.length(),
+    }
+}
+
+/// A slip speed above which a contact counts as sliding for Coulomb's law, m/s. rapier's sticking
+/// contacts creep at up to a few mm/s (a disc on a pulled plank: 3.2 mm/s, docs/known-gaps.md),
+/// and a sliding contact that stops passes through this speed within a step or two.
+const SLIDING: f64 = 1e-2;
+
+/// The textbook's contact force on body i from o, as component `c` (`ContactForceFrom`): while
+/// the contact slides (the slip keeps one sign above [`SLIDING`] on both steps around the
+/// sample), the friction part is Coulomb's mu N opposing the slip, with the engine's N (WE-6);
+/// otherwise, where this contact is body i's only support (no other contact, joint or
+/// coupling on it), the force its motion needs beyond the known forces (6/1).
+fn contact_force_analysis(
+    m: &Meter,
+    f: &Sample,
+    i: usize,
+    o: usize,
+    n: DVec2,
+    c: ContactComponent,
+) -> Option<f64> {
+    let slips: Vec<f64> = [f.prev, Some(f.cur), f.next]
+        .into_iter()
+        .flatten()
+        .filter_map(|x| contact_slip(x, o, i))
+        .collect();
+    let sliding = slips.len() == 3
+        && slips.iter().all(|v| v.abs() > SLIDING)
+        && slips.iter().all(|v| (v > &0.0) == (slips[0] > 0.0));
+    if sliding && matches!(c, ContactComponent::Tangential | ContactComponent::Friction) {
+        let normal = f
+            .centered(|x| Some(DVec2::new(pair_normal_impulse(x, i, Some(o), None), 0.0)))?
+            .x;
+        let friction = m.facts.friction(i, o) * normal;
+        return Some(match c {
+            ContactComponent::Friction => friction,
+            _ => -slips[1].signum() * friction,
+        });
+    }
+    let needed = contact_needed(f, i, o)?;
+    Some(contact_component(c, needed, n))
 }
 
 /// A vector's component as `Component` names it, with G the moving body's mass center and O the anchor.

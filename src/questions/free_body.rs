@@ -60,6 +60,44 @@ fn external_impulse(a: &Snapshot, b: &Snapshot, i: usize) -> (DVec2, f64) {
     (j, m)
 }
 
+/// The contact force body i's motion needs from body o, centered on the sample: its momentum
+/// change over the two steps around it minus every other impulse of its free-body diagram
+/// (gravity, loads, springs, events), over their time (6/1). None where that is not the
+/// contact's force alone: a body without mass, or one that another contact, a joint or a
+/// coupling also holds.
+pub(super) fn contact_needed(f: &Sample, i: usize, o: usize) -> Option<DVec2> {
+    let (prev, next) = (f.prev?, f.next?);
+    let body = &f.cur.bodies[i];
+    if !is_massive(body) {
+        return None;
+    }
+    let mut known = DVec2::ZERO;
+    for b in [f.cur, next] {
+        if b.is_initial() {
+            return None;
+        }
+        let mut held_otherwise = false;
+        for_each_external_impulse(
+            Before::All(&[]),
+            b,
+            b.substeps,
+            |k| k == i,
+            |s| match s.source {
+                Source::Contact { .. } if s.other == Some(o) => {}
+                Source::Contact { .. } | Source::Joint(_) | Source::Coupling(..) => {
+                    held_otherwise = true
+                }
+                _ => known += s.impulse,
+            },
+        );
+        if held_otherwise || b.joints.iter().any(|j| j.body1 == i || j.body2 == i) {
+            return None;
+        }
+    }
+    let t = next.time - prev.time;
+    (t > 0.0).then(|| (body.mass * (next.bodies[i].velocity - prev.bodies[i].velocity) - known) / t)
+}
+
 /// The impulse joint k gave the bodies on its `moving` side over the step from `prev` to `s`:
 /// their momentum change minus every other external impulse on them (gravity, loads, springs,
 /// events, contacts and other joints reaching outside the group), IM-3.

@@ -13,7 +13,8 @@ use super::snapshot_reading::{body_mechanical_energy, carried_forward, height, i
 use crate::analysis::energy::body_kinetic_energy;
 use crate::analysis::impact::coefficient_of_restitution;
 use crate::analysis::kinematics::body_point_velocity;
-use crate::level::Quantity;
+use super::forces::contact_component;
+use crate::level::{ContactComponent, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
@@ -23,7 +24,9 @@ pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
         Quantity::ReboundHeight { body, other }
         | Quantity::Restitution { body, other }
         | Quantity::EnergyLost { body, other }
-        | Quantity::ContactImpulse { body, other } => Some(PairTracker::new(body, Some(other))),
+        | Quantity::ContactImpulse { body, other, .. } => {
+            Some(PairTracker::new(body, Some(other)))
+        }
         _ => None,
     }
 }
@@ -131,22 +134,33 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             });
             (e(pre) - e(post), analysis)
         }
-        Quantity::ContactImpulse { body: b, .. } => {
+        Quantity::ContactImpulse {
+            body: b, component, ..
+        } => {
             let i = m.body_index(s, b)?;
             let p = p?;
-            // The normal part of the impact solution's impulse on the body, m |(v' - v) . n|,
-            // when nothing else acts on it impulsively (no joint): the engine's value is the
-            // contact's normal impulse, so a rough impact's friction impulse is not in either.
+            // The impact solution's impulse on the body, m (v' - v), when nothing else acts on
+            // it impulsively (no joint), as the same component as the engine's value.
             let jointed = s.joints.iter().any(|j| j.body1 == i || j.body2 == i);
-            let analysis = p
+            let (vector, n) = p.contact_vector();
+            let solved = p
                 .impact
                 .as_ref()
                 .filter(|_| !jointed && p.not_impulsive().is_none())
                 .map(|imp| {
-                    let dv = imp.post[i].velocity - imp.pre[i].velocity;
-                    imp.pre[i].mass * dv.dot(imp.normal).abs()
+                    let into = if imp.i2 == i { imp.normal } else { -imp.normal };
+                    (imp.pre[i].mass * (imp.post[i].velocity - imp.pre[i].velocity), into)
                 });
-            (p.contact_impulse(), analysis)
+            if *component == ContactComponent::Normal {
+                // The sum of the normal impulses since the touch (the normal may turn while the
+                // contact lasts); its analysis the solution's normal part, m |(v' - v) . n|.
+                let analysis = solved.map(|(j, into)| j.dot(into).abs());
+                (p.contact_impulse(), analysis)
+            } else {
+                let n = n?;
+                let analysis = solved.map(|(j, into)| contact_component(*component, j, into));
+                (contact_component(*component, vector, n), analysis)
+            }
         }
         q => unreachable!("{q:?} is not an impact quantity"),
     })

@@ -37,6 +37,7 @@ mod forces;
 mod free_body;
 mod impact_solution;
 mod impacts;
+mod instants;
 pub mod level_facts;
 mod linkages;
 mod meter;

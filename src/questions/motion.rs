@@ -9,7 +9,7 @@ use super::free_body::newton_euler;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use crate::analysis::k_cross;
-use crate::analysis::kinematics::{body_point_velocity, point_acceleration};
+use crate::analysis::kinematics::{body_point_velocity, contact_slip, point_acceleration};
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
@@ -118,6 +118,10 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             // Two points of one rigid body: v_P/Q = omega k x r_P/Q (RK-5).
             let analysis = (b == of).then(|| k_cross(x.omega, p - q).length());
             (engine, analysis)
+        }
+        Quantity::SlipSpeed { body: b, other } => {
+            let (i, o) = (body(b)?.0, body(other)?.0);
+            (contact_slip(s, o, i).map_or(f64::NAN, f64::abs), None)
         }
         q => unreachable!("{q:?} is not a motion quantity"),
     })

@@ -4,6 +4,7 @@
 
 use super::contact_events::{PairEvent, PairTracker};
 use super::impact_solution::{Blow, Impact, NO_IMPACT};
+use super::instants::{Extreme, Slip};
 use super::level_facts::LevelFacts;
 use super::meter::Meter;
 use super::result::QuestionResult;
@@ -23,6 +24,9 @@ pub struct QuestionProbe {
     trigger: Option<Meter>,
     /// The pair whose contact the question waits for.
     pair: Option<PairTracker>,
+    /// The extreme (`MaxOf`, `MinOf`) or the slip event (`SlipEnds`, `SlipStarts`) waited for.
+    extreme: Option<Extreme>,
+    slip: Option<Slip>,
     /// The snapshots the next samples still need (their averaging windows).
     hist: VecDeque<Arc<Snapshot>>,
     last: Option<Reading>,
@@ -53,7 +57,21 @@ impl QuestionProbe {
             When::Angle { body, .. } => {
                 Some(Meter::new(&Quantity::Angle(body.clone()), facts.clone()))
             }
-            When::Crossing { of, .. } => Some(Meter::new(of, facts.clone())),
+            When::Crossing { of, .. } | When::MaxOf { of, .. } | When::MinOf { of, .. } => {
+                Some(Meter::new(of, facts.clone()))
+            }
+            _ => None,
+        };
+        let extreme = match &def.at {
+            When::MaxOf { .. } => Some(Extreme::new(true)),
+            When::MinOf { .. } => Some(Extreme::new(false)),
+            _ => None,
+        };
+        let slip = match &def.at {
+            When::SlipEnds { body, other, after } => Some(Slip::new(body, other, true, *after)),
+            When::SlipStarts { body, other, after } => {
+                Some(Slip::new(body, other, false, *after))
+            }
             _ => None,
         };
         let pair = match &def.at {
@@ -70,6 +88,8 @@ impl QuestionProbe {
             facts,
             trigger,
             pair,
+            extreme,
+            slip,
             hist: VecDeque::new(),
             last: None,
             last_signal: None,
@@ -218,6 +238,34 @@ impl QuestionProbe {
                     self.value = Some(r);
                 }
             }
+            When::MaxOf { after, .. } | When::MinOf { after, .. } => {
+                let r = self.meter.read(sample, Occasion::Plain);
+                let sig = self
+                    .trigger
+                    .as_ref()
+                    .map_or(f64::NAN, |m| m.read(sample, Occasion::Plain).engine);
+                if t >= after {
+                    if let Some(best) = self.extreme.as_mut().and_then(|e| e.feed(sig, r)) {
+                        self.value = Some(best);
+                    }
+                }
+            }
+            When::SlipEnds { .. } | When::SlipStarts { .. } => {
+                let r = self.meter.read(sample, Occasion::Plain);
+                let next = sample.next.map(|n| &**n);
+                let found = match self.slip.as_mut() {
+                    Some(slip) => slip.feed(&self.facts, sample.cur, next, r),
+                    None => None,
+                };
+                if let Some(found) = found {
+                    let mut at = Reading::lerp(found.from, r, found.fraction);
+                    if matches!(self.def.at, When::SlipEnds { .. }) {
+                        self.slide_to_roll(sample.cur, &mut at);
+                    }
+                    self.value = Some(at);
+                    self.done = true;
+                }
+            }
             When::Angle { angle: value, .. } | When::Crossing { value, .. } => {
                 let after = match &self.def.at {
                     When::Crossing { after, .. } => *after,
@@ -310,6 +358,23 @@ impl QuestionProbe {
                     self.read_after_blow(sample);
                 }
             }
+        }
+    }
+
+    /// At `SlipEnds`, the time and the speed of the slide-to-roll closed form as the analysis of
+    /// `Time` and `Speed`, or why it does not apply.
+    fn slide_to_roll(&mut self, s: &Snapshot, at: &mut Reading) {
+        let Some(slip) = &self.slip else { return };
+        let body_speed = |b: &str| matches!(&self.def.quantity, Quantity::Speed(x) if x == b);
+        let wanted = match (&self.def.quantity, &self.def.at) {
+            (Quantity::Time, _) => Some(0),
+            (_, When::SlipEnds { body, .. }) if body_speed(body) => Some(1),
+            _ => None,
+        };
+        let Some(which) = wanted else { return };
+        match slip.closed_form(&self.facts, s) {
+            Ok((t, v)) => at.analysis = Some(if which == 0 { t } else { v }),
+            Err(why) => self.meter.inapplicable = Some(why),
         }
     }
 

@@ -244,6 +244,21 @@ pub enum Quantity {
     },
     /// Normal force between two bodies (sum over contact points, centered), N. No analysis.
     ContactNormalForce { body: String, other: String },
+    /// The contact force on `body` from `other` (summed over their contact points, centered),
+    /// N, as a [`ContactComponent`] (default: the normal part). Analysis: while the contact
+    /// slips, the friction part is Coulomb's mu N with the engine's N (WE-6); otherwise, when
+    /// this contact is the only one on `body` and no joint or coupling holds it, the force its
+    /// motion needs beyond the known forces, m a_G - (gravity, loads, springs) (6/1).
+    ContactForceFrom {
+        body: String,
+        other: String,
+        #[serde(default)]
+        component: ContactComponent,
+    },
+    /// The slip speed at the contact of `body` with `other`: the magnitude of the tangential
+    /// velocity of `body`'s contact point relative to `other`'s, m/s (zero while it rolls or
+    /// sticks, RK-8). NaN while they do not touch. No analysis.
+    SlipSpeed { body: String, other: String },
     /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered, or
     /// averaged over `window` s). Analysis: the one-degree-of-freedom power balance (RE-11):
     /// M omega_rel = sum (m a_G . v_G + I_G alpha omega) - power of gravity, loads and springs,
@@ -267,8 +282,15 @@ pub enum Quantity {
     /// The normal impulse the first contact of `body` with `other` has transmitted, from the
     /// touch to the sample (the whole impact when read at `ContactEnds`), N s. Analysis, when the
     /// contact began as an impact and `body` has no joint: m |v' - v| of `body` from the
-    /// impulse-momentum solution (IM-9).
-    ContactImpulse { body: String, other: String },
+    /// impulse-momentum solution (IM-9). With `component` (default `Normal`): the contact's
+    /// whole impulse on `body` as a [`ContactComponent`]; the tangential part's analysis is
+    /// m (v' - v) . t of the same solution.
+    ContactImpulse {
+        body: String,
+        other: String,
+        #[serde(default)]
+        component: ContactComponent,
+    },
     /// Speed of point `point` of `body` relative to point `of_point` of `of` (points in their
     /// body frames), |v_P - v_Q|, m/s (v_D/B of a connecting rod). Analysis, for two points of one
     /// body: |omega| |r_P/Q| (RK-5), with the engine's omega.
@@ -322,6 +344,7 @@ impl Quantity {
             | Q::PointSpeed { .. }
             | Q::RelativeSpeed(..)
             | Q::RelativePointSpeed { .. }
+            | Q::SlipSpeed { .. }
             | Q::PinSpeed { .. } => "m/s",
             Q::Omega(_) | Q::LinkOmega { .. } => "rad/s",
             Q::Ax(_)
@@ -334,6 +357,7 @@ impl Quantity {
             Q::JointForce(_)
             | Q::ContactForce(_)
             | Q::ContactNormalForce { .. }
+            | Q::ContactForceFrom { .. }
             | Q::CouplingForce(_)
             | Q::JointReaction { .. }
             | Q::RollingFriction { .. } => "N",
@@ -420,10 +444,12 @@ impl Quantity {
             | Q::RelativeDistance(..)
             | Q::RelativeSpeed(..)
             | Q::RelativeAngle(..)
-            | Q::RelativePointSpeed { .. } => F::Motion,
+            | Q::RelativePointSpeed { .. }
+            | Q::SlipSpeed { .. } => F::Motion,
             Q::JointForce(_)
             | Q::ContactForce(_)
             | Q::ContactNormalForce { .. }
+            | Q::ContactForceFrom { .. }
             | Q::CouplingForce(_)
             | Q::JointReaction { .. }
             | Q::JointImpulse { .. }
@@ -476,6 +502,26 @@ pub enum Component {
     Tangential,
 }
 
+/// A component of a contact's force or impulse on a body, in the contact's frame: n is the
+/// contact normal pointing from the other body into this one, t = k x n (n turned a quarter
+/// turn counterclockwise).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum ContactComponent {
+    /// Along n: the push, positive.
+    #[default]
+    Normal,
+    /// Along t, signed: the friction part.
+    Tangential,
+    /// The magnitude of the tangential part: "the friction force".
+    Friction,
+    /// The world x component.
+    X,
+    /// The world y component.
+    Y,
+    /// The magnitude of the whole force or impulse.
+    Magnitude,
+}
+
 /// When a question's quantity is read.
 ///
 /// Crossings are interpolated linearly between the two steps that bracket them (both the
@@ -492,6 +538,38 @@ pub enum When {
     Max(#[serde(default)] f64),
     /// The smallest value over the run (optionally from a time on).
     Min(#[serde(default)] f64),
+    /// The instant the quantity `of` is largest, at or after `after` s: the vertex of the parabola
+    /// through the three samples around its largest sample (the time of the highest point, the
+    /// speed at the greatest compression). With `Time`, the time of that instant.
+    MaxOf {
+        of: Quantity,
+        #[serde(default)]
+        after: f64,
+    },
+    /// The instant the quantity `of` is smallest, at or after `after` s (as `MaxOf`).
+    MinOf {
+        of: Quantity,
+        #[serde(default)]
+        after: f64,
+    },
+    /// The instant `body` stops slipping on `other`, at or after `after` s: it starts rolling or
+    /// sticking. Found where the slip falls below 2% of its largest value so far, and placed
+    /// where the slip's straight-line fall over the step before reaches zero.
+    SlipEnds {
+        body: String,
+        other: String,
+        #[serde(default)]
+        after: f64,
+    },
+    /// The instant `body` starts slipping on `other`, at or after `after` s: found where the slip
+    /// first exceeds 5 mm/s while they touch, placed where its straight-line rise from the
+    /// step before starts from zero.
+    SlipStarts {
+        body: String,
+        other: String,
+        #[serde(default)]
+        after: f64,
+    },
     /// The first time the body's (continuous) angle crosses `angle`, rad.
     Angle { body: String, angle: f64 },
     /// The first time the quantity `of` crosses `value` at or after `after` s.

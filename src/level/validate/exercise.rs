@@ -106,6 +106,29 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
             v.finite(*value, "crossing value", at("at"))?;
             v.non_negative(*after, "crossing `after`", "s", at("at"))?;
         }
+        When::MaxOf { of, after } | When::MinOf { of, after } => {
+            for (kind, name) in quantity_refs(of) {
+                question_ref(v, q, kind, name, "at")?;
+            }
+            if matches!(of, Quantity::Time) {
+                return Err(v.err(
+                    at("at"),
+                    format!("question \"{}\" waits for the extreme of `Time`", q.id),
+                    "name the quantity whose extreme you mean: `at: MaxOf(of: Y(\"ball\"))`",
+                ));
+            }
+            v.non_negative(*after, "extreme's `after`", "s", at("at"))?;
+        }
+        When::SlipEnds { body, other, after } | When::SlipStarts { body, other, after } => {
+            v.need(
+                Effect::Contacts,
+                at("at"),
+                &format!("question \"{}\" waits for a contact to slip or stop slipping", q.id),
+            )?;
+            question_ref(v, q, "body", body, "at")?;
+            question_ref(v, q, "body", other, "at")?;
+            v.non_negative(*after, "slip event's `after`", "s", at("at"))?;
+        }
         When::FirstContact { body, other } | When::ContactEnds { body, other } => {
             v.need(
                 Effect::Contacts,
@@ -126,7 +149,7 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         return Err(v.err(
             at("at"),
             format!("question \"{}\" asks for the time of `{:?}`, which is not an event", q.id, q.at),
-            "give an event: `at: Angle(..)`, `Crossing(..)`, `FirstContact(..)`, `ContactEnds(..)` or `AfterEvent(..)`",
+            "give an event: `at: Angle(..)`, `Crossing(..)`, `MaxOf(of: ..)`, `MinOf(of: ..)`, `SlipEnds(..)`, `FirstContact(..)`, `ContactEnds(..)` or `AfterEvent(..)`",
         ));
     }
     let needs = |e: Effect, what: &str| {
@@ -141,6 +164,8 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         | Quantity::RollingFriction { .. }
         | Quantity::RollingFrictionNeeded { .. }
         | Quantity::ContactNormalForce { .. }
+        | Quantity::ContactForceFrom { .. }
+        | Quantity::SlipSpeed { .. }
         | Quantity::FrictionWork { .. }
         | Quantity::ReboundHeight { .. }
         | Quantity::Restitution { .. }
@@ -288,10 +313,12 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         }
         Q::FrictionWork { body, other }
         | Q::ContactNormalForce { body, other }
+        | Q::ContactForceFrom { body, other, .. }
+        | Q::SlipSpeed { body, other }
         | Q::ReboundHeight { body, other }
         | Q::Restitution { body, other }
         | Q::EnergyLost { body, other }
-        | Q::ContactImpulse { body, other } => vec![("body", body), ("body", other)],
+        | Q::ContactImpulse { body, other, .. } => vec![("body", body), ("body", other)],
         Q::RelativePointSpeed { body, of, .. } => vec![("body", body), ("body", of)],
         Q::PercussionDistance { body, joint } => vec![("body", body), ("joint", joint)],
         Q::GroupKineticEnergy(bodies) | Q::GroupMomentum(bodies) => {
