@@ -80,9 +80,8 @@ fn vertex(y0: f64, r0: Reading, y1: f64, r1: Reading, y2: f64, r2: Reading) -> R
     }
 }
 
-/// A slip speed below which a contact that never slid counts as stuck, and above which a stuck
-/// one counts as slipping, m/s: rapier's sticking contacts creep at up to a few mm/s (a disc on
-/// a pulled plank: 3.2 mm/s, docs/known-gaps.md).
+/// A slip speed below which a contact counts as not sliding, m/s: rapier's sticking contacts
+/// creep at up to a few mm/s (a disc on a pulled plank: 3.2 mm/s, docs/known-gaps.md).
 const STUCK: f64 = 5e-3;
 /// A slip that has fallen below this share of its largest value has ended: the contact sticks
 /// (rapier catches a slip in the step it would change sign in, leaving its creep).
@@ -123,26 +122,21 @@ impl Slip {
         }
     }
 
-    /// Feeds the sample `s` (with `next`, the snapshot after it) and its reading; where the event
-    /// lies, once it has come.
-    pub fn feed(
-        &mut self,
-        facts: &LevelFacts,
-        s: &Snapshot,
-        next: Option<&Snapshot>,
-        r: Reading,
-    ) -> Option<Found> {
+    /// Feeds the sample `s` and its reading; where the event lies, once it has come.
+    pub fn feed(&mut self, facts: &LevelFacts, s: &Snapshot, r: Reading) -> Option<Found> {
         let last = self.last.replace(r);
         let (i, o) = (facts.body_index(s, &self.body)?, facts.body_index(s, &self.other)?);
+        if s.time < self.after {
+            return None;
+        }
+        if !self.ends {
+            return self.slip_starts(facts, s, i, o, last);
+        }
         let touching = pair_normal_impulse(s, i, Some(o), None) > 0.0;
-        let slip = contact_slip(s, o, i).filter(|_| touching && s.time >= self.after)?;
+        let slip = contact_slip(s, o, i).filter(|_| touching)?;
         let a = slip.abs();
         self.peak = self.peak.max(a);
-        if self.ends {
-            self.slip_ends(s, i, o, slip, a, last)
-        } else {
-            self.slip_starts(s, next, i, o, a, last)
-        }
+        self.slip_ends(s, i, o, slip, a, last)
     }
 
     fn slip_ends(
@@ -186,29 +180,41 @@ impl Slip {
         Some(Found { from, fraction })
     }
 
+    /// Impending slip (the textbook's "starts to slide"): the step whose friction reaches mu N,
+    /// the most Coulomb's law lets a sticking contact take. Sticking, the ratio F/N of the
+    /// pair's friction to normal impulse stays below mu; the first step at mu (within 0.1%)
+    /// begins the slide, placed where the ratio's straight-line rise over the two samples
+    /// before reaches mu. The slip itself starts from zero speed (quadratically under a ramped
+    /// load), so a speed threshold would place it late.
     fn slip_starts(
         &mut self,
+        facts: &LevelFacts,
         s: &Snapshot,
-        next: Option<&Snapshot>,
         i: usize,
         o: usize,
-        a: f64,
         last: Option<Reading>,
     ) -> Option<Found> {
         let t = s.time;
-        if a <= STUCK {
-            self.history = vec![(t, a)];
+        let c = pair_contact(s, o, i)?;
+        if c.normal_impulse <= 0.0 {
             return None;
         }
-        self.history.last()?;
+        let mu = facts.friction(i, o);
+        let ratio = c.impulse_on_b.dot(c.normal.perp()).abs() / c.normal_impulse;
+        if ratio < mu * (1.0 - 1e-3) {
+            self.history.push((t, ratio));
+            if self.history.len() > 2 {
+                self.history.remove(0);
+            }
+            return None;
+        }
+        let &(t1, r1) = self.history.last()?;
         let from = last?;
-        // Back from here along the slip's rise over the next step to where it was zero.
-        let rise = next
-            .and_then(|n| contact_slip(n, o, i).map(|x| (x.abs() - a) / (n.time - t)))
-            .filter(|r| *r > 0.0)
-            .unwrap_or((a - self.history.last()?.1) / (t - from.t));
-        let zero = t - a / rise;
-        let fraction = ((zero - from.t) / (t - from.t)).clamp(0.0, 1.0);
+        let onset = match self.history.as_slice() {
+            &[(t0, r0), _] if r1 > r0 && t1 > t0 => t1 + (mu - r1) * (t1 - t0) / (r1 - r0),
+            _ => t,
+        };
+        let fraction = ((onset - from.t) / (t - from.t)).clamp(0.0, 1.0);
         Some(Found { from, fraction })
     }
 

@@ -252,9 +252,8 @@ impl QuestionProbe {
             }
             When::SlipEnds { .. } | When::SlipStarts { .. } => {
                 let r = self.meter.read(sample, Occasion::Plain);
-                let next = sample.next.map(|n| &**n);
                 let found = match self.slip.as_mut() {
-                    Some(slip) => slip.feed(&self.facts, sample.cur, next, r),
+                    Some(slip) => slip.feed(&self.facts, sample.cur, r),
                     None => None,
                 };
                 if let Some(found) = found {

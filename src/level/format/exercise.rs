@@ -561,9 +561,9 @@ pub enum When {
         #[serde(default)]
         after: f64,
     },
-    /// The instant `body` starts slipping on `other`, at or after `after` s: found where the slip
-    /// first exceeds 5 mm/s while they touch, placed where its straight-line rise from the
-    /// step before starts from zero.
+    /// The instant `body` starts to slide on `other`, at or after `after` s: impending slip,
+    /// where the friction the contact takes reaches mu N (Coulomb's limit), placed where the
+    /// ratio F/N's straight-line rise over the two steps before reaches mu.
     SlipStarts {
         body: String,
         other: String,
