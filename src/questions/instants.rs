@@ -125,7 +125,10 @@ impl Slip {
     /// Feeds the sample `s` and its reading; where the event lies, once it has come.
     pub fn feed(&mut self, facts: &LevelFacts, s: &Snapshot, r: Reading) -> Option<Found> {
         let last = self.last.replace(r);
-        let (i, o) = (facts.body_index(s, &self.body)?, facts.body_index(s, &self.other)?);
+        let (i, o) = (
+            facts.body_index(s, &self.body)?,
+            facts.body_index(s, &self.other)?,
+        );
         if s.time < self.after {
             return None;
         }
@@ -194,7 +197,9 @@ impl Slip {
         o: usize,
         last: Option<Reading>,
     ) -> Option<Found> {
-        let t = s.time;
+        // A step's impulses are its mean force: the ratio belongs to the step's middle (a
+        // load, too, is evaluated there).
+        let t = s.time - 0.5 * s.dt;
         let c = pair_contact(s, o, i)?;
         if c.normal_impulse <= 0.0 {
             return None;
@@ -211,10 +216,12 @@ impl Slip {
         let &(t1, r1) = self.history.last()?;
         let from = last?;
         let onset = match self.history.as_slice() {
-            &[(t0, r0), _] if r1 > r0 && t1 > t0 => t1 + (mu - r1) * (t1 - t0) / (r1 - r0),
+            &[(t0, r0), _] if r1 > r0 && t1 > t0 => (t1 + (mu - r1) * (t1 - t0) / (r1 - r0)).min(t),
             _ => t,
         };
-        let fraction = ((onset - from.t) / (t - from.t)).clamp(0.0, 1.0);
+        // The onset lies within the half step before the previous sample or after it: read
+        // there on the straight line through the two samples (back up to one step).
+        let fraction = ((onset - from.t) / (s.time - from.t)).clamp(-1.0, 1.0);
         Some(Found { from, fraction })
     }
 
@@ -240,7 +247,9 @@ impl Slip {
         let n = pair_contact(s, o, i).ok_or("no contact")?.normal;
         let g = s.gravity.length();
         if g <= 0.0 || n.dot(-s.gravity / g) < 1.0 - 1e-6 {
-            return Err("the floor is not level: the slide-to-roll time is for a level floor".into());
+            return Err(
+                "the floor is not level: the slide-to-roll time is for a level floor".into(),
+            );
         }
         let held = s.joints.iter().any(|j| j.body1 == i || j.body2 == i)
             || s.springs.iter().any(|x| x.body1 == i || x.body2 == Some(i))
