@@ -2,7 +2,7 @@
 //! filled shapes and open polylines for segments. The meshes and outlines the view draws come from
 //! here, so every shape of `level::Shape` is drawn the same way.
 
-use crate::level::{BodyDef, Level, Shape};
+use crate::level::{ArcSide, BodyDef, Level, Shape, TrackSide};
 use glam::DVec2;
 
 /// Drawable pieces of one body, in its frame.
@@ -12,9 +12,16 @@ pub struct Outline {
     pub filled: Vec<Vec<DVec2>>,
     /// Circles (center, radius) among `filled`, for a spoke that shows the rotation.
     pub circles: Vec<(DVec2, f64)>,
-    /// Line segments (no area).
+    /// Line segments (no area), tracks' edges included.
     pub segments: Vec<(DVec2, DVec2)>,
+    /// For a segment of an arc track (by index in `segments`): the unit normal, body frame,
+    /// toward the arc's solid side, where its hatching goes.
+    pub solid_side: Vec<(usize, DVec2)>,
 }
+
+/// An arc is drawn in pieces of at most this angle, rad (2 degrees): the engine's facets are far
+/// finer (`level::curves`), and finer pieces would not show.
+const ARC_DRAW_STEP: f64 = std::f64::consts::PI / 90.0;
 
 /// Points on a circle outline.
 const CIRCLE_SEGMENTS: usize = 40;
@@ -87,6 +94,57 @@ fn add_shape(o: &mut Outline, shape: &Shape, offset: DVec2, angle: f64) {
         Shape::Segment { a, b } => {
             o.segments
                 .push((tr(DVec2::new(a.0, a.1)), tr(DVec2::new(b.0, b.1))));
+        }
+        Shape::Polyline {
+            points,
+            closed,
+            solid,
+        } => {
+            let pts: Vec<DVec2> = points.iter().map(|&(x, y)| tr(DVec2::new(x, y))).collect();
+            let n = pts.len();
+            let edges = if *closed { n } else { n.saturating_sub(1) };
+            for k in 0..edges {
+                let (a, b) = (pts[k], pts[(k + 1) % n]);
+                if let Some(side) = solid {
+                    // The solid side's normal: the edge turned a quarter turn to that side.
+                    let left = (b - a).perp().normalize_or(DVec2::Y);
+                    let n = if *side == TrackSide::Left {
+                        left
+                    } else {
+                        -left
+                    };
+                    o.solid_side.push((o.segments.len(), n));
+                }
+                o.segments.push((a, b));
+            }
+        }
+        Shape::Arc {
+            center,
+            radius,
+            start,
+            end,
+            side,
+            ..
+        } => {
+            let c = DVec2::new(center.0, center.1);
+            let sweep = end - start;
+            let n = ((sweep / ARC_DRAW_STEP).ceil() as usize).clamp(4, 720);
+            let mut pts: Vec<DVec2> = arc(c, *radius, *start, *end, n).collect();
+            if pts.len() == n {
+                // A full turn: close it.
+                pts.push(pts[0]);
+            }
+            for w in pts.windows(2) {
+                let mid = 0.5 * (w[0] + w[1]);
+                let out = (mid - c).normalize_or(DVec2::X);
+                // Riding inside, the solid is outside the circle; riding outside, within it.
+                let solid = match side {
+                    ArcSide::Inside => out,
+                    ArcSide::Outside => -out,
+                };
+                o.solid_side.push((o.segments.len(), rot.rotate(solid)));
+                o.segments.push((tr(w[0]), tr(w[1])));
+            }
         }
         Shape::Compound { parts } => {
             for part in parts {

@@ -42,10 +42,23 @@ pub fn scene_lines(
                 color,
             ));
         }
-        for (a, bb) in &o.segments {
+        for (k, (a, bb)) in o.segments.iter().enumerate() {
             let (a, bb) = (to_world(*a), to_world(*bb));
             if b.kind == BodyKind::Fixed {
-                ground(a, bb, m_per_px, toward, d);
+                // An arc's pieces hatch on its solid side; lines away from the moving bodies.
+                match o
+                    .solid_side
+                    .binary_search_by_key(&k, |(i, _)| *i)
+                    .ok()
+                    .map(|j| &o.solid_side[j])
+                {
+                    Some((_, n)) => {
+                        let n = DVec2::from_angle(b.angle).rotate(*n);
+                        let mid = 0.5 * (a + bb);
+                        ground(a, bb, m_per_px, Some(mid - n), d);
+                    }
+                    None => ground(a, bb, m_per_px, toward, d),
+                }
             } else {
                 d.prims.push(Prim::Line(a, bb, color));
             }

@@ -575,6 +575,8 @@ pub fn shape_name(s: &Shape) -> &'static str {
         Shape::Capsule { .. } => "capsule",
         Shape::Polygon { .. } => "polygon",
         Shape::Segment { .. } => "segment",
+        Shape::Polyline { .. } => "polyline",
+        Shape::Arc { .. } => "arc",
         Shape::Compound { .. } => "compound",
     }
 }

@@ -283,9 +283,50 @@ pub enum Shape {
         a: V2,
         b: V2,
     },
+    /// A track through `points`, open or `closed`, concave allowed (rapier's polyline): no area,
+    /// so no mass; never on a dynamic body (`level::curves`). `solid`: which side of the
+    /// direction from the first point is solid, making it one-sided (bodies ride the other
+    /// side); none: two-sided.
+    Polyline {
+        points: Vec<V2>,
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        closed: bool,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        solid: Option<TrackSide>,
+    },
+    /// A circular arc track about `center`, radius m, counter-clockwise from `start` to `end`
+    /// (rad), built as a polyline whose chords stay within `chord_error` (m, default 1e-7
+    /// radius) of the circle; `side` is where bodies ride. No mass; never on a dynamic body.
+    Arc {
+        #[serde(default)]
+        center: V2,
+        radius: f64,
+        start: f64,
+        end: f64,
+        side: ArcSide,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        chord_error: Option<f64>,
+    },
     Compound {
         parts: Vec<Part>,
     },
+}
+
+/// Which side of an arc bodies ride on: `inside` (the concave side: a loop, a bowl, a ring; the
+/// solid is outside the circle) or `outside` (the convex side: a hump; the solid is inside).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ArcSide {
+    Inside,
+    Outside,
+}
+
+/// Which side of a polyline, looking along it from its first point, is solid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TrackSide {
+    Left,
+    Right,
 }
 
 /// One part of a compound shape.

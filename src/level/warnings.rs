@@ -267,7 +267,8 @@ fn local_center(shape: &Shape) -> V2 {
     match shape {
         Shape::Circle { .. } | Shape::Box { .. } | Shape::Capsule { .. } => (0.0, 0.0),
         Shape::Segment { a, b } => ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0),
-        Shape::Polygon { points } => {
+        Shape::Arc { center, .. } => *center,
+        Shape::Polygon { points } | Shape::Polyline { points, .. } => {
             let (lo, hi) = points.iter().fold(
                 (
                     (f64::INFINITY, f64::INFINITY),

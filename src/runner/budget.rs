@@ -324,6 +324,8 @@ fn shape_box(shape: &Shape, at: (f64, f64), angle: f64) -> Aabb {
         }
         Shape::Polygon { points: ps } => points(ps, 0.0),
         Shape::Segment { a, b } => points(&[*a, *b], 0.0),
+        Shape::Polyline { points: ps, .. } => points(ps, 0.0),
+        Shape::Arc { center, radius, .. } => points(&[*center], *radius),
         Shape::Compound { parts } => {
             let mut b = (
                 (f64::INFINITY, f64::INFINITY),

@@ -1,6 +1,8 @@
 //! Building the rapier world from a validated scene, with only the declared effects.
 
+use super::rapier::parry::shape::{Polyline, PolylineFlags};
 use super::rapier::prelude::*;
+use crate::level::curves;
 use crate::level::{
     BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part, Shape as LevelShape, V2,
 };
@@ -27,12 +29,39 @@ pub fn shared_shape(s: &LevelShape) -> SharedShape {
             SharedShape::convex_hull(&pts).unwrap_or_else(|| SharedShape::ball(1e-3))
         }
         LevelShape::Segment { a, b } => SharedShape::segment(v(*a), v(*b)),
+        LevelShape::Polyline { .. } | LevelShape::Arc { .. } => {
+            // Validation keeps tracks whole (at least two points, never in a compound).
+            let (points, closed) = curves::track_points(s).unwrap_or_default();
+            let mut pts: Vec<Vector> = points.iter().map(|p| v(*p)).collect();
+            // parry's one-sided polyline collides on the right of its direction (a solid wound
+            // counter-clockwise) and clamps each contact normal between its neighbouring faces'
+            // normals, so a body riding a concave run of facets meets no vertex contact whose
+            // normal, linearised over the step, would throw it off the track.
+            let solid_left = match curves::solid_side(s) {
+                Some(left) => left,
+                None => {
+                    let indices = closing(pts.len(), closed);
+                    return SharedShape::polyline(pts, indices);
+                }
+            };
+            if !solid_left {
+                pts.reverse();
+            }
+            let indices = closing(pts.len(), closed);
+            SharedShape::new(Polyline::with_flags(pts, indices, PolylineFlags::ORIENTED))
+        }
         LevelShape::Compound { parts } => {
             let mut flat = Vec::new();
             flatten(parts, Pose::IDENTITY, &mut flat);
             SharedShape::compound(flat)
         }
     }
+}
+
+/// The index buffer of a closed polyline through `n` points (None: open, in order).
+fn closing(n: usize, closed: bool) -> Option<Vec<[u32; 2]>> {
+    let n = n as u32;
+    (closed && n >= 3).then(|| (0..n).map(|k| [k, (k + 1) % n]).collect())
 }
 
 fn flatten(parts: &[Part], base: Pose, out: &mut Vec<(Pose, SharedShape)>) {

@@ -1,6 +1,7 @@
 //! Bodies and their shapes: kinds, sizes, mass data, initial state.
 
 use super::*;
+use crate::level::curves;
 
 pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
     match s {
@@ -38,6 +39,15 @@ pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
             }
             Ok(())
         }
+        Shape::Polyline { points, closed, .. } => polyline(v, points, *closed, pos),
+        Shape::Arc {
+            center,
+            radius,
+            start,
+            end,
+            chord_error,
+            ..
+        } => arc(v, *center, *radius, (*start, *end), *chord_error, pos),
         Shape::Compound { parts } => {
             if parts.is_empty() {
                 return Err(v.err(
@@ -49,11 +59,122 @@ pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
             for p in parts {
                 v.finite2(p.offset, "part offset", pos)?;
                 v.finite(p.angle, "part angle", pos)?;
+                if curves::is_track(&p.shape) {
+                    return Err(v.err(
+                        pos,
+                        "a polyline or an arc cannot be a part of a compound shape",
+                        "give the track a fixed body of its own (several fixed bodies make a track of arcs and lines)",
+                    ));
+                }
                 shape(v, &p.shape, pos)?;
             }
             Ok(())
         }
     }
+}
+
+/// A polyline track: enough finite points, no zero-length edge, no edge crossing another.
+fn polyline(v: &V, points: &[V2], closed: bool, pos: (usize, usize)) -> R {
+    for (k, p) in points.iter().enumerate() {
+        v.finite2(*p, &format!("polyline point {k}"), pos)?;
+    }
+    let least = if closed { 3 } else { 2 };
+    if points.len() < least {
+        return Err(v.err(
+            pos,
+            format!(
+                "a{} polyline needs at least {least} points, this one has {}",
+                if closed { " closed" } else { "n open" },
+                points.len()
+            ),
+            "list the track's points in order (a single line is a `Segment`)",
+        ));
+    }
+    if points.len() > curves::MAX_POLYLINE_POINTS {
+        return Err(v.err(
+            pos,
+            format!(
+                "a polyline may have at most {} points, this one has {}",
+                curves::MAX_POLYLINE_POINTS,
+                points.len()
+            ),
+            "split the track over several fixed bodies, or use `Arc` for its circular parts",
+        ));
+    }
+    let n = points.len();
+    match curves::polyline_fault(points, closed) {
+        None => Ok(()),
+        Some(curves::PolylineFault::ZeroEdge(k)) => Err(v.err(
+            pos,
+            format!(
+                "polyline points {k} and {} coincide at {:?}",
+                (k + 1) % n,
+                points[k]
+            ),
+            "remove one of them",
+        )),
+        Some(curves::PolylineFault::Crossing(i, j)) => Err(v.err(
+            pos,
+            format!(
+                "the polyline crosses itself: its edge from point {i} {:?} to {} {:?} meets the edge from point {j} {:?} to {} {:?}",
+                points[i],
+                (i + 1) % n,
+                points[(i + 1) % n],
+                points[j],
+                (j + 1) % n,
+                points[(j + 1) % n]
+            ),
+            "move the points so that the track does not cross or fold back on itself (split a crossing track over two fixed bodies)",
+        )),
+    }
+}
+
+/// An arc track: finite center and angles, a positive radius, a sweep in (0, 2 pi], a chord
+/// error in (0, radius) that needs at most `curves::MAX_ARC_FACETS` facets.
+fn arc(
+    v: &V,
+    center: V2,
+    radius: f64,
+    (start, end): (f64, f64),
+    chord_error: Option<f64>,
+    pos: (usize, usize),
+) -> R {
+    v.finite2(center, "arc center", pos)?;
+    v.positive(radius, "arc radius", "m", pos)?;
+    v.finite(start, "arc start", pos)?;
+    v.finite(end, "arc end", pos)?;
+    let sweep = end - start;
+    if !(sweep > 0.0 && sweep <= std::f64::consts::TAU + 1e-9) {
+        return Err(v.err(
+            pos,
+            format!("an arc must sweep more than 0 and at most 2 pi rad counter-clockwise from `start` to `end`; this one sweeps {sweep} rad"),
+            "give `end` greater than `start` by at most 6.283185307179586 (a full turn)",
+        ));
+    }
+    if let Some(e) = chord_error {
+        v.positive(e, "arc chord_error", "m", pos)?;
+        if e >= radius {
+            return Err(v.err(
+                pos,
+                format!("an arc's chord_error {e} m is not less than its radius {radius} m"),
+                "give a chord_error well below the radius, or leave it out (1e-7 radius)",
+            ));
+        }
+    }
+    let e = curves::chord_error(radius, chord_error);
+    let n = curves::arc_facets(radius, sweep, e);
+    if n > curves::MAX_ARC_FACETS {
+        let least = radius * (1.0 - (sweep / curves::MAX_ARC_FACETS as f64 / 2.0).cos());
+        return Err(v.err(
+            pos,
+            format!(
+                "this arc would need more than {} facets for a chord error of {e} m",
+                curves::MAX_ARC_FACETS
+            ),
+            format!("give `chord_error: {least:.3e}` (m) or more"),
+        ));
+    }
+    Ok(())
 }
 
 /// Signed area of a polygon (shoelace).
@@ -76,7 +197,7 @@ pub(in crate::level) fn shape_area(s: &Shape) -> f64 {
         Shape::Box { width, height } => width * height,
         Shape::Capsule { length, radius } => 2.0 * radius * length + PI * radius * radius,
         Shape::Polygon { points } => polygon_area(points).abs(),
-        Shape::Segment { .. } => 0.0,
+        Shape::Segment { .. } | Shape::Polyline { .. } | Shape::Arc { .. } => 0.0,
         Shape::Compound { parts } => parts.iter().map(|p| shape_area(&p.shape)).sum(),
     }
 }
@@ -98,6 +219,13 @@ pub(super) fn body(v: &V, b: &BodyDef) -> R {
     v.finite(b.omega, &format!("body \"{name}\" omega"), at("omega"))?;
     if let Some(s) = &b.shape {
         shape(v, s, at("shape"))?;
+        if curves::is_track(s) && b.kind == BodyKind::Dynamic {
+            return Err(v.err(
+                at("shape"),
+                format!("dynamic body \"{name}\" has a polyline or arc shape: these are static tracks"),
+                "make the body `kind: fixed` (or `kinematic`), or give a dynamic body a convex shape (Circle, Box, Capsule, Polygon, Compound)",
+            ));
+        }
     }
     if b.mass.is_some() && b.density.is_some() {
         return Err(v.err(
