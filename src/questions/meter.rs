@@ -98,7 +98,8 @@ impl Meter {
             QuantityFamily::WorkAndPower => work_and_power::advance(self, prev, s),
             QuantityFamily::Periods => periods::advance(self, prev, s),
             QuantityFamily::Impacts => impacts::advance(self, s, pair_event),
-            QuantityFamily::Rolling | QuantityFamily::Linkages => {}
+            QuantityFamily::Rolling => rolling::advance(self, prev, s),
+            QuantityFamily::Linkages => {}
         }
     }
 

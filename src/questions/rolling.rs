@@ -10,8 +10,85 @@ use crate::analysis::closed_forms::{
     rolling_acceleration, rolling_friction, rolling_friction_needed,
 };
 use crate::analysis::cross;
-use crate::level::Quantity;
+use crate::level::{BodyKind, Quantity};
+use crate::snapshot::Snapshot;
 use glam::DVec2;
+
+/// Checks the closed forms' assumptions on the step that led to `s` (RK-8 with 6/1: a round
+/// body rolling on a fixed straight surface with only its weight and that surface acting), and
+/// records the first one the scene breaks: the analysis is then "not applicable".
+pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+    if m.inapplicable.is_some() {
+        return;
+    }
+    let (Quantity::RollingAcceleration { body: b, ground }
+    | Quantity::RollingFriction { body: b, ground }
+    | Quantity::RollingFrictionNeeded { body: b, ground }) = &m.q
+    else {
+        return;
+    };
+    let (Some(i), Some(o)) = (m.body_index(s, b), m.body_index(s, ground)) else {
+        return;
+    };
+    let why = if s.bodies[o].kind != BodyKind::Fixed {
+        Some("the ground moves: the rolling closed forms are for a fixed slope (a wedge that slides changes the body's acceleration)".to_string())
+    } else if let Some(what) = also_acting(s, i, o).or_else(|| {
+        m.facts
+            .bodies
+            .get(i)
+            .filter(|x| x.damped)
+            .map(|_| "damping")
+    }) {
+        Some(format!(
+            "{what} also acts on the body: the rolling closed forms assume its weight and the ground alone"
+        ))
+    } else if matches!(m.q, Quantity::RollingFrictionNeeded { .. })
+        && turned(prev, s, i, o).is_some_and(|a| a > CURVED)
+    {
+        Some("the ground curves under the body (its contact normal turns): F/N = tan(theta) k_G^2/(k_G^2 + r^2) takes N = m g cos(theta), which a curve changes by m v^2 / rho".into())
+    } else {
+        None
+    };
+    m.inapplicable = why;
+}
+
+/// A turn of the contact normal in one step that means the ground curves, rad. rapier's normal
+/// on a straight slope wobbles by up to 2.4e-6 rad from step to step in f32 (a disc on a 25
+/// degree incline, tests/newuser/n4_02); a turn of 1e-4 rad per step is a curve of radius
+/// v dt / 1e-4, whose m v^2 / rho is v 1e-4 / dt: 0.5% of g at 2 m/s and 1/240 s.
+const CURVED: f64 = 1e-4;
+
+/// What besides its weight and the ground acts on body i in `s`: a joint, a spring, a load, a
+/// coupling, damping, or another body pushing on it.
+fn also_acting(s: &Snapshot, i: usize, ground: usize) -> Option<&'static str> {
+    if s.joints.iter().any(|j| j.body1 == i || j.body2 == i) {
+        Some("a joint")
+    } else if s.springs.iter().any(|x| x.body1 == i || x.body2 == Some(i)) {
+        Some("a spring")
+    } else if s.loads.iter().any(|l| l.body == i) {
+        Some("a load")
+    } else if s.couplings.iter().any(|c| c.terms.iter().any(|t| t.0 == i)) {
+        Some("a coupling")
+    } else if s.contacts.iter().any(|c| {
+        (c.body1 == i || c.body2 == i) && c.body1 != ground && c.body2 != ground && c.pushes()
+    }) {
+        Some("another contact")
+    } else {
+        None
+    }
+}
+
+/// How far the contact normal between i and the ground turned over the step, rad.
+fn turned(prev: &Snapshot, s: &Snapshot, i: usize, o: usize) -> Option<f64> {
+    let n = |x: &Snapshot| {
+        x.contacts
+            .iter()
+            .find(|c| (c.body1 == i && c.body2 == o) || (c.body1 == o && c.body2 == i))
+            .map(|c| c.normal)
+    };
+    let (a, b) = (n(prev)?, n(s)?);
+    Some(cross(a, b).abs().atan2(a.dot(b).abs()))
+}
 
 /// The quantity at the sample.
 pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
