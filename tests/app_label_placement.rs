@@ -178,3 +178,150 @@ fn crowded_labels_fan_out_around_their_point_and_off_the_body() {
         edge[0]
     );
 }
+
+/// Hysteresis (labels::place_keeping): a label keeps its spot beside its point while the spot is
+/// free, so it moves with its point and does not jump between spots from one step to the next.
+/// A label starts over a body (its home spot taken, so it sits beside it) and its point moves
+/// 1 px a step to the right until its home spot is clear of the body. Placed afresh each step,
+/// it jumps back onto its home once that is free (a jump of a label height, 19 px); kept, it
+/// moves 1 px a step, as its point does.
+#[test]
+fn a_label_moves_with_its_point_while_its_spot_is_free() {
+    let view = Rect::new(0.0, 0.0, 400.0, 300.0);
+    let body = vec![
+        Vec2::new(100.0, 100.0),
+        Vec2::new(200.0, 100.0),
+        Vec2::new(200.0, 200.0),
+        Vec2::new(100.0, 200.0),
+    ];
+    let bodies = std::slice::from_ref(&body);
+    let size = Vec2::new(60.0, 16.0);
+    let mut last: Vec<(Vec2, Rect)> = Vec::new();
+    let mut fresh_prev: Option<Rect> = None;
+    let (mut worst_kept, mut worst_fresh) = (0.0f32, 0.0f32);
+    for step in 0..160 {
+        let want = labels::Want {
+            home: Vec2::new(110.0 + step as f32, 140.0),
+            size,
+        };
+        let kept = labels::place_keeping(&[want], bodies, view, &last)[0];
+        let fresh = labels::place(&[want], bodies, view)[0];
+        assert!(
+            !rect_hits_polygon(&kept, &body),
+            "step {step}: on the body {kept:?}"
+        );
+        assert!(
+            kept.min.x >= 0.0 && kept.min.y >= 0.0 && kept.max.x <= 400.0 && kept.max.y <= 300.0,
+            "step {step}: out of view {kept:?}"
+        );
+        if let Some((_, prev)) = last.first() {
+            worst_kept = worst_kept.max((kept.min - prev.min).length());
+        }
+        if let Some(prev) = fresh_prev {
+            worst_fresh = worst_fresh.max((fresh.min - prev.min).length());
+        }
+        last = vec![(want.home, kept)];
+        fresh_prev = Some(fresh);
+    }
+    println!("largest move in one step: kept {worst_kept} px, placed afresh {worst_fresh} px");
+    // The point moves 1 px a step; f32 rounding of coordinates near 300 is below 1e-4 px.
+    assert!(
+        worst_kept <= 1.0 + 1e-3,
+        "a kept label jumped {worst_kept} px"
+    );
+    // The fault the hysteresis removes, seen on the same path (else this test shows nothing).
+    assert!(worst_fresh > 10.0, "{worst_fresh}");
+}
+
+/// On a library level with every overlay on, over 120 steps: how far labels move in one step
+/// beyond their points' own motion, placed with last step's places as the window does.
+#[test]
+fn labels_on_a_running_level_hold_their_places() {
+    let file = Path::new("levels/kinetics/physical_pendulum.ron");
+    let scene = level::load(file).unwrap();
+    let mut phys = Physics::new(scene.clone(), Options::default(), false);
+    phys.stop_at_end = false;
+    let mut v = View {
+        viewport: Rect::new(300.0, 0.0, 950.0, 762.0),
+        ..Default::default()
+    };
+    v.fit_to(&view::motion_bounds(&scene, &Options::default()));
+    let ov = Overlays {
+        velocity: true,
+        acceleration: true,
+        free_body: true,
+        momentum: true,
+        labels: true,
+        ..Default::default()
+    };
+    let outlines = view::body_outlines(&phys.sim.level);
+    let index = view::SceneIndex::of(&phys.sim.level);
+    let mut last: Vec<(Vec2, Rect)> = Vec::new();
+    let vp = v.viewport;
+    let (mut moves, mut jumps, mut calm_jumps) = (0usize, 0usize, 0usize);
+    let mut worst = 0.0f32;
+    for _ in 0..120 {
+        phys.advance();
+        let mut d = Drawing::default();
+        d.clear(v.m_per_px);
+        rigidlab::app::scene_lines::scene_lines(
+            &phys.sim.level,
+            &outlines,
+            &index,
+            phys.snapshot(),
+            v.m_per_px,
+            &mut d,
+        );
+        let scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
+        overlays::build(&ov, &phys, &outlines, &scales, &mut d);
+        let wants: Vec<labels::Want> = d
+            .labels
+            .iter()
+            .map(|l| {
+                let chars = l.text.lines().map(|s| s.chars().count()).max().unwrap_or(0);
+                let size = Vec2::new(
+                    7.2 * chars as f32,
+                    16.0 * l.text.lines().count().max(1) as f32,
+                );
+                rigidlab::app::label_want(l, size, &v)
+            })
+            .collect();
+        let bodies = rigidlab::app::screen_bodies(&d, &v);
+        let rects = labels::place_keeping(&wants, &bodies, v.viewport, &last);
+        if last.len() == rects.len() {
+            for ((w, r), (home, prev)) in wants.iter().zip(&rects).zip(&last) {
+                // The label's move beyond its point's move.
+                let extra = ((r.min - prev.min) - (w.home - *home)).length();
+                moves += 1;
+                worst = worst.max(extra);
+                if extra > 3.0 {
+                    jumps += 1;
+                }
+                // Nothing near it changed: its spot, moved with its point, is still inside
+                // the view and clear of every body and every other label.
+                let spot = prev.min + (w.home - *home);
+                let spot = Rect::from_corners(spot, spot + w.size);
+                let clear = vp.contains(spot.min)
+                    && vp.contains(spot.max)
+                    && !bodies.iter().any(|b| rect_hits_polygon(&spot, b))
+                    && !rects
+                        .iter()
+                        .any(|q| q != r && overlap_area(q, &spot.inflate(labels::MARGIN)) > 0.0);
+                if extra > 3.0 && clear {
+                    calm_jumps += 1;
+                }
+            }
+        }
+        last = wants.iter().map(|w| w.home).zip(rects).collect();
+    }
+    println!(
+        "{moves} label moves, {jumps} more than 3 px beyond their point's (a body or a label moved onto \
+         their spot), {calm_jumps} with their spot still clear, worst {worst} px"
+    );
+    assert!(moves > 100, "too few labels to judge: {moves}");
+    // A label whose spot stays clear does not move beyond its point's motion.
+    assert_eq!(
+        calm_jumps, 0,
+        "labels jumped with nothing near them changed"
+    );
+}

@@ -105,7 +105,10 @@ pub fn emit<C: GizmoConfigGroup, K: 'static + Send + Sync>(
     gizmos: &mut GizmoBuffer<C, K>,
 ) {
     let px = drawing.m_per_px.max(1e-12);
-    for p in &drawing.prims {
+    // Arrows last, over the markers and outlines (a pin's impulse arrow ended under the pin).
+    let arrow = |p: &&Prim| matches!(p, Prim::Arrow(..) | Prim::Curl(..));
+    let (arrows, rest): (Vec<&Prim>, Vec<&Prim>) = drawing.prims.iter().partition(arrow);
+    for p in rest.into_iter().chain(arrows) {
         match p {
             Prim::Line(a, b, c) => gizmos.line_2d(v2(*a), v2(*b), *c),
             Prim::Poly(pts, closed, c) => {

@@ -38,6 +38,21 @@ pub struct Editor {
     /// The file just saved (the level browser rescans): the path asked for, or the numbered
     /// name it went under where that was taken.
     pub just_saved: Option<PathBuf>,
+    /// The scene as last opened or saved, and the level it belongs to (`view_generation`):
+    /// the edits since are unsaved work (app/unsaved.rs asks before they are thrown away).
+    saved: Option<(u64, crate::level::Level)>,
+}
+
+impl Editor {
+    /// The scene on screen has edits not saved since it was opened (undone edits do not count).
+    pub fn unsaved(&self, phys: &Physics) -> bool {
+        matches!(&self.saved, Some((g, level)) if *g == phys.view_generation && *level != phys.scene.level)
+    }
+
+    /// The scene on screen counts as saved (it was just written).
+    pub fn mark_saved(&mut self, phys: &Physics) {
+        self.saved = Some((phys.view_generation, phys.scene.level.clone()));
+    }
 }
 
 /// Registers the commands and applies them before the physics step of the frame.
@@ -60,6 +75,14 @@ fn run_commands(
         if ed.level_generation != phys.view_generation {
             ed.history.clear();
             ed.level_generation = phys.view_generation;
+        }
+        if ed
+            .saved
+            .as_ref()
+            .is_none_or(|(g, _)| *g != phys.view_generation)
+        {
+            // The level as opened, before its first edit.
+            ed.mark_saved(&phys);
         }
         let next: Result<(Scene, String), String> = match c {
             EditorCommand::Apply(e) => ed.history.apply(&phys.scene, e),
@@ -95,6 +118,7 @@ fn run_commands(
                     match super::panels::capture::save_level_as(&phys.scene, path) {
                         Ok((used, m)) => {
                             ed.just_saved = Some(used);
+                            ed.mark_saved(&phys);
                             (m, true)
                         }
                         Err(e) => (e, false),
@@ -110,6 +134,8 @@ fn run_commands(
                 if *c == EditorCommand::New {
                     phys.load(scene);
                     ed.level_generation = phys.view_generation;
+                    // A new scene is nothing to lose yet.
+                    ed.mark_saved(&phys);
                 } else {
                     phys.load_keep_view(scene);
                 }

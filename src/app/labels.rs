@@ -7,6 +7,8 @@
 //! placed before it and no body. When no spot is free, it takes the one that covers the least:
 //! other labels first, then bodies (a label must be readable; one over a body still is). Pure
 //! geometry in logical pixels (y down), so it is tested on the library's levels without a window.
+//!
+//! From frame to frame a label keeps its spot while the spot stays free ([`place_keeping`]).
 
 use bevy::math::{Rect, Vec2};
 
@@ -20,34 +22,94 @@ pub struct Want {
 /// Places `wants` in order inside `view`, avoiding each other and the convex `bodies` (screen
 /// polygons). Returns each label's rectangle.
 pub fn place(wants: &[Want], bodies: &[Vec<Vec2>], view: Rect) -> Vec<Rect> {
-    let mut placed: Vec<Rect> = Vec::with_capacity(wants.len());
-    for w in wants {
-        // A home past the view's edge is first brought inside: the spots around it then lie in
-        // the view instead of collapsing onto the edge.
-        let home = inside(Rect::from_corners(w.home, w.home + w.size), view).min;
-        let mut best: Option<(Rect, (f32, f32, f32))> = None;
-        for (k, off) in candidates(w.size).enumerate() {
-            let r = inside(Rect::from_corners(home + off, home + off + w.size), view);
-            let on_labels: f32 = placed
-                .iter()
-                .map(|p| overlap_area(p, &r.inflate(MARGIN)))
-                .sum();
-            let on_bodies = bodies.iter().filter(|b| rect_hits_polygon(&r, b)).count() as f32;
-            let cost = (on_labels, on_bodies, k as f32);
-            if on_labels == 0.0 && on_bodies == 0.0 {
-                best = Some((r, cost));
-                break;
-            }
-            if best.as_ref().is_none_or(|(_, c)| cost < *c) {
-                best = Some((r, cost));
-            }
+    place_keeping(wants, bodies, view, &[])
+}
+
+/// A label whose home moved farther than this since the last frame is a different label (or
+/// jumped): it is placed afresh, px.
+pub const KEEP_PX: f32 = 40.0;
+
+/// [`place`] with hysteresis: `previous` is last frame's (home, rectangle) of each label, by
+/// index. A label keeps its place beside its home (the same offset, so it moves with its point)
+/// while that spot is inside the view and clear of bodies and of the labels kept before it; only
+/// the others are placed afresh, around the kept ones. Without this, a label jumped back and
+/// forth between two spots from one step to the next as its neighbours came and went.
+pub fn place_keeping(
+    wants: &[Want],
+    bodies: &[Vec<Vec2>],
+    view: Rect,
+    previous: &[(Vec2, Rect)],
+) -> Vec<Rect> {
+    let mut kept: Vec<Option<Rect>> = vec![None; wants.len()];
+    for (k, w) in wants.iter().enumerate() {
+        let Some((home, r)) = previous.get(k) else {
+            continue;
+        };
+        if (*home - w.home).length() > KEEP_PX {
+            continue;
         }
-        placed.push(
-            best.map(|(r, _)| r)
-                .unwrap_or_else(|| Rect::from_corners(home, home + w.size)),
-        );
+        let at = w.home + (r.min - *home);
+        let r = inside(Rect::from_corners(at, at + w.size), view);
+        let free = kept
+            .iter()
+            .flatten()
+            .all(|p| overlap_area(p, &r.inflate(MARGIN)) == 0.0)
+            && !bodies.iter().any(|b| rect_hits_polygon(&r, b));
+        if free {
+            kept[k] = Some(r);
+        }
     }
-    placed
+    let mut placed: Vec<Rect> = kept.iter().flatten().copied().collect();
+    let mut out = Vec::with_capacity(wants.len());
+    for (k, (w, keep)) in wants.iter().zip(&kept).enumerate() {
+        if let Some(r) = keep {
+            out.push(*r);
+            continue;
+        }
+        // A label that must leave its spot takes the free spot nearest it, not the one
+        // nearest its home (which may be across the body that pushed it out).
+        let near = previous
+            .get(k)
+            .filter(|(home, _)| (*home - w.home).length() <= KEEP_PX)
+            .map(|(home, r)| w.home + (r.min - *home));
+        let r = place_one(w, bodies, view, &placed, near);
+        placed.push(r);
+        out.push(r);
+    }
+    out
+}
+
+/// The nearest free spot around `w`'s home (or the one covering least), given `placed`; with
+/// `near` (where the label was), the free spot nearest that.
+fn place_one(
+    w: &Want,
+    bodies: &[Vec<Vec2>],
+    view: Rect,
+    placed: &[Rect],
+    near: Option<Vec2>,
+) -> Rect {
+    // A home past the view's edge is first brought inside: the spots around it then lie in
+    // the view instead of collapsing onto the edge.
+    let home = inside(Rect::from_corners(w.home, w.home + w.size), view).min;
+    let mut best: Option<(Rect, (f32, f32, f32))> = None;
+    for (k, off) in candidates(w.size).enumerate() {
+        let r = inside(Rect::from_corners(home + off, home + off + w.size), view);
+        let on_labels: f32 = placed
+            .iter()
+            .map(|p| overlap_area(p, &r.inflate(MARGIN)))
+            .sum();
+        let on_bodies = bodies.iter().filter(|b| rect_hits_polygon(&r, b)).count() as f32;
+        let order = near.map_or(k as f32, |p| (r.min - p).length());
+        let cost = (on_labels, on_bodies, order);
+        if on_labels == 0.0 && on_bodies == 0.0 && near.is_none() {
+            return r;
+        }
+        if best.as_ref().is_none_or(|(_, c)| cost < *c) {
+            best = Some((r, cost));
+        }
+    }
+    best.map(|(r, _)| r)
+        .unwrap_or_else(|| Rect::from_corners(home, home + w.size))
 }
 
 /// Clear space kept between two labels, px.

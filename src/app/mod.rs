@@ -24,6 +24,7 @@ pub mod quantities;
 pub mod render;
 pub mod scene_lines;
 pub mod tools;
+pub mod unsaved;
 pub mod user_files;
 pub mod view;
 #[cfg(target_arch = "wasm32")]
@@ -140,7 +141,12 @@ fn egui_rect(r: Rect) -> egui::Rect {
 }
 
 /// The labels of the drawing, in screen space, each on a light box so it reads over lines.
-fn paint_labels(mut contexts: EguiContexts, d: Res<Drawing>, view: Res<View>) -> Result {
+fn paint_labels(
+    mut contexts: EguiContexts,
+    d: Res<Drawing>,
+    view: Res<View>,
+    mut last: Local<Vec<(Vec2, Rect)>>,
+) -> Result {
     let ctx = contexts.ctx_mut()?;
     let painter = ctx
         .layer_painter(egui::LayerId::new(
@@ -166,7 +172,12 @@ fn paint_labels(mut contexts: EguiContexts, d: Res<Drawing>, view: Res<View>) ->
         .zip(&galleys)
         .map(|(l, g)| label_want(l, Vec2::new(g.size().x, g.size().y), &view))
         .collect();
-    let rects = labels::place(&wants, &screen_bodies(&d, &view), view.viewport);
+    let rects = labels::place_keeping(&wants, &screen_bodies(&d, &view), view.viewport, &last);
+    *last = wants
+        .iter()
+        .map(|w| w.home)
+        .zip(rects.iter().copied())
+        .collect();
     for ((l, galley), r) in d.labels.iter().zip(galleys).zip(rects) {
         painter.rect_filled(egui_rect(r).expand(1.5), 2.0, bg);
         painter.galley(egui::pos2(r.min.x, r.min.y), galley, color32(l.color));
@@ -291,6 +302,8 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
                     resolution: (1440, 900).into(),
                     ..default()
                 }),
+                // app/unsaved.rs closes it, after asking when there are unsaved edits.
+                close_when_requested: false,
                 ..default()
             },
         )));
@@ -340,6 +353,7 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
         editor::EditorPlugin,
         frame_rate::FrameRatePlugin,
         power::PowerPlugin,
+        unsaved::UnsavedPlugin,
     ));
     app.add_systems(Startup, panels::spawn_cameras);
 }

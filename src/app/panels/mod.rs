@@ -11,11 +11,12 @@ mod exercise;
 mod help;
 mod level_browser;
 pub mod measure;
+pub mod number_field;
 mod overlay_controls;
 mod playback;
 pub mod plots;
 mod scene_editor;
-mod shortcuts;
+pub mod shortcuts;
 mod solver;
 mod tool_controls;
 mod tour;
@@ -33,6 +34,7 @@ use super::overlays::Overlays;
 use super::physics::{LiveChecks, Physics};
 use super::prefs::{Prefs, PrefsFile};
 use super::tools::ToolState;
+use super::unsaved::{Answer, Leaving, Unsaved};
 use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
 use bevy::camera::visibility::RenderLayers;
@@ -118,6 +120,11 @@ pub struct PanelsPlugin;
 impl Plugin for PanelsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<UiState>()
+            .init_resource::<shortcuts::EguiKeys>()
+            .add_systems(
+                PreUpdate,
+                shortcuts::keys_to_egui.in_set(bevy_egui::EguiInputSet::ReadBevyMessages),
+            )
             .add_systems(
                 Update,
                 (keys, super::view::pan_zoom, super::overlays::overlay_keys),
@@ -133,6 +140,11 @@ pub fn spawn_cameras(
     adapter: Option<Res<bevy::render::renderer::RenderAdapterInfo>>,
 ) {
     settings.auto_create_primary_context = false;
+    // Keys reach egui through shortcuts::keys_to_egui, which reads the modifiers in the order
+    // the keys came (bevy_egui's own system typed "a" for a Ctrl+A pressed within one frame).
+    settings
+        .input_system_settings
+        .run_write_keyboard_input_messages_system = false;
     let msaa = super::frame_cost::scene_samples(adapter.as_deref());
     commands.spawn((Camera2d, WorldCamera, msaa));
     commands.spawn((
@@ -187,6 +199,7 @@ fn panels(
         Option<ResMut<Prefs>>,
         Option<Res<PrefsFile>>,
     ),
+    (mut unsaved, mut commands): (Option<ResMut<Unsaved>>, Commands),
 ) -> Result {
     let rate = rate.map(|r| r.clone()).unwrap_or_default();
     let ctx = contexts.ctx_mut()?.clone();
@@ -263,6 +276,14 @@ fn panels(
                 let mut out = Vec::new();
                 scene_editor(ui, &phys, &editor, &mut tools, ov.selected, st, &mut out);
                 for c in out {
+                    if c == EditorCommand::New {
+                        // Unsaved edits: ask first (app/unsaved.rs).
+                        if let Some(u) = unsaved.as_deref_mut() {
+                            if u.request(editor.unsaved(&phys), Leaving::New).is_none() {
+                                continue;
+                            }
+                        }
+                    }
                     if matches!(c, EditorCommand::Apply(crate::editor::Edit::Delete { .. })) {
                         ov.selected = None;
                         ov.point = None;
@@ -367,6 +388,50 @@ fn panels(
     }
     if load.is_none() {
         load = st.pending_open.take();
+    }
+    if let (Some(scene), Some(u)) = (load.take(), unsaved.as_deref_mut()) {
+        // Unsaved edits: ask before another level replaces them.
+        if let Some(Leaving::Open(s)) =
+            u.request(editor.unsaved(&phys), Leaving::Open(Box::new(scene)))
+        {
+            load = Some(*s);
+        }
+    }
+    let answer = unsaved
+        .as_deref()
+        .and_then(|u| super::unsaved::dialog(&ctx, u, &st.save_path));
+    if let (Some(answer), Some(u)) = (answer, unsaved.as_deref_mut()) {
+        let mut go = true;
+        if answer == Answer::Save {
+            match capture::save_level_as(&phys.scene, &PathBuf::from(&st.save_path)) {
+                Ok((used, m)) => {
+                    editor.mark_saved(&phys);
+                    editor.just_saved = Some(used);
+                    st.message = Some((m, true));
+                }
+                Err(e) => {
+                    // Not saved: the question stays, with why in the status line.
+                    st.message = Some((e, false));
+                    go = false;
+                }
+            }
+        }
+        if go {
+            match u.answer(answer) {
+                Some(Leaving::Open(s)) => load = Some(*s),
+                Some(Leaving::New) => {
+                    edits.write(EditorCommand::New);
+                }
+                Some(Leaving::Close(window)) => {
+                    commands.entity(window).try_despawn();
+                }
+                None => {}
+            }
+        }
+    }
+    if editor.just_saved.take().is_some() && !browser.embedded {
+        // Saved from the question: the browser lists it at once.
+        *browser = Browser::scan(&browser.root.clone());
     }
     if let Some(scene) = load {
         st.save_path = default_save_path(&scene);

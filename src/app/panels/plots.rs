@@ -146,6 +146,7 @@ pub(super) fn body_plot(
     });
     if let Some(x) = *against {
         xy_plot(ui, samples, x, *choice);
+        body_export(ui, phys, name, samples, message);
         return;
     }
     let q = *choice;
@@ -178,9 +179,22 @@ pub(super) fn body_plot(
             .small(),
         );
     }
+    body_export(ui, phys, name, samples, message);
+}
+
+/// The selected body's CSV export button (every body plot has one).
+fn body_export(
+    ui: &mut egui::Ui,
+    phys: &Physics,
+    name: &str,
+    samples: &[BodySample],
+    message: &mut Option<(String, bool)>,
+) {
     if ui
         .button("export CSV")
-        .on_hover_text("t, x_G, y_G, θ, ω, v_G, R of this body, SI units")
+        .on_hover_text(
+            "t, x_G, y_G, θ, ω, v_G, R of this body, SI units (a file already there is kept)",
+        )
         .clicked()
     {
         let stem = phys
@@ -199,10 +213,51 @@ pub(super) fn body_plot(
     }
 }
 
-/// One quantity against another over the run (a phase plot), with both ranges written on it.
+/// The smallest and largest finite values, if any: what a plot's labels print.
+pub fn extremes(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// The range a plot draws over: the extremes with a margin of 8% each side (the line never
+/// touches the frame). Only the drawing uses it; the labels print the extremes themselves.
+pub fn drawn_range((lo, hi): (f64, f64)) -> (f64, f64) {
+    let pad = ((hi - lo) * 0.08).max(1e-9 * hi.abs().max(1.0));
+    (lo - pad, hi + pad)
+}
+
+/// The labels of a plot's value axis: the largest value at the top, the smallest at the bottom.
+pub fn extreme_labels((lo, hi): (f64, f64), unit: &str) -> (String, String) {
+    (
+        format!("max {} {unit}", fmt(hi)),
+        format!("min {} {unit}", fmt(lo)),
+    )
+}
+
+/// The sample of a phase plot nearest the pointer, in screen distance; `map` is the plot's
+/// mapping from values to the screen.
+pub fn nearest_sample(
+    pts: &[(f64, f64)],
+    map: impl Fn(f64, f64) -> egui::Pos2,
+    pointer: egui::Pos2,
+) -> Option<usize> {
+    pts.iter()
+        .enumerate()
+        .map(|(k, &(a, b))| (k, map(a, b).distance_sq(pointer)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(k, _)| k)
+}
+
+/// One quantity against another over the run (a phase plot), with both ranges written on it
+/// and a readout of the sample nearest the pointer.
 fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) {
     let width = ui.available_width().min(320.0);
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 160.0), egui::Sense::hover());
+    let (rect, hover) = ui.allocate_exact_size(egui::vec2(width, 160.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, egui::Color32::from_gray(250));
     let pts: Vec<(f64, f64)> = samples
@@ -210,18 +265,21 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
         .map(|p| (x.of(p), y.of(p)))
         .filter(|(a, b)| a.is_finite() && b.is_finite())
         .collect();
+    let ts: Vec<f64> = samples
+        .iter()
+        .filter(|p| x.of(p).is_finite() && y.of(p).is_finite())
+        .map(|p| p.t)
+        .collect();
     if pts.len() < 2 {
         return;
     }
-    let range = |v: &mut dyn Iterator<Item = f64>| {
-        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), a| {
-            (l.min(a), h.max(a))
-        });
-        let pad = ((hi - lo) * 0.08).max(1e-9 * hi.abs().max(1.0));
-        (lo - pad, hi + pad)
+    let (Some(xr), Some(yr)) = (
+        extremes(pts.iter().map(|p| p.0)),
+        extremes(pts.iter().map(|p| p.1)),
+    ) else {
+        return;
     };
-    let (x0, x1) = range(&mut pts.iter().map(|p| p.0));
-    let (y0, y1) = range(&mut pts.iter().map(|p| p.1));
+    let ((x0, x1), (y0, y1)) = (drawn_range(xr), drawn_range(yr));
     let inner = rect.shrink2(egui::vec2(4.0, 14.0));
     let map = |a: f64, b: f64| {
         egui::pos2(
@@ -239,17 +297,44 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
     painter.text(
         rect.left_top() + egui::vec2(3.0, 1.0),
         egui::Align2::LEFT_TOP,
-        format!("{}: {} to {}", y.label(), fmt(y0), fmt(y1)),
+        format!("{}: {} to {}", y.label(), fmt(yr.0), fmt(yr.1)),
         font.clone(),
         gray,
     );
     painter.text(
         rect.right_bottom() + egui::vec2(-3.0, -1.0),
         egui::Align2::RIGHT_BOTTOM,
-        format!("{}: {} to {}", x.label(), fmt(x0), fmt(x1)),
-        font,
+        format!("{}: {} to {}", x.label(), fmt(xr.0), fmt(xr.1)),
+        font.clone(),
         gray,
     );
+    // The cursor readout: the sample nearest the pointer, marked, with its time and values.
+    if let Some(k) = hover
+        .hover_pos()
+        .and_then(|pos| nearest_sample(&pts, map, pos))
+    {
+        let (a, b) = pts[k];
+        let at = map(a, b);
+        painter.circle_stroke(
+            at,
+            4.0,
+            egui::Stroke::new(1.5, egui::Color32::from_gray(40)),
+        );
+        painter.text(
+            rect.left_bottom() + egui::vec2(3.0, -14.0),
+            egui::Align2::LEFT_BOTTOM,
+            format!(
+                "t = {:.3} s: {} {}, {} {}",
+                ts[k],
+                fmt(a),
+                x.unit(),
+                fmt(b),
+                y.unit()
+            ),
+            font,
+            egui::Color32::from_gray(30),
+        );
+    }
 }
 
 /// Where an export goes: `exports/` of the working directory in the window, a download in the page.
@@ -350,22 +435,10 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
         series[0].t,
         series[series.len() - 1].t.max(series[0].t + 1e-9),
     );
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
-    for (f, _) in lines {
-        for p in series {
-            let v = f(p);
-            if v.is_finite() {
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-        }
-    }
-    if lo > hi || lo.is_nan() || hi.is_nan() {
+    let Some(extent) = extremes(lines.iter().flat_map(|(f, _)| series.iter().map(f))) else {
         return;
-    }
-    let pad = ((hi - lo) * 0.08).max(1e-9 * hi.abs().max(1.0));
-    let (lo, hi) = (lo - pad, hi + pad);
+    };
+    let (lo, hi) = drawn_range(extent);
     let inner = rect.shrink2(egui::vec2(4.0, 14.0));
     let map = |t: f64, v: f64| {
         egui::pos2(
@@ -414,17 +487,19 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
             egui::Color32::from_gray(30),
         );
     }
+    // The labels print the extremes of the series, not the drawn range's margin.
+    let (top, bottom) = extreme_labels(extent, unit);
     painter.text(
         rect.left_top() + egui::vec2(3.0, 1.0),
         egui::Align2::LEFT_TOP,
-        format!("{} {unit}", fmt(hi)),
+        top,
         font.clone(),
         gray,
     );
     painter.text(
         rect.left_bottom() + egui::vec2(3.0, -1.0),
         egui::Align2::LEFT_BOTTOM,
-        format!("{} {unit}", fmt(lo)),
+        bottom,
         font.clone(),
         gray,
     );

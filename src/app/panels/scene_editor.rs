@@ -6,6 +6,7 @@ use super::super::editor::{joint_name, Editor, EditorCommand, Placeable};
 use super::super::physics::Physics;
 use super::super::tools::{Tool, ToolState};
 use super::super::view::palette;
+use super::number_field::{number_field, Accepts};
 use super::{rich, UiState};
 use crate::editor::{Edit, Property};
 use crate::level::{BodyDef, BodyKind, JointKind, Shape};
@@ -141,8 +142,8 @@ pub(super) fn scene_editor(
     });
 }
 
-/// Editable fields of one body; a changed field sends a `Set` (a run of changes to one field is
-/// one step to undo).
+/// Editable fields of one body. A field commits on Enter or when the focus leaves it, and only
+/// a value it accepts (number_field.rs); a committed field sends one `Set`.
 fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
     let name = b.name.clone();
     let mut set = |p: Property| {
@@ -151,43 +152,49 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
             property: p,
         }))
     };
+    let field = |ui: &mut egui::Ui, what: &str, x: f64, a: &Accepts| {
+        number_field(
+            ui,
+            egui::Id::new(("inspector", b.name.as_str(), what)),
+            x,
+            a,
+        )
+    };
     ui.label(egui::RichText::new(format!("{} ({})", b.name, kind_name(b.kind))).strong());
     egui::Grid::new("inspector").num_columns(2).show(ui, |ui| {
         if b.kind == BodyKind::Dynamic {
             if let Some(m) = b.mass {
-                let mut m = m;
                 ui.label("mass, kg");
-                if drag(ui, &mut m, 0.01, 1e-6..=1e9) {
+                if let Some(m) = field(ui, "mass", m, &Accepts::above(0.0, 1e9, "kg")) {
                     set(Property::Mass(m));
                 }
                 ui.end_row();
             } else {
-                let mut d = b.density.unwrap_or(crate::level::DEFAULT_DENSITY);
+                let d = b.density.unwrap_or(crate::level::DEFAULT_DENSITY);
                 ui.label("density, kg/m²");
-                if drag(ui, &mut d, 1.0, 1e-6..=1e9) {
+                if let Some(d) = field(ui, "density", d, &Accepts::above(0.0, 1e9, "kg/m²")) {
                     set(Property::Density(d));
                 }
                 ui.end_row();
             }
         }
+        let size = Accepts::above(0.0, 1e4, "m");
         match &b.shape {
             Some(Shape::Box { width, height }) => {
-                let (mut w, mut h) = (*width, *height);
                 ui.label("width × height, m");
                 ui.horizontal(|ui| {
-                    if drag(ui, &mut w, 0.005, 1e-4..=1e4) {
+                    if let Some(w) = field(ui, "width", *width, &size) {
                         set(Property::Width(w));
                     }
-                    if drag(ui, &mut h, 0.005, 1e-4..=1e4) {
+                    if let Some(h) = field(ui, "height", *height, &size) {
                         set(Property::Height(h));
                     }
                 });
                 ui.end_row();
             }
             Some(Shape::Circle { radius }) => {
-                let mut r = *radius;
                 ui.label("radius, m");
-                if drag(ui, &mut r, 0.005, 1e-4..=1e4) {
+                if let Some(r) = field(ui, "radius", *radius, &size) {
                     set(Property::Radius(r));
                 }
                 ui.end_row();
@@ -195,39 +202,52 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
             _ => {}
         }
         ui.label("position, m");
-        if let Some(p) = drag_pair(ui, b.position, 0.01, 1e6) {
-            set(Property::Position(p));
-        }
+        let (x, y) = b.position;
+        let at = Accepts::closed(-1e6, 1e6, "m");
+        ui.horizontal(|ui| {
+            if let Some(x) = field(ui, "x", x, &at) {
+                set(Property::Position((x, y)));
+            }
+            if let Some(y) = field(ui, "y", y, &at) {
+                set(Property::Position((x, y)));
+            }
+        });
         ui.end_row();
-        let mut deg = b.angle.to_degrees();
         ui.label("angle, degrees");
-        if drag(ui, &mut deg, 0.5, -3600.0..=3600.0) {
-            set(Property::Angle(deg.to_radians()));
+        let deg = b.angle.to_degrees();
+        if let Some(d) = field(ui, "angle", deg, &Accepts::closed(-3600.0, 3600.0, "°")) {
+            set(Property::Angle(d.to_radians()));
         }
         ui.end_row();
         if b.kind == BodyKind::Dynamic {
             ui.label("velocity, m/s");
-            if let Some(v) = drag_pair(ui, b.velocity, 0.01, 1e4) {
-                set(Property::Velocity(v));
-            }
+            let (vx, vy) = b.velocity;
+            let v = Accepts::closed(-1e4, 1e4, "m/s");
+            ui.horizontal(|ui| {
+                if let Some(vx) = field(ui, "vx", vx, &v) {
+                    set(Property::Velocity((vx, vy)));
+                }
+                if let Some(vy) = field(ui, "vy", vy, &v) {
+                    set(Property::Velocity((vx, vy)));
+                }
+            });
             ui.end_row();
-            let mut w = b.omega;
             ui.label("ω, rad/s");
-            if drag(ui, &mut w, 0.01, -1e4..=1e4) {
+            if let Some(w) = field(ui, "omega", b.omega, &Accepts::closed(-1e4, 1e4, "rad/s")) {
                 set(Property::Omega(w));
             }
             ui.end_row();
         }
         if b.shape.is_some() {
-            let mut mu = b.friction.unwrap_or(0.0);
             ui.label("friction μ");
-            if drag(ui, &mut mu, 0.01, 0.0..=10.0) {
+            let mu = b.friction.unwrap_or(0.0);
+            if let Some(mu) = field(ui, "friction", mu, &Accepts::closed(0.0, 10.0, "")) {
                 set(Property::Friction(mu));
             }
             ui.end_row();
-            let mut e = b.restitution.unwrap_or(0.0);
             ui.label("restitution e");
-            if drag(ui, &mut e, 0.01, 0.0..=1.0) {
+            let e = b.restitution.unwrap_or(0.0);
+            if let Some(e) = field(ui, "restitution", e, &Accepts::closed(0.0, 1.0, "")) {
                 set(Property::Restitution(e));
             }
             ui.end_row();
@@ -246,6 +266,13 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
         }
         ui.end_row();
     });
+    ui.label(
+        rich(
+            "Enter or a click elsewhere applies a field; Escape drops it",
+            palette::OUTLINE,
+        )
+        .small(),
+    );
     ui.horizontal(|ui| {
         if ui.button("duplicate").clicked() {
             out.push(EditorCommand::Apply(Edit::Duplicate {
@@ -290,8 +317,9 @@ fn motors(
                     target: on.then_some(1.0),
                 }));
             }
-            if let Some(mut t) = current {
-                if drag(ui, &mut t, 0.05, -1e4..=1e4) {
+            if let Some(t) = current {
+                let id = egui::Id::new(("motor", j.name.as_str()));
+                if let Some(t) = number_field(ui, id, t, &Accepts::closed(-1e4, 1e4, unit)) {
                     out.push(EditorCommand::Apply(Edit::SetMotor {
                         joint: j.name.clone(),
                         target: Some(t),
@@ -301,32 +329,6 @@ fn motors(
             }
         });
     }
-}
-
-/// Two number fields side by side (x, y), each within +-`limit`; the pair when either changed.
-fn drag_pair(
-    ui: &mut egui::Ui,
-    (mut x, mut y): (f64, f64),
-    speed: f64,
-    limit: f64,
-) -> Option<(f64, f64)> {
-    ui.horizontal(|ui| {
-        let cx = drag(ui, &mut x, speed, -limit..=limit);
-        let cy = drag(ui, &mut y, speed, -limit..=limit);
-        (cx || cy).then_some((x, y))
-    })
-    .inner
-}
-
-/// A number field dragged or typed; true when it changed this frame.
-fn drag(ui: &mut egui::Ui, x: &mut f64, speed: f64, range: std::ops::RangeInclusive<f64>) -> bool {
-    ui.add(
-        egui::DragValue::new(x)
-            .speed(speed)
-            .range(range)
-            .max_decimals(6),
-    )
-    .changed()
 }
 
 fn kind_name(k: BodyKind) -> &'static str {

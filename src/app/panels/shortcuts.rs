@@ -1,5 +1,10 @@
 //! The keyboard shortcuts (listed in the status bar): play/pause, step, reset, time scale, fit,
 //! the mouse tools, clearing the selection, undo/redo/delete for the editor, and screenshots.
+//!
+//! Chords (Ctrl+Z, Ctrl+Y, Ctrl+Shift+Z, Shift+/) are read from the keyboard's messages in the
+//! order they came, with the modifiers held at each key ([`Held`]): a chord pressed and released
+//! within one frame (a fast typist, a test driving xdotool) has no modifier down in the frame's
+//! key state and did nothing. The keys egui gets go the same way ([`keys_to_egui`]).
 
 use super::super::editor::EditorCommand;
 use super::super::overlays::Overlays;
@@ -9,13 +14,142 @@ use super::super::tools::{Tool, ToolState};
 use super::super::user_files;
 use super::super::view::View;
 use super::UiState;
+use bevy::input::keyboard::{Key, KeyboardFocusLost, KeyboardInput};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy_egui::{egui, input::EguiInputEvent, PrimaryEguiContext};
+
+/// The modifiers held, as the keyboard's messages say, one message at a time.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Held {
+    pub ctrl: bool,
+    pub shift: bool,
+    pub alt: bool,
+    /// The Super (Windows, Command) key.
+    pub logo: bool,
+}
+
+impl Held {
+    /// Takes in one key message; true when it was a modifier's.
+    pub fn feed(&mut self, e: &KeyboardInput) -> bool {
+        let down = e.state.is_pressed();
+        let slot = match (&e.logical_key, e.key_code) {
+            (Key::Control, _) | (_, KeyCode::ControlLeft | KeyCode::ControlRight) => &mut self.ctrl,
+            (Key::Shift, _) | (_, KeyCode::ShiftLeft | KeyCode::ShiftRight) => &mut self.shift,
+            (Key::Alt, _) | (_, KeyCode::AltLeft | KeyCode::AltRight) => &mut self.alt,
+            (Key::Super | Key::Meta, _) | (_, KeyCode::SuperLeft | KeyCode::SuperRight) => {
+                &mut self.logo
+            }
+            _ => return false,
+        };
+        *slot = down;
+        true
+    }
+
+    /// As egui names them (Command is Ctrl, or the Command key on a Mac).
+    pub fn egui(&self) -> egui::Modifiers {
+        let mac = cfg!(target_os = "macos");
+        egui::Modifiers {
+            alt: self.alt,
+            ctrl: self.ctrl,
+            shift: self.shift,
+            mac_cmd: mac && self.logo,
+            command: if mac { self.logo } else { self.ctrl },
+        }
+    }
+}
+
+/// A shortcut made of a modifier and a key.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Chord {
+    Undo,
+    Redo,
+    Help,
+}
+
+/// The chords in `events`, in order, with the modifiers `held` updated message by message.
+pub fn chords<'a>(
+    held: &mut Held,
+    events: impl IntoIterator<Item = &'a KeyboardInput>,
+) -> Vec<Chord> {
+    let mut out = Vec::new();
+    for e in events {
+        if held.feed(e) || !e.state.is_pressed() || e.repeat {
+            continue;
+        }
+        let command = held.ctrl || (cfg!(target_os = "macos") && held.logo);
+        match e.key_code {
+            KeyCode::KeyZ if command => {
+                out.push(if held.shift { Chord::Redo } else { Chord::Undo })
+            }
+            KeyCode::KeyY if command => out.push(Chord::Redo),
+            KeyCode::Slash if held.shift && !command => out.push(Chord::Help),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The egui events of one key message, the modifiers `held` updated first: text only for a key
+/// typed with no Ctrl (Ctrl+A selects all, it does not type "a"; AltGr, Ctrl+Alt, still types).
+pub fn egui_events(held: &mut Held, e: &KeyboardInput) -> Vec<egui::Event> {
+    held.feed(e);
+    let mut out = Vec::new();
+    let typing = !(held.logo || held.ctrl) || (!cfg!(target_os = "macos") && held.ctrl && held.alt);
+    if typing && e.state.is_pressed() {
+        match &e.logical_key {
+            Key::Character(c) if !c.chars().any(char::is_control) => {
+                out.push(egui::Event::Text(c.to_string()))
+            }
+            Key::Space => out.push(egui::Event::Text(" ".into())),
+            _ => {}
+        }
+    }
+    let physical = bevy_egui::helpers::bevy_to_egui_physical_key(&e.key_code);
+    if let Some(key) = bevy_egui::helpers::bevy_to_egui_key(&e.logical_key).or(physical) {
+        out.push(egui::Event::Key {
+            key,
+            physical_key: physical,
+            pressed: e.state.is_pressed(),
+            repeat: false,
+            modifiers: held.egui(),
+        });
+    }
+    out
+}
+
+/// The modifiers as egui's keys have seen them.
+#[derive(Resource, Debug, Default)]
+pub struct EguiKeys(pub Held);
+
+/// The keyboard's messages to the window's egui context, in order (in place of bevy_egui's, which
+/// read every key of a frame with the modifiers as they were at the frame's end).
+pub fn keys_to_egui(
+    mut keys: MessageReader<KeyboardInput>,
+    mut lost: MessageReader<KeyboardFocusLost>,
+    mut held: ResMut<EguiKeys>,
+    context: Query<Entity, With<PrimaryEguiContext>>,
+    mut out: MessageWriter<EguiInputEvent>,
+) {
+    if lost.read().count() > 0 {
+        held.0 = Held::default();
+    }
+    let Ok(context) = context.single() else {
+        keys.clear();
+        return;
+    };
+    for e in keys.read() {
+        for event in egui_events(&mut held.0, e) {
+            out.write(EguiInputEvent { context, event });
+        }
+    }
+}
 
 /// The shortcuts, as a Bevy system (ignored while egui has the keyboard, e.g. in an answer box).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn keys(
+pub fn keys(
     keys: Res<ButtonInput<KeyCode>>,
+    (mut messages, mut held): (MessageReader<KeyboardInput>, Local<Held>),
     mut phys: ResMut<Physics>,
     mut view: ResMut<View>,
     mut ui: ResMut<UiState>,
@@ -25,6 +159,8 @@ pub(super) fn keys(
     mut edits: MessageWriter<EditorCommand>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
 ) {
+    // Read every frame, so the modifiers held stay known while egui has the keyboard.
+    let chords = chords(&mut held, messages.read());
     if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
         return;
     }
@@ -64,20 +200,19 @@ pub(super) fn keys(
         ov.selected = None;
         ov.point = None;
     }
-    let shift = keys.any_pressed([KeyCode::ShiftLeft, KeyCode::ShiftRight]);
-    if keys.just_pressed(KeyCode::F1) || (shift && keys.just_pressed(KeyCode::Slash)) {
+    if keys.just_pressed(KeyCode::F1) {
         ui.help = !ui.help;
     }
-    let ctrl = keys.any_pressed([KeyCode::ControlLeft, KeyCode::ControlRight]);
-    if ctrl && keys.just_pressed(KeyCode::KeyZ) {
-        edits.write(if shift {
-            EditorCommand::Redo
-        } else {
-            EditorCommand::Undo
-        });
-    }
-    if ctrl && keys.just_pressed(KeyCode::KeyY) {
-        edits.write(EditorCommand::Redo);
+    for c in chords {
+        match c {
+            Chord::Undo => {
+                edits.write(EditorCommand::Undo);
+            }
+            Chord::Redo => {
+                edits.write(EditorCommand::Redo);
+            }
+            Chord::Help => ui.help = !ui.help,
+        }
     }
     if keys.just_pressed(KeyCode::Delete) {
         if let Some(b) = ov.selected.and_then(|i| phys.scene.level.bodies.get(i)) {
