@@ -165,8 +165,10 @@ enum Center {
 /// Theory: I_C = I_G + m |r_G - r_C|^2 (MP-2) with the shape formula's m, I_G and mass center,
 /// times the engine's omega. C is, by the check's fields:
 /// - `point`: a fixed pivot O, so T = 1/2 I_O omega^2 (6/8);
-/// - `other`: the contact point with that (fixed) body, the center of a body rolling without
-///   slipping (the body's own surface point); steps without contact are skipped;
+/// - `other`: the contact point with that body, the center of a body rolling without slipping
+///   on it (the body's own surface point); steps without contact are skipped. When `other`
+///   moves, C is the center of the motion relative to it, and the energies compared are those
+///   of that relative motion (omega - omega_o, v_G - v_O(G));
 /// - neither: the kinematic center from v_G and omega (then only the mass properties differ
 ///   from the engine's side).
 ///
@@ -205,6 +207,7 @@ pub(super) fn kinetic_energy_ic_probe(level: &Level, def: &CheckDef) -> Box<dyn 
         max_slip: 0.0,
         max_normal: 0.0,
         at_infinity: 0,
+        relative_steps: 0,
         index: None,
         other_index: None,
         last: (0.0, 0.0),
@@ -223,6 +226,8 @@ struct KineticEnergyIc {
     /// Largest relative normal velocity at the contact (rapier lets it differ from zero).
     max_normal: f64,
     at_infinity: u64,
+    /// Steps compared in the moving `other` body's frame.
+    relative_steps: u64,
     index: Option<usize>,
     /// The index of the `other` body, looked up once.
     other_index: Option<usize>,
@@ -246,9 +251,11 @@ impl FrameProbe for KineticEnergyIc {
         }
         let motion = Motion::from(b);
         let g = mass_center(b, self.mass.com);
-        let t_engine = engine_ke(b);
-        self.max_t = self.max_t.max(t_engine);
+        let mut t_engine = engine_ke(b);
         let (m, i_g) = (self.mass.mass, self.mass.inertia);
+        // The body's angular velocity relative to the frame C is at rest in: the world's, or
+        // the `other` body's when that moves.
+        let mut omega = b.omega;
         let c = match &self.center {
             Center::Fixed(o) => Some(*o),
             Center::Contact(other) => {
@@ -294,11 +301,23 @@ impl FrameProbe for KineticEnergyIc {
                 let v_rel = relative_point_velocity(&other, &motion, c);
                 self.max_slip = self.max_slip.max(slip.abs());
                 self.max_normal = self.max_normal.max(v_rel.dot(normal).abs());
+                if other.velocity != DVec2::ZERO || other.omega != 0.0 {
+                    // On a moving body the contact point is the center of the motion relative
+                    // to it (its velocity field is rigid, with omega - omega_o, and zero at C
+                    // while rolling), not the world's instantaneous center: compare the
+                    // kinetic energy of that relative motion, 1/2 m |v_G - v_O(G)|^2 +
+                    // 1/2 I_G (omega - omega_o)^2 = 1/2 I_C (omega - omega_o)^2 (6/10).
+                    omega = b.omega - other.omega;
+                    let v = b.velocity - other.velocity_at(b.com);
+                    t_engine = kinetic_energy(b.mass, v, b.inertia, omega);
+                    self.relative_steps += 1;
+                }
                 Some(c)
             }
         };
+        self.max_t = self.max_t.max(t_engine);
         let t_theory = match c {
-            Some(c) => kinetic_energy_about_ic(m, i_g, g, c, b.omega),
+            Some(c) => kinetic_energy_about_ic(m, i_g, g, c, omega),
             None => {
                 // Pure translation: C at infinity, T = 1/2 m v^2 (6/7).
                 self.at_infinity += 1;
@@ -324,6 +343,12 @@ impl FrameProbe for KineticEnergyIc {
         );
         if self.skipped > 0 {
             note += &format!("; {} steps without contact skipped", self.skipped);
+        }
+        if self.relative_steps > 0 {
+            note += &format!(
+                "; {} steps on a moving body: T of the motion relative to it, 1/2 I_C (w - w_o)^2",
+                self.relative_steps
+            );
         }
         if self.at_infinity > 0 {
             note += &format!(
