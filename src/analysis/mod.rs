@@ -22,6 +22,7 @@
 //! - [`impulse_solver`]: impulse-momentum for a whole mechanism hit by a blow or an impact;
 //! - [`frame`]: all of the above for every body and the scene in one pass per step;
 //! - [`links`]: which contacts and joints touch each body, for readings about one body or a pair.
+//! - [`small_oscillations`]: the modes and periods of any mechanism linearized about its equilibrium (PL-14).
 
 pub mod closed_forms;
 pub mod energy;
@@ -35,6 +36,7 @@ pub mod mass;
 pub mod momentum;
 pub mod oscillation;
 pub mod percussion;
+pub mod small_oscillations;
 pub mod touching;
 pub mod virtual_work;
 
