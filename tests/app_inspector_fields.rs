@@ -146,7 +146,7 @@ fn the_widget_applies_on_enter_only() {
         repeat: false,
         modifiers: egui::Modifiers::COMMAND,
     };
-    assert_eq!(frame(&ctx, vec![select_all], 0.0), None);
+    assert_eq!(frame(&ctx, vec![select_all.clone()], 0.0), None);
     assert_eq!(frame(&ctx, vec![egui::Event::Text("4".into())], 0.0), None);
     assert_eq!(frame(&ctx, vec![egui::Event::Text("5".into())], 0.0), None);
     assert!(
@@ -161,4 +161,36 @@ fn the_widget_applies_on_enter_only() {
     }
     assert_eq!(applied, Some(45.0));
     assert_eq!(frame(&ctx, vec![], 45.0), None);
+
+    // The focus taken away without Enter (the window drops the text focus when the pointer goes
+    // back to the scene): what was typed is committed the next frame, and a refused text stays
+    // with its reason.
+    ctx.memory_mut(|m| m.request_focus(id));
+    frame(&ctx, vec![], 45.0);
+    frame(&ctx, vec![select_all.clone()], 45.0);
+    assert_eq!(
+        frame(&ctx, vec![egui::Event::Text("9x".into())], 45.0),
+        None
+    );
+    ctx.memory_mut(|m| m.stop_text_input());
+    assert_eq!(
+        frame(&ctx, vec![], 45.0),
+        None,
+        "a refused value was applied"
+    );
+    let f: NumberField = ctx.data_mut(|d| d.get_temp(id)).unwrap();
+    assert!(
+        f.refused
+            .as_deref()
+            .is_some_and(|w| w.contains("not a number")),
+        "{f:?}"
+    );
+    // Escape drops the typing.
+    ctx.memory_mut(|m| m.request_focus(id));
+    frame(&ctx, vec![], 45.0);
+    frame(&ctx, vec![select_all], 45.0);
+    frame(&ctx, vec![egui::Event::Text("7".into())], 45.0);
+    assert_eq!(frame(&ctx, vec![key(egui::Key::Escape)], 45.0), None);
+    let f: NumberField = ctx.data_mut(|d| d.get_temp(id)).unwrap();
+    assert_eq!((f.text.as_str(), f.editing), ("45", false));
 }

@@ -158,10 +158,12 @@ pub fn number_field(
         if r.changed() {
             f.typed(&text);
         }
-        if r.has_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
-            f.cancel(current);
-        } else if r.lost_focus() {
-            if ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+        // The focus left the field however it went (Enter, a click elsewhere, the panels
+        // dropping the text focus when the pointer goes back to the scene, which egui does not
+        // report as a lost focus): commit what was typed, or drop it on Escape.
+        let escape = ui.input(|i| i.key_pressed(egui::Key::Escape));
+        if f.editing && (!r.has_focus() || escape) {
+            if escape {
                 f.cancel(current);
             } else {
                 out = f.commit(current, accepts);

@@ -83,14 +83,22 @@ pub(super) fn scene_editor(
     };
     ui.label(rich(hint, palette::OUTLINE).small());
     if let Some((note, ok)) = &editor.note {
-        ui.label(rich(
-            note.clone(),
-            if *ok {
-                palette::GRAVITY
-            } else {
-                palette::NORMAL
-            },
-        ));
+        // A refusal can run to several lines (the validator says how to fix the level): its
+        // first clause here, the whole of it on hover.
+        let (short, cut) = if *ok {
+            (note.clone(), false)
+        } else {
+            first_clause(note)
+        };
+        let color = if *ok {
+            palette::GRAVITY
+        } else {
+            palette::NORMAL
+        };
+        let r = ui.label(rich(short, color));
+        if cut {
+            r.on_hover_text(note.as_str());
+        }
     }
 
     let level = &phys.scene.level;
@@ -128,6 +136,8 @@ pub(super) fn scene_editor(
                 out.push(EditorCommand::Apply(Edit::DropExercise));
             }
         }
+        ui.separator();
+        super::questions_editor::questions(ui, level, editor, out);
     });
     ui.horizontal(|ui| {
         ui.label("save as");
@@ -329,6 +339,17 @@ fn motors(
             }
         });
     }
+}
+
+/// A note up to its first `;` (or 140 characters), and whether it was cut.
+pub(super) fn first_clause(note: &str) -> (String, bool) {
+    let end = note.find(';').unwrap_or(note.len());
+    let mut short: String = note[..end].chars().take(140).collect();
+    let cut = short.len() < note.len();
+    if cut {
+        short.push_str(" … (hover for the rest)");
+    }
+    (short, cut)
 }
 
 fn kind_name(k: BodyKind) -> &'static str {
