@@ -157,7 +157,18 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                         .and_then(|n| n.couplings.iter().position(|c| &c.name == name))
                 })?;
             let force = f.centered(|y| Some(DVec2::new(y.couplings.get(k)?.impulse, 0.0)))?;
-            (force.x, None)
+            // lambda is a multiplier whose sign follows the terms' ratios: term i took
+            // ratio_i lambda. With an x or y term (a cable, a pulley, a rack) lambda / dt is
+            // the cable's tension, signed: negative is a cable that pushes. With angle terms
+            // only (a gear mesh, a belt between drums) each term's couple is r_i lambda, a
+            // force lambda at its pitch radius, so the tooth force is abs(lambda) / dt: a
+            // pinion driving a gear read -16 N for a 16 N tooth force before.
+            let angles_only = s.couplings.get(k).is_some_and(|c| {
+                c.terms
+                    .iter()
+                    .all(|t| t.1 == crate::level::Coordinate::Angle)
+            });
+            (if angles_only { force.x.abs() } else { force.x }, None)
         }
         Quantity::MotorTorque { joint: j, .. } => {
             let k = joint_index(s, j)?;
