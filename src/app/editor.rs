@@ -7,7 +7,10 @@
 
 use super::physics::Physics;
 use crate::editor::{self, Edit, History, NewShape};
-use crate::level::{JointKind, Scene};
+use crate::level::{JointKind, QuestionDef, Scene};
+use crate::questions::QuestionResult;
+use crate::runner::{self, Estimate, Mode};
+use crate::sim::Options;
 use bevy::prelude::*;
 use glam::DVec2;
 use std::path::PathBuf;
@@ -24,6 +27,52 @@ pub enum EditorCommand {
     /// A file already at the path is never replaced: the scene goes under the first free
     /// numbered name beside it (`name-2.ron`, ...), which [`Editor::just_saved`] holds.
     Save(PathBuf),
+    /// A question of the exercise: added (`index` None) or rewritten in place. With `compute`,
+    /// its expected answer is the analysis layer's value from a run of the scene (refused where
+    /// the quantity has no analysis: the engine checked against itself proves nothing).
+    Ask {
+        index: Option<usize>,
+        question: Box<QuestionDef>,
+        compute: bool,
+    },
+    /// Runs the scene headless for this question alone, at the level's own settings as
+    /// `rigidlab check` runs it (not the solver panel's), and keeps the engine's and the
+    /// analysis's values in [`Editor::preview`], for the teacher to see before saving.
+    Preview(Box<QuestionDef>),
+}
+
+/// The longest run the window makes in a frame to preview a question, s (estimated by
+/// `runner::budget`): a longer one is left to `rigidlab check`.
+pub const PREVIEW_BUDGET_S: f64 = 2.0;
+
+/// The engine's and the analysis's values of one question, read from a headless run of `scene`
+/// with that question alone (its checks and other questions left out), as `rigidlab check` would
+/// read it. Refused, with why, when the run would take longer than [`PREVIEW_BUDGET_S`] or stops.
+pub fn preview_question(
+    scene: &Scene,
+    options: &Options,
+    question: &QuestionDef,
+) -> Result<QuestionResult, String> {
+    let mut level = scene.level.clone();
+    level.checks.clear();
+    level.questions = vec![question.clone()];
+    // The question as the validator would take it (a body it names that is not there, a
+    // quantity that does not fit the level), before any run.
+    let scene = editor::validated(scene, level)?;
+    let estimate = Estimate::of(&scene.level, options, Mode::Check, None);
+    if estimate.seconds > PREVIEW_BUDGET_S {
+        return Err(format!(
+            "the run would take about {:.0} s, too long to preview here: save and run `rigidlab check`",
+            estimate.seconds
+        ));
+    }
+    let report = runner::run_graded(&scene, options, &Default::default(), |_| {})
+        .map_err(|e| e.to_string())?;
+    report
+        .questions
+        .into_iter()
+        .next()
+        .ok_or_else(|| "the run read no question".to_string())
 }
 
 /// The edit history of the scene on screen and the last edit's note (shown in the panel).
@@ -41,6 +90,8 @@ pub struct Editor {
     /// The scene as last opened or saved, and the level it belongs to (`view_generation`):
     /// the edits since are unsaved work (app/unsaved.rs asks before they are thrown away).
     saved: Option<(u64, crate::level::Level)>,
+    /// The last question previewed (or computed) and its values, or why it could not be.
+    pub preview: Option<(QuestionDef, Result<QuestionResult, String>)>,
 }
 
 impl Editor {
@@ -112,6 +163,56 @@ fn run_commands(
                         )
                     })
             }
+            EditorCommand::Preview(q) => {
+                let r = preview_question(&phys.scene, &Options::default(), q);
+                ed.note = Some(match &r {
+                    Ok(r) => (preview_note(r), true),
+                    Err(e) => (e.clone(), false),
+                });
+                ed.preview = Some(((**q).clone(), r));
+                continue;
+            }
+            EditorCommand::Ask {
+                index,
+                question,
+                compute,
+            } => {
+                let mut q = (**question).clone();
+                let computed = if *compute {
+                    let r = preview_question(&phys.scene, &Options::default(), &q);
+                    ed.preview = Some((q.clone(), r.clone()));
+                    match r {
+                        Ok(QuestionResult {
+                            analysis: Some(a), ..
+                        }) if a.is_finite() => {
+                            q.expected = a;
+                            Ok(())
+                        }
+                        Ok(r) => Err(format!(
+                            "not applied: {} has no analysis value to compute the answer from{}; type the textbook's answer",
+                            q.id,
+                            if r.note.is_empty() {
+                                String::new()
+                            } else {
+                                format!(" ({})", r.note)
+                            }
+                        )),
+                        Err(e) => Err(format!("not applied: {e}")),
+                    }
+                } else {
+                    Ok(())
+                };
+                computed.and_then(|()| {
+                    let e = match index {
+                        None => Edit::AddQuestion(Box::new(q)),
+                        Some(i) => Edit::ReplaceQuestion {
+                            index: *i,
+                            question: Box::new(q),
+                        },
+                    };
+                    ed.history.apply(&phys.scene, &e)
+                })
+            }
             EditorCommand::Save(path) => {
                 ed.note = Some(
                     // A file already there is kept: the scene goes under a numbered name.
@@ -145,6 +246,22 @@ fn run_commands(
             Err(why) => ed.note = Some((why, false)),
         }
     }
+}
+
+/// A preview in one line: the engine's value, the analysis's, and when it was read.
+pub fn preview_note(r: &QuestionResult) -> String {
+    let analysis = match r.analysis {
+        Some(a) => format!("analysis {a:.6} {}", r.unit),
+        None => "no analysis formula for it".into(),
+    };
+    let mut s = format!(
+        "{}: engine {:.6} {}, {analysis}, read at t = {:.4} s",
+        r.id, r.engine, r.unit, r.time
+    );
+    if !r.note.is_empty() {
+        s.push_str(&format!(" ({})", r.note));
+    }
+    s
 }
 
 /// A length for new things at the scale of the scene on screen: `fraction` of its size, rounded

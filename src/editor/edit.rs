@@ -98,8 +98,17 @@ pub enum Edit {
     DropExercise,
     /// How long the run lasts, s.
     SetDuration(f64),
+    /// The level's own step, s, and substeps per step (what `rigidlab check` runs it at).
+    SetStep { dt: f64, substeps: usize },
     /// A question of the exercise (a teacher's, with its expected answer).
     AddQuestion(Box<QuestionDef>),
+    /// The question at `index` (0-based, in the level's order) rewritten by the teacher.
+    ReplaceQuestion {
+        index: usize,
+        question: Box<QuestionDef>,
+    },
+    /// Removes the question `id`.
+    RemoveQuestion { id: String },
     /// The whole level at once (a new scene), undoable like any edit.
     Replace(Box<Level>),
 }
@@ -339,9 +348,45 @@ impl Edit {
                 level.questions.push((**q).clone());
                 Ok(format!("asked {}: {}", q.id, q.ask))
             }
+            Edit::ReplaceQuestion { index, question } => {
+                if level
+                    .questions
+                    .iter()
+                    .enumerate()
+                    .any(|(i, x)| i != *index && x.id == question.id)
+                {
+                    return Err(format!("a question \"{}\" is already there", question.id));
+                }
+                let Some(slot) = level.questions.get_mut(*index) else {
+                    return Err(format!(
+                        "there is no question {} (the level has {})",
+                        index + 1,
+                        level.questions.len()
+                    ));
+                };
+                *slot = (**question).clone();
+                Ok(format!(
+                    "question {} rewritten: {}",
+                    question.id, question.ask
+                ))
+            }
+            Edit::RemoveQuestion { id } => {
+                let Some(i) = level.questions.iter().position(|q| &q.id == id) else {
+                    return Err(format!("there is no question \"{id}\""));
+                };
+                level.questions.remove(i);
+                Ok(format!("removed question {id}"))
+            }
             Edit::Replace(new) => {
                 *level = (**new).clone();
                 Ok(format!("the scene is now \"{}\"", level.title))
+            }
+            Edit::SetStep { dt, substeps } => {
+                level.world.dt = *dt;
+                level.world.substeps = *substeps;
+                Ok(format!(
+                    "the level steps dt = {dt} s with {substeps} substeps"
+                ))
             }
             Edit::SetDuration(d) => {
                 level.world.duration = *d;

@@ -15,6 +15,7 @@ pub mod number_field;
 mod overlay_controls;
 mod playback;
 pub mod plots;
+pub mod questions_editor;
 mod scene_editor;
 pub mod shortcuts;
 mod solver;

@@ -1,0 +1,355 @@
+//! The exercise's questions in the build panel: a teacher adds, rewrites and removes questions
+//! (quantity, wording, instant, expected answer or "compute it", tolerance, unit), sees the
+//! engine's and the analysis's values from a headless run before saving, and reads the
+//! validator's refusal under the form. Every change goes to the editor as an [`EditorCommand`].
+
+use super::super::editor::{preview_note, Editor, EditorCommand};
+use super::super::view::palette;
+use super::number_field::{number_field, Accepts};
+use super::rich;
+use crate::editor::Edit;
+use crate::level::{self, BodyKind, Level, Quantity, QuestionDef, When};
+use bevy_egui::egui;
+
+/// What the question form holds while it is typed (egui keeps it between frames).
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuestionForm {
+    /// The question being rewritten (its index), or None for a new one.
+    pub editing: Option<usize>,
+    pub id: String,
+    /// The question in words.
+    pub ask: String,
+    /// The quantity in the level file's words, `Speed("disc1")`.
+    pub quantity: String,
+    /// When it is read, in the level file's words: `End`, `Time(0.5)`, ...
+    pub at: String,
+    /// The expected answer as typed (ignored with `compute`).
+    pub expected: String,
+    /// Take the expected answer from the analysis layer's value.
+    pub compute: bool,
+    /// Relative tolerance on the engine's and the analysis's values.
+    pub tolerance: String,
+    /// Empty: the quantity's SI unit.
+    pub unit: String,
+    /// Why the tolerance is what it is.
+    pub why: String,
+}
+
+impl Default for QuestionForm {
+    fn default() -> Self {
+        QuestionForm {
+            editing: None,
+            id: String::new(),
+            ask: String::new(),
+            quantity: String::new(),
+            at: "End".into(),
+            expected: String::new(),
+            compute: false,
+            tolerance: "0.01".into(),
+            unit: String::new(),
+            why: String::new(),
+        }
+    }
+}
+
+impl QuestionForm {
+    /// The form filled from a question of the level, to rewrite it.
+    pub fn from_question(index: usize, q: &QuestionDef) -> Self {
+        QuestionForm {
+            editing: Some(index),
+            id: q.id.clone(),
+            ask: q.ask.clone(),
+            quantity: ron_text(&q.quantity),
+            at: ron_text(&q.at),
+            expected: format!("{}", q.expected),
+            compute: false,
+            tolerance: format!("{}", q.tolerance),
+            unit: q.unit.clone(),
+            why: q.why.clone(),
+        }
+    }
+
+    /// The question the form describes, and whether its answer is to be computed; or what is
+    /// wrong with a field (the validator judges the rest when the edit is applied).
+    pub fn question(&self, level: &Level) -> Result<(QuestionDef, bool), String> {
+        let quantity: Quantity = level::ron_options()
+            .from_str(self.quantity.trim())
+            .map_err(|e| {
+                format!(
+                    "quantity: {} (write it as in a level file: Speed(\"disc1\"), RollingAcceleration(body: \"disc1\", ground: \"incline1\"))",
+                    e.code
+                )
+            })?;
+        let at: When = if self.at.trim().is_empty() {
+            When::End
+        } else {
+            level::ron_options().from_str(self.at.trim()).map_err(|e| {
+                format!(
+                    "when: {} (End, Time(0.5), Max(0.0), Crossing(of: Distance(\"disc1\"), value: 1.0), ...)",
+                    e.code
+                )
+            })?
+        };
+        let number = |what: &str, text: &str| -> Result<f64, String> {
+            text.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("{what}: \"{}\" is not a number", text.trim()))
+        };
+        let expected = if self.compute {
+            // Replaced by the analysis's value when the edit is applied.
+            1.0
+        } else {
+            number("expected answer", &self.expected)?
+        };
+        let tolerance = number("tolerance", &self.tolerance)?;
+        let unit = if self.unit.trim().is_empty() {
+            quantity.si_unit(level).to_string()
+        } else {
+            self.unit.trim().to_string()
+        };
+        let id = self.id.trim().to_string();
+        if id.is_empty() {
+            return Err("id: give the question a short name (speed_1s)".into());
+        }
+        Ok((
+            QuestionDef {
+                id,
+                ask: self.ask.trim().to_string(),
+                unit,
+                expected,
+                tolerance,
+                student_tolerance: 0.01,
+                quantity,
+                at,
+                why: self.why.trim().to_string(),
+            },
+            self.compute,
+        ))
+    }
+
+    /// The command that adds or rewrites the question, or what is wrong with the form.
+    pub fn command(&self, level: &Level) -> Result<EditorCommand, String> {
+        let (q, compute) = self.question(level)?;
+        Ok(EditorCommand::Ask {
+            index: self.editing,
+            question: Box::new(q),
+            compute,
+        })
+    }
+}
+
+/// A level value written back in the level file's words.
+fn ron_text<T: serde::Serialize>(x: &T) -> String {
+    level::ron_options().to_string(x).unwrap_or_default()
+}
+
+/// Quantities of one body the picker offers (any other is typed as in a level file).
+const PICKS: [&str; 8] = [
+    "X",
+    "Y",
+    "Angle",
+    "Vx",
+    "Vy",
+    "Speed",
+    "Omega",
+    "KineticEnergy",
+];
+
+/// Draws the questions: a line each (rewrite, remove), then the form.
+pub(super) fn questions(
+    ui: &mut egui::Ui,
+    level: &Level,
+    editor: &Editor,
+    out: &mut Vec<EditorCommand>,
+) {
+    let id = egui::Id::new("question form");
+    let mut form: QuestionForm = ui.data(|d| d.get_temp(id)).unwrap_or_default();
+    let mut error: Option<String> = ui.data(|d| d.get_temp(id.with("error"))).flatten();
+    ui.label(egui::RichText::new("questions").strong());
+    ui.horizontal(|ui| {
+        // The level's own step: what the questions are read at, in the preview and in
+        // `rigidlab check` (the solver panel changes only the window's run).
+        ui.label("the level's step dt, s");
+        let (dt, substeps) = (level.world.dt, level.world.substeps);
+        let at = Accepts::above(0.0, 1.0, "s");
+        if let Some(dt) = number_field(ui, egui::Id::new("level dt"), dt, &at) {
+            out.push(EditorCommand::Apply(Edit::SetStep { dt, substeps }));
+        }
+        ui.label("substeps");
+        let n = Accepts::closed(1.0, 1000.0, "");
+        if let Some(s) = number_field(ui, egui::Id::new("level substeps"), substeps as f64, &n) {
+            out.push(EditorCommand::Apply(Edit::SetStep {
+                dt,
+                substeps: s.round() as usize,
+            }));
+        }
+    });
+    for (i, q) in level.questions.iter().enumerate() {
+        ui.horizontal(|ui| {
+            ui.label(format!(
+                "{}: {} = {} {}",
+                q.id,
+                q.quantity.variant_name(),
+                q.expected,
+                q.unit
+            ))
+            .on_hover_text(&q.ask);
+            if ui.small_button("edit").clicked() {
+                form = QuestionForm::from_question(i, q);
+            }
+            if ui.small_button("remove").clicked() {
+                out.push(EditorCommand::Apply(Edit::RemoveQuestion {
+                    id: q.id.clone(),
+                }));
+            }
+        });
+    }
+    ui.label(
+        rich(
+            match form.editing {
+                Some(i) => format!("rewriting question {}", i + 1),
+                None => "a new question".into(),
+            },
+            palette::OUTLINE,
+        )
+        .small(),
+    );
+    egui::Grid::new("question form").num_columns(2).show(ui, |ui| {
+        ui.label("id");
+        ui.text_edit_singleline(&mut form.id);
+        ui.end_row();
+        ui.label("question");
+        ui.add(egui::TextEdit::multiline(&mut form.ask).desired_rows(2));
+        ui.end_row();
+        ui.label("quantity");
+        ui.vertical(|ui| {
+            ui.add(egui::TextEdit::singleline(&mut form.quantity).hint_text("Speed(\"disc1\")"));
+            ui.horizontal_wrapped(|ui| {
+                let bodies: Vec<&str> = level
+                    .bodies
+                    .iter()
+                    .filter(|b| b.kind == BodyKind::Dynamic)
+                    .map(|b| b.name.as_str())
+                    .collect();
+                let ground = level
+                    .bodies
+                    .iter()
+                    .find(|b| b.kind == BodyKind::Fixed && b.name != "ground")
+                    .or_else(|| level.bodies.iter().find(|b| b.kind == BodyKind::Fixed))
+                    .map(|b| b.name.as_str());
+                if !bodies.is_empty() {
+                    egui::ComboBox::from_id_salt("question pick")
+                        .selected_text("pick")
+                        .show_ui(ui, |ui| {
+                            for b in &bodies {
+                                for p in PICKS {
+                                    if ui.selectable_label(false, format!("{p}(\"{b}\")")).clicked() {
+                                        form.quantity = format!("{p}(\"{b}\")");
+                                    }
+                                }
+                                if let Some(g) = ground {
+                                    let t = format!("RollingAcceleration(body: \"{b}\", ground: \"{g}\")");
+                                    if ui.selectable_label(false, &t).clicked() {
+                                        form.quantity = t;
+                                    }
+                                }
+                            }
+                        });
+                }
+            });
+        });
+        ui.end_row();
+        ui.label("when");
+        ui.add(egui::TextEdit::singleline(&mut form.at).hint_text("End, Time(0.5)"));
+        ui.end_row();
+        ui.label("expected");
+        ui.horizontal(|ui| {
+            ui.add_enabled(
+                !form.compute,
+                egui::TextEdit::singleline(&mut form.expected).desired_width(90.0),
+            );
+            ui.checkbox(&mut form.compute, "compute it")
+                .on_hover_text("the analysis layer's value from a run of this scene (where the quantity has a formula)");
+        });
+        ui.end_row();
+        ui.label("tolerance");
+        ui.add(egui::TextEdit::singleline(&mut form.tolerance).desired_width(60.0));
+        ui.end_row();
+        ui.label("unit");
+        ui.add(egui::TextEdit::singleline(&mut form.unit).hint_text("the quantity's SI unit").desired_width(60.0));
+        ui.end_row();
+        ui.label("why this tolerance");
+        ui.text_edit_singleline(&mut form.why);
+        ui.end_row();
+    });
+    ui.horizontal(|ui| {
+        if ui
+            .button("preview")
+            .on_hover_text(
+                "run the scene for this question: the engine's and the analysis's values",
+            )
+            .clicked()
+        {
+            match form.question(level) {
+                Ok((q, _)) => {
+                    error = None;
+                    out.push(EditorCommand::Preview(Box::new(q)));
+                }
+                Err(e) => error = Some(e),
+            }
+        }
+        let verb = if form.editing.is_some() {
+            "rewrite"
+        } else {
+            "add question"
+        };
+        if ui.button(verb).clicked() {
+            match form.command(level) {
+                Ok(c) => {
+                    error = None;
+                    out.push(c);
+                }
+                Err(e) => error = Some(e),
+            }
+        }
+        if form.editing.is_some() && ui.button("new").clicked() {
+            form = QuestionForm::default();
+        }
+    });
+    if let Some(e) = &error {
+        ui.label(rich(e.clone(), palette::NORMAL));
+    } else if let Some((note, ok)) = &editor.note {
+        // The editor's answer to the last command (the validator's refusal, in full here).
+        ui.label(
+            rich(
+                note.clone(),
+                if *ok {
+                    palette::GRAVITY
+                } else {
+                    palette::NORMAL
+                },
+            )
+            .small(),
+        );
+    }
+    if let Some((q, r)) = &editor.preview {
+        let text = match r {
+            Ok(r) => preview_note(r),
+            Err(e) => e.clone(),
+        };
+        ui.label(rich(format!("preview of {}: {text}", q.id), palette::OUTLINE).small());
+        if let (Ok(r), false) = (r, form.compute) {
+            if let Some(a) = r.analysis.filter(|a| a.is_finite()) {
+                if ui.small_button("use the analysis value").clicked() {
+                    form.expected = format!("{a}");
+                }
+            }
+        }
+    }
+    ui.data_mut(|d| {
+        d.insert_temp(id, form);
+        d.insert_temp(id.with("error"), error);
+    });
+}
