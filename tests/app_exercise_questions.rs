@@ -233,3 +233,38 @@ fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The checks panel's line shows the reading that failed: a question fails on the engine or on
+/// the analysis, and a FAIL beside an error within tolerance would contradict itself (issue 33:
+/// the engine at 5.03e-3 shown, the analysis failing at 1.6e-2 against 1e-2).
+#[test]
+fn a_failed_question_shows_the_failing_reading() {
+    use rigidlab::app::panels::checks::shown_error;
+    let mut q = rigidlab::questions::QuestionResult {
+        id: "q".into(),
+        ask: String::new(),
+        unit: "m/s".into(),
+        expected: 1.0,
+        analysis: Some(1.016),
+        engine: 1.00503,
+        rel_error: 5.03e-3,
+        analysis_rel_error: Some(1.6e-2),
+        tolerance: 1e-2,
+        passed: false,
+        time: 1.0,
+        why: String::new(),
+        note: String::new(),
+        student: None,
+    };
+    assert_eq!(shown_error(&q), ("analysis", 1.6e-2));
+    // The engine failing is the engine's line, whatever the analysis did.
+    q.rel_error = 2e-2;
+    assert_eq!(shown_error(&q), ("engine", 2e-2));
+    // Both within: the engine's, as before.
+    q.rel_error = 5.03e-3;
+    q.analysis_rel_error = Some(1e-3);
+    assert_eq!(shown_error(&q), ("engine", 5.03e-3));
+    // A NaN analysis error counts as failing (it never passes).
+    q.analysis_rel_error = Some(f64::NAN);
+    assert_eq!(shown_error(&q).0, "analysis");
+}

@@ -4,6 +4,7 @@
 use super::super::physics::{LiveChecks, Physics};
 use super::super::view::palette;
 use super::rich;
+use crate::questions::QuestionResult;
 use bevy_egui::egui;
 
 /// `text` cut to `n` characters with an ellipsis.
@@ -14,6 +15,16 @@ fn clip(text: &str, n: usize) -> String {
     let mut out: String = text.chars().take(n - 1).collect();
     out.push('…');
     out
+}
+
+/// The error a question's line shows, and whose reading it is: the engine's, unless the engine
+/// is within tolerance and the analysis's value is not (a question fails on either, so a FAIL
+/// beside an error within tolerance would read as a contradiction).
+pub fn shown_error(q: &QuestionResult) -> (&'static str, f64) {
+    match q.analysis_rel_error {
+        Some(a) if q.rel_error <= q.tolerance && !(a <= q.tolerance) => ("analysis", a),
+        _ => ("engine", q.rel_error),
+    }
 }
 
 /// Draws the panel: the live results once the run reached the level's end, else what will be shown.
@@ -57,7 +68,19 @@ pub(super) fn checks(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks) {
                     for q in answers {
                         ui.label(clip(&format!("question {}", q.id), 18))
                             .on_hover_text(format!("{}\n{}", q.ask, q.why));
-                        ui.label(format!("{:.2e}", q.rel_error));
+                        let (whose, err) = shown_error(q);
+                        let r = ui.label(if whose == "engine" {
+                            format!("{err:.2e}")
+                        } else {
+                            format!("{err:.2e} ({whose})")
+                        });
+                        r.on_hover_text(format!(
+                            "engine {:.2e}{}",
+                            q.rel_error,
+                            q.analysis_rel_error
+                                .map(|a| format!(", analysis {a:.2e}"))
+                                .unwrap_or_default()
+                        ));
                         ui.label(format!("{:.1e}", q.tolerance));
                         ui.label(if q.passed {
                             rich("pass", palette::GRAVITY)

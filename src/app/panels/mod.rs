@@ -6,7 +6,7 @@
 //! they share ([`UiState`]); each panel's file says what it shows.
 
 pub(crate) mod capture;
-mod checks;
+pub mod checks;
 mod exercise;
 mod help;
 mod level_browser;
