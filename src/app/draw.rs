@@ -124,9 +124,15 @@ pub fn emit<C: GizmoConfigGroup, K: 'static + Send + Sync>(
                 if len <= 0.5 * px {
                     continue;
                 }
-                gizmos
-                    .arrow_2d(v2(*a), v2(*b), *c)
-                    .with_tip_length((ARROW_HEAD_PX * px).min(0.5 * len) as f32);
+                // The shaft as a line, the head as a strip: Bevy draws the strips (circles,
+                // outlines) after the lines, so a head drawn with `arrow_2d` went under a pin's
+                // dot; strips keep their order, and arrows come last.
+                let u = (*b - *a) / len;
+                let h = (ARROW_HEAD_PX * px).min(0.5 * len);
+                let back = *b - u * h;
+                let side = u.perp() * 0.45 * h;
+                gizmos.line_2d(v2(*a), v2(*b), *c);
+                gizmos.linestrip_2d([v2(back + side), v2(*b), v2(back - side)], *c);
             }
             Prim::Circle(center, r, c) => {
                 gizmos
