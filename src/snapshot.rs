@@ -244,6 +244,11 @@ pub struct SpringState {
     pub torsion: bool,
     #[serde(default)]
     pub couple_on_body1: f64,
+    /// The damper's part c dx/dt of `tension`, held during the step that led here, N (N m for
+    /// a torsion spring); zero without the `damping` effect. `tension - damper_tension` is the
+    /// elastic part k x.
+    #[serde(default)]
+    pub damper_tension: f64,
 }
 
 /// An applied load held constant over the step.

@@ -107,12 +107,11 @@ fn levels_written_from_the_docs_alone_pass_untuned() {
 /// 4 to 16 substeps and the second bounce 0.586 to 0.610; at the touch it reads 0.60016 and
 /// 0.60026 at every substep count.)
 const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
-    // A fifth new user (tests/newuser/n5_*, 2026-11-26). A ball with topspin on a rough floor:
-    // `FrictionWork` reads -0.5640 J for -0.5714 (1.3e-2, at every substep count; analysis
-    // -0.5681) while the work_energy check books the contact's work as -0.57173 J: the friction
-    // work seems to take the contact point a step old (issue 34's FrictionWork audit).
-    ("n5_02_ball_topspin.ron", "question W_friction"),
-    // A disc rolling into a smooth wall (e = 0.8): `ContactEnds` reads the state after the impact
+    // A fifth new user (tests/newuser/n5_*, 2026-11-26). (Fixed the same day: a ball with
+    // topspin on a rough floor read `FrictionWork` -0.5640 J for -0.5714, 1.3e-2, with the
+    // contact point at the end-of-step G; at the solver's lever arms it reads -0.56821 J,
+    // 5.6e-3, inside the user's 1e-2. The work_energy check's -0.57173 J books the normal
+    // impulse's work too.) A disc rolling into a smooth wall (e = 0.8): `ContactEnds` reads the state after the impact
     // step and the next, two steps of floor friction (2 x 0.0307 rad/s), where the user budgeted
     // one: w' reads -9.9398 for -10 (6.0e-3 > 5e-3); the analysis -10.0010. The docs did not say
     // how many steps after the touch ContactEnds reads.

@@ -179,6 +179,67 @@ pub fn work_of_contact_impulse(
     j_t.dot(v_mean) + j_n.dot(moved.map_or(v_mean, at))
 }
 
+/// Work of a friction impulse on one body over a step: the friction force on that body dotted
+/// with the velocity of that body's material point at the contact (WE-1 with dr of the point the
+/// force acts at), U = J_t . (v_G,mid + omega_mid k x arm), `arm` from G to the point (the
+/// solver's lever arm), `mean` = (v_G, omega) at the step's mean. Summed over the steps, the
+/// friction work on the body. For a body on a fixed floor it is the Coulomb loss -mu N s (WE-6);
+/// for one of two moving bodies it may be positive (a belt carrying a block forward), and the
+/// two bodies' works add up to the pair's loss ([`friction_pair_loss`]).
+pub fn friction_work_on_body(j_t: DVec2, arm: DVec2, mean: (DVec2, f64)) -> f64 {
+    j_t.dot(super::kinematics::point_velocity(mean.0, mean.1, arm))
+}
+
+/// The work a pair's friction does on both bodies together over a step, J_t . v_slip: J_t the
+/// friction impulse on body B, v_slip the velocity of B's contact point relative to A's
+/// (WE-6: never positive under Coulomb's law, U_f = -mu_k N s with s the slip distance).
+pub fn friction_pair_loss(j_t_on_b: DVec2, v_slip_b_over_a: DVec2) -> f64 {
+    j_t_on_b.dot(v_slip_b_over_a)
+}
+
+/// Coulomb's friction work on one body over a step (WE-6 with WE-1): the kinetic friction
+/// mu N opposes the slip of the body's contact point relative to the other's, so on the body
+/// U = -mu j_n sgn(slip) (v_P . t), with j_n the step's normal impulse, `slip` the slip velocity
+/// of the body over the other along t and `v_p_t` the body's contact point velocity along t.
+/// None while the contact does not slip (|slip| <= `slip_floor`) on a moving other body: static
+/// friction has no Coulomb law to give its force. On a fixed other body v_P . t = slip, so the
+/// work is -mu j_n |slip| (zero while rolling).
+pub fn coulomb_friction_work_on_body(
+    mu: f64,
+    j_n: f64,
+    slip: f64,
+    v_p_t: f64,
+    other_fixed: bool,
+    slip_floor: f64,
+) -> Option<f64> {
+    if other_fixed {
+        return Some(-mu * j_n.max(0.0) * slip.abs());
+    }
+    (slip.abs() > slip_floor).then(|| -mu * j_n.max(0.0) * slip.signum() * v_p_t)
+}
+
+/// Mechanical efficiency over an interval, energy form (WE-12): the energy a mechanism delivers
+/// to its output over the energy its input puts in, e = U_out / U_in (e < 1 where friction or
+/// damping takes some). NaN when the input did no work.
+pub fn mechanical_efficiency(u_out: f64, u_in: f64) -> f64 {
+    if u_in == 0.0 {
+        f64::NAN
+    } else {
+        u_out / u_in
+    }
+}
+
+/// Work a linear viscous damper does on the bodies over a step, from the change of the spring's
+/// length: the damper force c dL/dt opposes the stretching, U = -c (dL/dt) dL = -c dL^2 / dt
+/// with dL the length change over the step dt (WE-1 with F = c v: always negative).
+pub fn damper_work(c: f64, d_length: f64, dt: f64) -> f64 {
+    if dt > 0.0 {
+        -c * d_length * d_length / dt
+    } else {
+        0.0
+    }
+}
+
 /// Work of a pair of equal and opposite impulses (J on body B at p, -J on body A at p):
 /// U = J . v_{B/A,mid}. This is the energy a contact dissipates (friction, an inelastic impact).
 pub fn work_of_pair_impulse(

@@ -132,6 +132,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             body: b,
             other,
             component,
+            ..
         } => {
             let (i, o) = (m.body_index(s, b)?, m.body_index(s, other)?);
             if s.is_initial() {
@@ -192,6 +193,22 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 motor_effort(m, f, k)
             };
             (torque.x, analysis)
+        }
+        Quantity::SpringForce(name) => {
+            let k = s.springs.iter().position(|x| &x.name == name)?;
+            let tension =
+                f.centered(|y| Some(DVec2::new(y.springs.get(k)?.tension * y.dt, 0.0)))?;
+            // Hooke's law with a viscous damper: k x + c dL/dt, the rate a central difference.
+            let analysis = m
+                .facts
+                .springs
+                .iter()
+                .find(|x| &x.name == name)
+                .and_then(|x| {
+                    let rate = f.rate(|y| Some(y.springs.get(k)?.length))?;
+                    Some(x.stiffness * s.springs[k].extension + x.damping * rate)
+                });
+            (tension.x, analysis)
         }
         q => unreachable!("{q:?} is not a force quantity"),
     })

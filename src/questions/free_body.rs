@@ -60,6 +60,21 @@ fn external_impulse(a: &Snapshot, b: &Snapshot, i: usize) -> (DVec2, f64) {
     (j, m)
 }
 
+/// The angular impulse about the fixed world point `o` of body i's free-body diagram over the
+/// step from `a` to `b`: each impulse's moment about O at its point of application (6/17).
+pub(super) fn external_moment_about(a: &Snapshot, b: &Snapshot, i: usize, o: DVec2) -> f64 {
+    let start = Motion::from(&a.bodies[i]);
+    let mut m = 0.0;
+    for_each_external_impulse(
+        Before::One(i, &start),
+        b,
+        b.substeps,
+        |k| k == i,
+        |s| m += s.moment_about(o),
+    );
+    m
+}
+
 /// The contact force body i's motion needs from body o, centered on the sample: its momentum
 /// change over the two steps around it minus every other impulse of its free-body diagram
 /// (gravity, loads, springs, events), over their time (6/1). None where that is not the

@@ -130,7 +130,7 @@ impl LevelFacts {
                     body1: index(&x.body1),
                     body2: x.body2.as_deref().map(index),
                     stiffness: x.stiffness,
-                    damping: x.damping,
+                    damping: if has(Effect::Damping) { x.damping } else { 0.0 },
                 });
                 let torsion = level.torsion_springs.iter().map(|x| SpringInfo {
                     name: x.name.clone(),
@@ -138,7 +138,7 @@ impl LevelFacts {
                     body1: index(&x.body1),
                     body2: x.body2.as_deref().map(index),
                     stiffness: x.stiffness,
-                    damping: x.damping,
+                    damping: if has(Effect::Damping) { x.damping } else { 0.0 },
                 });
                 linear.chain(torsion).collect()
             } else {

@@ -44,6 +44,11 @@ pub(super) struct Meter {
     /// Read at a configuration event (not a fixed time): see `Quantity::KineticEnergy`.
     pub configuration_event: bool,
     /// Why the quantity's analysis does not apply to this scene (a precondition of its formula
+    /// `Efficiency`: the input's work since the start (engine), J, and, when the input is a
+    /// load, its first (force, couple, point, body angle) and whether it stayed equal.
+    pub input_work: f64,
+    pub input_load: Option<(DVec2, f64, DVec2, f64)>,
+    pub input_constant: bool,
     /// that the scene breaks), set by the family: then the analysis is None and the question is
     /// graded on the engine alone, saying so.
     pub inapplicable: Option<String>,
@@ -78,6 +83,9 @@ impl Meter {
             inapplicable: None,
         }
     }
+            input_work: 0.0,
+            input_load: None,
+            input_constant: true,
 
     /// Accumulates what the quantity needs from the step that led to the sample.
     pub fn advance(&mut self, f: &Sample) {

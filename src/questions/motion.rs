@@ -5,21 +5,32 @@
 //! are the impulse-momentum solution's (`sample::Occasion`); accelerations' analyses are
 //! Newton-Euler on the engine's free-body diagram (6/1, see `free_body`).
 
-use super::free_body::newton_euler;
+use super::free_body::{external_moment_about, newton_euler};
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use crate::analysis::k_cross;
 use crate::analysis::kinematics::{body_point_velocity, contact_slip, point_acceleration};
+use crate::analysis::momentum::angular_momentum_about;
 use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 
 /// Accumulates the distance travelled over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
-    if let Quantity::Distance(b) = &m.q {
-        if let Some(i) = m.body_index(s, b) {
-            m.engine_sum += (s.bodies[i].com - prev.bodies[i].com).length();
+    match &m.q {
+        Quantity::Distance(b) => {
+            if let Some(i) = m.body_index(s, b) {
+                m.engine_sum += (s.bodies[i].com - prev.bodies[i].com).length();
+            }
         }
+        Quantity::AngularMomentumAbout { body, point } => {
+            if let Some(i) = m.body_index(s, body) {
+                // The step's angular impulse about the fixed O (6/17).
+                let o = DVec2::new(point.0, point.1);
+                m.analysis_sum += external_moment_about(prev, s, i, o);
+            }
+        }
+        _ => {}
     }
 }
 
@@ -105,6 +116,36 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             ((body(b)?.1.velocity - body(a)?.1.velocity).length(), None)
         }
         Quantity::RelativeAngle(a, b) => (body(b)?.1.angle - body(a)?.1.angle, None),
+        Quantity::RelativeAccel(a, b) => {
+            let (ia, ib) = (body(a)?.0, body(b)?.0);
+            let accel = |i: usize| -> Option<DVec2> {
+                let ax = f.rate(|x| Some(x.bodies[i].velocity.x))?;
+                let ay = f.rate(|x| Some(x.bodies[i].velocity.y))?;
+                Some(DVec2::new(ax, ay))
+            };
+            let (ea, eb) = (accel(ia)?, accel(ib)?);
+            // Newton-Euler (6/1) for a body with mass; a fixed or kinematic body's own motion.
+            let theory = |i: usize, own: DVec2| {
+                if s.bodies[i].kind == crate::snapshot::BodyKind::Dynamic {
+                    newton_euler(f, i).map(|(a, _)| a)
+                } else {
+                    Some(own)
+                }
+            };
+            let analysis = theory(ia, ea)
+                .zip(theory(ib, eb))
+                .map(|(x, y)| (y - x).length());
+            ((eb - ea).length(), analysis)
+        }
+        Quantity::AngularMomentumAbout { body: b, point } => {
+            let (i, x) = body(b)?;
+            let o = DVec2::new(point.0, point.1);
+            let h = |y: &BodyState| {
+                angular_momentum_about(y.mass, y.inertia, y.com, y.velocity, y.omega, o)
+            };
+            let analysis = m.init.as_ref().map(|s0| h(&s0.bodies[i]) + m.analysis_sum);
+            (h(x), analysis)
+        }
         Quantity::RelativePointSpeed {
             body: b,
             point,

@@ -460,7 +460,9 @@ impl QuestionProbe {
                 _ => "the quantity could not be read (too few oscillations, no contact, or a missing item)".into(),
             };
         }
-        if let Some(why) = &self.meter.inapplicable {
+        // A reading taken before the analysis stopped applying (a contact that stuck after the
+        // sample) keeps its analysis.
+        if let (Some(why), None) = (&self.meter.inapplicable, r.analysis) {
             let said = format!("analysis not applicable: {why}; graded on the engine alone");
             self.note = if self.note.is_empty() {
                 said

@@ -8,12 +8,16 @@
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::to_local;
-use crate::analysis::energy::{body_kinetic_energy, power};
-use crate::analysis::kinematics::{body_point_velocity, slip_velocity};
+use crate::analysis::energy::{
+    body_kinetic_energy, coulomb_friction_work_on_body, damper_work, friction_pair_loss,
+    friction_work_on_body, mechanical_efficiency, power,
+};
+use crate::analysis::kinematics::{body_point_velocity, point_velocity};
+use crate::analysis::kinetics::contact_arms_at_start;
 use crate::analysis::momentum::linear_momentum;
 use crate::analysis::Motion;
-use crate::level::Quantity;
-use crate::snapshot::{BodyState, Snapshot};
+use crate::level::{JointKind, Quantity};
+use crate::snapshot::{BodyKind, BodyState, Snapshot, SpringState};
 use glam::DVec2;
 
 /// Accumulates the works over the step from `prev` to `s`.
@@ -26,52 +30,153 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                 m.engine_sum += b1.mass * s.gravity.dot(0.5 * (b0.velocity + b1.velocity)) * dt;
             }
         }
-        Quantity::SpringWork(name) => {
+        Quantity::SpringWork(name) | Quantity::DamperWork(name) => {
             if let Some(sp) = s.springs.iter().find(|x| &x.name == name) {
-                let c = sp.couple_on_body1;
-                m.engine_sum += held_work(prev, s, sp.body1, sp.force_on_body1, sp.applied_at1, c);
+                let damper = matches!(m.q, Quantity::DamperWork(_));
+                let (f, c) = spring_part(sp, damper);
+                m.engine_sum += held_work(prev, s, sp.body1, f, sp.applied_at1, c);
                 if let Some(b2) = sp.body2 {
-                    m.engine_sum += held_work(prev, s, b2, -sp.force_on_body1, sp.applied_at2, -c);
+                    m.engine_sum += held_work(prev, s, b2, -f, sp.applied_at2, -c);
                 }
-            }
-        }
-        Quantity::LoadWork(name) => {
-            if let Some(l) = s.loads.iter().find(|l| &l.name == name) {
-                let b0 = &prev.bodies[l.body];
-                m.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
-                match m.first_load {
-                    None => m.first_load = Some((l.force, l.torque, l.point, b0.angle)),
-                    Some((f0, m0, _, _)) => {
-                        if (l.force - f0).length() > 1e-12 * f0.length().max(1.0)
-                            || (l.torque - m0).abs() > 1e-12 * m0.abs().max(1.0)
-                        {
-                            m.load_constant = false;
-                        }
+                if damper {
+                    let c = m
+                        .facts
+                        .springs
+                        .iter()
+                        .find(|x| &x.name == name)
+                        .map_or(0.0, |x| x.damping);
+                    let before = prev.springs.iter().find(|x| &x.name == name);
+                    if let Some(b) = before {
+                        m.analysis_sum += damper_work(c, sp.length - b.length, dt);
                     }
                 }
             }
         }
-        Quantity::FrictionWork { body, other } => {
-            if let (Some(i), Some(o)) = (m.body_index(s, body), m.body_index(s, other)) {
-                let mu = m.facts.friction(i, o);
-                // Each body at the step's mean velocities, where it is at the step's end.
-                let mid = |k: usize| {
-                    Motion::mid(&Motion::from(&prev.bodies[k]), &Motion::from(&s.bodies[k]))
+        Quantity::Efficiency { input, output } => {
+            if let Some(l) = s.loads.iter().find(|l| &l.name == output) {
+                m.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
+                note_load(
+                    &mut m.first_load,
+                    &mut m.load_constant,
+                    l,
+                    &prev.bodies[l.body],
+                );
+            }
+            if let Some(l) = s.loads.iter().find(|l| &l.name == input) {
+                m.input_work += held_work(prev, s, l.body, l.force, l.point, l.torque);
+                note_load(
+                    &mut m.input_load,
+                    &mut m.input_constant,
+                    l,
+                    &prev.bodies[l.body],
+                );
+            } else if let Some(j) = s.joints.iter().find(|j| &j.name == input) {
+                let slide = m
+                    .facts
+                    .joints
+                    .iter()
+                    .find(|x| &x.name == input)
+                    .map(|x| (x.kind, x.axis));
+                // The motor's work over the step: its impulse times the joint's mean relative
+                // rate (WE-7 for a pin's couple, WE-1 along a slider's axis).
+                let mean = |k: usize| {
+                    let (a, b) = (&prev.bodies[k], &s.bodies[k]);
+                    (
+                        0.5 * (a.velocity + b.velocity),
+                        0.5 * (a.omega + b.omega),
+                        b.com,
+                    )
                 };
-                let (mi, mo) = (mid(i), mid(o));
+                let ((v1, w1, g1), (v2, w2, g2)) = (mean(j.body1), mean(j.body2));
+                let rate = match slide {
+                    Some((JointKind::Prismatic | JointKind::PinSlot, axis)) => {
+                        let axis = DVec2::from_angle(s.bodies[j.body1].angle).rotate(axis);
+                        axis.dot(
+                            point_velocity(v2, w2, j.anchor - g2)
+                                - point_velocity(v1, w1, j.anchor1 - g1),
+                        )
+                    }
+                    _ => w2 - w1,
+                };
+                m.input_work += j.motor_impulse * rate;
+                m.input_constant = false;
+            }
+        }
+        Quantity::LoadWork(name) => {
+            if let Some(l) = s.loads.iter().find(|l| &l.name == name) {
+                m.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
+                note_load(
+                    &mut m.first_load,
+                    &mut m.load_constant,
+                    l,
+                    &prev.bodies[l.body],
+                );
+            }
+        }
+        Quantity::FrictionWork { body, other } | Quantity::FrictionLoss { body, other } => {
+            if let (Some(i), Some(o)) = (m.body_index(s, body), m.body_index(s, other)) {
+                let loss = matches!(m.q, Quantity::FrictionLoss { .. });
+                let mu = m.facts.friction(i, o);
+                let other_fixed = s.bodies[o].kind == BodyKind::Fixed;
+                // Each body at the step's mean velocities (v_G, omega).
+                let mean = |k: usize| {
+                    let (a, b) = (&prev.bodies[k], &s.bodies[k]);
+                    (0.5 * (a.velocity + b.velocity), 0.5 * (a.omega + b.omega))
+                };
+                let (mi, mo) = (mean(i), mean(o));
+                let mut before: Option<Vec<Motion>> = None;
                 for c in &s.contacts {
-                    let sign = if c.body2 == i && c.body1 == o {
-                        1.0
+                    let i_is_2 = if c.body2 == i && c.body1 == o {
+                        true
                     } else if c.body1 == i && c.body2 == o {
-                        -1.0
+                        false
                     } else {
                         continue;
                     };
                     let t = c.tangent();
                     for p in &c.points {
-                        let slip = slip_velocity(&mo, &mi, p.point, c.normal);
-                        m.engine_sum += sign * p.tangent_impulse * mi.velocity_at(p.point).dot(t);
-                        m.analysis_sum -= mu * p.normal_impulse.max(0.0) * slip.abs();
+                        // The solver's lever arms (from G), else the point at the step's start.
+                        let (arm1, arm2) = p.arms.unwrap_or_else(|| {
+                            let b = before.get_or_insert_with(|| {
+                                prev.bodies.iter().map(Motion::from).collect()
+                            });
+                            contact_arms_at_start(s, b, c, p)
+                        });
+                        let (arm_i, arm_o, sign) = if i_is_2 {
+                            (arm2, arm1, 1.0)
+                        } else {
+                            (arm1, arm2, -1.0)
+                        };
+                        // The friction impulse on body i, and the body points' mean velocities.
+                        let j_t = t * (sign * p.tangent_impulse);
+                        let v_i = point_velocity(mi.0, mi.1, arm_i);
+                        let v_o = point_velocity(mo.0, mo.1, arm_o);
+                        let slip = (v_i - v_o).dot(t);
+                        let j_n = p.normal_impulse.max(0.0);
+                        if loss {
+                            m.engine_sum += friction_pair_loss(j_t, v_i - v_o);
+                            m.analysis_sum -= mu * j_n * slip.abs();
+                        } else {
+                            m.engine_sum += friction_work_on_body(j_t, arm_i, mi);
+                            // A slip floor of 1 mm/s: rapier's rolling contacts creep below it.
+                            match coulomb_friction_work_on_body(
+                                mu,
+                                j_n,
+                                slip,
+                                v_i.dot(t),
+                                other_fixed,
+                                1e-3,
+                            ) {
+                                Some(u) => m.analysis_sum += u,
+                                None if j_n > 0.0 && m.inapplicable.is_none() => {
+                                    m.inapplicable = Some(format!(
+                                        "at t = {:.4} s the contact stuck on the moving \"{other}\": static friction has no Coulomb law for its work",
+                                        s.time
+                                    ));
+                                }
+                                None => {}
+                            }
+                        }
                     }
                 }
             }
@@ -146,21 +251,27 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let sp0 = init?.springs.iter().find(|x| &x.name == name)?;
             (m.engine_sum, Some(sp0.energy - sp.energy))
         }
+        Quantity::DamperWork(_) => (m.engine_sum, Some(m.analysis_sum)),
         Quantity::SpringExtension(name) => {
             (s.springs.iter().find(|x| &x.name == name)?.extension, None)
         }
         Quantity::LoadWork(name) => {
-            let analysis = match (m.first_load, m.load_constant) {
-                (Some((force, torque, p0, a0)), true) => {
-                    let l = s.loads.iter().find(|l| &l.name == name)?;
-                    let b0 = &init?.bodies[l.body];
-                    let b = &s.bodies[l.body];
-                    let p = b.world_point(to_local(b0, p0));
-                    Some(force.dot(p - p0) + torque * (b.angle - a0))
-                }
-                _ => None,
-            };
+            let analysis = constant_load_work(s, init?, name, m.first_load, m.load_constant);
             (m.engine_sum, analysis)
+        }
+        Quantity::Efficiency { input, output } => {
+            let init = init?;
+            let engine = mechanical_efficiency(-m.engine_sum, m.input_work);
+            let analysis = constant_load_work(s, init, output, m.first_load, m.load_constant)
+                .zip(constant_load_work(
+                    s,
+                    init,
+                    input,
+                    m.input_load,
+                    m.input_constant,
+                ))
+                .map(|(out, inp)| mechanical_efficiency(-out, inp));
+            (engine, analysis)
         }
         Quantity::LoadPower(name) => {
             let l = s.loads.iter().find(|l| &l.name == name)?;
@@ -170,9 +281,63 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let v_p = body_point_velocity(b, p);
             (power(l.force, v_p, l.torque, b.omega), None)
         }
-        Quantity::FrictionWork { .. } => (m.engine_sum, Some(m.analysis_sum)),
+        Quantity::FrictionWork { .. } | Quantity::FrictionLoss { .. } => {
+            (m.engine_sum, Some(m.analysis_sum))
+        }
         q => unreachable!("{q:?} is not a work or power quantity"),
     })
+}
+
+/// The elastic part (k x) of a spring's held force and couple on body1, or with `damper` its
+/// damper part (c dx/dt), split along the line between its ends at the step's start.
+fn spring_part(sp: &SpringState, damper: bool) -> (DVec2, f64) {
+    let (f_d, c_d) = if sp.torsion {
+        (DVec2::ZERO, -sp.damper_tension)
+    } else {
+        let u = (sp.applied_at2 - sp.applied_at1).normalize_or_zero();
+        (u * sp.damper_tension, 0.0)
+    };
+    if damper {
+        (f_d, c_d)
+    } else {
+        (sp.force_on_body1 - f_d, sp.couple_on_body1 - c_d)
+    }
+}
+
+/// Records a load's first (force, couple, point, body angle) and whether it stays equal.
+fn note_load(
+    first: &mut Option<(DVec2, f64, DVec2, f64)>,
+    constant: &mut bool,
+    l: &crate::snapshot::LoadState,
+    b0: &BodyState,
+) {
+    match *first {
+        None => *first = Some((l.force, l.torque, l.point, b0.angle)),
+        Some((f0, m0, _, _)) => {
+            if (l.force - f0).length() > 1e-12 * f0.length().max(1.0)
+                || (l.torque - m0).abs() > 1e-12 * m0.abs().max(1.0)
+            {
+                *constant = false;
+            }
+        }
+    }
+}
+
+/// The work of a load that stayed constant, from its first state to `s`: F . (r_P - r_P0) +
+/// M (theta - theta0), path independent (10.3.2). None for a load that changed.
+fn constant_load_work(
+    s: &Snapshot,
+    init: &Snapshot,
+    name: &str,
+    first: Option<(DVec2, f64, DVec2, f64)>,
+    constant: bool,
+) -> Option<f64> {
+    let (force, torque, p0, a0) = first.filter(|_| constant)?;
+    let l = s.loads.iter().find(|l| l.name == name)?;
+    let b0 = &init.bodies[l.body];
+    let b = &s.bodies[l.body];
+    let p = b.world_point(to_local(b0, p0));
+    Some(force.dot(p - p0) + torque * (b.angle - a0))
 }
 
 /// Work done on body i over the step from `prev` to `s` by its loads and by the springs attached

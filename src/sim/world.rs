@@ -408,6 +408,7 @@ impl Simulation {
             for sp in now.iter_mut() {
                 sp.force_on_body1 *= weight;
                 sp.tension *= weight;
+                sp.damper_tension *= weight;
                 sp.couple_on_body1 *= weight;
             }
             if first_call {
@@ -416,6 +417,7 @@ impl Simulation {
                 for (a, b) in springs.iter_mut().zip(&now) {
                     a.force_on_body1 += b.force_on_body1;
                     a.tension += b.tension;
+                    a.damper_tension += b.damper_tension;
                     a.couple_on_body1 += b.couple_on_body1;
                 }
             }
@@ -476,6 +478,7 @@ impl Simulation {
             .map(|(held, now)| SpringState {
                 force_on_body1: held.force_on_body1,
                 tension: held.tension,
+                damper_tension: held.damper_tension,
                 couple_on_body1: held.couple_on_body1,
                 applied_at1: held.applied_at1,
                 applied_at2: held.applied_at2,
@@ -616,7 +619,8 @@ impl Simulation {
             } else {
                 0.0
             };
-            let tension = s.stiffness * x + c * (v2 - v1).dot(u);
+            let damper = c * (v2 - v1).dot(u);
+            let tension = s.stiffness * x + damper;
             out.push(SpringState {
                 name: s.name.clone(),
                 body1: i1,
@@ -632,6 +636,7 @@ impl Simulation {
                 applied_at2: p2,
                 torsion: false,
                 couple_on_body1: 0.0,
+                damper_tension: if with_force { damper } else { 0.0 },
             });
         }
         for (k, t) in self.level.torsion_springs.iter().enumerate() {
@@ -643,7 +648,8 @@ impl Simulation {
                 0.0
             };
             // The spring's moment M = k x + c dx/dt turns body1 back toward rest.
-            let moment = t.stiffness * x + c * rate;
+            let damper = c * rate;
+            let moment = t.stiffness * x + damper;
             let i1 = self.body_index[&t.body1];
             let g1 = self.snapshot.bodies[i1].com;
             out.push(SpringState {
@@ -661,6 +667,7 @@ impl Simulation {
                 applied_at2: g1,
                 torsion: true,
                 couple_on_body1: if with_force { -moment } else { 0.0 },
+                damper_tension: if with_force { damper } else { 0.0 },
             });
         }
         out

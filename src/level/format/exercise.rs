@@ -166,14 +166,35 @@ pub enum Quantity {
     RelativeSpeed(String, String),
     /// Angle of the second body minus that of the first, rad (continuous).
     RelativeAngle(String, String),
+    /// Relative acceleration |a_B - a_A| of two mass centers, m/s^2 (central differences,
+    /// RK-10). Analysis: the difference of each body's sum F / m from the engine's free-body
+    /// diagram (6/1); a fixed or kinematic body's acceleration is its own central difference.
+    RelativeAccel(String, String),
+    /// Angular momentum of `body` about the fixed world point `point` (m), kg m^2/s, H_O =
+    /// I_G omega + (r_G - O) x m v_G (6/15). Analysis: the angular impulse-momentum ledger about
+    /// O (6/17, RM-6), H_O(0) plus the sum of the moments about O of the body's free-body
+    /// diagram's impulses over the steps.
+    AngularMomentumAbout { body: String, point: V2 },
     /// Direction of the mass-center velocity, rad from +x (atan2). Analysis as `Vx`.
     Direction(String),
     /// Work of gravity on the body since the start, J: engine = the integral of m g . v dt
     /// (trapezoid over steps); analysis = m g . (r_G - r_G0) (path independence, 10.2.18).
     GravityWork(String),
-    /// Work done by the named spring on the bodies since the start, J: engine = sum of the held
-    /// spring force times its ends' displacements; analysis = -(1/2 k x^2 - 1/2 k x0^2) (10.2.21).
+    /// Work done by the named spring's elastic part k x on the bodies since the start, J (the
+    /// damper's c dx/dt is not in it: ask `DamperWork`): engine = sum of the held elastic force
+    /// (the held tension less its damper part) times its ends' displacements; analysis =
+    /// -(1/2 k x^2 - 1/2 k x0^2) (10.2.21).
     SpringWork(String),
+    /// Work done by the named spring's damper (c dx/dt) on the bodies since the start, J (zero
+    /// without the `damping` effect): engine = sum of the held damper force times its ends'
+    /// displacements; analysis = -sum c (dL)^2 / dt over the steps, with dL each step's change
+    /// of the spring's length (WE-1 with F = c dL/dt).
+    DamperWork(String),
+    /// The named spring's tension, N (N m for a torsion spring), positive in tension (pulling
+    /// its ends together), centered: k x + c dx/dt as the engine held it. Analysis: k x with the
+    /// level's k and the extension at the sample, plus c times the central difference of the
+    /// length (Hooke's law with a viscous damper, WE-5).
+    SpringForce(String),
     /// Extension of the named spring (length - rest length), m. No analysis.
     SpringExtension(String),
     /// Work of the named load (force and couple) since the start, J: engine = sum of held
@@ -183,10 +204,24 @@ pub enum Quantity {
     /// Power of the named load at the sample, W (WE-10): P = F . v_P + M omega, with v_P the
     /// velocity of its point of application and the force held over the step. No analysis.
     LoadPower(String),
-    /// Work of the friction forces between two bodies on `body` since the start, J: engine =
-    /// sum of friction impulse . velocity of the body's contact point; analysis = -mu N s: the
-    /// Coulomb law with the level's mu, the engine's normal force and slip (WE-6).
+    /// Work of the friction forces `other` exerts on `body` since the start, J: the friction
+    /// force on `body` dotted with the velocity of `body`'s material contact point, summed over
+    /// steps (WE-1; `energy::friction_work_on_body`). Engine: each step's friction impulse times
+    /// that point's mean velocity, at the solver's lever arm. Analysis: Coulomb's kinetic
+    /// friction mu N against the slip, -mu N sgn(slip) v_P . t per step with the level's mu and
+    /// the engine's N (WE-6); none when the contact sticks on a moving `other`. On a fixed
+    /// `other` this is the pair's loss -mu N s; on two moving bodies it can be positive.
     FrictionWork { body: String, other: String },
+    /// The energy friction between two bodies takes out, J (negative): the two bodies' friction
+    /// works added, each step's friction impulse times the slip velocity (WE-6). Engine: at the
+    /// solver's lever arms and the step's mean velocities; analysis: -mu N |slip| per step.
+    FrictionLoss { body: String, other: String },
+    /// Mechanical efficiency of a mechanism over the run, 1 (WE-12, energy form): the work done
+    /// against the `output` load, -U_output, over the work done by the `input` load or motor
+    /// (a load's name, or a motorized joint's), U_input, both since the start. Engine: both works
+    /// summed from the held forces and the motor's impulses; analysis, when both are constant
+    /// loads: their path-independent works F . (r_P - r_P0) + M (theta - theta0) (10.3.2).
+    Efficiency { input: String, output: String },
     /// Period of a body swinging on the named pivot joint, s: engine = mean time between
     /// successive extremes of the body angle of the same kind; analysis = 4 sqrt(I_O/(m g d)) K(sin(theta_0/2))
     /// with I_O, m, d = |OG| and the amplitude theta_0 from the engine's initial state (exact large-amplitude period).
@@ -356,6 +391,7 @@ impl Quantity {
             Q::Time | Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => "s",
             Q::JointForce(_)
             | Q::ContactForce(_)
+            | Q::RelativeAccel(..)
             | Q::ContactNormalForce { .. }
             | Q::ContactForceFrom { .. }
             | Q::CouplingForce(_)
@@ -366,6 +402,14 @@ impl Quantity {
                 let slider = level
                     .joints
                     .iter()
+            Q::SpringForce(s) => {
+                if level.torsion_springs.iter().any(|t| t.name == *s) {
+                    "N m"
+                } else {
+                    "N"
+                }
+            }
+            Q::AngularMomentumAbout { .. } => "kg m^2/s",
                     .any(|j| j.name == *joint && j.kind == JointKind::Prismatic);
                 if slider {
                     "N"
@@ -381,8 +425,10 @@ impl Quantity {
             | Q::EnergyLost { .. }
             | Q::GroupKineticEnergy(_) => "J",
             Q::LoadPower(_) => "W",
-            Q::RollingFrictionNeeded { .. } | Q::Restitution { .. } => "1",
+            Q::RollingFrictionNeeded { .. } | Q::Restitution { .. } | Q::Efficiency { .. } => "1",
         }
+            | Q::FrictionLoss { .. }
+            | Q::DamperWork(_)
     }
 
     /// The variant's name, for messages: `Omega`, `JointReaction`.
@@ -449,6 +495,8 @@ impl Quantity {
             Q::JointForce(_)
             | Q::ContactForce(_)
             | Q::ContactNormalForce { .. }
+            | Q::RelativeAccel(..)
+            | Q::AngularMomentumAbout { .. }
             | Q::ContactForceFrom { .. }
             | Q::CouplingForce(_)
             | Q::JointReaction { .. }
@@ -456,6 +504,7 @@ impl Quantity {
             | Q::MotorTorque { .. } => F::Forces,
             Q::KineticEnergy(_)
             | Q::GravityWork(_)
+            | Q::SpringForce(_)
             | Q::SpringWork(_)
             | Q::SpringExtension(_)
             | Q::LoadWork(_)
@@ -466,6 +515,9 @@ impl Quantity {
             Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => F::Periods,
             Q::RollingAcceleration { .. }
             | Q::RollingFriction { .. }
+            | Q::FrictionLoss { .. }
+            | Q::DamperWork(_)
+            | Q::Efficiency { .. }
             | Q::RollingFrictionNeeded { .. } => F::Rolling,
             Q::ReboundHeight { .. }
             | Q::Restitution { .. }

@@ -167,6 +167,7 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         | Quantity::ContactForceFrom { .. }
         | Quantity::SlipSpeed { .. }
         | Quantity::FrictionWork { .. }
+        | Quantity::FrictionLoss { .. }
         | Quantity::ReboundHeight { .. }
         | Quantity::Restitution { .. }
         | Quantity::EnergyLost { .. }
@@ -179,9 +180,11 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         | Quantity::JointForce(_)
         | Quantity::PercussionDistance { .. } => needs(Effect::Joints, "a joint quantity")?,
         Quantity::MotorTorque { .. } => needs(Effect::Motors, "a motor torque")?,
-        Quantity::SpringPeriod(_) | Quantity::SpringWork(_) | Quantity::SpringExtension(_) => {
-            needs(Effect::Springs, "a spring quantity")?
-        }
+        Quantity::SpringPeriod(_)
+        | Quantity::SpringWork(_)
+        | Quantity::DamperWork(_)
+        | Quantity::SpringForce(_)
+        | Quantity::SpringExtension(_) => needs(Effect::Springs, "a spring quantity")?,
         _ => {}
     }
     match &q.quantity {
@@ -308,10 +311,18 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         | Q::PointSpeed { body: b, .. }
         | Q::PointAccel { body: b, .. } => vec![("body", b)],
         Q::CouplingForce(c) => vec![("coupling", c)],
-        Q::RelativeDistance(a, b) | Q::RelativeSpeed(a, b) | Q::RelativeAngle(a, b) => {
+        Q::RelativeDistance(a, b)
+        | Q::RelativeSpeed(a, b)
+        | Q::RelativeAngle(a, b)
+        | Q::RelativeAccel(a, b) => {
             vec![("body", a), ("body", b)]
         }
+        Q::AngularMomentumAbout { body, .. } => vec![("body", body)],
+        Q::Efficiency { input, output } => {
+            vec![("load or motorized joint", input), ("load", output)]
+        }
         Q::FrictionWork { body, other }
+        | Q::FrictionLoss { body, other }
         | Q::ContactNormalForce { body, other }
         | Q::ContactForceFrom { body, other, .. }
         | Q::SlipSpeed { body, other }
@@ -348,7 +359,9 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
                 ("joint", pin),
             ]
         }
-        Q::SpringWork(s) | Q::SpringExtension(s) => vec![("spring", s)],
+        Q::SpringWork(s) | Q::DamperWork(s) | Q::SpringForce(s) | Q::SpringExtension(s) => {
+            vec![("spring", s)]
+        }
         Q::LoadWork(l) | Q::LoadPower(l) => vec![("load", l)],
         Q::Time => vec![],
     }
@@ -366,6 +379,10 @@ pub(super) fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field
         }
         "load" => l.loads.iter().any(|x| x.name == name),
         "coupling" => l.couplings.iter().any(|x| x.name == name),
+        "load or motorized joint" => {
+            l.loads.iter().any(|x| x.name == name)
+                || l.joints.iter().any(|j| j.name == name && j.motor.is_some())
+        }
         _ => l.events.iter().any(|e| e.name() == name),
     };
     if known {
