@@ -41,14 +41,14 @@ pub(super) struct Meter {
     /// `LoadWork`: the first load seen (force, couple, point, body angle) and whether it stayed equal.
     pub first_load: Option<(DVec2, f64, DVec2, f64)>,
     pub load_constant: bool,
-    /// Read at a configuration event (not a fixed time): see `Quantity::KineticEnergy`.
-    pub configuration_event: bool,
-    /// Why the quantity's analysis does not apply to this scene (a precondition of its formula
     /// `Efficiency`: the input's work since the start (engine), J, and, when the input is a
     /// load, its first (force, couple, point, body angle) and whether it stayed equal.
     pub input_work: f64,
     pub input_load: Option<(DVec2, f64, DVec2, f64)>,
     pub input_constant: bool,
+    /// Read at a configuration event (not a fixed time): see `Quantity::KineticEnergy`.
+    pub configuration_event: bool,
+    /// Why the quantity's analysis does not apply to this scene (a precondition of its formula
     /// that the scene breaks), set by the family: then the analysis is None and the question is
     /// graded on the engine alone, saying so.
     pub inapplicable: Option<String>,
@@ -79,13 +79,13 @@ impl Meter {
             rebound_apex: f64::NEG_INFINITY,
             first_load: None,
             load_constant: true,
+            input_work: 0.0,
+            input_load: None,
+            input_constant: true,
             configuration_event: true,
             inapplicable: None,
         }
     }
-            input_work: 0.0,
-            input_load: None,
-            input_constant: true,
 
     /// Accumulates what the quantity needs from the step that led to the sample.
     pub fn advance(&mut self, f: &Sample) {

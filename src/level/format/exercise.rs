@@ -386,22 +386,17 @@ impl Quantity {
             | Q::Ay(_)
             | Q::Accel(_)
             | Q::PointAccel { .. }
+            | Q::RelativeAccel(..)
             | Q::RollingAcceleration { .. } => "m/s^2",
             Q::Alpha(_) => "rad/s^2",
             Q::Time | Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => "s",
             Q::JointForce(_)
             | Q::ContactForce(_)
-            | Q::RelativeAccel(..)
             | Q::ContactNormalForce { .. }
             | Q::ContactForceFrom { .. }
             | Q::CouplingForce(_)
             | Q::JointReaction { .. }
             | Q::RollingFriction { .. } => "N",
-            Q::JointImpulse { .. } | Q::ContactImpulse { .. } | Q::GroupMomentum(_) => "N s",
-            Q::MotorTorque { joint, .. } => {
-                let slider = level
-                    .joints
-                    .iter()
             Q::SpringForce(s) => {
                 if level.torsion_springs.iter().any(|t| t.name == *s) {
                     "N m"
@@ -410,6 +405,11 @@ impl Quantity {
                 }
             }
             Q::AngularMomentumAbout { .. } => "kg m^2/s",
+            Q::JointImpulse { .. } | Q::ContactImpulse { .. } | Q::GroupMomentum(_) => "N s",
+            Q::MotorTorque { joint, .. } => {
+                let slider = level
+                    .joints
+                    .iter()
                     .any(|j| j.name == *joint && j.kind == JointKind::Prismatic);
                 if slider {
                     "N"
@@ -422,13 +422,13 @@ impl Quantity {
             | Q::SpringWork(_)
             | Q::LoadWork(_)
             | Q::FrictionWork { .. }
+            | Q::FrictionLoss { .. }
+            | Q::DamperWork(_)
             | Q::EnergyLost { .. }
             | Q::GroupKineticEnergy(_) => "J",
             Q::LoadPower(_) => "W",
             Q::RollingFrictionNeeded { .. } | Q::Restitution { .. } | Q::Efficiency { .. } => "1",
         }
-            | Q::FrictionLoss { .. }
-            | Q::DamperWork(_)
     }
 
     /// The variant's name, for messages: `Omega`, `JointReaction`.
@@ -490,34 +490,34 @@ impl Quantity {
             | Q::RelativeDistance(..)
             | Q::RelativeSpeed(..)
             | Q::RelativeAngle(..)
+            | Q::RelativeAccel(..)
+            | Q::AngularMomentumAbout { .. }
             | Q::RelativePointSpeed { .. }
             | Q::SlipSpeed { .. } => F::Motion,
             Q::JointForce(_)
             | Q::ContactForce(_)
             | Q::ContactNormalForce { .. }
-            | Q::RelativeAccel(..)
-            | Q::AngularMomentumAbout { .. }
             | Q::ContactForceFrom { .. }
             | Q::CouplingForce(_)
+            | Q::SpringForce(_)
             | Q::JointReaction { .. }
             | Q::JointImpulse { .. }
             | Q::MotorTorque { .. } => F::Forces,
             Q::KineticEnergy(_)
             | Q::GravityWork(_)
-            | Q::SpringForce(_)
             | Q::SpringWork(_)
             | Q::SpringExtension(_)
             | Q::LoadWork(_)
             | Q::LoadPower(_)
             | Q::FrictionWork { .. }
+            | Q::FrictionLoss { .. }
+            | Q::DamperWork(_)
+            | Q::Efficiency { .. }
             | Q::GroupKineticEnergy(_)
             | Q::GroupMomentum(_) => F::WorkAndPower,
             Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => F::Periods,
             Q::RollingAcceleration { .. }
             | Q::RollingFriction { .. }
-            | Q::FrictionLoss { .. }
-            | Q::DamperWork(_)
-            | Q::Efficiency { .. }
             | Q::RollingFrictionNeeded { .. } => F::Rolling,
             Q::ReboundHeight { .. }
             | Q::Restitution { .. }
