@@ -71,6 +71,9 @@ pub struct LevelFacts {
     pub(super) springs: Vec<SpringInfo>,
     /// Each body's index by name, in the level's order (which the run's snapshots keep).
     names: HashMap<String, usize>,
+    /// The level itself, kept when a period question may need the whole mechanism
+    /// (the linearized period, `analysis::small_oscillations`).
+    pub(super) level: Option<std::sync::Arc<Level>>,
 }
 
 impl LevelFacts {
@@ -152,6 +155,11 @@ impl LevelFacts {
                 }
                 names
             },
+            level: level
+                .questions
+                .iter()
+                .any(|q| q.quantity.family() == crate::level::QuantityFamily::Periods)
+                .then(|| std::sync::Arc::new(level.clone())),
         }
     }
 

@@ -31,6 +31,9 @@ pub(super) struct Meter {
     pub crossings: Crossings,
     /// Direction of the spring a `SpringPeriod` body oscillates along.
     pub spring_axis: Option<DVec2>,
+    /// Periods: the linearized period (PL-14) that stands in for a closed form whose
+    /// preconditions the scene breaks.
+    pub linearized: Option<f64>,
     /// For `SpringPeriod`: the free body at the spring's other end, when the body's springs all
     /// join it to that one (their relative motion is what vibrates).
     pub spring_partner: Option<usize>,
@@ -74,6 +77,7 @@ impl Meter {
             analysis_sum: 0.0,
             crossings: Crossings::default(),
             spring_axis: None,
+            linearized: None,
             spring_partner: None,
             pair: impacts::pair_tracker(q),
             rebound_apex: f64::NEG_INFINITY,

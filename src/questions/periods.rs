@@ -6,11 +6,14 @@
 //! (PL-5 with the elliptic integral, or the energy integral where a torsion spring to the ground
 //! acts on the pivot) and 2 pi sqrt(m / k), damped where the springs' dampers act.
 //!
-//! Each analysis holds for the scene its formula was derived for, and says why when the scene
-//! is another ([`Meter::inapplicable`]): the pendulum swings on a fixed pin under gravity and
-//! torsion springs to the ground alone (no other joint, spring, load, motor or damping); the
-//! spring mass moves along its springs' one line, on linear springs and dampers alone (no
-//! torsion spring, load, pin or body damping). Contacts during the run are not looked at.
+//! Each closed form holds for the scene it was derived for: the pendulum swings on a fixed pin
+//! under gravity and torsion springs to the ground alone (no other joint, spring, load, motor or
+//! damping); the spring mass moves along its springs' one line, on linear springs and dampers
+//! alone (no torsion spring, load, pin or body damping). Where the scene is another, the period
+//! of the mode the start excites, from the equations of motion linearized about the equilibrium
+//! (PL-14, `analysis::small_oscillations`), stands in; where that does not apply either (no
+//! stable equilibrium, a swing too large for "small", several modes excited, a motor), the
+//! analysis says why ([`Meter::inapplicable`]). Contacts during the run are not looked at.
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
@@ -21,6 +24,7 @@ use crate::analysis::closed_forms::{
 use crate::analysis::energy::spring_potential;
 use crate::analysis::mass::parallel_axis;
 pub(super) use crate::analysis::oscillation::Crossings;
+use crate::analysis::small_oscillations::{Mechanism, SMALL_AMPLITUDE_PERIOD_ERROR};
 use crate::level::Quantity;
 use crate::level::{BodyKind, JointKind};
 use crate::snapshot::Snapshot;
@@ -33,6 +37,9 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             if let Some(i) = m.body_index(s, body) {
                 if m.crossings.is_empty() {
                     m.inapplicable = pendulum_breaks(m, s, i, joint);
+                    if m.inapplicable.is_some() {
+                        linearize(m, i, |shape| shape[i].1);
+                    }
                     m.crossings.add(prev.time, prev.bodies[i].omega);
                 }
                 m.crossings.add(s.time, s.bodies[i].omega);
@@ -57,6 +64,13 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                     m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
                     m.spring_partner = spring_partner(init, i);
                     m.inapplicable = spring_mass_breaks(m, init, i);
+                    if let (Some(_), Some(a)) = (&m.inapplicable, m.spring_axis) {
+                        let partner = m.spring_partner;
+                        linearize(m, i, |shape| {
+                            let own = shape[i].0;
+                            (own - partner.map_or(DVec2::ZERO, |j| shape[j].0)).dot(a)
+                        });
+                    }
                     if let Some(a) = m.spring_axis {
                         m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
                     }
@@ -74,6 +88,9 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
 pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     Some(match &m.q {
+        Quantity::PendulumPeriod { .. } | Quantity::SpringPeriod(_) if m.linearized.is_some() => {
+            (m.crossings.period(), m.linearized)
+        }
         Quantity::PendulumPeriod { body: b, joint } => {
             (m.crossings.period(), pendulum_theory(m, s, b, joint))
         }
@@ -121,6 +138,60 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
         }
         q => unreachable!("{q:?} is not a period"),
     })
+}
+
+/// Where the closed form's preconditions break (`m.inapplicable` says which), the linearized
+/// period (PL-14) of the mode the start excites stands in: `m.linearized` is set and
+/// `m.inapplicable` cleared. Where the linearization does not apply either, `m.inapplicable`
+/// gets its reason too. `measured` is the excited mode's component in the coordinate whose
+/// rate the engine's zero crossings follow (from the mode's shape, per body (dx_G, dtheta)).
+fn linearize(m: &mut Meter, i: usize, measured: impl Fn(&[(DVec2, f64)]) -> f64) {
+    let Some(why) = m.inapplicable.clone() else {
+        return;
+    };
+    match linearized_period(m, i, measured) {
+        Ok(t) => {
+            m.linearized = Some(t);
+            m.inapplicable = None;
+        }
+        Err(e) => {
+            m.inapplicable = Some(format!(
+                "{why}; the linearized period (PL-14) does not apply either: {e}"
+            ))
+        }
+    }
+}
+
+/// The period of the mode the start excites, damped where dampers act, when the start is
+/// within the small-amplitude bound; otherwise why not.
+fn linearized_period(
+    m: &Meter,
+    i: usize,
+    measured: impl Fn(&[(DVec2, f64)]) -> f64,
+) -> Result<f64, String> {
+    let level = m.facts.level.as_ref().ok_or("the level is not kept")?;
+    let osc = Mechanism::of_level(level, i)?.small_oscillations()?;
+    let mode = osc.excited()?;
+    let along = measured(&mode.shape);
+    let scale: f64 = mode
+        .shape
+        .iter()
+        .map(|(d, a)| d.length() + a.abs())
+        .fold(0.0, f64::max);
+    if along.abs() <= 1e-6 * scale {
+        return Err("the excited mode does not move the coordinate the period is read from".into());
+    }
+    if osc.period_error > SMALL_AMPLITUDE_PERIOD_ERROR {
+        return Err(format!(
+            "the start's swing is not small: its period at that amplitude (the energy integral along the mode, {:.6} s) differs from the linearized {:.6} s by {:.2} %, over the {:.1} % bound",
+            osc.amplitude_period.unwrap_or(f64::NAN),
+            mode.period,
+            100.0 * osc.period_error,
+            100.0 * SMALL_AMPLITUDE_PERIOD_ERROR
+        ));
+    }
+    mode.damped_period
+        .ok_or_else(|| "the excited mode is overdamped: it does not oscillate".into())
 }
 
 /// The exact large-amplitude period of a body swinging about the joint's fixed anchor, from the
