@@ -142,7 +142,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let n = pair_contact(s, o, i)
                 .or_else(|| f.next.and_then(|x| pair_contact(x, o, i)))?
                 .normal;
-            let force = f.centered(|x| {
+            let force = f.windowed(|x| {
                 Some(pair_contact(x, o, i).map_or(DVec2::ZERO, |c| c.impulse_on_b))
             })?;
             let analysis = contact_force_analysis(m, f, i, o, n, *component);

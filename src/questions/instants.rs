@@ -20,13 +20,16 @@ pub(super) struct Found {
 /// The largest (or smallest) value of a signal, placed at the vertex of the parabola through the
 /// three samples around its best sample. A parabola's vertex is exact for a quantity quadratic in
 /// time (a projectile's height) and off by O(dt^2) of the period for a smooth extreme.
+/// A sample's signal and the question's reading at it.
+type Sampled = (f64, Reading);
+
 #[derive(Clone, Default)]
 pub(super) struct Extreme {
     max: bool,
     /// The last sample's signal and reading.
-    last: Option<(f64, Reading)>,
+    last: Option<Sampled>,
     /// The best sample so far: the sample before it and its own signal and reading.
-    best: Option<(Option<(f64, Reading)>, f64, Reading)>,
+    best: Option<(Option<Sampled>, f64, Reading)>,
     /// The best sample waits for the one after it, to place the vertex.
     waiting: bool,
 }
@@ -105,6 +108,10 @@ pub(super) struct Slip {
     due: Option<f64>,
     /// The state when the slide began (t, slip, v along the floor, omega), for the closed form.
     start: Option<(f64, f64, f64, f64)>,
+    /// `SlipStarts`: the reading at a step whose friction reached mu N, waiting for the slip
+    /// that must follow it, and the largest slip seen while the contact held (its creep), m/s.
+    candidate: Option<Reading>,
+    creep: f64,
 }
 
 impl Slip {
@@ -119,6 +126,8 @@ impl Slip {
             last: None,
             due: None,
             start: None,
+            candidate: None,
+            creep: 0.0,
         }
     }
 
@@ -206,7 +215,28 @@ impl Slip {
         }
         let mu = facts.friction(i, o);
         let ratio = c.impulse_on_b.dot(c.normal.perp()).abs() / c.normal_impulse;
+        if let Some(at) = self.candidate {
+            // Friction at its limit is where a slide begins, if one follows: on a faceted curve
+            // the normal force comes in bursts, and a dip between them brings F/N to mu for a
+            // step while the contact holds. The slide is confirmed once the slip passes STUCK and
+            // twice the creep the contact showed while it held (a disc on a faceted cylinder
+            // creeps at 6 mm/s); a contact back well below the limit (F/N under 0.95 mu)
+            // without it was such a dip.
+            let slip = contact_slip(s, o, i).map_or(0.0, f64::abs);
+            if slip > STUCK.max(2.0 * self.creep) {
+                return Some(Found {
+                    from: at,
+                    fraction: 0.0,
+                });
+            }
+            if ratio >= 0.95 * mu {
+                return None;
+            }
+            self.candidate = None;
+            self.history.clear();
+        }
         if ratio < mu * (1.0 - 1e-3) {
+            self.creep = self.creep.max(contact_slip(s, o, i).map_or(0.0, f64::abs));
             self.history.push((t, ratio));
             if self.history.len() > 2 {
                 self.history.remove(0);
@@ -222,7 +252,14 @@ impl Slip {
         // The onset lies within the half step before the previous sample or after it: read
         // there on the straight line through the two samples (back up to one step).
         let fraction = ((onset - from.t) / (s.time - from.t)).clamp(-1.0, 1.0);
-        Some(Found { from, fraction })
+        let r = self.last?;
+        self.candidate = Some(Reading::lerp(from, r, fraction));
+        // A slide that has already begun needs no wait.
+        let slip = contact_slip(s, o, i).map_or(0.0, f64::abs);
+        (slip > STUCK.max(2.0 * self.creep)).then_some(Found {
+            from: self.candidate?,
+            fraction: 0.0,
+        })
     }
 
     /// The textbook's time and speed at which the slide ends, for a round body sliding on a level

@@ -289,6 +289,11 @@ pub enum Quantity {
         other: String,
         #[serde(default)]
         component: ContactComponent,
+        /// Average over this time window centered on the sample, s (default: the two steps
+        /// around it). A body riding a faceted curve gets its normal force at the vertices, in
+        /// bursts from step to step.
+        #[serde(default)]
+        window: f64,
     },
     /// The slip speed at the contact of `body` with `other`: the magnitude of the tangential
     /// velocity of `body`'s contact point relative to `other`'s, m/s (zero while it rolls or
@@ -530,9 +535,9 @@ impl Quantity {
     /// The time window the quantity is averaged over, s (0: the two steps around the sample).
     pub fn averaging_window(&self) -> f64 {
         match self {
-            Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
-                *window
-            }
+            Quantity::JointReaction { window, .. }
+            | Quantity::MotorTorque { window, .. }
+            | Quantity::ContactForceFrom { window, .. } => *window,
             _ => 0.0,
         }
     }
