@@ -23,6 +23,24 @@ use glam::DVec2;
 /// Accumulates, for a joint reaction, the path work of loads and springs on the moving body
 /// over the step from `prev` to `s` (for the pivot reaction's omega from work-energy).
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+    if let Quantity::ContactForceFrom {
+        body,
+        other,
+        window,
+        ..
+    } = &m.q
+    {
+        // Newton's analysis reads a_G, which a faceted curve jolts at each vertex: at one
+        // step it is the engine's burst, not the textbook's force.
+        if let (Some(i), Some(o)) = (m.body_index(s, body), m.body_index(s, other)) {
+            if *window == 0.0
+                && m.inapplicable.is_none()
+                && super::rolling::turned(prev, s, i, o).is_some_and(|a| a > super::rolling::CURVED)
+            {
+                m.inapplicable = Some("the contact is on a curve (its normal turns from step to step): a faceted track gives the force at its vertices, in bursts, so one step's m a_G is no textbook force; ask with a `window` of several steps".into());
+            }
+        }
+    }
     if let Quantity::JointReaction { joint: j, .. } = &m.q {
         if let Some(k) = joint_index(s, j) {
             let jj = &s.joints[k];

@@ -81,13 +81,24 @@ pub(super) fn external_moment_about(a: &Snapshot, b: &Snapshot, i: usize, o: DVe
 /// contact's force alone: a body without mass, or one that another contact, a joint or a
 /// coupling also holds.
 pub(super) fn contact_needed(f: &Sample, i: usize, o: usize) -> Option<DVec2> {
-    let (prev, next) = (f.prev?, f.next?);
+    // Over the quantity's window when it has one (its steps, from its first snapshot to its
+    // last), else over the two steps around the sample.
+    let (prev, next, steps): (&Snapshot, &Snapshot, Vec<&Snapshot>) = if f.window.len() > 2 {
+        let w = f.window;
+        (
+            &w[0],
+            &w[w.len() - 1],
+            w[1..].iter().map(|x| &**x).collect(),
+        )
+    } else {
+        (f.prev?, f.next?, vec![&**f.cur, &**f.next?])
+    };
     let body = &f.cur.bodies[i];
     if !is_massive(body) {
         return None;
     }
     let mut known = DVec2::ZERO;
-    for b in [f.cur, next] {
+    for b in steps {
         if b.is_initial() {
             return None;
         }

@@ -56,7 +56,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
 /// on a straight slope wobbles by up to 2.4e-6 rad from step to step in f32 (a disc on a 25
 /// degree incline, tests/newuser/n4_02); a turn of 1e-4 rad per step is a curve of radius
 /// v dt / 1e-4, whose m v^2 / rho is v 1e-4 / dt: 0.5% of g at 2 m/s and 1/240 s.
-const CURVED: f64 = 1e-4;
+pub(super) const CURVED: f64 = 1e-4;
 
 /// What besides its weight and the ground acts on body i in `s`: a joint, a spring, a load, a
 /// coupling, damping, or another body pushing on it.
@@ -79,7 +79,7 @@ fn also_acting(s: &Snapshot, i: usize, ground: usize) -> Option<&'static str> {
 }
 
 /// How far the contact normal between i and the ground turned over the step, rad.
-fn turned(prev: &Snapshot, s: &Snapshot, i: usize, o: usize) -> Option<f64> {
+pub(super) fn turned(prev: &Snapshot, s: &Snapshot, i: usize, o: usize) -> Option<f64> {
     let n = |x: &Snapshot| {
         x.contacts
             .iter()
