@@ -146,3 +146,44 @@ impl Approaching<'_> {
         }
     }
 }
+
+/// One side of an impact's reading: a body's state, when it was read, s, and the acceleration
+/// it is carried at from then to the touching instant.
+#[derive(Debug, Clone, Copy)]
+pub struct ReadAt<'a> {
+    pub motion: &'a Motion,
+    pub time: f64,
+    pub acc: DVec2,
+}
+
+/// The acceleration a body's state after an impact is carried back at: gravity while it flies
+/// free of the partner (`free`, see [`flies_free`], and the pair's contact no longer pushing
+/// there), none while the contact still pushes or a joint holds it (a ball with e = 0 resting
+/// on the floor, carried back with g, would read e = g (t - t_touch) / v; a ball still in
+/// contact while friction acts takes no g either, since the floor bears its weight).
+pub fn carried_back_at(free: bool, pushing: bool, gravity: DVec2) -> DVec2 {
+    if free && !pushing {
+        gravity
+    } else {
+        DVec2::ZERO
+    }
+}
+
+/// e and the impact's other measures at the touching instant (IM-9): the pair's states before
+/// and after, each carried to `touch_time` at its acceleration, the relative velocity of the
+/// touching point along the normal. The one reading the `restitution` check and the
+/// `Restitution` question share (they read one impact 0.9931 and 1.0005 before: the question
+/// carried the state after back at g while the contact still pushed).
+pub fn impact_at_touch(
+    touch_time: f64,
+    before: [ReadAt; 2],
+    after: [ReadAt; 2],
+    point: DVec2,
+    normal: DVec2,
+    impulse_on_b: DVec2,
+) -> super::impact::ImpactMeasure {
+    let at = |r: &ReadAt| r.motion.carried(touch_time - r.time, r.acc);
+    let [a0, b0] = [at(&before[0]), at(&before[1])];
+    let [a1, b1] = [at(&after[0]), at(&after[1])];
+    super::impact::measure_impact((&a0, &a1), (&b0, &b1), point, normal, impulse_on_b)
+}

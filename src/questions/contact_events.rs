@@ -79,6 +79,10 @@ pub(super) struct PairTracker {
     /// approach along the impact's normal (within 1% of the approach speed); without an impact,
     /// the last one before the contact impulse fell to twice what the weights give in a step.
     pub impulsive_end: Option<Arc<Snapshot>>,
+    /// Whether the contact still pushed (any normal impulse) in the step after `impulsive_end`:
+    /// the body then rests on its partner and is not carried back at g, as the `restitution`
+    /// check's bracket judges it (None until that step is seen).
+    pub pushing_after_impulse: Option<bool>,
 }
 
 impl PairTracker {
@@ -95,6 +99,7 @@ impl PairTracker {
             contact_vector: DVec2::ZERO,
             normal_into_body: None,
             impulsive_end: None,
+            pushing_after_impulse: None,
             pre: None,
             impact: None,
             release: None,
@@ -168,6 +173,14 @@ impl PairTracker {
             }
             _ => None,
         };
+        if self.pushing_after_impulse.is_none()
+            && self
+                .impulsive_end
+                .as_ref()
+                .is_some_and(|e| e.time < f.cur.time)
+        {
+            self.pushing_after_impulse = Some(j > 0.0);
+        }
         // Checked from the touch on, the touch's own step included: rapier often completes an
         // impact within that one step.
         if self.phase != ContactPhase::Before && self.impulsive_end.is_none() {

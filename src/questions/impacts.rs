@@ -7,13 +7,13 @@
 //! level's declared restitution.
 
 use super::contact_events::{ContactPhase, PairEvent, PairTracker};
+use super::forces::contact_component;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
-use super::snapshot_reading::{body_mechanical_energy, carried_forward, height, is_massive};
+use super::snapshot_reading::{body_mechanical_energy, height, is_massive};
 use crate::analysis::energy::body_kinetic_energy;
-use crate::analysis::impact::coefficient_of_restitution;
-use crate::analysis::kinematics::body_point_velocity;
-use super::forces::contact_component;
+use crate::analysis::touching::{carried_back_at, impact_at_touch, ReadAt};
+use crate::analysis::Motion;
 use crate::level::{ContactComponent, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -24,9 +24,7 @@ pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
         Quantity::ReboundHeight { body, other }
         | Quantity::Restitution { body, other }
         | Quantity::EnergyLost { body, other }
-        | Quantity::ContactImpulse { body, other, .. } => {
-            Some(PairTracker::new(body, Some(other)))
-        }
+        | Quantity::ContactImpulse { body, other, .. } => Some(PairTracker::new(body, Some(other))),
         _ => None,
     }
 }
@@ -56,7 +54,10 @@ pub(super) fn why_missing(m: &Meter) -> Option<String> {
         (Quantity::Restitution { .. } | Quantity::EnergyLost { .. }, _) if p.impact.is_none() => {
             "the first contact was not an impact (the bodies were not approaching when they touched)".into()
         }
-        (Quantity::Restitution { .. } | Quantity::ReboundHeight { .. }, _) if p.release.is_none() => {
+        (Quantity::Restitution { .. }, _) if p.release.is_none() && p.impulsive_end.is_none() => {
+            "the contact lasts to the end of the run and the bodies never stopped approaching: e needs the state after the impact's compression ends (a lasting contact's impulse and energy are ContactImpulse and EnergyLost)".into()
+        }
+        (Quantity::ReboundHeight { .. }, _) if p.release.is_none() => {
             "the contact lasts to the end of the run: this needs the state after the bodies part (a lasting contact's impulse and energy are ContactImpulse and EnergyLost)".into()
         }
         _ => return None,
@@ -88,22 +89,50 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
         Quantity::Restitution { .. } => {
             let p = p?;
             let imp = p.impact.as_ref()?;
-            let (pre, post) = (p.pre.as_ref()?, p.release.as_ref()?);
-            // The engine's states before and after, brought to the touching instant.
-            let at = |snap: &Snapshot, i: usize| {
-                let a = if imp.free[i] {
-                    snap.gravity
+            // After: the end of the impulsive phase (the bodies no longer approach), as the
+            // `restitution` check's bracket ends; else where the contact let go.
+            let (pre, post) = (
+                p.pre.as_ref()?,
+                p.impulsive_end.as_ref().or(p.release.as_ref())?,
+            );
+            // Both brought to the touching instant as the check brings them
+            // (`analysis::touching::impact_at_touch`): before at g while free, after at g only
+            // while free and no longer pushed by the partner.
+            // Resting on the partner after it: the contact pushed on in the next step (as the
+            // check's bracket judges it; unknown at the run's end, taken as resting).
+            let pushing = if p.impulsive_end.is_some() {
+                p.pushing_after_impulse.unwrap_or(true)
+            } else {
+                false
+            };
+            let motion = |snap: &Snapshot, i: usize| Motion::from(&snap.bodies[i]);
+            let (m_pre, m_post) = (
+                [motion(pre, imp.i1), motion(pre, imp.i2)],
+                [motion(post, imp.i1), motion(post, imp.i2)],
+            );
+            let before = |k: usize, i: usize| ReadAt {
+                motion: &m_pre[k],
+                time: pre.time,
+                acc: if imp.free[i] {
+                    pre.gravity
                 } else {
                     DVec2::ZERO
-                };
-                carried_forward(&snap.bodies[i], imp.t_c - snap.time, a)
+                },
             };
-            let rel = |snap: &Snapshot| {
-                let (b1, b2) = (at(snap, imp.i1), at(snap, imp.i2));
-                (body_point_velocity(&b2, imp.point) - body_point_velocity(&b1, imp.point))
-                    .dot(imp.normal)
+            let after = |k: usize, i: usize| ReadAt {
+                motion: &m_post[k],
+                time: post.time,
+                acc: carried_back_at(imp.free[i], pushing, post.gravity),
             };
-            let e = coefficient_of_restitution(rel(pre), rel(post));
+            let e = impact_at_touch(
+                imp.t_c,
+                [before(0, imp.i1), before(1, imp.i2)],
+                [after(0, imp.i1), after(1, imp.i2)],
+                imp.point,
+                imp.normal,
+                DVec2::ZERO,
+            )
+            .e;
             (e, Some(m.facts.restitution(imp.i1, imp.i2)))
         }
         Quantity::EnergyLost { body: b, other } => {
@@ -149,7 +178,10 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 .filter(|_| !jointed && p.not_impulsive().is_none())
                 .map(|imp| {
                     let into = if imp.i2 == i { imp.normal } else { -imp.normal };
-                    (imp.pre[i].mass * (imp.post[i].velocity - imp.pre[i].velocity), into)
+                    (
+                        imp.pre[i].mass * (imp.post[i].velocity - imp.pre[i].velocity),
+                        into,
+                    )
                 });
             if *component == ContactComponent::Normal {
                 // The sum of the normal impulses since the touch (the normal may turn while the

@@ -8,12 +8,14 @@ use super::{
 use crate::analysis::energy::kinetic_energy;
 use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::impact::{
-    central_impact_energy_loss, measure_impact, pair_contact_linked, pair_normal_impulse, Bracket,
-    ImpactDetector, PairContact,
+    central_impact_energy_loss, pair_contact_linked, pair_normal_impulse, Bracket, ImpactDetector,
+    PairContact,
 };
 use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
-use crate::analysis::touching::{flies_free, Approaching};
+use crate::analysis::touching::{
+    carried_back_at, flies_free, impact_at_touch, Approaching, ReadAt,
+};
 use crate::analysis::{cross, Motion};
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, Effect, Level};
@@ -281,16 +283,43 @@ impl Restitution {
         // from the bracket's end as the states before were carried forward from its start; a
         // body that rests on its partner after the touch is held there, not flying free (a
         // ball with e = 0 carried back with g would read e = g (t_end - t_touch) / v).
-        let ([a0, b0, a1, b1], point, normal) = match &o.touch {
-            Some(t) => {
-                let back = t.time - o.end_time;
-                let acc = if resting { [DVec2::ZERO; 2] } else { t.acc };
-                let after = [o.a1.carried(back, acc[0]), o.b1.carried(back, acc[1])];
-                ([t.a, t.b, after[0], after[1]], t.point, t.normal)
-            }
-            None => ([o.a0, o.b0, o.a1, o.b1], o.point, o.normal),
+        // (`analysis::touching::impact_at_touch`, the reading the `Restitution` question takes.)
+        let (point, normal) = match &o.touch {
+            Some(t) => (t.point, t.normal),
+            None => (o.point, o.normal),
         };
-        let m = measure_impact((&a0, &a1), (&b0, &b1), point, normal, o.impulse);
+        let (time, before, acc) = match &o.touch {
+            // t.acc is gravity for a body that flew free into the touch, else zero.
+            Some(t) => (
+                t.time,
+                [(&t.a, t.time), (&t.b, t.time)],
+                t.acc.map(|a| carried_back_at(a != DVec2::ZERO, resting, a)),
+            ),
+            None => (
+                o.end_time,
+                [(&o.a0, o.end_time), (&o.b0, o.end_time)],
+                [DVec2::ZERO; 2],
+            ),
+        };
+        fn read((motion, time): (&Motion, f64), acc: DVec2) -> ReadAt<'_> {
+            ReadAt { motion, time, acc }
+        }
+        let m = impact_at_touch(
+            time,
+            [read(before[0], DVec2::ZERO), read(before[1], DVec2::ZERO)],
+            [
+                read((&o.a1, o.end_time), acc[0]),
+                read((&o.b1, o.end_time), acc[1]),
+            ],
+            point,
+            normal,
+            o.impulse,
+        );
+        let [a0, b0] = [*before[0].0, *before[1].0];
+        let [a1, b1] = [
+            o.a1.carried(time - o.end_time, acc[0]),
+            o.b1.carried(time - o.end_time, acc[1]),
+        ];
         let (ba, bb) = (&o.body_a, &o.body_b);
         let e_set = self.e_body.max(self.partner_e);
         let k_g = |b: &MassOf| crate::analysis::mass::radius_of_gyration(b.inertia, b.mass);
