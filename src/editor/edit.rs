@@ -182,12 +182,27 @@ impl Edit {
                     ),
                 };
                 let name = fresh_name(level, stem);
-                let mut b = body(&name, BodyKind::Dynamic, Some(shape), *at);
+                // A disc placed into a fixed body (a click inside an incline's wedge) is set
+                // onto the surface under it; another shape is placed as asked, with a warning.
+                let (at, placed) = match &shape {
+                    Shape::Circle { radius } => match snap_disc(level, DVec2::from(*at), *radius) {
+                        Some((c, onto)) => ((c.x, c.y), format!(", set onto {onto}'s surface")),
+                        None => (*at, String::new()),
+                    },
+                    _ => match overlapped(level, DVec2::from(*at), inscribed(&shape)) {
+                        Some(o) => (
+                            *at,
+                            format!("; it overlaps {o}: drag it clear while paused at t = 0"),
+                        ),
+                        None => (*at, String::new()),
+                    },
+                };
+                let mut b = body(&name, BodyKind::Dynamic, Some(shape), at);
                 b.mass = Some(*mass);
                 level.bodies.push(b);
                 let added = declare(level, &[Effect::Gravity, Effect::Contacts]);
                 Ok(format!(
-                    "added {name} ({mass} kg) at ({:.3}, {:.3}) m{added}",
+                    "added {name} ({mass} kg) at ({:.3}, {:.3}) m{placed}{added}",
                     at.0, at.1
                 ))
             }
@@ -393,6 +408,179 @@ impl Edit {
                 Ok(format!("the run lasts {d} s"))
             }
         }
+    }
+}
+
+/// A fixed body's outline in world coordinates: a convex polygon counter-clockwise (boxes and
+/// polygons) or a segment (two points); None for shapes placement does not look at.
+fn fixed_outline(b: &BodyDef) -> Option<Vec<DVec2>> {
+    let local: Vec<DVec2> = match b.shape.as_ref()? {
+        Shape::Box { width, height } => {
+            let (w, h) = (width / 2.0, height / 2.0);
+            vec![
+                DVec2::new(-w, -h),
+                DVec2::new(w, -h),
+                DVec2::new(w, h),
+                DVec2::new(-w, h),
+            ]
+        }
+        Shape::Polygon { points } => hull(points.iter().map(|&p| DVec2::from(p)).collect()),
+        Shape::Segment { a, b } => vec![DVec2::from(*a), DVec2::from(*b)],
+        _ => return None,
+    };
+    let rot = DVec2::from_angle(b.angle);
+    let at = DVec2::from(b.position);
+    Some(local.into_iter().map(|p| at + rot.rotate(p)).collect())
+}
+
+/// The convex hull, counter-clockwise (Andrew's monotone chain).
+fn hull(mut p: Vec<DVec2>) -> Vec<DVec2> {
+    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    let mut h: Vec<DVec2> = Vec::new();
+    for pass in 0..2 {
+        let start = h.len();
+        let pts: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for &q in pts {
+            while h.len() >= start + 2 && cross(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
+                h.pop();
+            }
+            h.push(q);
+        }
+        h.pop();
+    }
+    h
+}
+
+/// The point of an outline nearest to `p`, and whether `p` is inside it (a polygon only).
+fn nearest(outline: &[DVec2], p: DVec2) -> (DVec2, bool) {
+    let n = outline.len();
+    let edges = if n == 2 { 1 } else { n };
+    let mut best = (outline[0], f64::INFINITY);
+    let mut inside = n >= 3;
+    for i in 0..edges {
+        let (a, b) = (outline[i], outline[(i + 1) % n]);
+        let ab = b - a;
+        let t = ((p - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
+        let q = a + ab * t;
+        let d = (p - q).length();
+        if d < best.1 {
+            best = (q, d);
+        }
+        if ab.perp_dot(p - a) < 0.0 {
+            inside = false;
+        }
+    }
+    (best.0, inside)
+}
+
+/// Where a disc of radius `r` centered at `c` goes when it overlaps a fixed body: moved the
+/// least distance to touch the surface nearest its center, outside, and that body's name.
+pub(crate) fn snap_disc(level: &Level, c: DVec2, r: f64) -> Option<(DVec2, String)> {
+    let mut best: Option<(DVec2, String, f64)> = None;
+    for b in level.bodies.iter().filter(|b| b.kind == BodyKind::Fixed) {
+        let Some(outline) = fixed_outline(b) else {
+            continue;
+        };
+        let (q, inside) = nearest(&outline, c);
+        let d = (c - q).length();
+        if !inside && d >= r {
+            continue;
+        }
+        if inside {
+            // Clicked inside (a disc in an incline's wedge): onto the upward face nearest above,
+            // never out through the bottom or a side.
+            if let Some(m) = onto_top(&outline, c, r) {
+                let shift = (m - c).length();
+                if best.as_ref().is_none_or(|(_, _, s)| shift > *s) {
+                    best = Some((m, b.name.clone(), shift));
+                }
+                continue;
+            }
+        }
+        let out = if inside {
+            (q - c).normalize_or_zero()
+        } else if d > 1e-12 {
+            (c - q) / d
+        } else {
+            // On a ground line or a wall exactly: to its upper (or left) side.
+            let ab = outline[outline.len() - 1] - outline[0];
+            let n = ab.perp().normalize_or_zero();
+            if n.y < 0.0 || (n.y == 0.0 && n.x > 0.0) {
+                -n
+            } else {
+                n
+            }
+        };
+        let moved = q + out * r;
+        let shift = (moved - c).length();
+        if best.as_ref().is_none_or(|(_, _, s)| shift > *s) {
+            best = Some((moved, b.name.clone(), shift));
+        }
+    }
+    best.map(|(c, name, _)| (c, name))
+}
+
+/// A disc of radius `r` centered at `c` inside a convex outline (counter-clockwise), set on the
+/// upward-facing edge (outward normal above 10 degrees from horizontal) nearest to it.
+fn onto_top(outline: &[DVec2], c: DVec2, r: f64) -> Option<DVec2> {
+    let n = outline.len();
+    (0..n)
+        .filter_map(|i| {
+            let (a, b) = (outline[i], outline[(i + 1) % n]);
+            let ab = b - a;
+            let normal = DVec2::new(ab.y, -ab.x).normalize_or_zero();
+            if normal.y <= 0.17 {
+                return None;
+            }
+            let t = ((c - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
+            Some(a + ab * t + normal * r)
+        })
+        .min_by(|x, y| (*x - c).length().total_cmp(&(*y - c).length()))
+}
+
+/// The first fixed body a new body centered at `c` overlaps, its inscribed radius `r` taken
+/// as its size (a box placed on a ground line by its center overlaps it).
+fn overlapped(level: &Level, c: DVec2, r: f64) -> Option<String> {
+    level
+        .bodies
+        .iter()
+        .filter(|b| b.kind == BodyKind::Fixed)
+        .find(|b| {
+            fixed_outline(b).is_some_and(|o| {
+                let (q, inside) = nearest(&o, c);
+                inside || (c - q).length() < r
+            })
+        })
+        .map(|b| b.name.clone())
+}
+
+/// The radius of the largest circle about the body origin inside a new shape, m.
+fn inscribed(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Circle { radius } => *radius,
+        Shape::Box { width, height } => width.min(*height) / 2.0,
+        Shape::Polygon { points } => {
+            let h = hull(points.iter().map(|&p| DVec2::from(p)).collect());
+            if h.len() < 3 {
+                return 0.0;
+            }
+            (0..h.len())
+                .map(|i| {
+                    let (a, b) = (h[i], h[(i + 1) % h.len()]);
+                    (b - a).perp_dot(-a).abs() / (b - a).length().max(1e-300)
+                })
+                .fold(f64::INFINITY, f64::min)
+        }
+        _ => 0.0,
     }
 }
 
