@@ -7,6 +7,7 @@
 //! - [`panels`] and [`tools`]: the egui panels and the mouse tools of the sandbox window;
 //! - [`render`](mod@render): the same scene drawn into a PNG without a window.
 
+pub mod advice;
 pub mod blows;
 pub mod draw;
 pub mod editor;
@@ -354,6 +355,7 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
         frame_rate::FrameRatePlugin,
         power::PowerPlugin,
         unsaved::UnsavedPlugin,
+        advice::AdvicePlugin,
     ));
     app.add_systems(Startup, panels::spawn_cameras);
 }

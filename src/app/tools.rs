@@ -110,9 +110,32 @@ pub struct ToolsPlugin;
 impl Plugin for ToolsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<ToolState>()
+            .add_systems(Update, forget_marks.before(mouse_tools))
             .add_systems(Update, mouse_tools.before(super::SceneDraw))
             .add_systems(FixedUpdate, apply_grab.before(PhysicsStep));
     }
+}
+
+impl ToolState {
+    /// Drops what was measured and drawn on the scene on screen (ruler and protractor marks,
+    /// a half-drawn spring or polygon): they were about a level no longer open.
+    pub fn forget_marks(&mut self) {
+        self.ruler = None;
+        self.protractor = None;
+        self.spring_from = None;
+        self.polygon.clear();
+        self.grab = None;
+        self.aim = None;
+        self.last_impulse = None;
+    }
+}
+
+/// A different level opened (`Physics::view_generation`): its marks go.
+fn forget_marks(phys: Res<Physics>, mut state: ResMut<ToolState>, mut seen: Local<Option<u64>>) {
+    if seen.is_some_and(|g| g != phys.view_generation) {
+        state.forget_marks();
+    }
+    *seen = Some(phys.view_generation);
 }
 
 /// The impulse a drag `d` (m) aims at a body of mass `m`: J = m d / AIM_TIME, N s.

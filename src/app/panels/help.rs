@@ -23,9 +23,9 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
                 ui.add_space(6.0);
                 ui.strong("Keys");
                 egui::Grid::new("help-keys").striped(true).show(ui, |ui| {
-                    for (k, what) in KEYS {
-                        ui.monospace(*k);
-                        ui.label(*what);
+                    for (k, what) in keys(cfg!(target_arch = "wasm32")) {
+                        ui.monospace(k);
+                        ui.label(what);
                         ui.end_row();
                     }
                 });
@@ -38,37 +38,81 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
                         ui.end_row();
                     }
                 });
-                ui.add_space(6.0);
-                ui.strong("Mouse");
-                ui.label(
-                    "Wheel zooms about the cursor; right or middle drag pans. Tool 1 selects a body and a point \
-                     on it (v_P, lines to the instantaneous center) and drags it on a spring; tool 2 strikes: \
-                     click-drag on a body, the arrow is the impulse; tool 3 sets O, the point angular momentum \
-                     H_O is taken about. The Measure panel reads the clicked point's position, v_P and a_P; \
-                     its protractor is a drag from the vertex along one arm, then a click at the other arm's \
-                     end; its ruler is a drag.",
-                );
-                ui.add_space(6.0);
-                ui.strong("Building a scene (the Build panel)");
-                ui.label(
-                    "New scene starts from a ground line. Place puts a box, disc, bar (1 kg each), ground, wall \
-                     or incline where you click; polygon takes a body's corners click by click (the first corner \
-                     again or Enter closes it); join makes a pin, slider or weld where two bodies overlap (on one \
-                     body alone, to a fixed point there); spring is a drag from a body to another body or the \
-                     ground; torsion puts a coil on the clicked body, to the body under it or the ground. Select a \
-                     body to edit its mass, size, position, angle, velocity, friction and restitution; paused at \
-                     t = 0, drag it to move it. Each edit is checked like a level file (a refused one says why and \
-                     changes nothing), declares the effects it needs, and restarts the run. Save writes a level \
-                     that `rigidlab check` runs, into saved-levels/, which the level browser lists.",
-                );
-                ui.add_space(6.0);
-                ui.strong("Headless");
-                ui.label(
-                    "Every level also runs without the window: `rigidlab check LEVEL --answer ID=VALUE` grades \
-                     the same answers, and `rigidlab check levels` runs the whole library.",
-                );
+                for (title, text) in sections(cfg!(target_arch = "wasm32")) {
+                    ui.add_space(6.0);
+                    ui.strong(title);
+                    ui.label(text);
+                }
             });
         });
+}
+
+/// The keys, the page's F12 without the folder.
+pub fn keys(web: bool) -> Vec<(&'static str, &'static str)> {
+    KEYS.iter()
+        .map(|&(k, what)| match (k, web) {
+            ("F12", true) => (k, "screenshot, downloaded as LEVEL-TIMEs.png"),
+            _ => (k, what),
+        })
+        .collect()
+}
+
+/// The help's sections after the keys and overlays: every tool and panel. `web`: the page's
+/// variant, which names no folder and no command line (a page has neither).
+pub fn sections(web: bool) -> Vec<(&'static str, String)> {
+    let save = if web {
+        "Save downloads the level file; open it again with the page's file picker."
+    } else {
+        "Save writes a level that `rigidlab check` runs, into saved-levels/, which the level browser lists; a file already there is never replaced."
+    };
+    let csv = if web {
+        "CSV downloads the plotted series as a file."
+    } else {
+        "CSV writes the plotted series into exports/ under a name of its own."
+    };
+    let mut out = vec![
+        ("Mouse", "Wheel zooms about the cursor; right or middle drag pans. Tool 1 selects a body and a point \
+          on it (v_P, lines to the instantaneous center) and drags it on a spring; tool 2 strikes: \
+          click-drag on a body, the arrow is the impulse; tool 3 sets O, the point angular momentum \
+          H_O is taken about.".to_string()),
+        ("Measure panel", "The stopwatch starts and stops on the simulated clock (it reads sim time, not your \
+          watch); the period timer reads the selected body's period from its omega's zero crossings; the clicked \
+          point's position, v_P and a_P are read as the run goes. The ruler is a drag; the protractor is a \
+          drag from the vertex along one arm, then a click at the other arm's end. Their marks are cleared \
+          when another level opens.".to_string()),
+        ("Plots", format!("The energies (kinetic, gravity, elastic, total) and H about O against time, and a \
+          quantity of the selected body (position, speed, angle, omega, ...) against time or against \
+          another of its quantities. {csv}")),
+        ("Solver panel", "dt, substeps and iterations of the window's run (not of the level file), the time a \
+          step takes, and the error as the accuracy study measures it: a finer step costs time and buys \
+          accuracy. Theory against engine, below it, shows each check and question with its error; a \
+          failed question shows the reading that failed (engine or analysis).".to_string()),
+        ("Building a scene (the Build panel)", format!("New scene starts from a ground line. Place puts a box, \
+          disc, bar (1 kg each), ground, wall or incline where you click (a disc clicked into a fixed body \
+          is set onto its surface; another shape overlapping one is placed with a warning); polygon takes a \
+          body's corners click by click (the first corner again or Enter closes it); join makes a pin, \
+          slider or weld where two bodies overlap (on one body alone, to a fixed point there); spring is a \
+          drag from a body to another body or the ground; torsion puts a coil on the clicked body, to the \
+          body under it or the ground. Select a body to edit its mass, size, position, angle, velocity, \
+          friction and restitution; paused at t = 0, drag it to move it. A body on a pin or slider has a \
+          motor switch and its target rate. Each edit is checked like a level file (a refused one says why \
+          and changes nothing), declares the effects it needs, and restarts the run. {save}")),
+        ("Questions (the Build panel's exercise part)", "Add, edit or remove a question: its id, wording, \
+          quantity (as in a level file, or picked for a body), when it is read, the expected answer or \
+          'compute it' (the analysis layer's value from a run, where the quantity has a formula), the \
+          tolerance and the unit. Preview runs the scene for the question and shows the engine's and the \
+          analysis's values before you save. The level's own step (dt, substeps) is what the questions are \
+          read at.".to_string()),
+    ];
+    if !web {
+        out.push((
+            "Headless",
+            "Every level also runs without the window: `rigidlab check LEVEL --answer ID=VALUE` \
+          grades the same answers, and `rigidlab check levels` runs the whole library."
+                .to_string(),
+        ));
+    }
+    out
 }
 
 const KEYS: &[(&str, &str)] = &[

@@ -8,7 +8,7 @@
 pub(crate) mod capture;
 pub mod checks;
 mod exercise;
-mod help;
+pub mod help;
 mod level_browser;
 pub mod measure;
 pub mod number_field;
@@ -20,7 +20,7 @@ mod scene_editor;
 pub mod shortcuts;
 mod solver;
 mod tool_controls;
-mod tour;
+pub mod tour;
 
 pub use capture::{capture, save};
 pub use exercise::{grade, grade_message, Grade};
@@ -200,7 +200,11 @@ fn panels(
         Option<ResMut<Prefs>>,
         Option<Res<PrefsFile>>,
     ),
-    (mut unsaved, mut commands): (Option<ResMut<Unsaved>>, Commands),
+    (mut unsaved, mut commands, advice): (
+        Option<ResMut<Unsaved>>,
+        Commands,
+        Option<Res<super::advice::WindowAdvice>>,
+    ),
 ) -> Result {
     let rate = rate.map(|r| r.clone()).unwrap_or_default();
     let ctx = contexts.ctx_mut()?.clone();
@@ -314,6 +318,9 @@ fn panels(
                 );
                 ui.separator();
                 checks(ui, &phys, &live);
+                if let Some(line) = advice.as_deref().and_then(|a| a.line()) {
+                    checks::advice_line(ui, &line);
+                }
             });
         });
 

@@ -15,6 +15,23 @@ pub struct Tour {
     pub open: bool,
     pub went_back: bool,
     pub saw_help: bool,
+    /// The steps ticked so far: a step stays ticked once done (opening another level resets
+    /// the run, the selection and the answers, not what the student has learnt).
+    pub ticked: Vec<bool>,
+}
+
+impl Tour {
+    /// The steps with what is done now added to what was done before.
+    pub fn tick(&mut self, live: Vec<(&'static str, bool)>) -> Vec<(&'static str, bool)> {
+        self.ticked.resize(live.len(), false);
+        live.into_iter()
+            .zip(self.ticked.iter_mut())
+            .map(|((what, now), was)| {
+                *was |= now;
+                (what, *was)
+            })
+            .collect()
+    }
 }
 
 /// The steps, and whether each is done.
@@ -72,7 +89,8 @@ pub(super) fn tour(
     if !tour.open {
         return false;
     }
-    let steps = steps(tour, phys, ov, st, editor);
+    let live = steps(tour, phys, ov, st, editor);
+    let steps = tour.tick(live);
     let done = steps.iter().filter(|(_, d)| *d).count();
     let mut finished = false;
     egui::Window::new(format!("First steps ({done} of {})", steps.len()))
