@@ -199,3 +199,33 @@ fn the_typed_answer_is_graded_by_the_levels_rule() {
     }
     println!("typed {typed:?}: {message}");
 }
+
+/// An unknown `?level=` opens no exercise: the page shows an empty scene with the reason and
+/// points at the library (web/test/browser.mjs step 7).
+#[test]
+fn an_unknown_level_is_an_error_not_another_exercise() {
+    let Some(dir) = records() else { return };
+    let u = read_json(&dir.join("unknown.json"));
+    let message = u["message"]["text"].as_str().unwrap_or_default();
+    assert!(
+        message.contains("no_such_level") && message.contains("library"),
+        "{u}"
+    );
+    assert_eq!(u["message"]["ok"], serde_json::json!(false), "{u}");
+    // The page's empty scene: no body, no question to answer.
+    assert_eq!(u["bodies"], serde_json::json!(0), "{u}");
+    assert_eq!(u["answers"], serde_json::json!([]), "{u}");
+}
+
+/// A paused page stops redrawing: under 2 CPU-s over 10 s, all of Chromium's processes
+/// together (it took 19 CPU-s drawing every frame, issue 33); the budget leaves room for the
+/// page's half-second wake-ups and the browser's own work.
+#[test]
+fn a_paused_page_leaves_the_cpu_alone() {
+    let Some(dir) = records() else { return };
+    let b = read_json(&dir.join("browser.json"));
+    let cpu = b["paused_10s"]["cpu_s"]
+        .as_f64()
+        .expect("paused_10s in browser.json");
+    assert!(cpu < 2.0, "a paused page took {cpu} CPU-s in 10 s: {b}");
+}

@@ -84,9 +84,11 @@ pub fn start() {
     let (scene, note) = match &query.level {
         Some(p) => match browser.find(p).map(|e| e.load()) {
             Some(Ok(s)) => (s, None),
-            Some(Err(e)) => (first_or_empty(&browser), Some(e.to_string())),
+            // A level asked for and not opened: an empty scene, the reason in the status line
+            // and the library beside it, never another exercise the student would take for it.
+            Some(Err(e)) => (super::empty_scene(), Some(e.to_string())),
             None => (
-                first_or_empty(&browser),
+                super::empty_scene(),
                 Some(format!(
                     "no level {} in the library: the URL's ?level= is a path under levels/, e.g. kinetics/simple_pendulum.ron",
                     p.display()
@@ -122,9 +124,23 @@ pub fn start() {
     }));
     super::add_sandbox(&mut app, scene, browser, !query.play);
     app.insert_resource(PageState { note });
-    app.add_systems(Update, open_picked_file);
+    app.add_systems(Update, (show_page_note, open_picked_file));
     app.add_systems(Last, publish_status);
     app.run();
+}
+
+/// Why the URL's level did not open, in the panels' status line until something replaces it.
+fn show_page_note(page: Res<PageState>, mut st: ResMut<UiState>, mut shown: Local<bool>) {
+    // After the first frame: the panels set their own state up in it.
+    if !*shown && st.generation.is_some() {
+        *shown = true;
+        if let Some(n) = &page.note {
+            st.message = Some((
+                format!("{n}; pick a level in the library on the left"),
+                false,
+            ));
+        }
+    }
 }
 
 fn first_or_empty(browser: &Browser) -> Scene {

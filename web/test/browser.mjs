@@ -7,11 +7,13 @@
 //   answered.png / answered.json   after typing an answer into the first question's box;
 //   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
-//   browser.json    timings: page open to first frame, frame rates while playing.
+//   unknown.png / unknown.json   the page opened with a ?level= the library does not have;
+//   browser.json    timings: page open to first frame, frame rates while playing, the CPU a
+//                   paused page takes over 10 s (paused_10s).
 // Usage: node web/test/browser.mjs [OUT]   (exit 1 with the reason when a step fails)
 import { chromium } from "playwright-core";
 import { spawn } from "node:child_process";
-import { mkdirSync, writeFileSync, existsSync } from "node:fs";
+import { mkdirSync, writeFileSync, existsSync, readdirSync, readFileSync } from "node:fs";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
 
@@ -211,6 +213,37 @@ try {
     "stress/pyramid_20.ron": await playFps("stress/pyramid_20.ron"),
   };
   await page.screenshot({ path: join(out, "pyramid.png") });
+
+  // 7. An unknown ?level=: an error and the library, not another exercise (unknown.json/.png).
+  await page.goto(`${base}?level=kinetics/no_such_level.ron`);
+  const unknown = await waitStatus("the unknown level's message", (s) => s.frames >= 2 && s.message, 60);
+  await page.screenshot({ path: join(out, "unknown.png") });
+  writeFileSync(join(out, "unknown.json"), JSON.stringify(unknown, null, 1));
+  summary.unknown = { title: unknown.title, bodies: unknown.bodies, message: unknown.message };
+
+  // 8. A paused page leaves the CPU alone: the CPU time of every Chromium process (/proc,
+  //    utime + stime) over 10 s with the simple pendulum open and paused, after 3 s to settle.
+  const cpuSeconds = () => {
+    const tick = 100; // USER_HZ on Linux
+    let total = 0;
+    for (const pid of readdirSync("/proc").filter((d) => /^\d+$/.test(d))) {
+      try {
+        const stat = readFileSync(`/proc/${pid}/stat`, "utf8");
+        const comm = stat.slice(stat.indexOf("(") + 1, stat.lastIndexOf(")"));
+        if (!/chrom/i.test(comm)) continue;
+        const f = stat.slice(stat.lastIndexOf(")") + 2).split(" ");
+        total += (Number(f[11]) + Number(f[12])) / tick;
+      } catch {}
+    }
+    return total;
+  };
+  await page.goto(`${base}?level=kinetics/simple_pendulum.ron`);
+  await waitStatus("the paused pendulum's first frame", (s) => s.frames >= 2 && s.paused, 60);
+  await sleep(3000);
+  const c0 = cpuSeconds();
+  const pausedFrames = (await status()).frames;
+  await sleep(10000);
+  summary.paused_10s = { cpu_s: cpuSeconds() - c0, frames: (await status()).frames - pausedFrames };
   writeFileSync(join(out, "console.log"), logs.join("\n"));
   writeFileSync(join(out, "browser.json"), JSON.stringify(summary, null, 1));
   console.log(`browser test: ${JSON.stringify(summary)}`);
