@@ -305,8 +305,14 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // without a `window` (which the docs did not offer until the user's report).
     ("n7_01_loop_min_height.ron", "question N_past_bottom"),
     ("n7_05_puck_leaves_vertical_ring.ron", "question N_side"),
-    ("n7_03_block_down_circular_ramp.ron", "question N_before_flat"),
-    ("n7_03_block_down_circular_ramp.ron", "question F_before_flat"),
+    (
+        "n7_03_block_down_circular_ramp.ron",
+        "question N_before_flat",
+    ),
+    (
+        "n7_03_block_down_circular_ramp.ron",
+        "question F_before_flat",
+    ),
     // Where the ramp's Arc meets the floor's Segment the block, riding 0.24 mm into the soft
     // ramp, strikes the floor's end point: one step of 758 N, 2.6% of its speed lost and a
     // 3.7 mm hop (1.5% at dt/2).

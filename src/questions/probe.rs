@@ -69,9 +69,7 @@ impl QuestionProbe {
         };
         let slip = match &def.at {
             When::SlipEnds { body, other, after } => Some(Slip::new(body, other, true, *after)),
-            When::SlipStarts { body, other, after } => {
-                Some(Slip::new(body, other, false, *after))
-            }
+            When::SlipStarts { body, other, after } => Some(Slip::new(body, other, false, *after)),
             _ => None,
         };
         let pair = match &def.at {

@@ -123,7 +123,10 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
             v.need(
                 Effect::Contacts,
                 at("at"),
-                &format!("question \"{}\" waits for a contact to slip or stop slipping", q.id),
+                &format!(
+                    "question \"{}\" waits for a contact to slip or stop slipping",
+                    q.id
+                ),
             )?;
             question_ref(v, q, "body", body, "at")?;
             question_ref(v, q, "body", other, "at")?;
