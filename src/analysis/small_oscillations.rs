@@ -465,10 +465,10 @@ impl<'a> Model<'a> {
         for (s, &k) in slots.iter().enumerate() {
             slot_of[k] = Some(s);
             let b = &m.members[k];
-            if !(b.mass > 0.0) || !b.mass.is_finite() {
+            if b.mass.is_nan() || b.mass <= 0.0 || !b.mass.is_finite() {
                 return Err(format!("body \"{}\" has no mass", b.name));
             }
-            if !b.lock_rotation && !(b.inertia > 0.0) {
+            if !b.lock_rotation && (b.inertia.is_nan() || b.inertia <= 0.0) {
                 return Err(format!("body \"{}\" has no moment of inertia", b.name));
             }
         }
