@@ -2,6 +2,7 @@
 //! level the engine fails and reports the cheapest that passes, or that none within the bound
 //! does. The advice is a run's verdict, so rerunning at the advised settings passes.
 
+use rayon::prelude::*;
 use rigidlab::level::{self, Scene};
 use rigidlab::report::Advice;
 use rigidlab::runner;
@@ -133,46 +134,55 @@ fn every_failing_newuser_level_gets_advice_that_holds() {
         .filter(|p| p.extension().is_some_and(|x| x == "ron"))
         .collect();
     files.sort();
-    let (mut failing, mut settings, mut none) = (0, 0, 0);
-    for f in &files {
-        let s = level::load(f).unwrap();
-        let w = &s.level.world;
-        let twins = [
-            Options::default(),
-            Options {
-                substeps: Some(2 * w.substeps),
-                ..Options::default()
-            },
-            Options {
-                substeps: Some(4 * w.substeps),
-                ..Options::default()
-            },
-            Options {
-                dt: Some(w.dt / 2.0),
-                ..Options::default()
-            },
-        ];
-        for twin in &twins {
-            let r = run(&s, twin);
-            if !engine_failed(&r) {
-                continue;
-            }
-            failing += 1;
-            let a = advise(&s, twin, r.wall_ms);
-            match advised(&a) {
-                Some(opts) => {
-                    settings += 1;
-                    let rerun = run(&s, &opts);
-                    assert!(
-                        !engine_failed(&rerun),
-                        "{}: advised {a:?} at {twin:?}, and it fails",
-                        f.display()
-                    );
+    // The levels in parallel (each level's twins and advice in turn): serially this took 15 min
+    // on 2 cores once the sixth and seventh users' levels came.
+    let counts: Vec<(usize, usize, usize)> = files
+        .par_iter()
+        .map(|f| {
+            let (mut failing, mut settings, mut none) = (0, 0, 0);
+            let s = level::load(f).unwrap();
+            let w = &s.level.world;
+            let twins = [
+                Options::default(),
+                Options {
+                    substeps: Some(2 * w.substeps),
+                    ..Options::default()
+                },
+                Options {
+                    substeps: Some(4 * w.substeps),
+                    ..Options::default()
+                },
+                Options {
+                    dt: Some(w.dt / 2.0),
+                    ..Options::default()
+                },
+            ];
+            for twin in &twins {
+                let r = run(&s, twin);
+                if !engine_failed(&r) {
+                    continue;
                 }
-                None => none += 1,
+                failing += 1;
+                let a = advise(&s, twin, r.wall_ms);
+                match advised(&a) {
+                    Some(opts) => {
+                        settings += 1;
+                        let rerun = run(&s, &opts);
+                        assert!(
+                            !engine_failed(&rerun),
+                            "{}: advised {a:?} at {twin:?}, and it fails",
+                            f.display()
+                        );
+                    }
+                    None => none += 1,
+                }
             }
-        }
-    }
+            (failing, settings, none)
+        })
+        .collect();
+    let (failing, settings, none) = counts
+        .iter()
+        .fold((0, 0, 0), |a, c| (a.0 + c.0, a.1 + c.1, a.2 + c.2));
     println!("{failing} failing runs: {settings} with settings that pass, {none} none within");
     assert!(failing > 0 && settings > 0);
 }

@@ -22,7 +22,7 @@ fn clip(text: &str, n: usize) -> String {
 /// beside an error within tolerance would read as a contradiction).
 pub fn shown_error(q: &QuestionResult) -> (&'static str, f64) {
     match q.analysis_rel_error {
-        Some(a) if q.rel_error <= q.tolerance && !(a <= q.tolerance) => ("analysis", a),
+        Some(a) if q.rel_error <= q.tolerance && (a > q.tolerance || a.is_nan()) => ("analysis", a),
         _ => ("engine", q.rel_error),
     }
 }
