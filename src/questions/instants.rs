@@ -288,16 +288,12 @@ impl Slip {
                 "the floor is not level: the slide-to-roll time is for a level floor".into(),
             );
         }
-        let held = s.joints.iter().any(|j| j.body1 == i || j.body2 == i)
-            || s.springs.iter().any(|x| x.body1 == i || x.body2 == Some(i))
-            || s.loads.iter().any(|l| l.body == i)
-            || s.couplings.iter().any(|c| c.terms.iter().any(|t| t.0 == i))
-            || s.contacts.iter().any(|c| {
-                (c.body1 == i || c.body2 == i) && c.body1 != o && c.body2 != o && c.pushes()
-            })
-            || info.damped;
-        if held {
-            return Err("something besides the floor acts on the body (a joint, spring, load, coupling, damping or another contact)".into());
+        let held =
+            super::rolling::also_acting(s, i, o).or_else(|| info.damped.then_some("damping"));
+        if let Some(what) = held {
+            return Err(format!(
+                "{what} also acts on the body: the slide-to-roll closed form assumes its weight and the floor alone"
+            ));
         }
         let k = info.textbook.radius_of_gyration();
         let mu = facts.friction(i, o);

@@ -59,8 +59,9 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
 pub(super) const CURVED: f64 = 1e-4;
 
 /// What besides its weight and the ground acts on body i in `s`: a joint, a spring, a load, a
-/// coupling, damping, or another body pushing on it.
-fn also_acting(s: &Snapshot, i: usize, ground: usize) -> Option<&'static str> {
+/// coupling, or another body pushing on it (damping is in the level's facts, not the
+/// snapshot). The rolling closed forms and the slide-to-roll closed form share this test.
+pub(super) fn also_acting(s: &Snapshot, i: usize, ground: usize) -> Option<&'static str> {
     if s.joints.iter().any(|j| j.body1 == i || j.body2 == i) {
         Some("a joint")
     } else if s.springs.iter().any(|x| x.body1 == i || x.body2 == Some(i)) {
