@@ -292,16 +292,19 @@ pub enum Placeable {
     Wall,
     /// A fixed 30 degree incline.
     Incline,
+    /// A fixed half-circle bowl (an arc track ridden on its inside), its bottom at the click.
+    Arc,
 }
 
 impl Placeable {
-    pub const ALL: [Placeable; 6] = [
+    pub const ALL: [Placeable; 7] = [
         Placeable::Box,
         Placeable::Disc,
         Placeable::Bar,
         Placeable::Ground,
         Placeable::Wall,
         Placeable::Incline,
+        Placeable::Arc,
     ];
 
     pub fn name(self) -> &'static str {
@@ -312,6 +315,7 @@ impl Placeable {
             Placeable::Ground => "ground",
             Placeable::Wall => "wall",
             Placeable::Incline => "incline",
+            Placeable::Arc => "arc",
         }
     }
 
@@ -357,6 +361,16 @@ impl Placeable {
                 angle: 30f64.to_radians(),
                 length: nice_length(size, 0.5),
             },
+            Placeable::Arc => {
+                let radius = nice_length(size, 0.25);
+                Edit::AddArc {
+                    center: (at.0, at.1 + radius),
+                    radius,
+                    start: std::f64::consts::PI,
+                    end: std::f64::consts::TAU,
+                    side: crate::level::ArcSide::Inside,
+                }
+            }
         }
     }
 }

@@ -2,8 +2,8 @@
 //! bodies it names, change the level, declare the effects it now relies on, say what it did).
 
 use crate::level::{
-    BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape, SpringDef,
-    TorsionSpringDef, V2,
+    ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape,
+    SpringDef, TorsionSpringDef, TrackSide, V2,
 };
 use glam::DVec2;
 
@@ -46,6 +46,20 @@ pub enum Property {
     /// Coefficient of restitution; `restitution` is declared when it is above zero.
     Restitution(f64),
     Kind(BodyKind),
+    /// An arc track's center in the body frame, m.
+    ArcCenter(V2),
+    /// An arc track's start angle, rad (it runs counter-clockwise to its end).
+    ArcStart(f64),
+    /// An arc track's end angle, rad.
+    ArcEnd(f64),
+    /// Which side of an arc track bodies ride on.
+    Side(ArcSide),
+    /// A polyline track's (or a polygon's) points in the body frame, m.
+    Points(Vec<V2>),
+    /// Whether a polyline track closes back to its first point.
+    Closed(bool),
+    /// Which side of a polyline track is solid (None: two-sided).
+    Solid(Option<TrackSide>),
 }
 
 /// One edit of a level.
@@ -58,6 +72,23 @@ pub enum Edit {
     /// A fixed incline: a right-triangle wedge whose slope rises at `angle` (rad) over a base
     /// `length` m long, its lower corner at `at`.
     AddIncline { at: V2, angle: f64, length: f64 },
+    /// A fixed circular arc track (`Shape::Arc`): its body at `center` (world, m), `radius` m,
+    /// counter-clockwise from `start` to `end` (rad), ridden on its `side`.
+    AddArc {
+        center: V2,
+        radius: f64,
+        start: f64,
+        end: f64,
+        side: ArcSide,
+    },
+    /// A fixed polyline track (`Shape::Polyline`) through `points` (world, m: its body at the
+    /// origin), open or `closed`, one-sided with `solid` on that side of its direction from the
+    /// first point, else two-sided.
+    AddTrack {
+        points: Vec<V2>,
+        closed: bool,
+        solid: Option<TrackSide>,
+    },
     /// A dynamic body centered at `at`, of `mass` kg.
     AddBody { shape: NewShape, at: V2, mass: f64 },
     /// A joint at the world point `at` between `body1` (None: the ground, a fixed anchor body
@@ -155,6 +186,60 @@ impl Edit {
                 Ok(format!(
                     "added {name}, an incline at {:.1} degrees, {length} m long",
                     angle.to_degrees()
+                ))
+            }
+            Edit::AddArc {
+                center,
+                radius,
+                start,
+                end,
+                side,
+            } => {
+                let name = fresh_name(level, "arc");
+                let shape = Shape::Arc {
+                    center: (0.0, 0.0),
+                    radius: *radius,
+                    start: *start,
+                    end: *end,
+                    side: *side,
+                    chord_error: None,
+                };
+                level
+                    .bodies
+                    .push(body(&name, BodyKind::Fixed, Some(shape), *center));
+                declare(level, &[Effect::Contacts]);
+                Ok(format!(
+                    "added {name}, an arc track of radius {radius} m about ({}, {}) m from {:.1} to {:.1} degrees, ridden on its {}",
+                    center.0,
+                    center.1,
+                    start.to_degrees(),
+                    end.to_degrees(),
+                    side_name(*side)
+                ))
+            }
+            Edit::AddTrack {
+                points,
+                closed,
+                solid,
+            } => {
+                let name = fresh_name(level, "track");
+                let shape = Shape::Polyline {
+                    points: points.clone(),
+                    closed: *closed,
+                    solid: *solid,
+                };
+                level
+                    .bodies
+                    .push(body(&name, BodyKind::Fixed, Some(shape), (0.0, 0.0)));
+                declare(level, &[Effect::Contacts]);
+                Ok(format!(
+                    "added {name}, a{} polyline track of {} points{}",
+                    if *closed { " closed" } else { "n open" },
+                    points.len(),
+                    match solid {
+                        None => ", two-sided".to_string(),
+                        Some(s) => format!(", solid on its {}", solid_name(*s)),
+                    }
                 ))
             }
             Edit::AddBody { shape, at, mass } => {
@@ -698,8 +783,38 @@ fn set(level: &mut Level, name: &str, property: &Property) -> Result<String, Str
                 _ => return Err(format!("{name} is not a box or a bar: it has no height")),
             },
             Property::Radius(r) => match &mut b.shape {
-                Some(Shape::Circle { radius }) => *radius = *r,
-                _ => return Err(format!("{name} is not a disc: it has no radius")),
+                Some(Shape::Circle { radius }) | Some(Shape::Arc { radius, .. }) => *radius = *r,
+                _ => return Err(format!("{name} is not a disc or an arc: it has no radius")),
+            },
+            Property::ArcCenter(c) => match &mut b.shape {
+                Some(Shape::Arc { center, .. }) => *center = *c,
+                _ => return Err(not_a(name, "an arc", "center")),
+            },
+            Property::ArcStart(a) => match &mut b.shape {
+                Some(Shape::Arc { start, .. }) => *start = *a,
+                _ => return Err(not_a(name, "an arc", "start angle")),
+            },
+            Property::ArcEnd(a) => match &mut b.shape {
+                Some(Shape::Arc { end, .. }) => *end = *a,
+                _ => return Err(not_a(name, "an arc", "end angle")),
+            },
+            Property::Side(s) => match &mut b.shape {
+                Some(Shape::Arc { side, .. }) => *side = *s,
+                _ => return Err(not_a(name, "an arc", "side")),
+            },
+            Property::Points(p) => match &mut b.shape {
+                Some(Shape::Polyline { points, .. }) | Some(Shape::Polygon { points }) => {
+                    *points = p.clone()
+                }
+                _ => return Err(not_a(name, "a polyline track or a polygon", "points")),
+            },
+            Property::Closed(c) => match &mut b.shape {
+                Some(Shape::Polyline { closed, .. }) => *closed = *c,
+                _ => return Err(not_a(name, "a polyline track", "closed flag")),
+            },
+            Property::Solid(s) => match &mut b.shape {
+                Some(Shape::Polyline { solid, .. }) => *solid = *s,
+                _ => return Err(not_a(name, "a polyline track", "solid side")),
             },
             Property::Position(p) => b.position = *p,
             Property::Angle(a) => b.angle = *a,
@@ -747,7 +862,72 @@ fn describe(p: &Property) -> String {
         Property::Friction(mu) => format!("friction {mu}"),
         Property::Restitution(e) => format!("restitution {e}"),
         Property::Kind(k) => format!("kind {k:?}").to_lowercase(),
+        Property::ArcCenter(c) => format!("arc center ({}, {}) m", c.0, c.1),
+        Property::ArcStart(a) => format!("arc start {:.2} degrees", a.to_degrees()),
+        Property::ArcEnd(a) => format!("arc end {:.2} degrees", a.to_degrees()),
+        Property::Side(s) => format!("ridden on its {}", side_name(*s)),
+        Property::Points(p) => format!("{} points", p.len()),
+        Property::Closed(c) => if *c { "closed" } else { "open" }.to_string(),
+        Property::Solid(None) => "two-sided".to_string(),
+        Property::Solid(Some(s)) => format!("solid on its {}", solid_name(*s)),
     }
+}
+
+fn not_a(name: &str, what: &str, field: &str) -> String {
+    format!("{name} is not {what}: it has no {field}")
+}
+
+/// How the panel and the notes name an arc's side.
+pub fn side_name(s: ArcSide) -> &'static str {
+    match s {
+        ArcSide::Inside => "inside",
+        ArcSide::Outside => "outside",
+    }
+}
+
+/// How the panel and the notes name a polyline's solid side.
+pub fn solid_name(s: TrackSide) -> &'static str {
+    match s {
+        TrackSide::Left => "left",
+        TrackSide::Right => "right",
+    }
+}
+
+/// A track's points typed as text: numbers in x, y order, separated by commas, semicolons,
+/// spaces, new lines or parentheses (`-3, 0; 0, 0`, one pair a line, or `(-3, 0), (0, 0)`).
+/// An odd count or a word that is not a finite number is refused, saying which.
+pub fn parse_points(text: &str) -> Result<Vec<V2>, String> {
+    let mut numbers = Vec::new();
+    for word in text
+        .split(|c: char| c == ',' || c == ';' || c == '(' || c == ')' || c.is_whitespace())
+        .filter(|w| !w.is_empty())
+    {
+        match word.parse::<f64>() {
+            Ok(x) if x.is_finite() => numbers.push(x),
+            _ => {
+                return Err(format!(
+                    "`{word}` is not a number (point {}): write each point as x, y in m",
+                    numbers.len() / 2
+                ))
+            }
+        }
+    }
+    if numbers.len() % 2 == 1 {
+        return Err(format!(
+            "{} numbers: each point needs an x and a y (the last point has no y)",
+            numbers.len()
+        ));
+    }
+    Ok(numbers.chunks(2).map(|p| (p[0], p[1])).collect())
+}
+
+/// Points as [`parse_points`] reads them back, one `x, y` pair a line.
+pub fn points_text(points: &[V2]) -> String {
+    points
+        .iter()
+        .map(|p| format!("{}, {}", p.0, p.1))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Removes a body with its joints, springs, couplings, loads and events, and the checks and

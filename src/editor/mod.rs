@@ -9,7 +9,7 @@
 mod edit;
 mod history;
 
-pub use edit::{Edit, NewShape, Property};
+pub use edit::{parse_points, points_text, side_name, solid_name, Edit, NewShape, Property};
 pub use history::History;
 
 use crate::level::{self, Level, Scene};

@@ -20,6 +20,7 @@ mod scene_editor;
 pub mod shortcuts;
 mod solver;
 mod tool_controls;
+mod track_editor;
 pub mod tour;
 
 pub use capture::{capture, save};

@@ -82,6 +82,13 @@ pub(super) fn scene_editor(
         _ => "select a body to edit it; while paused at t = 0, drag it to move it",
     };
     ui.label(rich(hint, palette::OUTLINE).small());
+    let r = egui::CollapsingHeader::new("curved track: arc, polyline")
+        .id_salt("curved track")
+        .show(ui, |ui| {
+            super::track_editor::add_tracks(ui, &mut st.buttons, out)
+        });
+    st.buttons
+        .insert("curved track".into(), r.header_response.rect);
     if let Some((note, ok)) = &editor.note {
         // A refusal can run to several lines (the validator says how to fix the level): its
         // first clause here, the whole of it on hover.
@@ -208,6 +215,9 @@ fn inspector(ui: &mut egui::Ui, b: &BodyDef, out: &mut Vec<EditorCommand>) {
                     set(Property::Radius(r));
                 }
                 ui.end_row();
+            }
+            Some(Shape::Arc { .. } | Shape::Polyline { .. }) => {
+                super::track_editor::inspector_rows(ui, b, &mut set);
             }
             _ => {}
         }
