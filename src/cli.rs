@@ -38,7 +38,8 @@ pub enum Command {
         #[arg(long = "answer", value_parser = parse_answer)]
         answers: Vec<(String, String)>,
         /// Do not search finer settings for a failing level (by default the cheapest settings
-        /// that pass, up to 32x the level's cost, are reported under it as its advice).
+        /// that pass, up to 32x the level's cost and 2 s of search, are reported under it as
+        /// its advice).
         #[arg(long)]
         no_advice: bool,
         #[command(flatten)]

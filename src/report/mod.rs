@@ -56,8 +56,14 @@ pub enum Advice {
         wall_ratio: Option<f64>,
     },
     /// No candidate up to `none_within` times the level's own cost passes; `why` says what
-    /// that means.
-    NoneWithin { none_within: f64, why: String },
+    /// that means. `within_seconds` is set when the search's wall time (`SEARCH_SECONDS`)
+    /// ran out before its cost bound: the costlier candidates were not tried.
+    NoneWithin {
+        none_within: f64,
+        why: String,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        within_seconds: Option<f64>,
+    },
 }
 
 /// Solver settings the advice names (the level's solver iterations and effects unchanged).

@@ -5,15 +5,21 @@
 //! substeps multiplied by the same, and the engine in f64 where the level ran in f32. Each
 //! candidate's cost is estimated against the level's own run (steps x substeps, f64 at
 //! [`F64_COST`] times f32) and candidates are tried cheapest first, up to [`MAX_COST_RATIO`] times
-//! the level's own cost and [`SEARCH_BUDGET`] times it over the whole search, and within the
-//! time budget of one run (`runner::budget`) over the whole search. The first that
+//! the level's own cost and [`SEARCH_BUDGET`] times it over the whole search, and within
+//! [`SEARCH_SECONDS`] of wall time over the whole search: a candidate is not started when the
+//! time spent plus its predicted time (the failing run's measured wall time times its cost
+//! ratio, or `runner::budget`'s estimate when the failing run was not timed) would pass it. So
+//! a level of a second or more (a loop at 1/4800 s) is searched only as far as a second allows,
+//! and the advice says that the time ran out, not that no setting passes. The first that
 //! passes is the advice; it is a real run's verdict, so rerunning the level with the advised
-//! settings passes (tests/study_advice.rs). When none passes, the failure does not go away with
-//! accuracy within the bound: an engine limit (docs/known-gaps.md) or a wrong expected answer.
+//! settings passes (tests/study_advice.rs). When none within 32x passes, the failure does not
+//! go away with accuracy within the bound: an engine limit (docs/known-gaps.md) or a wrong
+//! expected answer.
 
+use crate::clock::Instant;
 use crate::level::{Precision, Scene};
 use crate::report::{Advice, AdvisedSettings, LevelReport};
-use crate::runner::{self, Estimate, Mode, TIME_BUDGET_S};
+use crate::runner::{self, Estimate, Mode};
 use crate::sim::{Options, Settings};
 use std::collections::HashMap;
 
@@ -24,6 +30,14 @@ pub const MAX_COST_RATIO: f64 = 32.0;
 /// on a level that no candidate makes pass. Every candidate up to [`MAX_COST_RATIO`] together
 /// costs 424x (256x in f32, 168x in f64), so a level none passes is searched through.
 pub const SEARCH_BUDGET: f64 = 512.0;
+
+/// The whole search's wall time, s: no candidate is started that would end past it (predicted
+/// from the failing run's wall time times the candidate's cost ratio). Measured 2026-11-26 on
+/// 2 cores: `rigidlab check tests/newuser/*.ron` (113 levels, 29 failing) took 4 min 59 s with
+/// the search bounded only by cost ratios and the 600 s run budget (n7_01's loop at 1/4800 s,
+/// 2.2 s a run, and n7_05's puck in a ring, 1.9 s, searched for minutes each); see
+/// docs/teacher.md for the time with this bound.
+pub const SEARCH_SECONDS: f64 = 2.0;
 
 /// The wall time of an f64 run against the same run in f32 (rapier2d-f64 against rapier2d:
 /// 1.2x to 1.3x over the library, docs/accuracy.md).
@@ -78,33 +92,40 @@ pub fn engine_failed(r: &LevelReport) -> bool {
 }
 
 /// The advice for a level whose run failed at the options `opts` (the command line's
-/// overrides of the level's settings) in `failed_wall_ms` (0 when it stopped early).
+/// overrides of the level's settings) in `failed_wall_ms` (0 when it stopped early or was not
+/// timed: candidates' times are then `runner::budget`'s estimates).
 pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
+    let started = Instant::now();
     let precision = opts.precision.unwrap_or(scene.level.world.precision);
     let own = Settings::resolve(&scene.level, opts, precision);
     let mut spent = 0.0;
-    let mut spent_s = 0.0;
     let mut searched_to = 0.0;
+    // The first candidate the time bound left untried, with its predicted seconds.
+    let mut cut: Option<(Candidate, f64)> = None;
     let none = HashMap::new();
     for c in candidates(own.precision) {
         if spent + c.cost_ratio > SEARCH_BUDGET {
             break;
         }
-        let options = Options {
-            dt: Some(own.dt / f64::from(c.dt_div)),
-            substeps: Some(own.substeps * c.sub_mul as usize),
-            solver_iterations: Some(own.solver_iterations),
-            precision: Some(c.precision),
-            ..opts.clone()
-        };
-        // A candidate past the run budget is not tried, and the whole search stays within the
-        // time budget of one run (runner::budget): the candidates come cheapest first.
+        let options = candidate_options(&own, opts, &c);
+        // A candidate past the run budget is not tried (runner::budget).
         let estimate = Estimate::of(&scene.level, &options, Mode::Check, None);
-        if !estimate.fits() || spent_s + estimate.seconds > TIME_BUDGET_S {
+        if !estimate.fits() {
+            cut = Some((c, estimate.seconds));
+            break;
+        }
+        // Nor one that would end past the search's wall time: the candidates come cheapest
+        // first, so none after it would fit either.
+        let predicted = if failed_wall_ms > 0.0 {
+            failed_wall_ms / 1000.0 * c.cost_ratio
+        } else {
+            estimate.seconds
+        };
+        if started.elapsed().as_secs_f64() + predicted > SEARCH_SECONDS {
+            cut = Some((c, predicted));
             break;
         }
         spent += c.cost_ratio;
-        spent_s += estimate.seconds;
         let Ok(r) = runner::run_graded(scene, &options, &none, |_| {}) else {
             searched_to = c.cost_ratio;
             continue;
@@ -122,18 +143,54 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
         }
         searched_to = c.cost_ratio;
     }
-    Advice::NoneWithin {
-        none_within: searched_to,
-        why: format!(
-            "no finer step, more substeps{} up to {searched_to}x the level's cost passes: \
-             the failure does not shrink with accuracy, an engine limit (docs/known-gaps.md) \
-             or an expected answer to recheck",
-            if own.precision == Precision::F32 {
-                " or f64"
-            } else {
-                ""
-            }
-        ),
+    let f64_too = if own.precision == Precision::F32 {
+        " or f64"
+    } else {
+        ""
+    };
+    match cut {
+        // The time ran out before the cost bound: say so, and what to try by hand.
+        Some((c, seconds)) => Advice::NoneWithin {
+            none_within: searched_to,
+            why: format!(
+                "none passes within the search's {SEARCH_SECONDS} s ({}): the next, \
+                 --dt {} --substeps {} --precision {} ({}x the level's cost), would take about \
+                 {seconds:.1} s; run it yourself, the search stopped on time, not on a limit",
+                if searched_to > 0.0 {
+                    format!("tried up to {searched_to}x the level's cost")
+                } else {
+                    "no finer setting fits in it".to_string()
+                },
+                own.dt / f64::from(c.dt_div),
+                own.substeps * c.sub_mul as usize,
+                match c.precision {
+                    Precision::F32 => "f32",
+                    Precision::F64 => "f64",
+                },
+                c.cost_ratio,
+            ),
+            within_seconds: Some(SEARCH_SECONDS),
+        },
+        None => Advice::NoneWithin {
+            none_within: searched_to,
+            why: format!(
+                "no finer step, more substeps{f64_too} up to {searched_to}x the level's cost \
+                 passes: the failure does not shrink with accuracy, an engine limit \
+                 (docs/known-gaps.md) or an expected answer to recheck"
+            ),
+            within_seconds: None,
+        },
+    }
+}
+
+/// A candidate's settings as run options over the level's own (solver iterations kept).
+fn candidate_options(own: &Settings, opts: &Options, c: &Candidate) -> Options {
+    Options {
+        dt: Some(own.dt / f64::from(c.dt_div)),
+        substeps: Some(own.substeps * c.sub_mul as usize),
+        solver_iterations: Some(own.solver_iterations),
+        precision: Some(c.precision),
+        ..opts.clone()
     }
 }
 
