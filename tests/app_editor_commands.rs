@@ -3,46 +3,15 @@
 //! and `rigidlab check` run on the saved level; the run restarts from each edit.
 #![cfg(feature = "app")]
 
-use bevy::app::ScheduleRunnerPlugin;
+mod common;
+
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
-use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin, Placeable};
-use rigidlab::app::{Physics, PhysicsPlugin};
+use common::app::{editor_app as app, phys, send};
+use rigidlab::app::editor::{EditorCommand, Placeable};
+use rigidlab::app::Physics;
 use rigidlab::editor::{self, Edit, Property};
 use rigidlab::level::JointKind;
-use rigidlab::sim::Options;
-use std::path::PathBuf;
 use std::process::Command;
-use std::time::Duration;
-
-fn app() -> App {
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(PhysicsPlugin {
-            scene: editor::empty_scene(PathBuf::from("my-scene.ron")),
-            options: Options::default(),
-            paused: true,
-        })
-        .add_plugins(EditorPlugin);
-    app.update();
-    app
-}
-
-/// Sends one command and runs a frame; returns the editor's note and whether it worked.
-fn send(app: &mut App, c: EditorCommand) -> (String, bool) {
-    app.world_mut().write_message(c);
-    app.update();
-    app.world()
-        .resource::<Editor>()
-        .note
-        .clone()
-        .expect("the editor answers every command")
-}
-
-fn phys(app: &App) -> &Physics {
-    app.world().resource::<Physics>()
-}
 
 #[test]
 fn build_edit_undo_redo_save_and_check_a_pendulum() {

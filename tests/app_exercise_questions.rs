@@ -5,50 +5,20 @@
 //! `rigidlab check` passes the saved level.
 #![cfg(feature = "app")]
 
-use bevy::app::ScheduleRunnerPlugin;
+mod common;
+
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
-use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
+use common::app::{editor_app as app, level, send};
+use rigidlab::app::editor::{Editor, EditorCommand};
 use rigidlab::app::panels::questions_editor::QuestionForm;
-use rigidlab::app::{Physics, PhysicsPlugin};
-use rigidlab::editor::{self, Edit, NewShape, Property};
+use rigidlab::editor::{Edit, NewShape, Property};
 use rigidlab::sim::Options;
-use std::path::PathBuf;
 use std::process::Command;
-use std::time::Duration;
-
-fn app() -> App {
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(PhysicsPlugin {
-            scene: editor::empty_scene(PathBuf::from("my-scene.ron")),
-            options: Options::default(),
-            paused: true,
-        })
-        .add_plugins(EditorPlugin);
-    app.update();
-    app
-}
-
-fn send(app: &mut App, c: EditorCommand) -> (String, bool) {
-    app.world_mut().write_message(c);
-    app.update();
-    app.world()
-        .resource::<Editor>()
-        .note
-        .clone()
-        .expect("the editor answers every command")
-}
 
 /// The form's "add question" (or "rewrite") button.
 fn ask(app: &mut App, f: &QuestionForm) -> (String, bool) {
     let c = f.command(level(app)).unwrap();
     send(app, c)
-}
-
-fn level(app: &App) -> &rigidlab::level::Level {
-    &app.world().resource::<Physics>().scene.level
 }
 
 /// The form as the teacher fills it in the build panel.

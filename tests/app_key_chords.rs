@@ -4,55 +4,21 @@
 //! not as the letter a. Headless: MinimalPlugins, Bevy's input plugin, the editor.
 #![cfg(feature = "app")]
 
-use bevy::app::ScheduleRunnerPlugin;
-use bevy::input::keyboard::{Key, KeyboardInput};
-use bevy::input::{ButtonState, InputPlugin};
+mod common;
+
+use bevy::input::keyboard::Key;
+use bevy::input::InputPlugin;
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
 use bevy_egui::egui;
-use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
+use common::app::{ctrl, editor_app_unstarted, key, letter, quick_chord};
+use rigidlab::app::editor::{Editor, EditorCommand};
 use rigidlab::app::overlays::Overlays;
 use rigidlab::app::panels::shortcuts::{self, chords, egui_events, Chord, Held};
 use rigidlab::app::panels::UiState;
 use rigidlab::app::tools::ToolState;
 use rigidlab::app::view::View;
-use rigidlab::app::{Physics, PhysicsPlugin};
-use rigidlab::editor::{self, Edit, Property};
-use std::path::PathBuf;
-use std::time::Duration;
-
-fn msg(code: KeyCode, key: Key, down: bool) -> KeyboardInput {
-    KeyboardInput {
-        key_code: code,
-        logical_key: key,
-        state: if down {
-            ButtonState::Pressed
-        } else {
-            ButtonState::Released
-        },
-        text: None,
-        repeat: false,
-        window: Entity::PLACEHOLDER,
-    }
-}
-
-fn ctrl(down: bool) -> KeyboardInput {
-    msg(KeyCode::ControlLeft, Key::Control, down)
-}
-
-fn letter(code: KeyCode, c: &str, down: bool) -> KeyboardInput {
-    msg(code, Key::Character(c.into()), down)
-}
-
-/// Ctrl down, the key down and up, Ctrl up: all of it within one frame.
-fn quick_chord(code: KeyCode, c: &str) -> Vec<KeyboardInput> {
-    vec![
-        ctrl(true),
-        letter(code, c, true),
-        letter(code, c, false),
-        ctrl(false),
-    ]
-}
+use rigidlab::app::Physics;
+use rigidlab::editor::{Edit, Property};
 
 #[test]
 fn chords_are_read_in_order() {
@@ -75,7 +41,7 @@ fn chords_are_read_in_order() {
     ];
     assert!(chords(&mut held, &late).is_empty());
     // Ctrl+Shift+Z is redo; Ctrl held over two frames still makes the chord.
-    let shift = |d| msg(KeyCode::ShiftLeft, Key::Shift, d);
+    let shift = |d| key(KeyCode::ShiftLeft, Key::Shift, d);
     assert!(chords(&mut held, &[ctrl(true), shift(true)]).is_empty());
     assert_eq!(
         chords(&mut held, &[letter(KeyCode::KeyZ, "Z", true)]),
@@ -108,16 +74,8 @@ fn ctrl_a_selects_all_and_types_nothing() {
 
 #[test]
 fn undo_and_redo_pressed_within_one_frame_work_in_the_app() {
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
-        .add_plugins(InputPlugin)
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(PhysicsPlugin {
-            scene: editor::empty_scene(PathBuf::from("my-scene.ron")),
-            options: Default::default(),
-            paused: true,
-        })
-        .add_plugins(EditorPlugin)
+    let mut app = editor_app_unstarted();
+    app.add_plugins(InputPlugin)
         .init_resource::<View>()
         .init_resource::<UiState>()
         .init_resource::<ToolState>()

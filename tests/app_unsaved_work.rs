@@ -5,27 +5,26 @@
 //! bare window entity for the close request.
 #![cfg(feature = "app")]
 
-use bevy::app::ScheduleRunnerPlugin;
+mod common;
+
+use bevy::input::InputPlugin;
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
 use bevy::window::WindowCloseRequested;
-use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
+use common::app::{editor_app_unstarted, quick_chord};
+use rigidlab::app::editor::{Editor, EditorCommand};
+use rigidlab::app::overlays::Overlays;
+use rigidlab::app::panels::shortcuts;
+use rigidlab::app::panels::UiState;
+use rigidlab::app::tools::ToolState;
 use rigidlab::app::unsaved::{Answer, Leaving, Unsaved, UnsavedPlugin};
-use rigidlab::app::{Physics, PhysicsPlugin};
-use rigidlab::editor::{self, Edit, Property};
-use std::path::PathBuf;
-use std::time::Duration;
+use rigidlab::app::view::View;
+use rigidlab::app::Physics;
+use rigidlab::editor::{Edit, Property};
+use std::path::{Path, PathBuf};
 
 fn app() -> App {
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(PhysicsPlugin {
-            scene: editor::empty_scene(PathBuf::from("my-scene.ron")),
-            options: Default::default(),
-            paused: true,
-        })
-        .add_plugins((EditorPlugin, UnsavedPlugin));
+    let mut app = editor_app_unstarted();
+    app.add_plugins(UnsavedPlugin);
     app.update();
     app
 }
@@ -129,10 +128,7 @@ fn closing_the_window_asks_only_when_there_is_something_to_lose() {
 
 #[test]
 fn opening_another_level_or_a_new_scene_asks_when_there_is_something_to_lose() {
-    let other = rigidlab::level::load(std::path::Path::new(
-        "levels/kinetics/physical_pendulum.ron",
-    ))
-    .unwrap();
+    let other = common::load("levels/kinetics/physical_pendulum.ron");
     let mut u = Unsaved::default();
     // Nothing to lose: go on at once.
     assert_eq!(u.request(false, Leaving::New), Some(Leaving::New));
@@ -147,4 +143,160 @@ fn opening_another_level_or_a_new_scene_asks_when_there_is_something_to_lose() {
     assert_eq!(u.request(true, Leaving::New), None);
     assert_eq!(u.answer(Answer::Cancel), None);
     assert_eq!(u.answer(Answer::Discard), None, "answered twice");
+}
+
+/// A fresh folder for this test's saves (a save never replaces a file).
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rigidlab-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The panel's part: the answer clicked, settled as `src/app/panels/mod.rs` does (the save
+/// first, then the action), and the window closed where the action is to close it.
+fn click(app: &mut App, answer: Answer, save_as: &Path) -> Result<Option<Leaving>, String> {
+    let world = app.world_mut();
+    let settled = world.resource_scope(|world, mut u: Mut<Unsaved>| {
+        world.resource_scope(|world, mut editor: Mut<Editor>| {
+            u.settle(answer, &mut editor, world.resource::<Physics>(), save_as)
+        })
+    });
+    if let Ok((Some(Leaving::Close(w)), _)) = &settled {
+        world.entity_mut(*w).despawn();
+    }
+    app.update();
+    settled.map(|(go, _)| go)
+}
+
+#[test]
+fn closing_with_unsaved_edits_waits_for_the_answer_and_each_answer_does_what_it_says() {
+    let dir = scratch("unsaved-close");
+    let mut app = app();
+    let w = app.world_mut().spawn_empty().id();
+    lower_ground(&mut app);
+    close(&mut app, w);
+    // It waits: a hundred frames later the window is there and the question still open.
+    for _ in 0..100 {
+        app.update();
+    }
+    assert!(
+        app.world().get_entity(w).is_ok(),
+        "closed without an answer"
+    );
+    assert_eq!(
+        app.world().resource::<Unsaved>().asking,
+        Some(Leaving::Close(w))
+    );
+
+    // Cancel: the window stays, the edits stay unsaved, nothing written.
+    assert_eq!(
+        click(&mut app, Answer::Cancel, &dir.join("a.ron")),
+        Ok(None)
+    );
+    assert!(app.world().get_entity(w).is_ok());
+    assert!(unsaved(&app), "cancel lost the edits");
+    assert!(!dir.join("a.ron").exists(), "cancel saved");
+
+    // Save into a place that cannot be written (a folder under a plain file): the question
+    // stays open with why, and the window stays.
+    std::fs::write(dir.join("plain"), "x").unwrap();
+    close(&mut app, w);
+    let why = click(&mut app, Answer::Save, &dir.join("plain").join("a.ron")).unwrap_err();
+    assert!(why.starts_with("not saved"), "{why}");
+    assert!(
+        app.world().resource::<Unsaved>().asking.is_some(),
+        "question dropped"
+    );
+    assert!(
+        app.world().get_entity(w).is_ok(),
+        "closed although the save failed"
+    );
+    assert!(unsaved(&app));
+
+    // Save: the scene is written (and loads back as the scene on screen), then the window goes.
+    let saved = dir.join("scene.ron");
+    assert_eq!(
+        click(&mut app, Answer::Save, &saved),
+        Ok(Some(Leaving::Close(w)))
+    );
+    let back = rigidlab::level::load(&saved).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.level, app.world().resource::<Physics>().scene.level);
+    assert_eq!(
+        back.level.bodies[0].position.1, -1.0,
+        "the edit was not saved"
+    );
+    assert!(app.world().get_entity(w).is_err(), "saved but not closed");
+    assert!(!unsaved(&app));
+
+    // Discard: nothing written, the window goes.
+    let w = app.world_mut().spawn_empty().id();
+    lower_ground(&mut app);
+    let name = app.world().resource::<Physics>().scene.level.bodies[0]
+        .name
+        .clone();
+    app.world_mut()
+        .write_message(EditorCommand::Apply(Edit::Set {
+            body: name,
+            property: Property::Position((0.0, -3.0)),
+        }));
+    app.update();
+    close(&mut app, w);
+    assert_eq!(
+        click(&mut app, Answer::Discard, &dir.join("discarded.ron")),
+        Ok(Some(Leaving::Close(w)))
+    );
+    assert!(!dir.join("discarded.ron").exists(), "discard saved");
+    assert!(
+        app.world().get_entity(w).is_err(),
+        "discarded but not closed"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// While the question is open the keyboard's shortcuts wait (they edited the scene behind it:
+/// Ctrl+Z undid an edit the question was about); its answer given, they work again.
+#[test]
+fn shortcuts_wait_while_the_question_is_open() {
+    let mut app = editor_app_unstarted();
+    app.add_plugins((InputPlugin, UnsavedPlugin))
+        .init_resource::<View>()
+        .init_resource::<UiState>()
+        .init_resource::<ToolState>()
+        .init_resource::<Overlays>()
+        .add_systems(Update, shortcuts::keys);
+    app.update();
+    let ground_y = |app: &App| {
+        app.world().resource::<Physics>().scene.level.bodies[0]
+            .position
+            .1
+    };
+    let before = ground_y(&app);
+    lower_ground(&mut app);
+    let w = app.world_mut().spawn_empty().id();
+    close(&mut app, w);
+    assert!(app.world().resource::<Unsaved>().asking.is_some());
+    for m in quick_chord(KeyCode::KeyZ, "z") {
+        app.world_mut().write_message(m);
+    }
+    app.update();
+    app.update();
+    assert_eq!(
+        ground_y(&app),
+        -1.0,
+        "Ctrl+Z undid the edit behind the question"
+    );
+    app.world_mut()
+        .resource_mut::<Unsaved>()
+        .answer(Answer::Cancel);
+    for m in quick_chord(KeyCode::KeyZ, "z") {
+        app.world_mut().write_message(m);
+    }
+    app.update();
+    app.update();
+    assert_eq!(
+        ground_y(&app),
+        before,
+        "Ctrl+Z after the answer did nothing"
+    );
 }

@@ -111,7 +111,12 @@ impl Plugin for ToolsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<ToolState>()
             .add_systems(Update, forget_marks.before(mouse_tools))
-            .add_systems(Update, mouse_tools.before(super::SceneDraw))
+            .add_systems(
+                Update,
+                mouse_tools
+                    .before(super::SceneDraw)
+                    .run_if(super::unsaved::not_asking),
+            )
             .add_systems(FixedUpdate, apply_grab.before(PhysicsStep));
     }
 }

@@ -6,11 +6,13 @@
 //! window is opened with `close_when_requested: false`, so nothing else closes it).
 
 use super::editor::Editor;
+use super::panels::capture::save_level_as;
 use super::physics::Physics;
 use crate::level::Scene;
 use bevy::prelude::*;
 use bevy::window::WindowCloseRequested;
 use bevy_egui::egui;
+use std::path::Path;
 
 /// What would throw the edits away.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,6 +70,28 @@ impl Unsaved {
         let what = self.asking.take()?;
         (answer != Answer::Cancel).then_some(what)
     }
+
+    /// Settles the question with the answer clicked: Save writes the scene as `save_path` first
+    /// (a file already there is kept: it goes under the next numbered name) and marks it saved.
+    /// `Ok` holds the action to do now and the status line's note; a save that fails is `Err`
+    /// with why, and the question stays open (nothing is lost, nothing left).
+    pub fn settle(
+        &mut self,
+        answer: Answer,
+        editor: &mut Editor,
+        phys: &Physics,
+        save_path: &Path,
+    ) -> Result<(Option<Leaving>, Option<String>), String> {
+        self.asking.as_ref().ok_or("no question is open")?;
+        let mut note = None;
+        if answer == Answer::Save {
+            let (used, m) = save_level_as(&phys.scene, save_path)?;
+            editor.mark_saved(phys);
+            editor.just_saved = Some(used);
+            note = Some(m);
+        }
+        Ok((self.answer(answer), note))
+    }
 }
 
 /// Registers the question and the window's close requests.
@@ -98,35 +122,43 @@ pub fn close_requests(
     }
 }
 
-/// The question, drawn over the window while it is asked; the answer clicked, if any (Escape
-/// is Cancel).
+/// Whether the question is open (a run condition: the scene's mouse tools and the keyboard
+/// shortcuts wait while it is). The dialog is modal, but egui learns that the pointer is over it
+/// only at the end of a frame: a click that moved onto the answer within one frame (a fast hand,
+/// the page's 100 ms frames) also reached the build tool under it and placed a body there.
+pub fn not_asking(unsaved: Option<Res<Unsaved>>) -> bool {
+    unsaved.is_none_or(|u| u.asking.is_none())
+}
+
+/// The question, drawn over the window while it is asked (modal: the panels and the scene
+/// behind it take no clicks); the answer clicked, if any (Escape is Cancel; a click beside the
+/// question is nothing, so a stray click neither saves nor throws away).
 pub fn dialog(ctx: &egui::Context, unsaved: &Unsaved, save_path: &str) -> Option<Answer> {
     let what = unsaved.asking.as_ref()?;
     let mut answer = None;
-    egui::Window::new("Unsaved changes")
-        .collapsible(false)
-        .resizable(false)
-        .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
-        .show(ctx, |ui| {
-            ui.label(format!(
-                "The scene has edits that are not saved. Save them before {}?",
-                what.what()
-            ));
-            ui.label(
-                egui::RichText::new(format!("saved as {save_path} (a file there is kept)")).small(),
-            );
-            ui.horizontal(|ui| {
-                if ui.button("Save").clicked() {
-                    answer = Some(Answer::Save);
-                }
-                if ui.button("Discard").clicked() {
-                    answer = Some(Answer::Discard);
-                }
-                if ui.button("Cancel").clicked() {
-                    answer = Some(Answer::Cancel);
-                }
-            });
+    egui::Modal::new(egui::Id::new("unsaved changes")).show(ctx, |ui| {
+        ui.set_max_width(380.0);
+        ui.heading("Unsaved changes");
+        ui.label(format!(
+            "The scene has edits that are not saved. Save them before {}?",
+            what.what()
+        ));
+        ui.label(
+            egui::RichText::new(format!("saved as {save_path} (a file there is kept)")).small(),
+        );
+        ui.add_space(4.0);
+        ui.horizontal(|ui| {
+            if ui.button("Save").clicked() {
+                answer = Some(Answer::Save);
+            }
+            if ui.button("Discard").clicked() {
+                answer = Some(Answer::Discard);
+            }
+            if ui.button("Cancel").clicked() {
+                answer = Some(Answer::Cancel);
+            }
         });
+    });
     if ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
         answer = Some(Answer::Cancel);
     }

@@ -3,6 +3,9 @@
 //! line. Each was copied between test files before; a test file uses the ones it needs.
 #![allow(dead_code, unused_imports, unused_macros)]
 
+#[cfg(feature = "app")]
+pub mod app;
+
 use rigidlab::level::{self, Scene};
 use rigidlab::report::LevelReport;
 use rigidlab::runner;

@@ -36,7 +36,7 @@ use super::overlays::Overlays;
 use super::physics::{LiveChecks, Physics};
 use super::prefs::{Prefs, PrefsFile};
 use super::tools::ToolState;
-use super::unsaved::{Answer, Leaving, Unsaved};
+use super::unsaved::{Leaving, Unsaved};
 use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
 use bevy::camera::visibility::RenderLayers;
@@ -410,32 +410,24 @@ fn panels(
         .as_deref()
         .and_then(|u| super::unsaved::dialog(&ctx, u, &st.save_path));
     if let (Some(answer), Some(u)) = (answer, unsaved.as_deref_mut()) {
-        let mut go = true;
-        if answer == Answer::Save {
-            match capture::save_level_as(&phys.scene, &PathBuf::from(&st.save_path)) {
-                Ok((used, m)) => {
-                    editor.mark_saved(&phys);
-                    editor.just_saved = Some(used);
+        match u.settle(answer, &mut editor, &phys, &PathBuf::from(&st.save_path)) {
+            Ok((go, note)) => {
+                if let Some(m) = note {
                     st.message = Some((m, true));
                 }
-                Err(e) => {
-                    // Not saved: the question stays, with why in the status line.
-                    st.message = Some((e, false));
-                    go = false;
+                match go {
+                    Some(Leaving::Open(s)) => load = Some(*s),
+                    Some(Leaving::New) => {
+                        edits.write(EditorCommand::New);
+                    }
+                    Some(Leaving::Close(window)) => {
+                        commands.entity(window).try_despawn();
+                    }
+                    None => {}
                 }
             }
-        }
-        if go {
-            match u.answer(answer) {
-                Some(Leaving::Open(s)) => load = Some(*s),
-                Some(Leaving::New) => {
-                    edits.write(EditorCommand::New);
-                }
-                Some(Leaving::Close(window)) => {
-                    commands.entity(window).try_despawn();
-                }
-                None => {}
-            }
+            // Not saved: the question stays, with why in the status line.
+            Err(e) => st.message = Some((e, false)),
         }
     }
     if editor.just_saved.take().is_some() && !browser.embedded {

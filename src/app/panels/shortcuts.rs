@@ -158,10 +158,15 @@ pub fn keys(
     mut commands: Commands,
     mut edits: MessageWriter<EditorCommand>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+    unsaved: Option<Res<super::super::unsaved::Unsaved>>,
 ) {
     // Read every frame, so the modifiers held stay known while egui has the keyboard.
     let chords = chords(&mut held, messages.read());
     if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
+        return;
+    }
+    if !super::super::unsaved::not_asking(unsaved) {
+        // The unsaved-work question is open: it answers Escape; no edit, undo or run meanwhile.
         return;
     }
     if keys.just_pressed(KeyCode::Space) {
