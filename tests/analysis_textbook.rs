@@ -36,6 +36,7 @@ fn body(shape: Option<Shape>) -> BodyDef {
         restitution: None,
         linear_damping: None,
         angular_damping: None,
+        motion: None,
     }
 }
 

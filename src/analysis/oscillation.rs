@@ -46,3 +46,66 @@ impl Crossings {
         }
     }
 }
+
+/// A swinging coordinate's extremes, alternating largest and smallest. A turn back within 1 %
+/// of the largest swing seen is jitter at an extreme (f32 rounding can flip a rate's sign two
+/// or three times there) and cancels with the extreme it followed; two extremes of one kind in
+/// a row keep the farther.
+#[derive(Debug, Clone, Default)]
+pub struct Extremes {
+    /// (is a largest, value), the last three.
+    list: Vec<(bool, f64)>,
+    largest_swing: f64,
+}
+
+impl Extremes {
+    /// An extreme of the coordinate: `largest` when its rate turned from positive to negative.
+    pub fn add(&mut self, largest: bool, x: f64) {
+        match self.list.last().copied() {
+            Some((k, y)) if k == largest => {
+                if (largest && x > y) || (!largest && x < y) {
+                    *self.list.last_mut().expect("not empty") = (k, x);
+                }
+            }
+            Some((_, y)) if (x - y).abs() < 0.01 * self.largest_swing => {
+                self.list.pop();
+            }
+            last => {
+                if let Some((_, y)) = last {
+                    self.largest_swing = self.largest_swing.max((x - y).abs());
+                }
+                self.list.push((largest, x));
+                if self.list.len() > 3 {
+                    self.list.remove(0);
+                }
+            }
+        }
+    }
+
+    /// The middle of the last whole swing: the mean of the last largest and smallest.
+    pub fn middle(&self) -> Option<f64> {
+        match self.list.as_slice() {
+            [.., (_, a), (_, b)] => Some(0.5 * (a + b)),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A swing between -0.4 and -0.2 with jitter at one extreme: the middle stays -0.3.
+    #[test]
+    fn extremes_ignore_jitter() {
+        let mut e = Extremes::default();
+        e.add(true, -0.2);
+        e.add(false, -0.4);
+        e.add(true, -0.2001);
+        e.add(false, -0.20009); // jitter: a turn back of 1e-5 against a 0.2 swing
+        e.add(true, -0.2002);
+        assert_eq!(e.middle(), Some(0.5 * (-0.4 + -0.2002)));
+        e.add(false, -0.39);
+        assert_eq!(e.middle(), Some(0.5 * (-0.2002 + -0.39)));
+    }
+}

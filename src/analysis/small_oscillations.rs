@@ -28,7 +28,7 @@
 //!
 //! A support (the kinematic bodies the mechanism hangs on) moving with constant velocity is an
 //! inertial frame; with a constant acceleration a, gravity is replaced by g - a in its frame
-//! (`Mechanism::support_acceleration`). Contacts, joint limits (unless the equilibrium sits on
+//! (`Mechanism::support_acceleration`, from a kinematic support's `Motion::Accelerate`). Contacts, joint limits (unless the equilibrium sits on
 //! one) and motors are not in the model: a motor or a time-varying or follower load makes the
 //! analysis refuse, with the reason.
 
@@ -253,6 +253,7 @@ impl Mechanism {
         }
         // The support: every kinematic body the set hangs on moves with one velocity, unturned.
         let mut support: Option<DVec2> = None;
+        let mut support_acceleration: Option<DVec2> = None;
         let mut grounded = false;
         for (k, b) in level.bodies.iter().enumerate().filter(|(k, _)| inside[*k]) {
             match b.kind {
@@ -265,13 +266,35 @@ impl Mechanism {
                             b.name
                         ));
                     }
+                    // A prescribed motion: a uniform acceleration is a frame where gravity
+                    // reads g - a; anything else drives the mechanism (forced, not free,
+                    // vibration) or turns its frame.
+                    let ak = match b.motion {
+                        None => DVec2::ZERO,
+                        Some(m) => match m.uniform_translation() {
+                            Some(a) => v(a),
+                            None => {
+                                return Err(format!(
+                                    "\"{}\", a kinematic body the mechanism hangs on, has a prescribed {}: the motion is forced, not a free oscillation about an equilibrium",
+                                    b.name,
+                                    match m {
+                                        crate::level::Motion::Oscillate { .. } => "oscillation",
+                                        crate::level::Motion::Accelerate { .. } => "rotation",
+                                    }
+                                ))
+                            }
+                        },
+                    };
                     let vk = v(b.velocity);
-                    if support.is_some_and(|s| (s - vk).length() > 1e-12) {
+                    if support.is_some_and(|s| (s - vk).length() > 1e-12)
+                        || support_acceleration.is_some_and(|s| (s - ak).length() > 1e-12)
+                    {
                         return Err(
                             "the kinematic bodies that hold the mechanism move apart".into()
                         );
                     }
                     support = Some(vk);
+                    support_acceleration = Some(ak);
                     let _ = k;
                 }
             }
@@ -280,7 +303,8 @@ impl Mechanism {
             .iter()
             .any(|&(a, b)| inside[a] && b.is_none() && dynamic(a));
         let v_support = support.unwrap_or(DVec2::ZERO);
-        if v_support != DVec2::ZERO && (grounded || ground_springs) {
+        let a_support = support_acceleration.unwrap_or(DVec2::ZERO);
+        if (v_support != DVec2::ZERO || a_support != DVec2::ZERO) && (grounded || ground_springs) {
             return Err(
                 "both the ground and a moving kinematic body hold the mechanism: its equilibrium moves".into(),
             );
@@ -324,6 +348,7 @@ impl Mechanism {
             } else {
                 DVec2::ZERO
             },
+            support_acceleration: a_support,
             ..Default::default()
         };
         if has(Effect::Joints) {

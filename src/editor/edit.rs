@@ -1,6 +1,7 @@
 //! The editor's verbs: what each edit does to a level, with the same steps in each (find the
 //! bodies it names, change the level, declare the effects it now relies on, say what it did).
 
+use crate::level::curves;
 use crate::level::{
     ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape,
     SpringDef, TorsionSpringDef, TrackSide, V2,
@@ -572,6 +573,13 @@ fn nearest(outline: &[DVec2], p: DVec2) -> (DVec2, bool) {
 pub(crate) fn snap_disc(level: &Level, c: DVec2, r: f64) -> Option<(DVec2, String)> {
     let mut best: Option<(DVec2, String, f64)> = None;
     for b in level.bodies.iter().filter(|b| b.kind == BodyKind::Fixed) {
+        if let Some(moved) = onto_track(b, c, r) {
+            let shift = (moved - c).length();
+            if best.as_ref().is_none_or(|(_, _, s)| shift > *s) {
+                best = Some((moved, b.name.clone(), shift));
+            }
+            continue;
+        }
         let Some(outline) = fixed_outline(b) else {
             continue;
         };
@@ -612,6 +620,55 @@ pub(crate) fn snap_disc(level: &Level, c: DVec2, r: f64) -> Option<(DVec2, Strin
         }
     }
     best.map(|(c, name, _)| (c, name))
+}
+
+/// Where a disc of radius `r` centered at `c` within `r` of a track (`Polyline` or `Arc`) goes:
+/// touching the track at its nearest point, on the side bodies ride (a one-sided track's free
+/// side; a two-sided one's side the center is on). None when it is clear of the track or `b`
+/// is no track.
+fn onto_track(b: &BodyDef, c: DVec2, r: f64) -> Option<DVec2> {
+    let (points, closed) = curves::track_points(b.shape.as_ref()?)?;
+    let rot = DVec2::from_angle(b.angle);
+    let at = DVec2::from(b.position);
+    let w: Vec<DVec2> = points
+        .iter()
+        .map(|&p| at + rot.rotate(DVec2::from(p)))
+        .collect();
+    let edges = if closed {
+        w.len()
+    } else {
+        w.len().saturating_sub(1)
+    };
+    // The nearest point of the track and the left normal of its edge there.
+    let mut best: Option<(DVec2, DVec2, f64)> = None;
+    for k in 0..edges {
+        let (a, e) = (w[k], w[(k + 1) % w.len()]);
+        let ab = e - a;
+        let t = ((c - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
+        let q = a + ab * t;
+        let d = (c - q).length();
+        if best.as_ref().is_none_or(|(_, _, bd)| d < *bd) {
+            best = Some((q, ab.perp().normalize_or_zero(), d));
+        }
+    }
+    let (q, left, d) = best?;
+    if d >= r {
+        return None;
+    }
+    let ride = match curves::solid_side(b.shape.as_ref()?) {
+        Some(true) => -left,
+        Some(false) => left,
+        None if left.dot(c - q) >= 0.0 => left,
+        None => -left,
+    };
+    // On the riding side, the least move: straight away from the nearest point (at a vertex,
+    // between its two edges' normals); from the solid side, out along the edge's normal.
+    let out = if d > 1e-12 && ride.dot(c - q) > 0.0 {
+        (c - q) / d
+    } else {
+        ride
+    };
+    Some(q + out * r)
 }
 
 /// A disc of radius `r` centered at `c` inside a convex outline (counter-clockwise), set on the
@@ -699,6 +756,7 @@ fn body(name: &str, kind: BodyKind, shape: Option<Shape>, at: V2) -> BodyDef {
         restitution: None,
         linear_damping: None,
         angular_damping: None,
+        motion: None,
     }
 }
 

@@ -242,6 +242,41 @@ pub struct BodyDef {
     /// Angular damping coefficient, 1/s (needs `damping`).
     #[serde(default)]
     pub angular_damping: Option<f64>,
+    /// A kinematic body's prescribed motion on top of its `velocity` and `omega` (none: it
+    /// moves at them for ever). See [`Motion`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion: Option<Motion>,
+}
+
+/// A kinematic body's prescribed motion. The body frame's origin and angle follow it exactly
+/// at every step's end (`src/level/motion.rs` gives its pose, velocity and acceleration at t).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Motion {
+    /// Constant acceleration: x(t) = x0 + v0 t + a t^2 / 2, theta(t) = theta0 + omega0 t +
+    /// alpha t^2 / 2 (a pushed cart, a lift starting up).
+    Accelerate {
+        /// a, m/s^2.
+        acceleration: V2,
+        /// alpha, rad/s^2.
+        #[serde(default)]
+        angular: f64,
+    },
+    /// A sinusoid about the start: x(t) = x0 + v0 t + A (sin(w t + phi) - sin(phi)),
+    /// theta(t) = theta0 + omega0 t + Theta (sin(w t + phi) - sin(phi)) (a shaking support).
+    Oscillate {
+        /// A, m.
+        #[serde(default)]
+        amplitude: V2,
+        /// Theta, rad.
+        #[serde(default)]
+        angular_amplitude: f64,
+        /// w, rad/s: the circular frequency (2 pi f).
+        omega: f64,
+        /// phi, rad.
+        #[serde(default)]
+        phase: f64,
+    },
 }
 
 impl BodyDef {

@@ -5,6 +5,7 @@
 //! the line of the offending item and says how to fix it).
 
 pub mod curves;
+pub mod motion;
 mod error;
 pub mod format;
 mod validate;

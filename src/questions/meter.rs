@@ -4,7 +4,7 @@
 
 use super::contact_events::PairTracker;
 use super::level_facts::LevelFacts;
-use super::periods::Crossings;
+use super::periods::{Crossings, Extremes};
 use super::sample::{Occasion, Reading, Sample};
 use super::{forces, impacts, linkages, motion, periods, rolling, work_and_power};
 use crate::level::{Quantity, QuantityFamily};
@@ -34,6 +34,10 @@ pub(super) struct Meter {
     /// Periods: the linearized period (PL-14) that stands in for a closed form whose
     /// preconditions the scene breaks.
     pub linearized: Option<f64>,
+    /// `EquilibriumAngle`: the body's angle at its last two extremes (interpolated), and the
+    /// equilibrium angle of its mechanism (PL-14), found once.
+    pub swing: Extremes,
+    pub equilibrium: Option<f64>,
     /// For `SpringPeriod`: the free body at the spring's other end, when the body's springs all
     /// join it to that one (their relative motion is what vibrates).
     pub spring_partner: Option<usize>,
@@ -78,6 +82,8 @@ impl Meter {
             crossings: Crossings::default(),
             spring_axis: None,
             linearized: None,
+            swing: Extremes::default(),
+            equilibrium: None,
             spring_partner: None,
             pair: impacts::pair_tracker(q),
             rebound_apex: f64::NEG_INFINITY,

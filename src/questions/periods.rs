@@ -23,7 +23,7 @@ use crate::analysis::closed_forms::{
 };
 use crate::analysis::energy::spring_potential;
 use crate::analysis::mass::parallel_axis;
-pub(super) use crate::analysis::oscillation::Crossings;
+pub(super) use crate::analysis::oscillation::{Crossings, Extremes};
 use crate::analysis::small_oscillations::{Mechanism, SMALL_AMPLITUDE_PERIOD_ERROR};
 use crate::level::Quantity;
 use crate::level::{BodyKind, JointKind};
@@ -80,8 +80,38 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                 }
             }
         }
+        Quantity::EquilibriumAngle(body) => {
+            if let Some(i) = m.body_index(s, body) {
+                if m.crossings.is_empty() {
+                    m.crossings.add(prev.time, prev.bodies[i].omega);
+                    match equilibrium_angle(m, i) {
+                        Ok(a) => m.equilibrium = Some(a),
+                        Err(e) => m.inapplicable = Some(e),
+                    }
+                }
+                m.crossings.add(s.time, s.bodies[i].omega);
+                let (w0, w1) = (prev.bodies[i].omega, s.bodies[i].omega);
+                if (w0 > 0.0 && w1 <= 0.0) || (w0 < 0.0 && w1 >= 0.0) {
+                    // omega taken linear over the step: it is zero tau into it, and the angle
+                    // there is the trapezoid's, theta_prev + w0 tau / 2.
+                    let tau = (s.time - prev.time) * w0 / (w0 - w1);
+                    m.swing.add(w0 > 0.0, prev.bodies[i].angle + 0.5 * w0 * tau);
+                }
+            }
+        }
         _ => {}
     }
+}
+
+/// The equilibrium angle of body i's mechanism (PL-14's equilibrium, in the frame of a support
+/// that may accelerate uniformly: VW-4), or why there is none to compare with.
+fn equilibrium_angle(m: &Meter, i: usize) -> Result<f64, String> {
+    let level = m.facts.level.as_ref().ok_or("the level is not kept")?;
+    let osc = Mechanism::of_level(level, i)?.small_oscillations()?;
+    osc.equilibrium
+        .get(i)
+        .map(|e| e.1)
+        .ok_or_else(|| "the body is not a member of its mechanism".into())
 }
 
 /// The quantity at the sample.
@@ -135,6 +165,17 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 (k > 0.0).then(|| spring_mass_period(mass, k))
             };
             (m.crossings.period(), theory)
+        }
+        Quantity::EquilibriumAngle(b) => {
+            let i = m.body_index(s, b)?;
+            // The middle of the last whole swing; a body that has not swung twice is read
+            // where it is, if it is still (1e-6 rad/s: far under any swing a question is about).
+            let engine = match m.swing.middle() {
+                Some(x) => x,
+                None if s.bodies[i].omega.abs() < 1e-6 => s.bodies[i].angle,
+                None => f64::NAN,
+            };
+            (engine, m.equilibrium)
         }
         q => unreachable!("{q:?} is not a period"),
     })

@@ -178,6 +178,7 @@ impl Simulation {
         forced.dedup();
         sim.forced_bodies = forced;
         sim.read_bodies();
+        sim.prescribed_rates();
         sim.torsion_rest = sim
             .level
             .torsion_springs
@@ -352,6 +353,8 @@ impl Simulation {
         let mut contact_sum: Vec<ContactState> = Vec::new();
         let mut first_call = true;
         let contacts_wanted = self.contacts_wanted();
+        // The time into the step at which the coming call starts.
+        let mut elapsed = 0.0;
         while let Some((mut h, sub)) = calls.pop_front() {
             let mut prediction = None;
             let impact_call = std::mem::take(&mut impact_call_next);
@@ -426,6 +429,8 @@ impl Simulation {
             // so the call's impulses (all of one substep) are read along the very rows they
             // acted on.
             let rows_from = (split || self.settings.impact_cuts).then(|| self.joint_poses());
+            self.prescribe_velocities(t0 + elapsed, t0 + elapsed + h);
+            elapsed += h;
             self.world.step();
             let call_lambdas = self.solve_couplings();
             self.owe_carriers(&call_lambdas);
@@ -453,6 +458,7 @@ impl Simulation {
         self.snapshot.dt = dt;
         self.snapshot.substeps = n;
         self.read_bodies();
+        self.prescribed_rates();
         self.guard()?;
         if !contacts_wanted {
             self.snapshot.contacts.clear();
@@ -489,6 +495,50 @@ impl Simulation {
         self.energy_guard()?;
         self.speed_cap_guard()?;
         Ok(&self.snapshot)
+    }
+
+    /// Moves each kinematic body with a prescribed motion from its pose at t0 to its pose at t1
+    /// over the coming rapier call: rapier moves a kinematic body's center of mass at its
+    /// linvel and turns it at its angvel about that point, so these are the mean rates between
+    /// the two poses, computed in f64 from the motion itself. (Setting the next pose instead,
+    /// rapier's position-based kinematic body, takes the rates from poses rounded to f32: at
+    /// 37 m a pose's ulp over a 2 ms step is 2e-3 m/s of velocity noise, which shook a
+    /// pendulum's omega across zero at its extremes.)
+    fn prescribe_velocities(&mut self, t0: f64, t1: f64) {
+        use crate::level::motion::pose_at;
+        for (i, b) in self.level.bodies.iter().enumerate() {
+            if b.motion.is_none() {
+                continue;
+            }
+            let rb = &mut self.world.bodies[self.bodies[i]];
+            let c = to_d(rb.local_center_of_mass());
+            let com = |t: f64| {
+                let p = pose_at(b, t);
+                DVec2::new(p.linear.0, p.linear.1) + DVec2::from_angle(p.angular).rotate(c)
+            };
+            let h = t1 - t0;
+            let turn = pose_at(b, t1).angular - pose_at(b, t0).angular;
+            rb.set_linvel(vd((com(t1) - com(t0)) / h), true);
+            rb.set_angvel((turn / h) as Real, true);
+        }
+    }
+
+    /// A prescribed body's velocity and omega in the snapshot are its motion's at the step's
+    /// end, not rapier's mean over the last call (they differ by a dt / 2 under a constant
+    /// acceleration; the mean of the start and end readings is then the step's mean, which
+    /// is what rapier moved it with).
+    fn prescribed_rates(&mut self) {
+        let t = self.snapshot.time;
+        for (b, def) in self.snapshot.bodies.iter_mut().zip(&self.level.bodies) {
+            if def.motion.is_some() {
+                let r = crate::level::motion::rate_at(def, t);
+                let o = crate::level::motion::pose_at(def, t).angular;
+                b.omega = r.angular;
+                // The snapshot's velocity is G's: v_O + omega x (G - O).
+                let arm = DVec2::from_angle(o).rotate(b.local_com);
+                b.velocity = DVec2::new(r.linear.0, r.linear.1) + r.angular * arm.perp();
+            }
+        }
     }
 
     /// Stops a run whose mechanical energy grew FACTOR times beyond its initial scale plus the

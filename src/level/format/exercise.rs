@@ -230,6 +230,12 @@ pub enum Quantity {
     /// displacement along its first spring; analysis = 2 pi sqrt(m / sum k) with the engine's m
     /// and each spring's k = 2 V_e / x^2 from the snapshot.
     SpringPeriod(String),
+    /// The angle a body swings about (or rests at), rad: engine = the middle of its last whole
+    /// swing (the mean of the angle's last two extremes; the angle at the sample when it has
+    /// not swung twice and is still); analysis = the equilibrium of its mechanism found by the
+    /// linearized method (PL-14), in the frame of a support that may accelerate uniformly
+    /// (gravity g - a there: tan(theta) = a / g for a pendulum, VW-4).
+    EquilibriumAngle(String),
     /// Acceleration of the mass center of a body rolling on `ground`, m/s^2 (downhill component,
     /// central difference): analysis = g sin(theta) / (1 + k_G^2 / r^2) with theta from the engine's
     /// contact normal, r = |G - contact point| and k_G^2 = I_G / m (RK-8 with 6/1).
@@ -395,6 +401,7 @@ impl Quantity {
             | Q::RollingAcceleration { .. } => "m/s^2",
             Q::Alpha(_) => "rad/s^2",
             Q::Time | Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => "s",
+            Q::EquilibriumAngle(_) => "rad",
             Q::JointForce(_)
             | Q::ContactForce(_)
             | Q::ContactNormalForce { .. }
@@ -520,7 +527,7 @@ impl Quantity {
             | Q::Efficiency { .. }
             | Q::GroupKineticEnergy(_)
             | Q::GroupMomentum(_) => F::WorkAndPower,
-            Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => F::Periods,
+            Q::PendulumPeriod { .. } | Q::SpringPeriod(_) | Q::EquilibriumAngle(_) => F::Periods,
             Q::RollingAcceleration { .. }
             | Q::RollingFriction { .. }
             | Q::RollingFrictionNeeded { .. } => F::Rolling,

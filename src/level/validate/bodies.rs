@@ -349,5 +349,56 @@ pub(super) fn body(v: &V, b: &BodyDef) -> R {
             }
         }
     }
+    if let Some(m) = &b.motion {
+        motion(v, b, m, at("motion"))?;
+    }
     Ok(())
+}
+
+/// A prescribed motion: on a kinematic body only, finite, an oscillation with a frequency.
+fn motion(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
+    let name = &b.name;
+    if b.kind != BodyKind::Kinematic {
+        return Err(v.err(
+            pos,
+            format!(
+                "body \"{name}\" is {} and cannot have a prescribed motion",
+                format!("{:?}", b.kind).to_lowercase()
+            ),
+            "make the body `kind: kinematic` (a prescribed motion drives it regardless of forces), or remove `motion`",
+        ));
+    }
+    match *m {
+        Motion::Accelerate {
+            acceleration,
+            angular,
+        } => {
+            v.finite2(
+                acceleration,
+                &format!("body \"{name}\" motion acceleration"),
+                pos,
+            )?;
+            v.finite(angular, &format!("body \"{name}\" motion angular"), pos)
+        }
+        Motion::Oscillate {
+            amplitude,
+            angular_amplitude,
+            omega,
+            phase,
+        } => {
+            v.finite2(amplitude, &format!("body \"{name}\" motion amplitude"), pos)?;
+            v.finite(
+                angular_amplitude,
+                &format!("body \"{name}\" motion angular_amplitude"),
+                pos,
+            )?;
+            v.finite(phase, &format!("body \"{name}\" motion phase"), pos)?;
+            v.positive(
+                omega,
+                &format!("body \"{name}\" motion omega (the circular frequency)"),
+                "rad/s",
+                pos,
+            )
+        }
+    }
 }

@@ -1,0 +1,181 @@
+//! A kinematic body's prescribed motion as functions of time: the level's own definition
+//! (`Motion` in `format.rs`), read by the simulation (which moves the body there) and by the
+//! analyses (which need the support's acceleration). Pure kinematics, no engine.
+
+use super::format::{BodyDef, Motion, V2};
+
+/// A body-frame pose or rate: (origin, angle) or (velocity of the origin, omega), or their
+/// derivatives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Planar {
+    pub linear: V2,
+    pub angular: f64,
+}
+
+impl Motion {
+    /// The displacement from the start pose at time t beyond the constant velocity's.
+    fn offset(&self, t: f64) -> Planar {
+        match *self {
+            Motion::Accelerate {
+                acceleration,
+                angular,
+            } => Planar {
+                linear: (0.5 * acceleration.0 * t * t, 0.5 * acceleration.1 * t * t),
+                angular: 0.5 * angular * t * t,
+            },
+            Motion::Oscillate {
+                amplitude,
+                angular_amplitude,
+                omega,
+                phase,
+            } => {
+                let s = (omega * t + phase).sin() - phase.sin();
+                Planar {
+                    linear: (amplitude.0 * s, amplitude.1 * s),
+                    angular: angular_amplitude * s,
+                }
+            }
+        }
+    }
+
+    /// The offset's rate at t.
+    fn offset_rate(&self, t: f64) -> Planar {
+        match *self {
+            Motion::Accelerate {
+                acceleration,
+                angular,
+            } => Planar {
+                linear: (acceleration.0 * t, acceleration.1 * t),
+                angular: angular * t,
+            },
+            Motion::Oscillate {
+                amplitude,
+                angular_amplitude,
+                omega,
+                phase,
+            } => {
+                let c = omega * (omega * t + phase).cos();
+                Planar {
+                    linear: (amplitude.0 * c, amplitude.1 * c),
+                    angular: angular_amplitude * c,
+                }
+            }
+        }
+    }
+
+    /// The acceleration of the origin and the angular acceleration at t.
+    pub fn acceleration_at(&self, t: f64) -> Planar {
+        match *self {
+            Motion::Accelerate {
+                acceleration,
+                angular,
+            } => Planar {
+                linear: acceleration,
+                angular,
+            },
+            Motion::Oscillate {
+                amplitude,
+                angular_amplitude,
+                omega,
+                phase,
+            } => {
+                let s = -omega * omega * (omega * t + phase).sin();
+                Planar {
+                    linear: (amplitude.0 * s, amplitude.1 * s),
+                    angular: angular_amplitude * s,
+                }
+            }
+        }
+    }
+
+    /// Whether the acceleration is the same at every time and the body does not turn: its
+    /// frame is then a uniformly accelerated one, where gravity reads g - a.
+    pub fn uniform_translation(&self) -> Option<V2> {
+        match *self {
+            Motion::Accelerate {
+                acceleration,
+                angular,
+            } if angular == 0.0 => Some(acceleration),
+            _ => None,
+        }
+    }
+}
+
+/// The pose (origin, angle) at time t of a body that starts at its `position` and `angle` with
+/// its `velocity` and `omega`, moved by its `motion` if it has one.
+pub fn pose_at(b: &BodyDef, t: f64) -> Planar {
+    let off = b.motion.map_or(
+        Planar {
+            linear: (0.0, 0.0),
+            angular: 0.0,
+        },
+        |m| m.offset(t),
+    );
+    Planar {
+        linear: (
+            b.position.0 + b.velocity.0 * t + off.linear.0,
+            b.position.1 + b.velocity.1 * t + off.linear.1,
+        ),
+        angular: b.angle + b.omega * t + off.angular,
+    }
+}
+
+/// The velocity of the body frame's origin and omega at time t (see [`pose_at`]).
+pub fn rate_at(b: &BodyDef, t: f64) -> Planar {
+    let off = b.motion.map_or(
+        Planar {
+            linear: (0.0, 0.0),
+            angular: 0.0,
+        },
+        |m| m.offset_rate(t),
+    );
+    Planar {
+        linear: (b.velocity.0 + off.linear.0, b.velocity.1 + off.linear.1),
+        angular: b.omega + off.angular,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rate is the pose's derivative and the acceleration the rate's (central differences,
+    /// h = 1e-5 s: truncation ~ h^2 |x'''| ~ 1e-10 · 20^3 · 0.1 ~ 1e-7, so 1e-6 relative).
+    #[test]
+    fn rates_are_derivatives() {
+        for motion in [
+            Motion::Accelerate {
+                acceleration: (2.0, -1.0),
+                angular: 0.5,
+            },
+            Motion::Oscillate {
+                amplitude: (0.1, 0.05),
+                angular_amplitude: 0.2,
+                omega: 20.0,
+                phase: 0.3,
+            },
+        ] {
+            let mut b: BodyDef = crate::level::ron_options()
+                .from_str(
+                    "(name: \"s\", kind: kinematic, position: (3, 4), angle: 0.1, \
+                     velocity: (1, 0.5), omega: -0.25)",
+                )
+                .unwrap();
+            b.motion = Some(motion);
+            let h = 1e-5;
+            for t in [0.0, 0.37, 1.2] {
+                let (p0, p1) = (pose_at(&b, t - h), pose_at(&b, t + h));
+                let r = rate_at(&b, t);
+                assert!(((p1.linear.0 - p0.linear.0) / (2.0 * h) - r.linear.0).abs() < 1e-6);
+                assert!(((p1.linear.1 - p0.linear.1) / (2.0 * h) - r.linear.1).abs() < 1e-6);
+                assert!(((p1.angular - p0.angular) / (2.0 * h) - r.angular).abs() < 1e-6);
+                let (r0, r1) = (rate_at(&b, t - h), rate_at(&b, t + h));
+                let a = motion.acceleration_at(t);
+                assert!(((r1.linear.0 - r0.linear.0) / (2.0 * h) - a.linear.0).abs() < 1e-5);
+                assert!(((r1.angular - r0.angular) / (2.0 * h) - a.angular).abs() < 1e-5);
+            }
+            // The start pose is the level's.
+            assert_eq!(pose_at(&b, 0.0).linear, (3.0, 4.0));
+        }
+    }
+}
