@@ -35,6 +35,7 @@ fn help_covers_every_tool_and_panel() {
             "spring",
             "torsion",
             "polygon",
+            "curved track",
             "strike",
             "set o",
             "question",

@@ -204,6 +204,47 @@ fn the_editor_builds_a_loop_the_loop_saves_it_and_check_passes_it() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+#[test]
+fn a_disc_placed_on_a_track_is_set_onto_its_riding_side() {
+    // The loop's floor and loop, without the disc.
+    let mut scene = editor::empty_scene(PathBuf::from("my-scene.ron"));
+    for e in loop_edits().into_iter().take(3) {
+        scene = editor::apply(&scene, &e).unwrap().0;
+    }
+    let place = |at: (f64, f64)| {
+        let e = Edit::AddBody {
+            shape: NewShape::Disc { radius: DISC_R },
+            at,
+            mass: 0.2,
+        };
+        let (s, note) = editor::apply(&scene, &e).unwrap();
+        let b = s.level.bodies.iter().find(|b| b.name == "disc1").unwrap();
+        (b.position, note)
+    };
+    // The disc is set touching the facet nearest its center, along that facet's normal, which
+    // is off the radius through the center by up to half a facet angle, a / 2 = 4.5e-4 rad
+    // (a = 2 acos(1 - 1e-7), the default chord error): a move of at most r = 0.1 m along it
+    // lands at most 0.1 (4.5e-4) = 4.5e-5 m from where the true circle would put it (and the
+    // vertices' 1e-7 R outside the circle adds 1e-7 m).
+    let near = |got: (f64, f64), want: (f64, f64)| {
+        (got.0 - want.0).abs() < 5e-5 && (got.1 - want.1).abs() < 5e-5
+    };
+    // Clicked into the floor, from above and from below (its solid side): onto its top.
+    for at in [(-2.0, 0.05), (-2.0, -0.05)] {
+        let (p, note) = place(at);
+        assert!(near(p, (-2.0, DISC_R)), "{at:?} went to {p:?}");
+        assert!(note.contains("track1"), "{note}");
+    }
+    // Clicked into the loop's right side, from within and from without: inside the loop.
+    for at in [(0.97, R), (1.05, R)] {
+        let (p, note) = place(at);
+        assert!(near(p, (R - DISC_R, R)), "{at:?} went to {p:?}");
+        assert!(note.contains("arc1"), "{note}");
+    }
+    // Clear of every track: where it was clicked.
+    assert_eq!(place((-1.0, 0.5)).0, (-1.0, 0.5));
+}
+
 /// A refused edit: an error that says why, and the scene and its history as they were.
 fn refused(scene: &Scene, history: &mut History, e: Edit, says: &str) {
     let could_undo = history.can_undo();
@@ -421,6 +462,7 @@ fn the_window_builds_and_saves_the_loop() {
     use bevy::prelude::*;
     use bevy::time::TimeUpdateStrategy;
     use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin, Placeable};
+    use rigidlab::app::tools::track_edit;
     use rigidlab::app::{Physics, PhysicsPlugin};
     use rigidlab::sim::Options;
     use std::time::Duration;
@@ -457,6 +499,15 @@ fn the_window_builds_and_saves_the_loop() {
             side: ArcSide::Inside,
         }
     );
+    // The track tool's clicks: bodies ride the upper side whichever way they were clicked.
+    let clicks = [glam::DVec2::new(-1.0, 1.0), glam::DVec2::new(1.0, 0.0)];
+    let solid = |e: Edit| match e {
+        Edit::AddTrack { solid, .. } => solid,
+        e => panic!("{e:?}"),
+    };
+    assert_eq!(solid(track_edit(&clicks)), Some(TrackSide::Right));
+    let back: Vec<_> = clicks.iter().rev().copied().collect();
+    assert_eq!(solid(track_edit(&back)), Some(TrackSide::Left));
     let (note, ok) = send(&mut app, EditorCommand::Apply(bowl));
     assert!(ok && note.contains("arc1"), "{note}");
     send(&mut app, EditorCommand::Undo);

@@ -34,6 +34,9 @@ pub enum Tool {
     /// Clicks: a polygon's vertices; a click on the first vertex (or Enter) makes the body,
     /// Escape drops the outline.
     Polygon,
+    /// Clicks: a fixed polyline track's points; a click on the last point again (or Enter)
+    /// makes the track, Escape drops it.
+    Track,
     /// Drag: a length and its angle, kept on screen.
     Ruler,
     /// Drag from the vertex along one arm, then click the other arm's end: the angle between.
@@ -75,7 +78,8 @@ pub struct ToolState {
     pub spring_from: Option<(usize, DVec2)>,
     /// The protractor's last measurement.
     pub protractor: Option<Protractor>,
-    /// The vertices of a polygon being drawn, world (rounded like a placed body).
+    /// The vertices of a polygon or the points of a track being drawn, world (rounded like a
+    /// placed body).
     pub polygon: Vec<DVec2>,
     press: Option<Vec2>,
 }
@@ -164,7 +168,7 @@ fn mouse_tools(
     let Some(window) = windows.iter().next() else {
         return;
     };
-    if state.tool != Tool::Polygon || keys.just_pressed(KeyCode::Escape) {
+    if !matches!(state.tool, Tool::Polygon | Tool::Track) || keys.just_pressed(KeyCode::Escape) {
         state.polygon.clear();
     }
     let typing = egui_input
@@ -173,6 +177,14 @@ fn mouse_tools(
     if keys.just_pressed(KeyCode::Enter) && !typing && state.polygon.len() >= 3 {
         let points = std::mem::take(&mut state.polygon);
         edits.write(EditorCommand::Apply(polygon_body(&points)));
+    }
+    if keys.just_pressed(KeyCode::Enter)
+        && !typing
+        && state.tool == Tool::Track
+        && state.polygon.len() >= 2
+    {
+        let points = std::mem::take(&mut state.polygon);
+        edits.write(EditorCommand::Apply(track_edit(&points)));
     }
     let over_ui = egui_input.is_some_and(|e| e.wants_any_pointer_input());
     let cursor = view::scene_cursor(&view, window);
@@ -253,6 +265,22 @@ fn mouse_tools(
                     if closes {
                         let points = std::mem::take(&mut state.polygon);
                         edits.write(EditorCommand::Apply(polygon_body(&points)));
+                    } else {
+                        let at = super::editor::round_point(p, view.scene_size());
+                        if state.polygon.last() != Some(&at) {
+                            state.polygon.push(at);
+                        }
+                    }
+                }
+                Tool::Track => {
+                    let ends = state.polygon.len() >= 2
+                        && state
+                            .polygon
+                            .last()
+                            .is_some_and(|l| l.distance(p) < 2.0 * tol);
+                    if ends {
+                        let points = std::mem::take(&mut state.polygon);
+                        edits.write(EditorCommand::Apply(track_edit(&points)));
                     } else {
                         let at = super::editor::round_point(p, view.scene_size());
                         if state.polygon.last() != Some(&at) {
@@ -403,6 +431,22 @@ fn polygon_body(points: &[DVec2]) -> Edit {
         },
         at: (mean.x, mean.y),
         mass: 1.0,
+    }
+}
+
+/// A fixed polyline track through the clicked points (world: its body at the origin), solid
+/// below: on its right when it runs to +x overall, on its left when it runs to -x, so bodies
+/// ride its upper side (the inspector changes it).
+pub fn track_edit(points: &[DVec2]) -> Edit {
+    let run = points.last().map_or(0.0, |l| l.x) - points.first().map_or(0.0, |f| f.x);
+    Edit::AddTrack {
+        points: points.iter().map(|q| (q.x, q.y)).collect(),
+        closed: false,
+        solid: Some(if run >= 0.0 {
+            crate::level::TrackSide::Right
+        } else {
+            crate::level::TrackSide::Left
+        }),
     }
 }
 

@@ -88,9 +88,12 @@ pub fn sections(web: bool) -> Vec<(&'static str, String)> {
           accuracy. Theory against engine, below it, shows each check and question with its error; a \
           failed question shows the reading that failed (engine or analysis).".to_string()),
         ("Building a scene (the Build panel)", format!("New scene starts from a ground line. Place puts a box, \
-          disc, bar (1 kg each), ground, wall or incline where you click (a disc clicked into a fixed body \
+          disc, bar (1 kg each), ground, wall, incline or arc (a half-circle bowl) where you click (a disc clicked into a fixed body \
           is set onto its surface; another shape overlapping one is placed with a warning); polygon takes a \
-          body's corners click by click (the first corner again or Enter closes it); join makes a pin, \
+          body's corners click by click (the first corner again or Enter closes it); track takes a fixed \
+          polyline track's points click by click (the last point again or Enter ends it), and curved \
+          track adds an arc (center, radius, from and to angles, inside or outside) or a polyline from \
+          typed x, y pairs, both editable in the inspector; join makes a pin, \
           slider or weld where two bodies overlap (on one body alone, to a fixed point there); spring is a \
           drag from a body to another body or the ground; torsion puts a coil on the clicked body, to the \
           body under it or the ground. Select a body to edit its mass, size, position, angle, velocity, \

@@ -55,6 +55,10 @@ pub(super) fn scene_editor(
         }
         let r = ui.selectable_value(&mut tools.tool, Tool::Polygon, "polygon");
         st.buttons.insert("place polygon".into(), r.rect);
+        let r = ui
+            .selectable_value(&mut tools.tool, Tool::Track, "track")
+            .on_hover_text("a fixed polyline track, point by point");
+        st.buttons.insert("place track".into(), r.rect);
     });
     ui.horizontal_wrapped(|ui| {
         ui.label("join");
@@ -78,6 +82,9 @@ pub(super) fn scene_editor(
         }
         Tool::Polygon => {
             "click its corners (the outline is their convex hull), then the first corner again or Enter; Escape drops it"
+        }
+        Tool::Track => {
+            "click the track's points (bodies ride its upper side), then the last point again or Enter; Escape drops it"
         }
         _ => "select a body to edit it; while paused at t = 0, drag it to move it",
     };

@@ -105,7 +105,7 @@ pub(super) fn add_tracks(
                 }
             });
             ui.end_row();
-            ui.label("ridden on its");
+            ui.label("bodies ride its");
             side_combo(ui, "track form side", &mut f.side);
             ui.end_row();
         });
@@ -216,7 +216,7 @@ pub(super) fn inspector_rows(
                 }
             });
             ui.end_row();
-            ui.label("ridden on its");
+            ui.label("bodies ride its");
             let mut s = *side;
             side_combo(ui, ("inspector side", b.name.as_str()), &mut s);
             if s != *side {
