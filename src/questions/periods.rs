@@ -17,7 +17,7 @@
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
-use super::snapshot_reading::joint_index;
+use super::snapshot_reading::{joint_index, to_local};
 use crate::analysis::closed_forms::{
     damped_period, energy_integral_period, pendulum_period, reduced_mass, spring_mass_period,
 };
@@ -240,11 +240,26 @@ fn linearized_period(
 /// the torsion springs that hold the body to the ground.
 fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f64> {
     let i = m.body_index(s, body)?;
-    let j = &s.joints[joint_index(s, joint)?];
-    let o = if j.body2 == i { j.anchor1 } else { j.anchor };
     let init = m.init.as_ref()?;
+    // The pin where it was at the start (a kinematic pivot moves on): the point of the body
+    // at the pin now, placed with the body's start pose.
+    let j = &s.joints[joint_index(s, joint)?];
+    let at_pin = if j.body2 == i { j.anchor1 } else { j.anchor };
     let b0 = &init.bodies[i];
-    let g = s.gravity.length();
+    let o = b0.position + DVec2::from_angle(b0.angle).rotate(to_local(&s.bodies[i], at_pin));
+    // In the frame of a pivot that accelerates uniformly gravity reads g - a (VW-4); the
+    // pivot's start velocity drops out: the swing's energy is in omega alone.
+    let pivot = if j.body2 == i { j.body1 } else { j.body2 };
+    let a = m
+        .facts
+        .level
+        .as_ref()
+        .and_then(|l| l.bodies.get(pivot))
+        .and_then(|d| d.motion)
+        .and_then(|mo| mo.uniform_translation())
+        .map_or(DVec2::ZERO, |a| DVec2::new(a.0, a.1));
+    let gravity = s.gravity - a;
+    let g = gravity.length();
     let r = b0.com - o;
     let d = r.length();
     let i_o = parallel_axis(b0.inertia, b0.mass, d);
@@ -268,7 +283,7 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
         if g <= 0.0 || d <= 0.0 {
             return None;
         }
-        let cos_phi = r.dot(s.gravity / g) / d;
+        let cos_phi = r.dot(gravity / g) / d;
         let one_minus_cos = (1.0 - cos_phi) + i_o * b0.omega * b0.omega / (2.0 * b0.mass * g * d);
         if one_minus_cos >= 2.0 {
             return None;
@@ -278,7 +293,7 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
     }
     // phi: OG's angle from straight down (counter-clockwise), which turns with the body.
     let phi0 = if g > 0.0 && d > 0.0 {
-        let down = s.gravity / g;
+        let down = gravity / g;
         down.perp_dot(r).atan2(down.dot(r))
     } else {
         0.0
@@ -307,10 +322,18 @@ fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<Str
     match s.bodies.get(pivot).map(|b| b.kind) {
         Some(BodyKind::Fixed) | None => {}
         Some(BodyKind::Kinematic) => {
-            return Some(format!(
-                "the pin is on \"{}\", a kinematic body the level moves: the period formula is for a fixed pivot",
-                body(pivot)
-            ))
+            // A pivot that moves without turning, at a constant velocity or acceleration, is
+            // fixed in a frame where gravity reads g - a: the formula holds there.
+            let def = facts.level.as_ref().and_then(|l| l.bodies.get(pivot));
+            let translates = def.is_some_and(|d| {
+                d.omega == 0.0 && d.motion.is_none_or(|mo| mo.uniform_translation().is_some())
+            });
+            if !translates {
+                return Some(format!(
+                    "the pin is on \"{}\", a kinematic body the level turns or shakes: the period formula is for a pivot fixed in a frame that does not turn and accelerates uniformly",
+                    body(pivot)
+                ));
+            }
         }
         Some(BodyKind::Dynamic) => {
             return Some(format!(
