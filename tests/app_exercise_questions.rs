@@ -43,12 +43,13 @@ fn form(
     }
 }
 
-#[test]
-fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
-    let mut app = app();
+/// The exercise's scene, built with the Build panel's edits: a 30 degree incline, a 0.2 m disc
+/// of 1 kg resting on it with friction 0.6, 1 s long, at the library's rolling step. Returns
+/// the incline's angle.
+fn rolling_disc_scene(app: &mut App) -> f64 {
     let theta = 30f64.to_radians();
     let (note, ok) = send(
-        &mut app,
+        app,
         EditorCommand::Apply(Edit::AddIncline {
             at: (-2.0, 0.0),
             angle: theta,
@@ -64,7 +65,7 @@ fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
         3.5 * theta.sin() + r * theta.cos(),
     );
     let (note, ok) = send(
-        &mut app,
+        app,
         EditorCommand::Apply(Edit::AddBody {
             shape: NewShape::Disc { radius: r },
             at: c,
@@ -85,9 +86,17 @@ fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
             substeps: 4,
         },
     ] {
-        let (note, ok) = send(&mut app, EditorCommand::Apply(e));
+        let (note, ok) = send(app, EditorCommand::Apply(e));
         assert!(ok, "{note}");
     }
+
+    theta
+}
+
+#[test]
+fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
+    let mut app = app();
+    let theta = rolling_disc_scene(&mut app);
 
     // A field the form cannot read is said at once, before any command.
     let bad = form("accel", "Speed(disc1", "End", "", true, "0.005");
@@ -237,4 +246,61 @@ fn a_failed_question_shows_the_failing_reading() {
     // A NaN analysis error counts as failing (it never passes).
     q.analysis_rel_error = Some(f64::NAN);
     assert_eq!(shown_error(&q).0, "analysis");
+}
+
+/// The preview is where the teacher sees the values before deciding the answer: it runs with
+/// the expected answer still blank, and then judges the answer typed (or the analysis's) by the
+/// check's own rule, naming the reading that fails.
+#[test]
+fn the_preview_needs_no_answer_and_judges_the_one_typed() {
+    use rigidlab::app::panels::questions_editor::{short_number, verdict};
+    let mut app = app();
+    let theta = rolling_disc_scene(&mut app);
+    // The kinetic energy after rolling 1 m, T = m g sin(theta) s = 4.905 J (friction does no
+    // work without slip).
+    let mut ke = form(
+        "ke_1m",
+        "KineticEnergy(\"disc1\")",
+        "Crossing(of: Distance(\"disc1\"), value: 1.0)",
+        "",
+        false,
+        "0.01",
+    );
+    assert!(ke.question(level(&app)).is_err(), "added without an answer");
+    let q = ke
+        .preview(level(&app))
+        .expect("the preview refused a blank answer");
+    let (note, ok) = send(&mut app, EditorCommand::Preview(Box::new(q)));
+    assert!(ok, "{note}");
+    let r = app
+        .world()
+        .resource::<Editor>()
+        .preview
+        .clone()
+        .unwrap()
+        .1
+        .unwrap();
+    assert_eq!(ke.expected_for(&r), None, "a blank answer judged");
+    // The textbook's answer passes; one 5% off fails on the engine's reading.
+    let t = 9.81 * theta.sin();
+    ke.expected = format!("{t}");
+    let v = r.with_expected(ke.expected_for(&r).unwrap());
+    assert!(v.passed, "{}", verdict(&v));
+    assert!(verdict(&v).ends_with("passes"), "{}", verdict(&v));
+    ke.expected = format!("{}", t * 1.05);
+    let v = r.with_expected(ke.expected_for(&r).unwrap());
+    assert!(!v.passed);
+    assert!(
+        verdict(&v).contains("FAILS on the engine"),
+        "{}",
+        verdict(&v)
+    );
+    // "compute it": the analysis's value, which passes by construction where the engine agrees.
+    ke.compute = true;
+    assert_eq!(ke.expected_for(&r), r.analysis);
+    // Numbers in the list: six significant digits.
+    assert_eq!(short_number(3.2788686771027526), "3.27887");
+    assert_eq!(short_number(4.905), "4.905");
+    assert_eq!(short_number(1500.0), "1500");
+    assert_eq!(short_number(2.5e-7), "2.50000e-7");
 }

@@ -4,14 +4,10 @@
 //! threads to spare, and the panel says to run `rigidlab check` there.
 
 use super::physics::{LiveChecks, Physics};
-use crate::report::{Advice, LevelReport};
-use crate::runner::{Estimate, Mode};
-use crate::study::advice::{self, SEARCH_BUDGET};
+use crate::level::Precision;
+use crate::report::{Advice, AdvisedSettings, LevelReport};
+use crate::study::advice::{self, SEARCH_SECONDS};
 use bevy::prelude::*;
-
-/// The longest search the window starts, s: the level's own run estimated by
-/// `runner::budget`, times the search's bound ([`SEARCH_BUDGET`] runs' worth).
-pub const WINDOW_SEARCH_S: f64 = 120.0;
 
 /// Where the advice for the run on screen is.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -22,7 +18,7 @@ pub enum AdviceState {
     /// Searching on its thread.
     Searching,
     Ready(Advice),
-    /// Not searched here, and why (too long for the window, the page, the run pushed).
+    /// Not searched here, and why (the page, the run pushed).
     NotHere(String),
 }
 
@@ -37,13 +33,64 @@ pub struct WindowAdvice {
 }
 
 impl WindowAdvice {
-    /// The panel's line, if there is one to show.
+    /// The panel's line, if there is one to show: in the window's words (the solver panel's
+    /// step, substeps and precision), not the command line's flags.
     pub fn line(&self) -> Option<String> {
         match &self.state {
             AdviceState::None => None,
-            AdviceState::Searching => Some("advice: searching finer settings…".into()),
+            AdviceState::Searching => Some(format!(
+                "advice: searching finer settings (at most {SEARCH_SECONDS:.0} s, the window goes on)…"
+            )),
+            AdviceState::Ready(Advice::Settings {
+                settings: s,
+                cost_ratio,
+                ..
+            }) => Some(format!(
+                "advice: passes at dt {:.6} s ({:.0} Hz), {} substeps, {}: {cost_ratio}x the level's cost (estimated)",
+                s.dt,
+                1.0 / s.dt,
+                s.substeps,
+                match s.precision {
+                    Precision::F32 => "f32",
+                    Precision::F64 => "f64",
+                },
+            )),
             AdviceState::Ready(a) => Some(a.line()),
             AdviceState::NotHere(why) => Some(format!("advice: {why}")),
+        }
+    }
+
+    /// The settings advised, when there are some to try.
+    pub fn settings(&self) -> Option<AdvisedSettings> {
+        match &self.state {
+            AdviceState::Ready(Advice::Settings { settings, .. }) => Some(*settings),
+            _ => None,
+        }
+    }
+}
+
+/// Runs the scene again at the advised settings (the solver panel shows them; its "level's
+/// settings" goes back).
+pub fn try_settings(phys: &mut Physics, s: &AdvisedSettings) {
+    phys.options.dt = Some(s.dt);
+    phys.options.substeps = Some(s.substeps);
+    phys.options.precision = Some(s.precision);
+    phys.reset();
+}
+
+/// The advice under the checks: its line, and a button that reruns at the settings it names.
+pub fn panel(ui: &mut bevy_egui::egui::Ui, advice: &WindowAdvice, phys: &mut Physics) {
+    let Some(line) = advice.line() else {
+        return;
+    };
+    ui.label(super::panels::rich(line, super::view::palette::FRICTION).small());
+    if let Some(s) = advice.settings() {
+        if ui
+            .small_button("run at these settings")
+            .on_hover_text("the solver panel takes them; \"level's settings\" there goes back")
+            .clicked()
+        {
+            try_settings(phys, &s);
         }
     }
 }
@@ -103,14 +150,8 @@ fn advise_failed_run(phys: Res<Physics>, live: NonSend<LiveChecks>, mut adv: Res
         );
         return;
     }
-    let estimate = Estimate::of(&phys.scene.level, &phys.options, Mode::Check, None);
-    if estimate.seconds * SEARCH_BUDGET > WINDOW_SEARCH_S {
-        adv.state = AdviceState::NotHere(format!(
-            "not searched in the window (up to {:.0} s of runs): `rigidlab check` prints it",
-            estimate.seconds * SEARCH_BUDGET
-        ));
-        return;
-    }
+    // The search bounds itself (`study::advice`: SEARCH_SECONDS of runs at most, no candidate
+    // started that would end past it) and runs on a thread of its own: the frames go on.
     #[cfg(target_arch = "wasm32")]
     {
         adv.state = AdviceState::NotHere(

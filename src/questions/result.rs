@@ -72,6 +72,22 @@ pub fn grade_answer(def: &QuestionDef, answer: f64) -> StudentGrade {
 }
 
 impl QuestionResult {
+    /// This result judged against another expected answer (its errors and verdict recomputed by
+    /// the same rule): the window's question editor previews a question before its answer is
+    /// typed, then shows whether the answer typed (or the analysis's) would pass.
+    pub fn with_expected(&self, expected: f64) -> QuestionResult {
+        let rel_error = error_against(expected, self.engine);
+        let analysis_rel_error = self.analysis.map(|a| error_against(expected, a));
+        QuestionResult {
+            expected,
+            rel_error,
+            analysis_rel_error,
+            passed: rel_error <= self.tolerance
+                && analysis_rel_error.is_none_or(|a| a <= self.tolerance),
+            ..self.clone()
+        }
+    }
+
     /// The result of a question whose quantity read `r` (with `note` saying why a value is
     /// missing), and the grade of the student's answer when there is one.
     pub(super) fn new(def: &QuestionDef, r: Reading, note: String, student: Option<f64>) -> Self {

@@ -101,8 +101,3 @@ pub(super) fn checks(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks) {
         }
     }
 }
-
-/// The advice for a failed run (app/advice.rs), under the table.
-pub(super) fn advice_line(ui: &mut egui::Ui, line: &str) {
-    ui.label(rich(line.to_string(), palette::FRICTION).small());
-}

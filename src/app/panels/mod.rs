@@ -319,8 +319,8 @@ fn panels(
                 );
                 ui.separator();
                 checks(ui, &phys, &live);
-                if let Some(line) = advice.as_deref().and_then(|a| a.line()) {
-                    checks::advice_line(ui, &line);
+                if let Some(a) = advice.as_deref() {
+                    super::advice::panel(ui, a, &mut phys);
                 }
             });
         });

@@ -9,6 +9,7 @@ use super::number_field::{number_field, Accepts};
 use super::rich;
 use crate::editor::Edit;
 use crate::level::{self, BodyKind, Level, Quantity, QuestionDef, When};
+use crate::questions::QuestionResult;
 use bevy_egui::egui;
 
 /// What the question form holds while it is typed (egui keeps it between frames).
@@ -72,6 +73,31 @@ impl QuestionForm {
     /// The question the form describes, and whether its answer is to be computed; or what is
     /// wrong with a field (the validator judges the rest when the edit is applied).
     pub fn question(&self, level: &Level) -> Result<(QuestionDef, bool), String> {
+        self.read(level, true)
+    }
+
+    /// The question to preview: as [`Self::question`], but the expected answer may still be
+    /// blank (or not a number yet): the preview is where the teacher sees the engine's and the
+    /// analysis's values before deciding it. Its placeholder answer is 1 and counts for nothing.
+    pub fn preview(&self, level: &Level) -> Result<QuestionDef, String> {
+        self.read(level, false).map(|(q, _)| q)
+    }
+
+    /// The expected answer the form stands for, given a preview's result: the analysis's value
+    /// with "compute it", else the number typed (None while there is none).
+    pub fn expected_for(&self, preview: &QuestionResult) -> Option<f64> {
+        if self.compute {
+            preview.analysis.filter(|a| a.is_finite())
+        } else {
+            self.expected
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+        }
+    }
+
+    fn read(&self, level: &Level, need_expected: bool) -> Result<(QuestionDef, bool), String> {
         let quantity: Quantity = level::ron_options()
             .from_str(self.quantity.trim())
             .map_err(|e| {
@@ -100,8 +126,10 @@ impl QuestionForm {
         let expected = if self.compute {
             // Replaced by the analysis's value when the edit is applied.
             1.0
-        } else {
+        } else if need_expected {
             number("expected answer", &self.expected)?
+        } else {
+            number("expected answer", &self.expected).unwrap_or(1.0)
         };
         let tolerance = number("tolerance", &self.tolerance)?;
         let unit = if self.unit.trim().is_empty() {
@@ -188,14 +216,16 @@ pub(super) fn questions(
     });
     for (i, q) in level.questions.iter().enumerate() {
         ui.horizontal(|ui| {
+            // Six significant digits here (a computed answer carries all 17): the full value
+            // on hover.
             ui.label(format!(
                 "{}: {} = {} {}",
                 q.id,
                 q.quantity.variant_name(),
-                q.expected,
+                short_number(q.expected),
                 q.unit
             ))
-            .on_hover_text(&q.ask);
+            .on_hover_text(format!("{}\nexpected {} {}", q.ask, q.expected, q.unit));
             if ui.small_button("edit").clicked() {
                 form = QuestionForm::from_question(i, q);
             }
@@ -216,16 +246,26 @@ pub(super) fn questions(
         )
         .small(),
     );
+    // The fields fit the panel (they ran past its edge, and a long refusal widened it).
+    let wide = |ui: &egui::Ui| (ui.available_width() - 8.0).max(80.0);
     egui::Grid::new("question form").num_columns(2).show(ui, |ui| {
         ui.label("id");
-        ui.text_edit_singleline(&mut form.id);
+        ui.add(egui::TextEdit::singleline(&mut form.id).desired_width(wide(ui)));
         ui.end_row();
         ui.label("question");
-        ui.add(egui::TextEdit::multiline(&mut form.ask).desired_rows(2));
+        ui.add(
+            egui::TextEdit::multiline(&mut form.ask)
+                .desired_rows(2)
+                .desired_width(wide(ui)),
+        );
         ui.end_row();
         ui.label("quantity");
         ui.vertical(|ui| {
-            ui.add(egui::TextEdit::singleline(&mut form.quantity).hint_text("Speed(\"disc1\")"));
+            ui.add(
+                egui::TextEdit::singleline(&mut form.quantity)
+                    .hint_text("Speed(\"disc1\")")
+                    .desired_width(wide(ui)),
+            );
             ui.horizontal_wrapped(|ui| {
                 let bodies: Vec<&str> = level
                     .bodies
@@ -262,13 +302,19 @@ pub(super) fn questions(
         });
         ui.end_row();
         ui.label("when");
-        ui.add(egui::TextEdit::singleline(&mut form.at).hint_text("End, Time(0.5)"));
+        ui.add(
+            egui::TextEdit::singleline(&mut form.at)
+                .hint_text("End, Time(0.5)")
+                .desired_width(wide(ui)),
+        );
         ui.end_row();
         ui.label("expected");
         ui.horizontal(|ui| {
             ui.add_enabled(
                 !form.compute,
-                egui::TextEdit::singleline(&mut form.expected).desired_width(90.0),
+                egui::TextEdit::singleline(&mut form.expected)
+                    .hint_text("preview first")
+                    .desired_width(90.0),
             );
             ui.checkbox(&mut form.compute, "compute it")
                 .on_hover_text("the analysis layer's value from a run of this scene (where the quantity has a formula)");
@@ -278,12 +324,29 @@ pub(super) fn questions(
         ui.add(egui::TextEdit::singleline(&mut form.tolerance).desired_width(60.0));
         ui.end_row();
         ui.label("unit");
-        ui.add(egui::TextEdit::singleline(&mut form.unit).hint_text("the quantity's SI unit").desired_width(60.0));
+        ui.add(
+            egui::TextEdit::singleline(&mut form.unit)
+                .hint_text("SI")
+                .desired_width(60.0),
+        )
+        .on_hover_text("empty: the quantity's SI unit; or rpm, deg, ... where it converts");
         ui.end_row();
         ui.label("why this tolerance");
-        ui.text_edit_singleline(&mut form.why);
+        ui.add(egui::TextEdit::singleline(&mut form.why).desired_width(wide(ui)));
         ui.end_row();
     });
+    // The last add or rewrite: once the editor took it, the form starts a new question.
+    let sent_id = id.with("sent");
+    if ui.data(|d| d.get_temp::<bool>(sent_id)).unwrap_or(false) {
+        ui.data_mut(|d| d.insert_temp(sent_id, false));
+        if editor.note.as_ref().is_some_and(|(_, ok)| *ok) {
+            form = QuestionForm {
+                tolerance: form.tolerance.clone(),
+                why: form.why.clone(),
+                ..QuestionForm::default()
+            };
+        }
+    }
     ui.horizontal(|ui| {
         if ui
             .button("preview")
@@ -292,8 +355,8 @@ pub(super) fn questions(
             )
             .clicked()
         {
-            match form.question(level) {
-                Ok((q, _)) => {
+            match form.preview(level) {
+                Ok(q) => {
                     error = None;
                     out.push(EditorCommand::Preview(Box::new(q)));
                 }
@@ -310,6 +373,7 @@ pub(super) fn questions(
                 Ok(c) => {
                     error = None;
                     out.push(c);
+                    ui.data_mut(|d| d.insert_temp(sent_id, true));
                 }
                 Err(e) => error = Some(e),
             }
@@ -318,10 +382,19 @@ pub(super) fn questions(
             form = QuestionForm::default();
         }
     });
+    let preview_text = editor.preview.as_ref().map(|(_, r)| match r {
+        Ok(r) => preview_note(r),
+        Err(e) => e.clone(),
+    });
     if let Some(e) = &error {
         ui.label(rich(e.clone(), palette::NORMAL));
-    } else if let Some((note, ok)) = &editor.note {
-        // The editor's answer to the last command (the validator's refusal, in full here).
+    } else if let Some((note, ok)) = editor
+        .note
+        .as_ref()
+        .filter(|(n, _)| Some(n) != preview_text.as_ref())
+    {
+        // The editor's answer to the last command (the validator's refusal, in full here),
+        // unless it is the preview, shown below.
         ui.label(
             rich(
                 note.clone(),
@@ -334,15 +407,45 @@ pub(super) fn questions(
             .small(),
         );
     }
-    if let Some((q, r)) = &editor.preview {
-        let text = match r {
-            Ok(r) => preview_note(r),
-            Err(e) => e.clone(),
+    if let (Some((q, r)), Some(text)) = (&editor.preview, preview_text) {
+        // A preview of another question than the form's (its quantity or instant since
+        // changed) is said to be one, and offers nothing to fill in.
+        let current = form
+            .preview(level)
+            .is_ok_and(|f| f.quantity == q.quantity && f.at == q.at);
+        let head = if current {
+            "preview".to_string()
+        } else {
+            format!("earlier preview, of {}", q.id)
         };
-        ui.label(rich(format!("preview of {}: {text}", q.id), palette::OUTLINE).small());
-        if let (Ok(r), false) = (r, form.compute) {
-            if let Some(a) = r.analysis.filter(|a| a.is_finite()) {
-                if ui.small_button("use the analysis value").clicked() {
+        ui.label(rich(format!("{head}: {text}"), palette::OUTLINE).small());
+        if let (Ok(r), true) = (r, current) {
+            match form.expected_for(r) {
+                Some(e) => {
+                    let v = r.with_expected(e);
+                    ui.label(
+                        rich(
+                            verdict(&v),
+                            if v.passed {
+                                palette::GRAVITY
+                            } else {
+                                palette::NORMAL
+                            },
+                        )
+                        .small(),
+                    );
+                }
+                None if !form.compute => {
+                    ui.label(rich("type the expected answer (or tick \"compute it\") to see whether it passes", palette::OUTLINE).small());
+                }
+                None => {}
+            }
+            if let (Some(a), false) = (r.analysis.filter(|a| a.is_finite()), form.compute) {
+                if ui
+                    .small_button("use the analysis value")
+                    .on_hover_text(format!("{a}"))
+                    .clicked()
+                {
                     form.expected = format!("{a}");
                 }
             }
@@ -352,4 +455,45 @@ pub(super) fn questions(
         d.insert_temp(id, form);
         d.insert_temp(id.with("error"), error);
     });
+}
+
+/// A number in six significant digits, trailing zeros dropped (3.27887, 4.905, 1.5e-7).
+pub fn short_number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let a = x.abs();
+    if !(1e-3..1e6).contains(&a) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Whether the previewed question passes with the expected answer the form stands for, and by
+/// which reading it fails (both must agree with the answer, as in `rigidlab check`).
+pub fn verdict(r: &QuestionResult) -> String {
+    let analysis = match r.analysis_rel_error {
+        Some(a) => format!(", analysis off {a:.2e}"),
+        None => String::new(),
+    };
+    format!(
+        "against {} {}: engine off {:.2e}{analysis} (tolerance {:.1e}): {}",
+        short_number(r.expected),
+        r.unit,
+        r.rel_error,
+        r.tolerance,
+        if r.passed {
+            "passes".to_string()
+        } else if r.rel_error > r.tolerance {
+            "FAILS on the engine's value".to_string()
+        } else {
+            "FAILS on the analysis's value".to_string()
+        }
+    )
 }
