@@ -330,9 +330,12 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // An eighth new user on analyses past their assumptions (tests/newuser/n8_*, 2026-11-26;
     // n8_REPORT.md; fixed the same day: a pendulum on a kinematic trolley, moving or not, got
     // the linearized period, 3.9e-3 short at 0.25 rad, while claiming to apply; a pivot that
-    // translates uniformly now gets the exact period in its frame). MotorTorque's analysis of a winch drum hauling a block on a rough floor
-    // reads r Q = 2.0 N m, the load without the floor's friction, for 3.1772 (engine 4e-6);
-    // CouplingForce reads -31.772 N for a cable that pulls (the sign follows the ratios').
+    // translates uniformly now gets the exact period in its frame; MotorTorque's analysis of a
+    // winch hauling a block on a rough floor read r Q = 2.0 N m, without the floor's friction,
+    // for 3.1772: friction on the driven mechanism now makes it "not applicable"). The user's
+    // cable pulls the block away from the drum (x_block + 0.1 theta, the block at x = 0 moving
+    // to -x, the drum at x = 2): CouplingForce reads -31.772 N by the documented sign (positive
+    // where each term grows toward the drum); the docs now say so. The level is the user's.
     ("n8_10_drum_hauls_block_efficiency.ron", "question T:"),
     ("n8_10_drum_hauls_block_efficiency.ron", "question tau:"),
     // The restitution check takes H about the pin as conserved when a pinned bar strikes a

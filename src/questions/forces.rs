@@ -41,6 +41,13 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             }
         }
     }
+    if let Quantity::MotorTorque { joint: j, .. } = &m.q {
+        if m.inapplicable.is_none() {
+            if let Some(k) = joint_index(s, j) {
+                m.inapplicable = friction_on_mechanism(s, k);
+            }
+        }
+    }
     if let Quantity::JointReaction { joint: j, .. } = &m.q {
         if let Some(k) = joint_index(s, j) {
             let jj = &s.joints[k];
@@ -380,6 +387,47 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
 /// The motor's effort from the textbook: virtual work with the inertia forces (VW-2, VW-5; MK
 /// 6/11a), which holds at rest as in motion; where the joints do not make a one-degree-of-freedom
 /// mechanism of what the motor drives (a contact, a coupling, a free body), the power balance.
+/// Friction at a contact of the mechanism that joint k drives (its dynamic bodies joined through
+/// joints and couplings), in the step that led to `s`: its work is in neither the virtual work
+/// of the applied forces nor the power balance, which would then give the motor less than it
+/// takes (a winch hauling a block on a rough floor read r Q = 2.0 N m for r (Q + mu m g) =
+/// 3.18). None when there is none.
+fn friction_on_mechanism(s: &Snapshot, k: usize) -> Option<String> {
+    let dynamic = |i: usize| s.bodies.get(i).is_some_and(is_massive);
+    let mut inside = vec![false; s.bodies.len()];
+    let j = s.joints.get(k)?;
+    for b in [j.body1, j.body2] {
+        inside[b] = dynamic(b);
+    }
+    let mut pairs: Vec<(usize, usize)> = s.joints.iter().map(|x| (x.body1, x.body2)).collect();
+    for c in &s.couplings {
+        for a in &c.terms {
+            for b in &c.terms {
+                pairs.push((a.0, b.0));
+            }
+        }
+    }
+    let mut grew = true;
+    while grew {
+        grew = false;
+        for &(a, b) in &pairs {
+            for (x, y) in [(a, b), (b, a)] {
+                if inside[x] && dynamic(y) && !inside[y] {
+                    inside[y] = true;
+                    grew = true;
+                }
+            }
+        }
+    }
+    let c = s.contacts.iter().find(|c| {
+        (inside[c.body1] || inside[c.body2]) && c.points.iter().any(|p| p.tangent_impulse != 0.0)
+    })?;
+    Some(format!(
+        "friction between \"{}\" and \"{}\" acts on the driven mechanism: its work is in neither the virtual work nor the power balance",
+        s.bodies[c.body1].name, s.bodies[c.body2].name
+    ))
+}
+
 fn motor_effort(m: &Meter, f: &Sample, k: usize) -> Option<f64> {
     virtual_work_effort(m, f, k).or_else(|| power_balance(m, f, k))
 }
