@@ -42,6 +42,7 @@ pub mod sim64 {
     pub(crate) use rapier2d_f64 as rapier;
     pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod build;
+    mod contact_points;
     mod couplings;
     mod impacts;
     mod interventions;

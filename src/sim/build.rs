@@ -184,7 +184,14 @@ pub(crate) fn colliders(b: &BodyDef, fx: &Effects) -> Vec<ColliderBuilder> {
     } else {
         0.0
     };
+    // A ball's solver point goes on its rim (sim/contact_points.rs).
+    let hooks = if matches!(shape, LevelShape::Circle { .. }) {
+        ActiveHooks::MODIFY_SOLVER_CONTACTS
+    } else {
+        ActiveHooks::empty()
+    };
     vec![ColliderBuilder::new(shared_shape(shape))
+        .active_hooks(hooks)
         .density(0.0)
         .friction(friction as Real)
         .restitution(restitution as Real)

@@ -431,7 +431,10 @@ impl Simulation {
             let rows_from = (split || self.settings.impact_cuts).then(|| self.joint_poses());
             self.prescribe_velocities(t0 + elapsed, t0 + elapsed + h);
             elapsed += h;
-            self.world.step();
+            // Round bodies' friction acts on their rims, not halfway into an overlap
+            // (sim/contact_points.rs).
+            self.world
+                .step_with_events(&super::contact_points::RoundContactPoints, &());
             let call_lambdas = self.solve_couplings();
             self.owe_carriers(&call_lambdas);
             for (l, x) in lambdas.iter_mut().zip(call_lambdas) {
