@@ -215,7 +215,7 @@ pub(super) fn questions(
         }
     });
     for (i, q) in level.questions.iter().enumerate() {
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             // Six significant digits here (a computed answer carries all 17): the full value
             // on hover.
             ui.label(format!(
