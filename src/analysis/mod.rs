@@ -16,6 +16,7 @@
 //! - [`closed_forms`]: exercise answers in closed form: pendulum and spring periods, rolling on a slope;
 //! - [`energy`]: kinetic energy in its three forms, potentials, power, the work-energy ledger;
 //! - [`momentum`]: linear momentum, angular momentum about G, about any point, about a fixed axis;
+//! - [`curved_path`]: the normal force on a body whose G rides a circle (PN-2), the radius of its path;
 //! - [`kinetics`]: the free-body diagram of a body over a step and the Newton-Euler residuals;
 //! - [`impact`]: impact detection from contact impulses, restitution, energy lost, H about the contact;
 //! - [`percussion`]: the center of percussion and the pivot reaction of a struck pinned body;
@@ -25,6 +26,7 @@
 //! - [`small_oscillations`]: the modes and periods of any mechanism linearized about its equilibrium (PL-14).
 
 pub mod closed_forms;
+pub mod curved_path;
 pub mod energy;
 pub mod frame;
 pub mod impact;

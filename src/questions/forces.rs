@@ -27,13 +27,15 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         body,
         other,
         window,
-        ..
-    } = &m.q
+        component,
+    } = m.q.clone()
     {
+        // On a fixed arc, PN-2 from the state at the instant (`curved_contact`). Elsewhere
         // Newton's analysis reads a_G, which a faceted curve jolts at each vertex: at one
         // step it is the engine's burst, not the textbook's force.
-        if let (Some(i), Some(o)) = (m.body_index(s, body), m.body_index(s, other)) {
-            if *window == 0.0
+        if let (Some(i), Some(o)) = (m.body_index(s, &body), m.body_index(s, &other)) {
+            if super::curved_contact::advance(m, s, i, o, component) {
+            } else if window == 0.0
                 && m.inapplicable.is_none()
                 && super::rolling::turned(prev, s, i, o).is_some_and(|a| a > super::rolling::CURVED)
             {
@@ -261,7 +263,8 @@ const SLIDING: f64 = 1e-2;
 /// the contact slides (the slip keeps one sign above [`SLIDING`] on both steps around the
 /// sample), the friction part is Coulomb's mu N opposing the slip, with the engine's N (WE-6);
 /// otherwise, where this contact is body i's only support (no other contact, joint or
-/// coupling on it), the force its motion needs beyond the known forces (6/1).
+/// coupling on it), the force its motion needs beyond the known forces (6/1). On a fixed arc,
+/// the normal force on a circular path (PN-2, `curved_contact`) where it answers.
 fn contact_force_analysis(
     m: &Meter,
     f: &Sample,
@@ -270,6 +273,9 @@ fn contact_force_analysis(
     n: DVec2,
     c: ContactComponent,
 ) -> Option<f64> {
+    if let Some(on_arc) = super::curved_contact::analysis(m, f, i, o, n, c) {
+        return on_arc;
+    }
     let slips: Vec<f64> = [f.prev, Some(f.cur), f.next]
         .into_iter()
         .flatten()

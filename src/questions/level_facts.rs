@@ -3,6 +3,7 @@
 //! and geometry. The impact and blow solutions, friction's work and the joint analyses read
 //! them; the engine's state comes from the snapshots.
 
+use crate::analysis::curved_path::PathSide;
 use crate::level::{Effect, JointKind, Level};
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
@@ -23,6 +24,62 @@ pub(super) struct BodyInfo {
     pub damped: bool,
     /// The level's loads on the body (by name).
     pub loads: Vec<String>,
+    /// A fixed body's circular track (`Shape::Arc`), for the normal force on a curve.
+    pub arc: Option<ArcTrack>,
+}
+
+/// A fixed circular track (`Shape::Arc` on a fixed body), in world axes.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ArcTrack {
+    pub center: DVec2,
+    pub radius: f64,
+    /// The arc's first angle about the center (world, rad) and its sweep, counter-clockwise.
+    pub start: f64,
+    pub sweep: f64,
+    /// Which side bodies ride: inside the circle or outside it.
+    pub side: PathSide,
+    /// One facet's turn, rad (`level::curves::facet_angle`).
+    pub facet: f64,
+}
+
+impl ArcTrack {
+    /// The track of body `b`, when it is a fixed body whose shape is an arc.
+    fn of(b: &crate::level::BodyDef) -> Option<ArcTrack> {
+        use crate::level::{curves, ArcSide, BodyKind, Shape};
+        let Some(Shape::Arc {
+            center,
+            radius,
+            start,
+            end,
+            side,
+            chord_error,
+        }) = &b.shape
+        else {
+            return None;
+        };
+        if b.kind != BodyKind::Fixed {
+            return None;
+        }
+        let turn = DVec2::from_angle(b.angle);
+        Some(ArcTrack {
+            center: DVec2::new(b.position.0, b.position.1)
+                + turn.rotate(DVec2::new(center.0, center.1)),
+            radius: *radius,
+            start: start + b.angle,
+            sweep: end - start,
+            side: match side {
+                ArcSide::Inside => PathSide::Inside,
+                ArcSide::Outside => PathSide::Outside,
+            },
+            facet: curves::facet_angle(*radius, curves::chord_error(*radius, *chord_error)),
+        })
+    }
+
+    /// Whether the ray from the center along `d` meets the arc (within its sweep).
+    pub fn spans(&self, d: DVec2) -> bool {
+        let from_start = (d.y.atan2(d.x) - self.start).rem_euclid(std::f64::consts::TAU);
+        self.sweep >= std::f64::consts::TAU - 1e-9 || from_start <= self.sweep
+    }
 }
 
 /// A spring of the level (linear or torsion), as the analyses' preconditions read it.
@@ -107,6 +164,7 @@ impl LevelFacts {
                         .filter(|l| l.body == b.name)
                         .map(|l| l.name.clone())
                         .collect(),
+                    arc: ArcTrack::of(b),
                 })
                 .collect(),
             joints: if has(Effect::Joints) {

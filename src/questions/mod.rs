@@ -33,6 +33,7 @@
 //! [`QuantityFamily`]: crate::level::QuantityFamily
 
 mod contact_events;
+mod curved_contact;
 mod forces;
 mod free_body;
 mod impact_solution;
