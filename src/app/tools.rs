@@ -494,7 +494,12 @@ pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawi
         let mut pts = state.polygon.clone();
         pts.extend(state.cursor);
         d.prims.push(Prim::Poly(pts, false, palette::TOOL));
-        d.prims.push(Prim::Dot(first, 4.0, palette::TOOL));
+        // The point a click ends on: a polygon's first corner, a track's last point.
+        let end = match state.tool {
+            Tool::Track => state.polygon.last().copied().unwrap_or(first),
+            _ => first,
+        };
+        d.prims.push(Prim::Dot(end, 4.0, palette::TOOL));
     }
     if let Some(pr) = state.protractor {
         protractor(pr, state.cursor, d);
