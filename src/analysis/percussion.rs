@@ -71,3 +71,39 @@ pub fn pivot_impulse(
     let sum_j: DVec2 = blows.iter().map(|b| b.impulse).sum();
     (m * dv_g - sum_j, omega1)
 }
+
+/// A body in rotation about the fixed pivot O strikes a fixed obstacle at C along the normal
+/// `n` (a pinned bar striking a peg). The body has one degree of freedom, so e at the contact
+/// point fixes the rebound (IM-12: v_n' = -e v_n, with v_n = omega (k x r_{C/O}) . n), and
+/// omega' = -e omega0; the obstacle's impulse lambda n then follows from the angular impulse
+/// about O, where the pivot has no moment (6/17: I_O (omega' - omega0) = lambda (r_{C/O} x n)),
+/// and the pivot's from the linear impulse ([`pivot_impulse`], CP-3).
+///
+/// Neither angular momentum is conserved in general: about O the obstacle's impulse has a
+/// moment, about C the pivot's, except where the pivot's vanishes (C at the center of
+/// percussion, the normal perpendicular to OG, CP-3). `contact`: (C, n). Returns (lambda n,
+/// J_O, omega'); None when the normal passes through O (the obstacle cannot stop the body's
+/// turning).
+pub fn strike_on_fixed_obstacle(
+    m: f64,
+    i_o: f64,
+    o: DVec2,
+    r_g: DVec2,
+    omega0: f64,
+    (c, n): (DVec2, DVec2),
+    e: f64,
+) -> Option<(DVec2, DVec2, f64)> {
+    let arm = cross(c - o, n);
+    if arm.abs() <= 1e-12 * (c - o).length().max(1e-12) {
+        return None;
+    }
+    let omega1 = -e * omega0;
+    let lambda = i_o * (omega1 - omega0) / arm;
+    let blow = Blow {
+        impulse: lambda * n,
+        point: c,
+        couple: 0.0,
+    };
+    let (j_o, w1) = pivot_impulse(m, i_o, o, r_g, omega0, &[blow], 0.0);
+    Some((blow.impulse, j_o, w1))
+}

@@ -13,6 +13,7 @@ use crate::analysis::impact::{
 };
 use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source};
 use crate::analysis::momentum::angular_momentum_about;
+use crate::analysis::percussion::strike_on_fixed_obstacle;
 use crate::analysis::touching::{
     carried_back_at, flies_free, impact_at_touch, Approaching, ReadAt,
 };
@@ -44,12 +45,20 @@ use glam::DVec2;
 ///
 /// Eccentric impact (IM-15: the textbook does not use e for it; the normal at the touch misses a
 /// body's G, or a rough contact is left stuck, as a wheel pivoting onto a curb): theory H after =
-/// H before plus the other forces' angular impulse over the bracket, about the pin of a body of
-/// the pair jointed to a fixed body (its reaction has no moment there), else about the contact
-/// point C (RM-10: the impulsive reaction passes through C); engine H after from rapier's state
-/// (6/15); error relative to what the two bodies carry about that point one by one (H of the
-/// pair can be near zero: a ball striking a pinned bar below its pin). The measured e is shown
-/// as information only.
+/// H before plus the other forces' angular impulse over the bracket, about the point where a law
+/// of angular momentum holds ([`Law`]): the pin of a body of the pair jointed to a fixed body when
+/// the partner moves (the pin's reaction has no moment there and the pair's own impulses cancel),
+/// else the contact point C (RM-10: the impulsive reaction passes through C); engine H after from
+/// rapier's state (6/15); error relative to what the two bodies carry about that point one by
+/// one (H of the pair can be near zero: a ball striking a pinned bar below its pin). The measured
+/// e is shown as information only. A body turning about its pin that strikes a fixed body (a
+/// pinned bar striking a peg) keeps H about neither point: the obstacle's impulse has a moment
+/// about the pin, the pin's about C; where the pin's impulse vanishes (C at the center of
+/// percussion, the normal perpendicular to OG: CP-3, `analysis::percussion::
+/// strike_on_fixed_obstacle`), H about C of any rotation about the pin is zero, before and after,
+/// and says nothing of the rebound. The body has one degree of freedom and e at the contact
+/// fixes the impulse solution (IM-12, the obstacle's reaction from 6/17 about the pin), so e is
+/// graded against e set, as for a central impact; the note gives the pin's share of the impulse.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let b = match dynamic_body(level, def) {
         Ok(b) => b,
@@ -99,6 +108,28 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     })
 }
 
+/// The law an impact is graded on (IM-15, RM-10, IM-12).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Law {
+    /// H of the pair about the pin of one of them jointed to a fixed body, the partner moving:
+    /// the pin's reaction is the only impulse from outside the pair, with no moment there.
+    AboutPin,
+    /// H about the contact point C: the impulsive reaction passes through it (RM-10).
+    AboutContact,
+    /// A body turning about its pin strikes a fixed body: no angular momentum law fixes the
+    /// rebound. About the pin the obstacle's impulse has a moment; about C the pin's has, except
+    /// at the center of percussion, where the pin takes no impulse (CP-3) but H about C of any
+    /// rotation about the pin is zero (I_O omega - q m r_bar omega), before and after alike. e
+    /// at the contact fixes the impulse solution (IM-12): e is graded. `pin_share`: the pin's
+    /// impulse by that solution over the obstacle's, for a body on a pin alone.
+    EAtContact { pin_share: Option<f64> },
+}
+
+/// The pin's impulse, as a fraction of the obstacle's, below which a body turning about its pin
+/// that strikes a fixed body is said (in the note) to be struck at its center of percussion (a
+/// peg placed at q to about 1e-3 of q).
+const PIN_IMPULSE_VANISHES: f64 = 1e-3;
+
 /// An impact in progress.
 struct Open {
     start_time: f64,
@@ -118,11 +149,9 @@ struct Open {
     /// The engine's contact normal and point C at the first step.
     normal: DVec2,
     point: DVec2,
-    /// The point H is balanced about (IM-15): the pin of a body of the pair jointed to a fixed
-    /// body (its reaction has no moment there), else C (the impulsive reaction passes through
-    /// it, RM-10); and whether it is a pin.
+    /// The point H is balanced about (IM-15) and the law graded ([`Law`]).
     about: DVec2,
-    about_pin: bool,
+    law: Law,
     impulse: DVec2,
     /// Angular impulse about `about` of the other forces over the bracket.
     other_moment: f64,
@@ -188,13 +217,18 @@ struct Done {
     h_engine: f64,
     /// What the two bodies carry about that point one by one, before or after (the larger).
     h_scale: f64,
-    /// H about the pin (else about the contact point).
-    about_pin: bool,
+    /// The law an eccentric impact is graded on.
+    law: Law,
 }
 
 impl Done {
     fn approached(&self) -> bool {
         self.touch_time.is_some()
+    }
+
+    /// Whether the impact is graded on H (else on e).
+    fn graded_on_h(&self) -> bool {
+        self.eccentric && !matches!(self.law, Law::EAtContact { .. })
     }
 }
 
@@ -265,6 +299,44 @@ impl Restitution {
             b,
             acc,
         })
+    }
+
+    /// The point an eccentric impact of `[i, k]` is balanced about and the law graded
+    /// ([`Law`]), from the state `a0` of `i` before it and the contact (C, n) at the touch; H
+    /// about C is taken about `engine_point`, the engine's contact point at the impact's first
+    /// step.
+    fn law(
+        &self,
+        s: &Snapshot,
+        [i, k]: [usize; 2],
+        a0: &Motion,
+        (c, n): (DVec2, DVec2),
+        engine_point: DVec2,
+    ) -> (DVec2, Law) {
+        let fixed = |x: usize| s.bodies[x].mass == 0.0;
+        if !fixed(k) {
+            return match pivot_of(s, i).or_else(|| pivot_of(s, k)) {
+                Some(o) => (o, Law::AboutPin),
+                None => (engine_point, Law::AboutContact),
+            };
+        }
+        let Some(o) = pivot_of(s, i) else {
+            return (engine_point, Law::AboutContact);
+        };
+        // The body turns about its pin alone (one joint): where does the impulse solution put
+        // the pin's impulse (CP-3)?
+        let joints = s
+            .joints
+            .iter()
+            .filter(|j| j.body1 == i || j.body2 == i)
+            .count();
+        let b = &s.bodies[i];
+        let i_o = crate::analysis::mass::parallel_axis(b.inertia, b.mass, (a0.com - o).length());
+        let e = self.e_body.max(self.partner_e);
+        let pin_share = strike_on_fixed_obstacle(b.mass, i_o, o, a0.com, a0.omega, (c, n), e)
+            .filter(|_| joints == 1)
+            .map(|(blow, j_o, _)| j_o.length() / blow.length().max(f64::MIN_POSITIVE));
+        (o, Law::EAtContact { pin_share })
     }
 
     /// H about C of a body (6/15); nothing for a body without mass.
@@ -399,7 +471,7 @@ impl Restitution {
             h_theory,
             h_engine,
             h_scale,
-            about_pin: o.about_pin,
+            law: o.law,
         });
     }
 }
@@ -427,11 +499,23 @@ impl Done {
             self.tangential.1,
             self.lost
         );
-        if self.eccentric {
+        if self.graded_on_h() {
             note += &format!(
                 ", eccentric: H about {} before {:.5}, after theory {:.5}, engine {:.5} N m s (scale {:.5}; e not a textbook quantity here, IM-15)",
-                if self.about_pin { "the pin O" } else { "the contact point C" },
+                match self.law {
+                    Law::AboutPin => "the pin O",
+                    _ => "the contact point C",
+                },
                 self.h_before, self.h_theory, self.h_engine, self.h_scale
+            );
+        } else if let (true, Law::EAtContact { pin_share }) = (self.eccentric, self.law) {
+            note += &format!(
+                ", eccentric, turning about its pin against a fixed body: {}, so e at the contact, which fixes the impulse solution, is graded (IM-12)",
+                match pin_share {
+                    Some(x) if x <= PIN_IMPULSE_VANISHES => format!("struck at its center of percussion, the pin takes no impulse ({x:.1e} of the obstacle's, CP-3), but H about C is zero before and after for any rebound, and about the pin the obstacle's impulse has a moment"),
+                    Some(x) => format!("H is kept about neither the pin (the obstacle's impulse has a moment there) nor C (the pin's has: {x:.4} of the obstacle's by the impulse solution, CP-3)"),
+                    None => "H is kept about neither the pin (the obstacle's impulse has a moment there) nor C (the pin's, or the other joints', have)".to_string(),
+                }
             );
         } else {
             note += &format!(
@@ -514,7 +598,12 @@ impl FrameProbe for Restitution {
             match (bracket, pc) {
                 (Bracket::Start, Some(c)) => {
                     let touch = self.touching(s, fa, [i, k], &c);
-                    let pin = pivot_of(s, i).or_else(|| pivot_of(s, k));
+                    let (point, normal) =
+                        touch.map_or((c.point, c.normal), |t| (t.point, t.normal));
+                    // The bar's state at the touch where there is one (its G then on the line
+                    // the normal is perpendicular to, at the center of percussion).
+                    let at = touch.as_ref().map_or(&before[i], |t| &t.a);
+                    let (about, law) = self.law(s, [i, k], at, (point, normal), c.point);
                     self.open = Some(Open {
                         start_time: s.time - s.dt,
                         a0: before[i],
@@ -525,8 +614,8 @@ impl FrameProbe for Restitution {
                         touch,
                         normal: c.normal,
                         point: c.point,
-                        about: pin.unwrap_or(c.point),
-                        about_pin: pin.is_some(),
+                        about,
+                        law,
                         impulse: DVec2::ZERO,
                         other_moment: 0.0,
                         steps: 0,
@@ -629,7 +718,7 @@ impl FrameProbe for Restitution {
             .impacts
             .iter()
             .map(|d| {
-                if d.eccentric {
+                if d.graded_on_h() {
                     let scale = d.h_scale.max(f64::MIN_POSITIVE);
                     (
                         (d.h_engine - d.h_theory).abs(),
@@ -641,7 +730,7 @@ impl FrameProbe for Restitution {
             })
             .collect();
         let first = &self.impacts[0];
-        let (theory, engine, scale) = if first.eccentric {
+        let (theory, engine, scale) = if first.graded_on_h() {
             (first.h_theory, first.h_engine, first.h_scale)
         } else {
             (first.e_set, first.e, 1.0)
