@@ -42,6 +42,10 @@ pub enum Command {
         /// its advice).
         #[arg(long)]
         no_advice: bool,
+        /// The wall time, s, the advice may spend searching a level (default 2; a level whose
+        /// own run takes seconds needs more to be searched through).
+        #[arg(long, value_name = "S", value_parser = parse_seconds, default_value_t = crate::study::advice::SEARCH_SECONDS)]
+        advice_seconds: f64,
         #[command(flatten)]
         solver: SolverArgs,
     },
@@ -200,6 +204,16 @@ fn answers_for(
     Ok(out)
 }
 
+/// `--advice-seconds`: a positive, finite number of seconds.
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!(
+            "`{s}` is not a positive number of seconds (for example 2 or 30)"
+        )),
+    }
+}
+
 const BAD_INPUT: u8 = 2;
 
 pub fn main() -> ExitCode {
@@ -211,8 +225,15 @@ pub fn main() -> ExitCode {
             json,
             answers,
             no_advice,
+            advice_seconds,
             solver,
-        }) => check(&paths, json, answers, !no_advice, &solver),
+        }) => check(
+            &paths,
+            json,
+            answers,
+            (!no_advice).then_some(advice_seconds),
+            &solver,
+        ),
         Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
         Some(Command::Play { level }) => play(level),
         Some(Command::Study { study }) => crate::study::main(study),
@@ -234,7 +255,7 @@ fn check(
     paths: &[PathBuf],
     json: bool,
     answer_list: Vec<(String, String)>,
-    advice: bool,
+    advice: Option<f64>,
     solver: &SolverArgs,
 ) -> ExitCode {
     let opts = match solver.options() {
@@ -282,21 +303,27 @@ fn check(
                 if let Some(b) = bar {
                     b.finish_and_clear();
                 }
-                if !advice {
+                let Some(seconds) = advice else {
                     return r;
-                }
+                };
                 // A level the engine failed (or that stopped early): the cheapest settings
                 // that pass, searched within a bound (study::advice).
                 match r {
                     Ok(mut report) if crate::study::advice::engine_failed(&report) => {
-                        report.advice =
-                            Some(crate::study::advice::advise(&scene, &opts, report.wall_ms));
+                        report.advice = Some(crate::study::advice::advise_within(
+                            &scene,
+                            &opts,
+                            report.wall_ms,
+                            seconds,
+                        ));
                         Ok(report)
                     }
                     Err(e @ RunError::Sim { .. }) => {
                         stderr!("{e}");
                         let mut report = failed(f, &e.to_string());
-                        report.advice = Some(crate::study::advice::advise(&scene, &opts, 0.0));
+                        report.advice = Some(crate::study::advice::advise_within(
+                            &scene, &opts, 0.0, seconds,
+                        ));
                         Ok(report)
                     }
                     other => other,

@@ -90,12 +90,17 @@ fn an_engine_limit_gets_none_within_and_why() {
 fn check_prints_the_advice_and_no_advice_turns_it_off() {
     let bin = env!("CARGO_BIN_EXE_rigidlab");
     let failing = "tests/newuser/pendulum_period_120deg.ron";
-    let out = Command::new(bin).args(["check", failing]).output().unwrap();
+    // A generous search time: under a loaded test run the 2 s default may run out before the
+    // 4x candidate that passes (the time bound has its own test below).
+    let out = Command::new(bin)
+        .args(["check", failing, "--advice-seconds", "120"])
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(1));
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(table.contains("advice: passes with --dt"), "{table}");
     let out = Command::new(bin)
-        .args(["check", failing, "--json"])
+        .args(["check", failing, "--json", "--advice-seconds", "120"])
         .output()
         .unwrap();
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();

@@ -95,6 +95,12 @@ pub fn engine_failed(r: &LevelReport) -> bool {
 /// overrides of the level's settings) in `failed_wall_ms` (0 when it stopped early or was not
 /// timed: candidates' times are then `runner::budget`'s estimates).
 pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
+    advise_within(scene, opts, failed_wall_ms, SEARCH_SECONDS)
+}
+
+/// [`advise`] with the search's wall time `seconds` instead of [`SEARCH_SECONDS`]
+/// (`rigidlab check --advice-seconds S`).
+pub fn advise_within(scene: &Scene, opts: &Options, failed_wall_ms: f64, seconds: f64) -> Advice {
     let started = Instant::now();
     let precision = opts.precision.unwrap_or(scene.level.world.precision);
     let own = Settings::resolve(&scene.level, opts, precision);
@@ -111,7 +117,6 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
         // A candidate past the run budget is not tried (runner::budget).
         let estimate = Estimate::of(&scene.level, &options, Mode::Check, None);
         if !estimate.fits() {
-            cut = Some((c, estimate.seconds));
             break;
         }
         // Nor one that would end past the search's wall time: the candidates come cheapest
@@ -121,7 +126,7 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
         } else {
             estimate.seconds
         };
-        if started.elapsed().as_secs_f64() + predicted > SEARCH_SECONDS {
+        if started.elapsed().as_secs_f64() + predicted > seconds {
             cut = Some((c, predicted));
             break;
         }
@@ -150,12 +155,13 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
     };
     match cut {
         // The time ran out before the cost bound: say so, and what to try by hand.
-        Some((c, seconds)) => Advice::NoneWithin {
+        Some((c, predicted)) => Advice::NoneWithin {
             none_within: searched_to,
             why: format!(
-                "none passes within the search's {SEARCH_SECONDS} s ({}): the next, \
+                "none passes within the search's {seconds} s ({}): the next, \
                  --dt {} --substeps {} --precision {} ({}x the level's cost), would take about \
-                 {seconds:.1} s; run it yourself, the search stopped on time, not on a limit",
+                 {predicted:.1} s; run it yourself (or give `--advice-seconds`), the search \
+                 stopped on time, not on a limit",
                 if searched_to > 0.0 {
                     format!("tried up to {searched_to}x the level's cost")
                 } else {
@@ -169,7 +175,7 @@ pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
                 },
                 c.cost_ratio,
             ),
-            within_seconds: Some(SEARCH_SECONDS),
+            within_seconds: Some(seconds),
         },
         None => Advice::NoneWithin {
             none_within: searched_to,
