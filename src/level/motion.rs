@@ -95,8 +95,8 @@ impl Motion {
             Motion::Accelerate {
                 acceleration,
                 angular,
-            } if angular == 0.0 => Some(acceleration),
-            _ => None,
+            } => (angular == 0.0).then_some(acceleration),
+            Motion::Oscillate { .. } => None,
         }
     }
 }
