@@ -48,10 +48,7 @@ fn play_to_end(app: &mut App) {
         "the run did not end"
     );
     assert!(
-        app.world()
-            .non_send::<LiveChecks>()
-            .checks
-            .is_some(),
+        app.world().non_send::<LiveChecks>().checks.is_some(),
         "no results at the end"
     );
 }

@@ -5,9 +5,9 @@
 //! the line of the offending item and says how to fix it).
 
 pub mod curves;
-pub mod motion;
 mod error;
 pub mod format;
+pub mod motion;
 mod validate;
 mod warnings;
 

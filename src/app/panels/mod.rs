@@ -20,8 +20,8 @@ mod scene_editor;
 pub mod shortcuts;
 mod solver;
 mod tool_controls;
-mod track_editor;
 pub mod tour;
+mod track_editor;
 
 pub use capture::{capture, save};
 pub use exercise::{grade, grade_message, Grade};

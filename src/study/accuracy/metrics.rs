@@ -275,13 +275,10 @@ pub fn conserved(level: &Level) -> Conserved {
             .bodies
             .iter()
             .any(|b| b.kind != BodyKind::Dynamic && b.shape.is_some());
-    let moving_kinematic = level
-        .bodies
-        .iter()
-        .any(|b| {
-            b.kind == BodyKind::Kinematic
-                && (b.velocity != (0.0, 0.0) || b.omega != 0.0 || b.motion.is_some())
-        });
+    let moving_kinematic = level.bodies.iter().any(|b| {
+        b.kind == BodyKind::Kinematic
+            && (b.velocity != (0.0, 0.0) || b.omega != 0.0 || b.motion.is_some())
+    });
     let external = joint_to_ground
         || spring_to_ground
         || contact_with_ground
