@@ -121,3 +121,34 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
         Some(3.0)
     );
 }
+
+/// Opening another level starts a new history at once: the undo button (which reads
+/// `can_undo`) must not offer the last level's edits, nor the panel show their note, before
+/// any command is sent (the history used to be cleared only at the next command).
+#[test]
+fn another_level_starts_with_nothing_to_undo() {
+    let mut app = app();
+    let (_, ok) = send(
+        &mut app,
+        EditorCommand::Apply(Edit::AddBody {
+            shape: editor::NewShape::Disc { radius: 0.1 },
+            at: (0.0, 1.0),
+            mass: 1.0,
+        }),
+    );
+    assert!(ok);
+    assert!(app
+        .world()
+        .resource::<rigidlab::app::editor::Editor>()
+        .history
+        .can_undo());
+    let other = rigidlab::level::load(std::path::Path::new(
+        "levels/kinetics/pendulum_on_accelerating_cart.ron",
+    ))
+    .expect("a library level");
+    app.world_mut().resource_mut::<Physics>().load(other);
+    app.update();
+    let ed = app.world().resource::<rigidlab::app::editor::Editor>();
+    assert!(!ed.history.can_undo(), "the last level's edit is offered");
+    assert!(ed.note.is_none(), "{:?}", ed.note);
+}

@@ -122,11 +122,15 @@ fn run_commands(
     mut ed: ResMut<Editor>,
     mut phys: ResMut<Physics>,
 ) {
+    // A newly opened level starts a new history, at once: its undo button must not offer the
+    // last level's edits, nor its panel show their note.
+    if ed.level_generation != phys.view_generation {
+        ed.history.clear();
+        ed.note = None;
+        ed.preview = None;
+        ed.level_generation = phys.view_generation;
+    }
     for c in commands.read() {
-        if ed.level_generation != phys.view_generation {
-            ed.history.clear();
-            ed.level_generation = phys.view_generation;
-        }
         if ed
             .saved
             .as_ref()

@@ -144,7 +144,7 @@ pub(super) fn scene_editor(
         let (nc, nq) = (level.checks.len(), level.questions.len());
         if nc + nq > 0 {
             ui.label(format!(
-                "{nq} questions and {nc} checks came with the level; their answers are for the scene as it was written"
+                "the exercise has {nq} question(s) and {nc} check(s): an answer worked out for the scene before an edit may no longer hold (preview them in Questions)"
             ));
             if ui.button("drop them").clicked() {
                 out.push(EditorCommand::Apply(Edit::DropExercise));
