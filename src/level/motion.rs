@@ -12,6 +12,13 @@ pub struct Planar {
     pub angular: f64,
 }
 
+impl Planar {
+    const ZERO: Planar = Planar {
+        linear: (0.0, 0.0),
+        angular: 0.0,
+    };
+}
+
 impl Motion {
     /// The displacement from the start pose at time t beyond the constant velocity's.
     fn offset(&self, t: f64) -> Planar {
@@ -104,13 +111,7 @@ impl Motion {
 /// The pose (origin, angle) at time t of a body that starts at its `position` and `angle` with
 /// its `velocity` and `omega`, moved by its `motion` if it has one.
 pub fn pose_at(b: &BodyDef, t: f64) -> Planar {
-    let off = b.motion.map_or(
-        Planar {
-            linear: (0.0, 0.0),
-            angular: 0.0,
-        },
-        |m| m.offset(t),
-    );
+    let off = b.motion.map_or(Planar::ZERO, |m| m.offset(t));
     Planar {
         linear: (
             b.position.0 + b.velocity.0 * t + off.linear.0,
@@ -122,13 +123,7 @@ pub fn pose_at(b: &BodyDef, t: f64) -> Planar {
 
 /// The velocity of the body frame's origin and omega at time t (see [`pose_at`]).
 pub fn rate_at(b: &BodyDef, t: f64) -> Planar {
-    let off = b.motion.map_or(
-        Planar {
-            linear: (0.0, 0.0),
-            angular: 0.0,
-        },
-        |m| m.offset_rate(t),
-    );
+    let off = b.motion.map_or(Planar::ZERO, |m| m.offset_rate(t));
     Planar {
         linear: (b.velocity.0 + off.linear.0, b.velocity.1 + off.linear.1),
         angular: b.omega + off.angular,
