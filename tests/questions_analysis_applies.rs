@@ -313,3 +313,68 @@ fn a_crossing_inside_an_impact_step_reads_the_state_before_the_impact() {
     assert!(q[0].passed, "{:?}", q[0]);
     assert!(q[1].passed, "{:?}", q[1]);
 }
+
+/// Three formulas that were applied past their assumptions without a check (found by a docs
+/// audit, 2026-11-26), each now "not applicable" with its reason, beside a twin where it
+/// applies:
+/// - Newton-Euler on a damped body: the engine's free-body diagram has no damping force (a free
+///   disc with linear damping 1/s read a_x -1.21 m/s^2 against an analysis of 0);
+/// - a pin's reaction where the pin has a motor: the analysis leaves the motor's torque out
+///   (12.44 N against 4.97 N, the gap m r tau / I_O);
+/// - the rolling closed forms on a disc that slides (mu = 0.05 on 45 degrees: it slides at
+///   g (sin 45 - mu cos 45) = 6.59 m/s^2 where rolling would be 2/3 g sin 45 = 4.62).
+#[test]
+fn formulas_past_their_assumptions_say_so() {
+    let damped = |d: f64| {
+        questions(&format!(
+            r#"Level(title: "damped", effects: [damping],
+            world: (dt: 0.004, duration: 1.0),
+            bodies: [(name: "b", shape: Circle(radius: 0.1), velocity: (2.0, 0.0), linear_damping: {d})],
+            questions: [(id: "ax", ask: "ax", unit: "m/s^2", expected: 0.0, tolerance: 10.0,
+                quantity: Ax("b"), at: Time(0.5), why: "read")])"#
+        ))
+    };
+    let q = &damped(1.0)[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("is damped"), "{}", q.note);
+    // Undamped it applies: a free body, a_x = 0.
+    assert_eq!(damped(0.0)[0].analysis, Some(0.0));
+
+    let motor = |m: &str| {
+        questions(&format!(
+            r#"Level(title: "motor pin", effects: [gravity, joints, motors],
+            world: (dt: 0.002, substeps: 8, duration: 0.5),
+            bodies: [(name: "ground", kind: fixed),
+                     (name: "bar", shape: Box(width: 1.0, height: 0.05), mass: 2.0, position: (0.5, 0.0))],
+            joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor1: (0.0, 0.0),
+                      anchor2: (-0.5, 0.0){m})],
+            questions: [(id: "R", ask: "R", unit: "N", expected: 1.0, tolerance: 100.0,
+                quantity: JointReaction(joint: "pin", component: Y), at: Time(0.1), why: "read")])"#
+        ))
+    };
+    let q = &motor(", motor: Some(Velocity(target: 10.0, max_force: Some(5.0)))")[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("has a motor"), "{}", q.note);
+    assert!(motor("")[0].analysis.is_some());
+
+    let slope = |mu: f64| {
+        questions(&format!(
+            r#"Level(title: "slope", effects: [gravity, contacts, friction],
+            world: (dt: 0.002, substeps: 4, duration: 0.6),
+            bodies: [(name: "slope", kind: fixed, shape: Segment(a: (-5.0, 5.0), b: (5.0, -5.0)), friction: {mu}),
+                     (name: "disc", shape: Circle(radius: 0.2), position: (-2.0, 2.2828427), friction: {mu})],
+            questions: [(id: "a", ask: "a", unit: "m/s^2", expected: 5.0, tolerance: 10.0,
+                quantity: RollingAcceleration(body: "disc", ground: "slope"), at: Time(0.4), why: "read")])"#
+        ))
+    };
+    let q = &slope(0.05)[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("slides on the ground"), "{}", q.note);
+    // mu = 0.5 > tan(45) k^2 / (k^2 + r^2) = 1/3: it rolls, and the closed form applies:
+    // 2/3 g sin 45 = 4.6245 m/s^2.
+    let a = slope(0.5)[0].analysis.expect("rolling");
+    assert!(
+        (a - 2.0 / 3.0 * G * std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-3,
+        "{a}"
+    );
+}

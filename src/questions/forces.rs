@@ -51,6 +51,11 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         }
     }
     if let Quantity::JointReaction { joint: j, .. } = &m.q {
+        if m.inapplicable.is_none() && m.facts.joints.iter().any(|x| &x.name == j && x.motor) {
+            m.inapplicable = Some(format!(
+                "joint \"{j}\" has a motor: the reaction's analysis leaves the motor's torque out of the body's moment and work"
+            ));
+        }
         if let Some(k) = joint_index(s, j) {
             let jj = &s.joints[k];
             let i = if is_massive(&s.bodies[jj.body2]) {
@@ -257,7 +262,7 @@ pub(super) fn contact_component(c: ContactComponent, v: DVec2, n: DVec2) -> f64 
 /// A slip speed above which a contact counts as sliding for Coulomb's law, m/s. rapier's sticking
 /// contacts creep at up to a few mm/s (a disc on a pulled plank: 3.2 mm/s, docs/known-gaps.md),
 /// and a sliding contact that stops passes through this speed within a step or two.
-const SLIDING: f64 = 1e-2;
+pub(super) const SLIDING: f64 = 1e-2;
 
 /// The textbook's contact force on body i from o, as component `c` (`ContactForceFrom`): while
 /// the contact slides (the slip keeps one sign above [`SLIDING`] on both steps around the
