@@ -378,3 +378,34 @@ fn formulas_past_their_assumptions_say_so() {
         "{a}"
     );
 }
+
+/// `KineticEnergy` at a configuration event is T0 plus the work of gravity, springs, loads and
+/// events along the path: where a coupling, a moving or driving joint, sliding friction or
+/// damping also works on the body, that sum is not its energy (a block hanging from a cord
+/// that drags a 100 kg block along a slide read 1471.5 J against 629.3 J), and the analysis
+/// says so. Its twin without the cord falls freely: T = m g h = 300 x 9.81 x 0.5 = 1471.5 J,
+/// and the analysis applies.
+#[test]
+fn kinetic_energy_by_work_energy_needs_every_work_booked() {
+    let level = |cord: &str| {
+        questions(&format!(
+            r#"Level(title: "cord", effects: [gravity, joints],
+            world: (dt: 0.004166666666666667, substeps: 4, duration: 0.8),
+            bodies: [(name: "ground", kind: fixed),
+                (name: "A", shape: Box(width: 0.5, height: 0.3), mass: 100.0, position: (0.0, 0.15), lock_rotation: true),
+                (name: "B", shape: Box(width: 0.4, height: 0.4), mass: 300.0, position: (3.0, -2.0), lock_rotation: true)],
+            joints: [(name: "table", kind: prismatic, body1: "ground", body2: "A", anchor1: (0.0, 0.15), axis: (1.0, 0.0))],
+            {cord}
+            questions: [(id: "T_B", ask: "T", unit: "J", expected: 1471.5, tolerance: 100.0,
+                quantity: KineticEnergy("B"), at: Crossing(of: Y("B"), value: -2.5), why: "read")])"#
+        ))
+    };
+    let q = &level(
+        r#"couplings: [(name: "cord", terms: [(body: "A", coordinate: x, ratio: 1.0), (body: "B", coordinate: y, ratio: 2.0)])],"#,
+    )[0];
+    assert_eq!(q.analysis, None, "{q:?}");
+    assert!(q.note.contains("coupling \"cord\""), "{}", q.note);
+    let free = &level("")[0];
+    let a = free.analysis.expect("free fall: work-energy applies");
+    assert!((a - 1471.5).abs() < 1e-3 * 1471.5, "{free:?}");
+}

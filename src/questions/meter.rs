@@ -55,6 +55,9 @@ pub(super) struct Meter {
     pub input_constant: bool,
     /// Read at a configuration event (not a fixed time): see `Quantity::KineticEnergy`.
     pub configuration_event: bool,
+    /// Read at an impact or a blow (`FirstContact`, `ContactEnds`, `AfterEvent`), whose
+    /// analyses are the impulse-momentum solution's.
+    pub impact_instant: bool,
     /// Why the quantity's analysis does not apply to this scene (a precondition of its formula
     /// that the scene breaks), set by the family: then the analysis is None and the question is
     /// graded on the engine alone, saying so.
@@ -93,6 +96,7 @@ impl Meter {
             input_load: None,
             input_constant: true,
             configuration_event: true,
+            impact_instant: false,
             inapplicable: None,
         }
     }

@@ -80,6 +80,10 @@ impl QuestionProbe {
         };
         let mut meter = Meter::new(&def.quantity, facts.clone());
         meter.configuration_event = !matches!(def.at, When::Time(_) | When::End);
+        meter.impact_instant = matches!(
+            def.at,
+            When::FirstContact { .. } | When::ContactEnds { .. } | When::AfterEvent(_)
+        );
         QuestionProbe {
             def: def.clone(),
             meter,
