@@ -4,6 +4,8 @@
 //! back as messages and leave the scene as it was; track edits undo, redo and round-trip as RON.
 //! The same loop is built in the window's editor headless (MinimalPlugins) and saved there.
 
+mod common;
+
 use rigidlab::editor::{self, parse_points, Edit, History, NewShape, Property};
 use rigidlab::level::{self, ArcSide, Quantity, QuestionDef, Scene, Shape, TrackSide, When};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -458,34 +460,13 @@ fn track_edits_undo_redo_and_round_trip() {
 #[cfg(feature = "app")]
 #[test]
 fn the_window_builds_and_saves_the_loop() {
-    use bevy::app::ScheduleRunnerPlugin;
     use bevy::prelude::*;
-    use bevy::time::TimeUpdateStrategy;
-    use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin, Placeable};
+    use common::app::{editor_app, send};
+    use rigidlab::app::editor::{EditorCommand, Placeable};
     use rigidlab::app::tools::track_edit;
-    use rigidlab::app::{Physics, PhysicsPlugin};
-    use rigidlab::sim::Options;
-    use std::time::Duration;
+    use rigidlab::app::Physics;
 
-    let mut app = App::new();
-    app.add_plugins(MinimalPlugins.set(ScheduleRunnerPlugin::run_loop(Duration::ZERO)))
-        .insert_resource(TimeUpdateStrategy::FixedTimesteps(1))
-        .add_plugins(PhysicsPlugin {
-            scene: editor::empty_scene(PathBuf::from("my-scene.ron")),
-            options: Options::default(),
-            paused: true,
-        })
-        .add_plugins(EditorPlugin);
-    app.update();
-    let send = |app: &mut App, c: EditorCommand| {
-        app.world_mut().write_message(c);
-        app.update();
-        app.world()
-            .resource::<Editor>()
-            .note
-            .clone()
-            .expect("the editor answers every command")
-    };
+    let mut app = editor_app();
     // The place tool's arc: a half-circle bowl whose bottom is the click, sized for the scene
     // (a quarter of a 4 m scene, rounded: 1 m), then undone.
     let bowl = Placeable::Arc.edit_at(glam::DVec2::new(0.5, 1.0), 4.0);
