@@ -22,6 +22,9 @@ use glam::DVec2;
 
 /// Accumulates, for a joint reaction, the path work of loads and springs on the moving body
 /// over the step from `prev` to `s` (for the pivot reaction's omega from work-energy).
+/// How the reason for a one-step force on a curve begins.
+const ON_A_CURVE: &str = "the contact is on a curve";
+
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     if let Quantity::ContactForceFrom {
         body,
@@ -36,10 +39,15 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         if let (Some(i), Some(o)) = (m.body_index(s, &body), m.body_index(s, &other)) {
             if super::curved_contact::advance(m, s, i, o, component) {
             } else if window == 0.0
-                && m.inapplicable.is_none()
-                && super::rolling::turned(prev, s, i, o).is_some_and(|a| a > super::rolling::CURVED)
+                && m.inapplicable
+                    .as_deref()
+                    .is_none_or(|w| w.starts_with(ON_A_CURVE))
             {
-                m.inapplicable = Some("the contact is on a curve (its normal turns from step to step): a faceted track gives the force at its vertices, in bursts, so one step's m a_G is no textbook force; ask with a `window` of several steps".into());
+                // Judged at each step (the last is the one read): a track that curves into a
+                // straight run (one Polyline) has a textbook force again on the straight.
+                m.inapplicable = super::rolling::turned(prev, s, i, o)
+                    .is_some_and(|a| a > super::rolling::CURVED)
+                    .then(|| format!("{ON_A_CURVE} (its normal turns from step to step): a faceted track gives the force at its vertices, in bursts, so one step's m a_G is no textbook force; ask with a `window` of several steps"));
             }
         }
     }
