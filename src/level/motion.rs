@@ -20,79 +20,42 @@ impl Planar {
 }
 
 impl Motion {
-    /// The displacement from the start pose at time t beyond the constant velocity's.
+    /// The motion's vector and angle, (a, alpha) or (A, Theta), times the factor its kind
+    /// takes: `accelerate` for `Accelerate`, `oscillate(w, phi)` for `Oscillate`.
+    fn scaled(&self, accelerate: f64, oscillate: impl Fn(f64, f64) -> f64) -> Planar {
+        let (v, a, f) = match *self {
+            Motion::Accelerate {
+                acceleration,
+                angular,
+            } => (acceleration, angular, accelerate),
+            Motion::Oscillate {
+                amplitude,
+                angular_amplitude,
+                omega,
+                phase,
+            } => (amplitude, angular_amplitude, oscillate(omega, phase)),
+        };
+        Planar {
+            linear: (v.0 * f, v.1 * f),
+            angular: a * f,
+        }
+    }
+
+    /// The displacement from the start pose at time t beyond the constant velocity's:
+    /// a t^2 / 2, or A (sin(w t + phi) - sin(phi)).
     fn offset(&self, t: f64) -> Planar {
-        match *self {
-            Motion::Accelerate {
-                acceleration,
-                angular,
-            } => Planar {
-                linear: (0.5 * acceleration.0 * t * t, 0.5 * acceleration.1 * t * t),
-                angular: 0.5 * angular * t * t,
-            },
-            Motion::Oscillate {
-                amplitude,
-                angular_amplitude,
-                omega,
-                phase,
-            } => {
-                let s = (omega * t + phase).sin() - phase.sin();
-                Planar {
-                    linear: (amplitude.0 * s, amplitude.1 * s),
-                    angular: angular_amplitude * s,
-                }
-            }
-        }
+        self.scaled(0.5 * t * t, |w, phi| (w * t + phi).sin() - phi.sin())
     }
 
-    /// The offset's rate at t.
+    /// The offset's rate at t: a t, or A w cos(w t + phi).
     fn offset_rate(&self, t: f64) -> Planar {
-        match *self {
-            Motion::Accelerate {
-                acceleration,
-                angular,
-            } => Planar {
-                linear: (acceleration.0 * t, acceleration.1 * t),
-                angular: angular * t,
-            },
-            Motion::Oscillate {
-                amplitude,
-                angular_amplitude,
-                omega,
-                phase,
-            } => {
-                let c = omega * (omega * t + phase).cos();
-                Planar {
-                    linear: (amplitude.0 * c, amplitude.1 * c),
-                    angular: angular_amplitude * c,
-                }
-            }
-        }
+        self.scaled(t, |w, phi| w * (w * t + phi).cos())
     }
 
-    /// The acceleration of the origin and the angular acceleration at t.
+    /// The acceleration of the origin and the angular acceleration at t: a, or
+    /// -A w^2 sin(w t + phi).
     pub fn acceleration_at(&self, t: f64) -> Planar {
-        match *self {
-            Motion::Accelerate {
-                acceleration,
-                angular,
-            } => Planar {
-                linear: acceleration,
-                angular,
-            },
-            Motion::Oscillate {
-                amplitude,
-                angular_amplitude,
-                omega,
-                phase,
-            } => {
-                let s = -omega * omega * (omega * t + phase).sin();
-                Planar {
-                    linear: (amplitude.0 * s, amplitude.1 * s),
-                    angular: angular_amplitude * s,
-                }
-            }
-        }
+        self.scaled(1.0, |w, phi| -w * w * (w * t + phi).sin())
     }
 
     /// Whether the acceleration is the same at every time and the body does not turn: its
