@@ -1,7 +1,7 @@
 //! The closed-form constant-acceleration check (free fall, projectile).
 
 use super::super::{kind_name, CheckResult, ErrorTrack, Probe};
-use super::{in_window, window_note, window_of};
+use super::{body_def, cannot_judge, damping_of, in_window, window_note, window_of};
 use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -15,6 +15,13 @@ use glam::DVec2;
 ///
 /// Error budget: symplectic Euler over substeps of h = dt/substeps gives x_n = x0 + v0 t + 1/2 a t (t + h),
 /// so the position error grows as 1/2 |a| h t: relative to 1/2 |a| t^2 it is h / t.
+///
+/// The closed form assumes gravity and the body's constant loads act alone. Every compared step
+/// verifies it on the scene: a joint, spring or coupling on the body, a contact with an impulse
+/// on it, an impulse event on it, its loads' resultant changing from the first step's (by more
+/// than 1e-9 of the larger of it and the weight), or linear damping (the level's `damping`
+/// effect; angular damping does not move G) makes the check say it cannot judge, with the
+/// first such step: it does not pass or fail on a formula that does not hold there.
 pub(super) struct ConstantAcceleration {
     def: CheckDef,
     body: String,
@@ -28,13 +35,25 @@ pub(super) struct ConstantAcceleration {
     track: ErrorTrack,
     max_disp: f64,
     accel: DVec2,
+    /// The loads' resultant the closed form holds constant (after the first step).
+    load: Option<DVec2>,
+    /// Why the closed form does not hold on the scene (the first reason found), if it does not.
+    broken: Option<String>,
 }
 
 impl ConstantAcceleration {
     pub(super) fn new(level: &Level, def: &CheckDef) -> Self {
         // Constant loads on the body add F/m to g.
         let body = def.body.clone().unwrap_or_default();
-        let _ = level;
+        // Linear damping scales v_G by 1/(1 + h c) every substep: a force the closed form lacks.
+        let broken = body_def(level, &body).and_then(|b| {
+            let (c, _) = damping_of(level, b);
+            (c != 0.0).then(|| {
+                format!(
+                    "body \"{body}\" has linear_damping {c} 1/s: rapier takes m c v / (1 + h c) off it every substep h, a force the closed form a = g + F/m does not have"
+                )
+            })
+        });
         ConstantAcceleration {
             def: def.clone(),
             body,
@@ -47,14 +66,69 @@ impl ConstantAcceleration {
             track: ErrorTrack::default(),
             max_disp: 0.0,
             accel: DVec2::ZERO,
+            load: None,
+            broken,
         }
+    }
+
+    /// Why gravity and constant loads are not all that acts on body i over the step that led
+    /// to `s`, if they are not.
+    fn other_action(&mut self, s: &Snapshot, i: usize) -> Option<String> {
+        let at = format!("at t = {:.4} s", s.time);
+        if let Some(j) = s.joints.iter().find(|j| j.body1 == i || j.body2 == i) {
+            return Some(format!("joint \"{}\" acts on it", j.name));
+        }
+        if let Some(sp) = s
+            .springs
+            .iter()
+            .find(|sp| sp.body1 == i || sp.body2 == Some(i))
+        {
+            return Some(format!("spring \"{}\" acts on it", sp.name));
+        }
+        if let Some(c) = s
+            .couplings
+            .iter()
+            .find(|c| c.terms.iter().any(|t| t.0 == i))
+        {
+            return Some(format!("coupling \"{}\" acts on it", c.name));
+        }
+        if let Some(c) = s.contacts.iter().find(|c| {
+            (c.body1 == i || c.body2 == i)
+                && c.points
+                    .iter()
+                    .any(|p| p.normal_impulse != 0.0 || p.tangent_impulse != 0.0)
+        }) {
+            let o = if c.body1 == i { c.body2 } else { c.body1 };
+            return Some(format!(
+                "a contact with \"{}\" pushes on it {at}",
+                s.bodies[o].name
+            ));
+        }
+        if let Some(e) = s.impulses.iter().find(|e| e.body == i) {
+            return Some(format!("the impulse event \"{}\" strikes it {at}", e.name));
+        }
+        let load = loads_on(s, i);
+        match self.load {
+            None => self.load = Some(load),
+            Some(l0) => {
+                let b = &s.bodies[i];
+                let size = l0.length().max(b.mass * s.gravity.length());
+                if (load - l0).length() > 1e-9 * size {
+                    return Some(format!(
+                        "its loads' resultant changes from ({:.4}, {:.4}) N to ({:.4}, {:.4}) N {at}",
+                        l0.x, l0.y, load.x, load.y
+                    ));
+                }
+            }
+        }
+        None
     }
 }
 
 impl Probe for ConstantAcceleration {
-    /// Reads the bodies only.
+    /// Reads the contacts: one that pushes on the body breaks the closed form's assumption.
     fn reads_contacts(&self) -> bool {
-        false
+        true
     }
 
     fn observe(&mut self, s: &Snapshot) {
@@ -78,6 +152,9 @@ impl Probe for ConstantAcceleration {
             // Loads are known only once a step applied them.
             self.accel = constant_acceleration(s, i);
         }
+        if self.broken.is_none() {
+            self.broken = self.other_action(s, i);
+        }
         let t = s.time - self.t0;
         let theory = self.r0 + self.v0 * t + 0.5 * self.accel * t * t;
         let err = (b.com - theory).length();
@@ -89,6 +166,16 @@ impl Probe for ConstantAcceleration {
     }
 
     fn finish(self: Box<Self>) -> CheckResult {
+        if let Some(why) = &self.broken {
+            return cannot_judge(
+                &self.def,
+                format!("body \"{}\" mass center", self.body),
+                format!(
+                    "the closed form r0 + v0 t + a t^2 / 2 assumes gravity and constant loads act alone, and {why}{}",
+                    window_note(&self.def)
+                ),
+            );
+        }
         let note = format!(
             "position error |r_engine - r_theory|; displacement scale {:.4} m{}",
             self.max_disp,
@@ -108,16 +195,20 @@ impl Probe for ConstantAcceleration {
 /// initial snapshot, before rapier computed its mass properties).
 fn constant_acceleration(s: &Snapshot, i: usize) -> DVec2 {
     let b = &s.bodies[i];
-    let load: DVec2 = s
-        .loads
-        .iter()
-        .filter(|l| l.body == i)
-        .map(|l| l.force)
-        .sum();
+    let load = loads_on(s, i);
     s.gravity
         + if b.mass > 0.0 {
             load / b.mass
         } else {
             DVec2::ZERO
         }
+}
+
+/// The resultant of the snapshot's loads on body i, N.
+fn loads_on(s: &Snapshot, i: usize) -> DVec2 {
+    s.loads
+        .iter()
+        .filter(|l| l.body == i)
+        .map(|l| l.force)
+        .sum()
 }

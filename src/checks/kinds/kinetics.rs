@@ -2,8 +2,8 @@
 
 use super::momentum::pivot_of;
 use super::{
-    cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass,
-    v2, FrameProbe, Summary, Worst,
+    cached_body, cannot_judge_probe, damped_body, dynamic_body, framed, misconfigured, result,
+    scale_or, subject_of, textbook_mass, v2, FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::{
@@ -44,8 +44,19 @@ use glam::DVec2;
 /// A joint's reaction is summed over every substep (split substeps, `sim::Settings`), so an
 /// impulsive reaction in the first substep (a strike on a pinned body) is in the diagram.
 /// About the pin (`point`) the reaction drops out altogether.
+///
+/// The diagram is the engine's impulses, which hold no body damping (`damped_body`): on a damped
+/// body the check cannot judge (only linear damping counts for a locked body's sum F alone).
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    let moments = |b: &crate::level::BodyDef| !b.lock_rotation || def.point.is_some();
     match dynamic_body(level, def) {
+        Ok(b) if damped_body(level, b, moments(b)).is_some() => cannot_judge_probe(
+            def,
+            format!(
+                "Newton-Euler's sum F = m a_G, sum M = I alpha: {}",
+                damped_body(level, b, moments(b)).unwrap_or_default()
+            ),
+        ),
         Ok(b) if b.lock_rotation && def.point.is_some() => misconfigured(
             def,
             format!(

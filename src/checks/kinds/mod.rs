@@ -323,6 +323,64 @@ pub(super) fn misconfigured(def: &CheckDef, why: impl Into<String>) -> Box<dyn P
     })
 }
 
+/// A check whose formula does not hold on the scene (an assumption docs/levels.md lists for
+/// the kind, verified on the run and found broken): it fails, and its note says it cannot judge
+/// and why. It neither passes nor fails on the wrong formula: it compares nothing
+/// (samples 0, its error not finite, as a misconfigured check).
+pub(super) fn cannot_judge(def: &CheckDef, subject: String, why: impl AsRef<str>) -> CheckResult {
+    unchecked_result(
+        def,
+        subject,
+        Summary {
+            note: format!("cannot judge: {}", why.as_ref()),
+            max_rel: f64::INFINITY,
+            ..Summary::default()
+        },
+    )
+}
+
+/// A probe for a check that cannot judge its scene, known from the level alone ([`cannot_judge`]).
+pub(super) fn cannot_judge_probe(def: &CheckDef, why: impl AsRef<str>) -> Box<dyn Probe> {
+    misconfigured(def, format!("cannot judge: {}", why.as_ref()))
+}
+
+/// The body's damping in effect, (linear, angular) in 1/s: the level's `linear_damping` and
+/// `angular_damping`, which rapier applies only under the `damping` effect (`sim::build`).
+pub(super) fn damping_of(level: &Level, b: &BodyDef) -> (f64, f64) {
+    if level.effects.contains(&crate::level::Effect::Damping) {
+        (
+            b.linear_damping.unwrap_or(0.0),
+            b.angular_damping.unwrap_or(0.0),
+        )
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+/// Why the free-body diagram of body `b` misses a force, if `b` is damped: rapier scales a
+/// damped body's v_G by 1/(1 + h c) and omega by 1/(1 + h c_w) every substep h, the force
+/// -m c v / (1 + h c) at G and the couple -I_G c_w omega / (1 + h c_w), with v and omega the
+/// substeps' own. The snapshot holds the step's ends, not the substeps' velocities, so the
+/// diagram (the engine's impulses) has no damping term. With `moments` false only the linear
+/// damping counts (a check of sum F alone).
+pub(super) fn damped_body(level: &Level, b: &BodyDef, moments: bool) -> Option<String> {
+    let (c, cw) = damping_of(level, b);
+    let mut parts = Vec::new();
+    if c != 0.0 {
+        parts.push(format!("linear_damping {c} 1/s"));
+    }
+    if moments && cw != 0.0 {
+        parts.push(format!("angular_damping {cw} 1/s"));
+    }
+    (!parts.is_empty()).then(|| {
+        format!(
+            "body \"{}\" is damped ({}): rapier scales its velocities by 1/(1 + h c) every substep h, a force -m c v / (1 + h c) and a couple -I_G c_w omega / (1 + h c_w) that the free-body diagram (the engine's impulses) does not hold",
+            b.name,
+            parts.join(", ")
+        )
+    })
+}
+
 /// "body \"bar\"", "the scene", plus the point when given.
 pub(super) fn subject_of(def: &CheckDef) -> String {
     let mut s = match &def.body {

@@ -1,8 +1,8 @@
 //! Momentum checks: `angular_momentum_fixed_point`, `impulse_momentum`.
 
 use super::{
-    dynamic_body, framed, misconfigured, result, scale_or, subject_index, subject_of, subject_set,
-    v2, BodySet, FrameProbe, Summary, Worst,
+    body_def, cannot_judge_probe, damped_body, dynamic_body, framed, misconfigured, result,
+    scale_or, subject_index, subject_of, subject_set, v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::cross;
 use crate::analysis::frame::{FrameAnalysis, FramePass};
@@ -53,11 +53,25 @@ fn resolve(level: &Level, def: &CheckDef) -> Result<Option<String>, String> {
 /// (max |F_i| |r_G - O| + max |C_i|)) over the diagram's single forces F_i and couples C_i (so one
 /// blow does not hide the other steps, and a body spinning freely on its pin, where the sums
 /// vanish, is measured against the pin's pull); the reported scale is the one at the worst step.
+///
+/// The diagram holds no body damping (`damped_body`): with a damped body in the subject (the
+/// body, or for the scene any dynamic body) the check cannot judge.
 pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let body = match resolve(level, def) {
         Ok(b) => b,
         Err(e) => return misconfigured(def, e),
     };
+    let damped = match &body {
+        Some(name) => body_def(level, name).and_then(|b| damped_body(level, b, true)),
+        None => level
+            .bodies
+            .iter()
+            .filter(|b| b.kind == crate::level::BodyKind::Dynamic)
+            .find_map(|b| damped_body(level, b, true)),
+    };
+    if let Some(why) = damped {
+        return cannot_judge_probe(def, format!("sum M_O = dH_O/dt: {why}"));
+    }
     if body.is_none() && def.point.is_none() {
         return misconfigured(
             def,

@@ -2,8 +2,8 @@
 //! through the center of percussion (CP-2).
 
 use super::{
-    cached_body, dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass,
-    v2, FrameProbe, Summary, Worst,
+    body_def, cached_body, cannot_judge, cannot_judge_probe, damped_body, dynamic_body, framed,
+    misconfigured, result, scale_or, subject_of, textbook_mass, v2, FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::{for_each_external_impulse_linked, gravity_point, Before, Source};
@@ -13,7 +13,7 @@ use crate::analysis::percussion::{
 };
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
-use crate::level::{CheckDef, EventDef, Level};
+use crate::level::{BodyKind, CheckDef, EventDef, JointKind, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
@@ -36,6 +36,14 @@ use glam::DVec2;
 /// body's first joint. O is `point` or that joint's anchor. The joint's impulse is summed over
 /// every substep (split substeps, `sim::Settings`), so the impulsive reaction, which falls in the
 /// first substep, is seen at any number of substeps.
+///
+/// Both forms assume rotation about a pin fixed in the world, and the strike form that the blow,
+/// gravity and the body's loads are all that act on it besides the pin. Verified on the scene,
+/// else the check cannot judge, with the reason: the joint is a pin (`revolute`) whose other body
+/// is not dynamic and does not move at any step compared (a kinematic body that moves fails it);
+/// the body is not damped (the diagram holds no damping); and in each strike step no other joint
+/// acts on the body, nor a contact or spring or coupling with an impulse on it, nor the pin's
+/// motor or limit.
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
     let b = match dynamic_body(level, def) {
         Ok(b) => b,
@@ -61,6 +69,33 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             ),
         );
     };
+    if joint.kind != JointKind::Revolute {
+        return cannot_judge_probe(
+            def,
+            format!(
+                "joint \"{}\" is a {}, not a pin: the center of percussion assumes rotation about a pin fixed in the world",
+                joint.name,
+                joint.kind.describe()
+            ),
+        );
+    }
+    let other = if joint.body1 == b.name {
+        &joint.body2
+    } else {
+        &joint.body1
+    };
+    if body_def(level, other).is_some_and(|o| o.kind == BodyKind::Dynamic) {
+        return cannot_judge_probe(
+            def,
+            format!(
+                "the pin \"{}\" joins \"{}\" to \"{other}\", a dynamic body: the center of percussion assumes rotation about a pin fixed in the world",
+                joint.name, b.name
+            ),
+        );
+    }
+    if let Some(why) = damped_body(level, b, true) {
+        return cannot_judge_probe(def, why);
+    }
     let strikes = level
         .events
         .iter()
@@ -83,6 +118,7 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         q: 0.0,
         strike_notes: Vec::new(),
         last: (0.0, 0.0),
+        broken: None,
     })
 }
 
@@ -106,6 +142,8 @@ struct CenterOfPercussion {
     q: f64,
     strike_notes: Vec<String>,
     last: (f64, f64),
+    /// Why rotation about a fixed pin under the blow alone does not hold (the first reason found).
+    broken: Option<String>,
 }
 
 impl CenterOfPercussion {
@@ -121,6 +159,64 @@ impl CenterOfPercussion {
         } else {
             -j.impulse_on_body2
         })
+    }
+
+    /// Why the pin's other body is not fixed at the step that led to `s`, if it moves.
+    fn pin_moves(&self, s: &Snapshot, i: usize) -> Option<String> {
+        let j = &s.joints[self.joint_index?];
+        let o = if j.body2 == i { j.body1 } else { j.body2 };
+        let ob = &s.bodies[o];
+        (ob.velocity != DVec2::ZERO || ob.omega != 0.0).then(|| {
+            format!(
+                "the pin \"{}\"'s other body \"{}\" moves at t = {:.4} s (v ({:.3e}, {:.3e}) m/s, omega {:.3e} rad/s): the center of percussion assumes a pin fixed in the world",
+                j.name, ob.name, s.time, ob.velocity.x, ob.velocity.y, ob.omega
+            )
+        })
+    }
+
+    /// What acts on body i in the strike step that led to `s` besides the blow, gravity, the
+    /// body's loads and the pin's reaction, if anything does.
+    fn other_action(&self, s: &Snapshot, i: usize) -> Option<String> {
+        let at = format!("in the strike step at t = {:.4} s", s.time);
+        let pin = self.joint_index;
+        for (k, j) in s.joints.iter().enumerate() {
+            if Some(k) == pin {
+                if j.motor_impulse != 0.0 || j.limit_impulse != 0.0 {
+                    return Some(format!(
+                        "the pin \"{}\"'s motor or limit acts {at} (impulse {:.3e}, {:.3e})",
+                        j.name, j.motor_impulse, j.limit_impulse
+                    ));
+                }
+            } else if j.body1 == i || j.body2 == i {
+                return Some(format!("joint \"{}\" also holds the body {at}", j.name));
+            }
+        }
+        if let Some(c) = s.contacts.iter().find(|c| {
+            (c.body1 == i || c.body2 == i)
+                && c.points
+                    .iter()
+                    .any(|p| p.normal_impulse != 0.0 || p.tangent_impulse != 0.0)
+        }) {
+            let o = if c.body1 == i { c.body2 } else { c.body1 };
+            return Some(format!(
+                "a contact with \"{}\" pushes on it {at}",
+                s.bodies[o].name
+            ));
+        }
+        if let Some(sp) = s.springs.iter().find(|sp| {
+            (sp.body1 == i || sp.body2 == Some(i))
+                && (sp.force_on_body1 != DVec2::ZERO || sp.couple_on_body1 != 0.0)
+        }) {
+            return Some(format!("spring \"{}\" pulls on it {at}", sp.name));
+        }
+        if let Some(c) = s
+            .couplings
+            .iter()
+            .find(|c| c.impulse != 0.0 && c.terms.iter().any(|t| t.0 == i))
+        {
+            return Some(format!("coupling \"{}\" acts on it {at}", c.name));
+        }
+        None
     }
 }
 
@@ -158,6 +254,9 @@ impl FrameProbe for CenterOfPercussion {
         self.q = center_of_percussion_distance(i_o, m.mass, r_bar).unwrap_or(f64::INFINITY);
         if !s.is_initial() {
             let reaction = self.pivot_reaction(s, i);
+            if self.broken.is_none() && self.worst.covers(s.time) {
+                self.broken = self.pin_moves(s, i);
+            }
             if self.strikes > 0 {
                 let events: Vec<Blow> = s
                     .impulses
@@ -170,6 +269,9 @@ impl FrameProbe for CenterOfPercussion {
                     })
                     .collect();
                 if let (false, Some(reaction)) = (events.is_empty(), reaction) {
+                    if self.broken.is_none() && self.worst.covers(s.time) {
+                        self.broken = self.other_action(s, i);
+                    }
                     let p: DVec2 = events.iter().map(|e| e.impulse).sum();
                     // Non-impulsive forces over the step: gravity at G and the loads on the body.
                     let mut blows = events.clone();
@@ -251,6 +353,9 @@ impl FrameProbe for CenterOfPercussion {
         let o = self.o.unwrap_or_default();
         let mut subject = subject_of(&self.def);
         subject += &format!(" pinned at ({:.3}, {:.3})", o.x, o.y);
+        if let Some(why) = &self.broken {
+            return cannot_judge(&self.def, subject, why);
+        }
         let (scale, mut note) = if self.strikes > 0 {
             (
                 scale_or(self.blow, 1.0),
