@@ -91,7 +91,8 @@ pub struct SolverArgs {
     /// Substeps per step (rapier's num_solver_iterations).
     #[arg(long)]
     pub substeps: Option<usize>,
-    /// Solver iterations per substep (rapier's num_internal_pgs_iterations).
+    /// Solver iterations per substep (rapier's num_internal_pgs_iterations and
+    /// num_internal_stabilization_iterations: the biased and the unbiased sweeps).
     #[arg(long)]
     pub iterations: Option<usize>,
     /// Turn every effect stage on (colliders, CCD, sleeping, ...) to compare the cost.

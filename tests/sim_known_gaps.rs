@@ -341,13 +341,14 @@ fn struck_bar_steps(dt: f64) -> (Vec<f64>, Vec<f64>, f64) {
 }
 
 /// A pin answers a blow a step late when steps are short: at 1/240 s rapier's pin gives the bar
-/// its whole impulsive reaction in the step of the blow; at 1e-4 s it gives 65% there and the
-/// rest in the next step, so during that step the bar is not in fixed-axis rotation and CP-2's
-/// sum M_Q = 0 reads 35% of the blow's moment about Q in each of the two steps, with opposite
-/// signs (7.0e-2 of the `center_of_percussion` check's scale, the blow's moment about O: the
-/// check of n3_07 fails there, docs/known-gaps.md), while over the two steps the pin's impulse is
-/// the whole one (0.5393 against 0.5496 N s at 1/240 s) and sum M_Q balances to 2e-7 N m s.
-/// At 1/240 s the largest step's M_Q is 1.2e-3 of the blow's.
+/// its whole impulsive reaction in the step of the blow; at 1e-4 s it gives 85% there and the
+/// rest in the next step (65% before an impact's call converged its unbiased pass, 2026-11-27:
+/// sim/impacts.rs, IMPACT_ITERATIONS), so during that step the bar is not in fixed-axis rotation
+/// and CP-2's sum M_Q = 0 reads 15% of the blow's moment about Q in each of the two steps, with
+/// opposite signs (3.0e-2 of the `center_of_percussion` check's scale, the blow's moment about O:
+/// the check of n3_07 fails there, docs/known-gaps.md), while over the two steps the pin's
+/// impulse is the whole one (0.5488 against 0.5504 N s at 1/240 s) and sum M_Q balances to 1e-7
+/// N m s. At 1/240 s the largest step's M_Q is 4e-4 of the blow's.
 #[test]
 fn a_pin_answers_a_blow_a_step_late_when_steps_are_short() {
     let (pin_long, m_q_long, blow_long) = struck_bar_steps(1.0 / 240.0);
@@ -359,7 +360,7 @@ fn a_pin_answers_a_blow_a_step_late_when_steps_are_short() {
     assert!(pin_long[0] > 0.99 * total(&pin_long), "{pin_long:?}");
     // At 1e-4 s it is split over two steps, and the total is the same impulse (the pin's
     // reaction is m v_G' - P whatever the step; both runs carry the engine's e of 0.47-0.48).
-    assert!(pin_short[0] < 0.8 * total(&pin_short), "{pin_short:?}");
+    assert!(pin_short[0] < 0.9 * total(&pin_short), "{pin_short:?}");
     assert!(
         (total(&pin_short) - total(&pin_long)).abs() < 0.03 * total(&pin_long),
         "{pin_short:?} against {pin_long:?}"
@@ -368,7 +369,7 @@ fn a_pin_answers_a_blow_a_step_late_when_steps_are_short() {
     // steps it balances.
     let worst = |m: &[f64]| m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     assert!(worst(&m_q_long) < 3e-3 * blow_long.abs(), "{m_q_long:?}");
-    assert!(worst(&m_q_short) > 0.2 * blow_short.abs(), "{m_q_short:?}");
+    assert!(worst(&m_q_short) > 0.1 * blow_short.abs(), "{m_q_short:?}");
     assert!(
         (m_q_short[0] + m_q_short[1]).abs() < 1e-2 * blow_short.abs(),
         "{m_q_short:?}"

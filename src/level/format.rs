@@ -160,7 +160,8 @@ pub struct World {
     pub dt: f64,
     /// rapier's `num_solver_iterations`: the number of substeps per step.
     pub substeps: usize,
-    /// rapier's `num_internal_pgs_iterations`: solver sweeps per substep.
+    /// rapier's `num_internal_pgs_iterations` and `num_internal_stabilization_iterations`: the
+    /// biased and the unbiased (friction's) solver sweeps per substep.
     pub solver_iterations: usize,
     /// Simulated time, s.
     pub duration: f64,

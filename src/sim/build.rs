@@ -263,6 +263,11 @@ pub(crate) fn integration_parameters(s: &Settings) -> IntegrationParameters {
         dt: s.dt as Real,
         num_solver_iterations: s.substeps,
         num_internal_pgs_iterations: s.solver_iterations,
+        // The unbiased pass is where rapier 0.36 solves friction (`friction_in_bias_pass` is off):
+        // one sweep of it leaves an eccentric rough contact's normal row unconverged, and the
+        // next substep's warm start then bounces the body (sim/impacts.rs, IMPACT_ITERATIONS).
+        // The biased pass holds the normal rows alone, so its sweeps cannot converge friction.
+        num_internal_stabilization_iterations: s.solver_iterations,
         max_ccd_substeps: if s.effects.has(Effect::Ccd) { 1 } else { 0 },
         contact_recycling: s.contact_recycling,
         ..Default::default()

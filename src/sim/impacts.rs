@@ -40,6 +40,24 @@ pub const IMPACT_CALL: f64 = 1.0 / 64.0;
 /// prediction).
 pub const MAX_CUTS: usize = 4;
 
+/// Sweeps of rapier's unbiased pass in an impact's call and in the call after it (at least; the
+/// run's `solver_iterations` if more).
+///
+/// rapier 0.36 solves a contact's friction only in the unbiased (stabilization) pass, one sweep
+/// per substep by default, after the normal row; the biased pass, repeated
+/// `num_internal_pgs_iterations` times, holds the normal row alone. In an eccentric rough impact
+/// the contact's inverse mass matrix K couples the rows (c = K_nt^2 / (K_nn K_tt) > 0): the
+/// friction that stops the slip drives the contact point back into the floor, and one sweep
+/// leaves it approaching at c v_n. The next substep's warm start re-applies the whole impulse
+/// (right for a steady force, an overshoot after a blow), the normal row takes back only its own
+/// share, and friction's correction pushes the point out: after three substeps it separates at
+/// e_rapier = c (1 - 2c) (c <= 1/4) or c^2 (3 - 4c) (1/4 <= c <= 1/2) of the approach with
+/// e = 0, along the sticking impulse (1 + e_rapier times it). Run to convergence the sweeps give
+/// the sticking impulse within c^n; the call after the impact is included because its first
+/// substep warm-starts with the impact's impulse when the impact call has a single substep.
+/// tests/sim_eccentric_friction.rs measures both.
+pub const IMPACT_ITERATIONS: usize = 32;
+
 /// How far ahead, in calls, an approaching pair is looked for (its closing speed is its gap over
 /// its time of impact).
 const LOOKAHEAD: f64 = 64.0;

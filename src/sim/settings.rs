@@ -38,7 +38,8 @@ pub struct Settings {
     pub dt: f64,
     /// Substeps per step (rapier's `num_solver_iterations`); h = dt / substeps.
     pub substeps: usize,
-    /// Solver sweeps per substep (rapier's `num_internal_pgs_iterations`).
+    /// Solver sweeps per substep, of both rapier's biased pass (`num_internal_pgs_iterations`)
+    /// and its unbiased pass (`num_internal_stabilization_iterations`, where friction is solved).
     pub solver_iterations: usize,
     pub precision: Precision,
     pub substepping: Substepping,

@@ -47,6 +47,9 @@ pub struct Simulation {
     /// The world's own normalized prediction distance, restored after a call the impact plan
     /// lowered it for (sim/impacts.rs).
     pub(super) prediction_distance: Real,
+    /// Whether the last rapier call made an impact's contact: the next call then solves its
+    /// unbiased pass to convergence too (sim/impacts.rs, `IMPACT_ITERATIONS`).
+    pub(super) after_impact: bool,
 }
 
 impl Simulation {
@@ -121,6 +124,7 @@ impl Simulation {
             energy: EnergyGuard::default(),
             contact_readings: true,
             prediction_distance,
+            after_impact: false,
             has_kinematic: scene
                 .level
                 .bodies
@@ -358,6 +362,8 @@ impl Simulation {
         while let Some((mut h, sub)) = calls.pop_front() {
             let mut prediction = None;
             let impact_call = std::mem::take(&mut impact_call_next);
+            // Whether this call makes an impact's contact (sim/impacts.rs, IMPACT_ITERATIONS).
+            let mut impact_now = impact_call;
             if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
                 let plan = self.plan_call(h, !impact_call);
                 prediction = Some(plan.prediction);
@@ -375,6 +381,7 @@ impl Simulation {
                         h = t;
                     } else {
                         h = impact;
+                        impact_now = true;
                     }
                     cuts += 1;
                     merged = true;
@@ -386,6 +393,15 @@ impl Simulation {
                 p.num_solver_iterations = sub;
                 p.normalized_prediction_distance =
                     prediction.map_or(self.prediction_distance, |x| x as Real);
+                // An impact's call and the one after it solve friction to convergence.
+                p.num_internal_stabilization_iterations = if impact_now || self.after_impact {
+                    self.settings
+                        .solver_iterations
+                        .max(super::impacts::IMPACT_ITERATIONS)
+                } else {
+                    self.settings.solver_iterations
+                };
+                self.after_impact = impact_now;
             }
             self.apply_forces(&loads);
             self.load_carriers(h, &mut carried);
