@@ -64,6 +64,11 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                 "joint \"{j}\" has a motor: the reaction's analysis leaves the motor's torque out of the body's moment and work"
             ));
         }
+        if m.inapplicable.is_none() {
+            if let Some(k) = joint_index(s, j) {
+                m.inapplicable = reaction_not_applicable(m, s, k);
+            }
+        }
         if let Some(k) = joint_index(s, j) {
             let jj = &s.joints[k];
             let i = if is_massive(&s.bodies[jj.body2]) {
@@ -321,6 +326,53 @@ fn component_of(c: Component, v: DVec2, g: DVec2, o: DVec2) -> f64 {
         Component::Normal => v.dot(toward),
         Component::Tangential => v.dot((g - o).perp().normalize_or(DVec2::Y)),
     }
+}
+
+/// Why the pivot reaction's analysis (`pivot_reaction`) does not hold for joint k, judged on
+/// the step that led to `s` and kept for the run: the pin's other side is kinematic and moving
+/// (the axis is not fixed), the turning body is damped (damping's moment and work are in
+/// neither sum M_O nor the work-energy omega), or a contact or a blow acted on the turning body
+/// (omega from the work of gravity, loads and springs since the start misses its impulse).
+fn reaction_not_applicable(m: &Meter, s: &Snapshot, k: usize) -> Option<String> {
+    let j = &s.joints[k];
+    let (mb, ob) = if is_massive(&s.bodies[j.body2]) {
+        (j.body2, j.body1)
+    } else {
+        (j.body1, j.body2)
+    };
+    let (b, o) = (&s.bodies[mb], &s.bodies[ob]);
+    if o.kind == crate::level::BodyKind::Kinematic && (o.velocity != DVec2::ZERO || o.omega != 0.0)
+    {
+        return Some(format!(
+            "the pin's other side, body \"{}\", is kinematic and moves: the fixed-axis reaction (PL-8, PL-12) is for a pin fixed in the world",
+            o.name
+        ));
+    }
+    if m.facts.bodies.get(mb).is_some_and(|x| x.damped) {
+        return Some(format!(
+            "body \"{}\" is damped: damping's moment and work are in neither sum M_O nor the work-energy omega",
+            b.name
+        ));
+    }
+    if let Some(e) = s.impulses.iter().find(|e| e.body == mb) {
+        return Some(format!(
+            "the blow \"{}\" struck body \"{}\" at t = {:.4} s: the work-energy omega (gravity, loads and springs since the start) misses its impulse",
+            e.name, b.name, s.time
+        ));
+    }
+    let touched = s
+        .contacts
+        .iter()
+        .find(|c| (c.body1 == mb || c.body2 == mb) && c.pushes())?;
+    let other = if touched.body1 == mb {
+        touched.body2
+    } else {
+        touched.body1
+    };
+    Some(format!(
+        "body \"{}\" touched body \"{}\" at t = {:.4} s: the fixed-axis reaction holds the pin alone on the body, and the work-energy omega misses the contact's impulse",
+        b.name, s.bodies[other].name, s.time
+    ))
 }
 
 /// Fixed-axis rotation (PL-8, PL-12): the pivot reaction on the moving body,

@@ -12,8 +12,114 @@ use crate::analysis::impulse_solver::{
 };
 use crate::analysis::touching::{flies_free, Approaching};
 use crate::analysis::Motion;
+use crate::level::BodyKind;
 use crate::snapshot::{BodyState, ContactState, Snapshot};
 use glam::DVec2;
+
+/// The bodies an impact or blow solution moves with the `struck` ones: the dynamic bodies
+/// joined to them through the level's joints and the step's couplings (a fixed or kinematic body
+/// passes nothing on: its motion is given).
+fn solved_set(facts: &LevelFacts, hit: &Snapshot, struck: &[usize]) -> Vec<bool> {
+    let n = hit.bodies.len();
+    let dynamic = |i: usize| {
+        hit.bodies
+            .get(i)
+            .is_some_and(|b| b.kind == BodyKind::Dynamic)
+    };
+    let mut set = vec![false; n];
+    for &i in struck.iter().filter(|&&i| dynamic(i)) {
+        set[i] = true;
+    }
+    let links: Vec<Vec<usize>> = facts
+        .joints
+        .iter()
+        .map(|j| vec![j.body1, j.body2])
+        .chain(
+            hit.couplings
+                .iter()
+                .map(|c| c.terms.iter().map(|t| t.0).collect()),
+        )
+        .collect();
+    loop {
+        let mut grew = false;
+        for l in &links {
+            if l.iter().any(|&i| set.get(i).copied().unwrap_or(false)) {
+                for &i in l {
+                    if i < n && dynamic(i) && !set[i] {
+                        set[i] = true;
+                        grew = true;
+                    }
+                }
+            }
+        }
+        if !grew {
+            return set;
+        }
+    }
+}
+
+/// Why the impulse-momentum solution of the impact or blow in the step that led to `hit` does
+/// not hold, if it does not: the solution holds the event's own pair (`own`), the level's joints
+/// and the couplings, and leaves every other contact out, so a contact that gave a body of the
+/// solved mechanism an impulse in that step makes its answer one of the wrong problem (a block
+/// lying on a floor struck downward: the solution gives it the blow's J / m, the floor stops it).
+///
+/// A contact counts when its impulse on the pair's second body changed from the step before
+/// (`pre`) by more than the larger of 1% of the event's impulse `event` (N s) and twice what the
+/// solved bodies' weights deliver in a step: a contact that only goes on carrying a weight (a
+/// ball lying on the floor struck sideways: the floor gives m g dt, and friction at most
+/// mu m g dt, as in every step) is the non-impulsive force the textbook's impulse-momentum
+/// balance neglects (IM-9).
+pub(super) fn left_out_contact(
+    facts: &LevelFacts,
+    pre: &Snapshot,
+    hit: &Snapshot,
+    struck: &[usize],
+    own: Option<(usize, usize)>,
+    event: f64,
+) -> Option<String> {
+    let set = solved_set(facts, hit, struck);
+    let in_set = |i: usize| set.get(i).copied().unwrap_or(false);
+    let weights: f64 = (0..set.len())
+        .filter(|&i| set[i])
+        .map(|i| hit.bodies[i].mass * hit.gravity.length())
+        .sum();
+    let floor = (0.01 * event.abs()).max(2.0 * weights * hit.dt);
+    let is_own =
+        |a: usize, b: usize| own.is_some_and(|(x, y)| (a, b) == (x, y) || (a, b) == (y, x));
+    // The impulse on b of all of the pair's manifolds in a snapshot.
+    let on = |snap: &Snapshot, a: usize, b: usize| -> DVec2 {
+        snap.contacts
+            .iter()
+            .map(|c| {
+                if (c.body1, c.body2) == (a, b) {
+                    c.impulse_on_body2()
+                } else if (c.body1, c.body2) == (b, a) {
+                    -c.impulse_on_body2()
+                } else {
+                    DVec2::ZERO
+                }
+            })
+            .sum()
+    };
+    hit.contacts
+        .iter()
+        .filter(|c| (in_set(c.body1) || in_set(c.body2)) && !is_own(c.body1, c.body2))
+        .map(|c| {
+            let (a, b) = (c.body1, c.body2);
+            (a, b, (on(hit, a, b) - on(pre, a, b)).length())
+        })
+        .filter(|x| x.2 > floor)
+        .max_by(|x, y| x.2.total_cmp(&y.2))
+        .map(|(a, b, d)| {
+            let name = |i: usize| hit.bodies.get(i).map_or("?", |x| x.name.as_str());
+            format!(
+                "the contact of \"{}\" with \"{}\" gave an impulse of {d:.3e} N s in the same step (against the event's {event:.3e} N s), which the impulse-momentum solution leaves out: it holds the joints, the couplings and, at an impact, the pair's own contact only",
+                name(a),
+                name(b)
+            )
+        })
+}
 
 /// The constraint rows of the level's joints (target: no relative velocity) and of the
 /// snapshot's couplings, for the bodies in state `s`. Returns the rows and, per joint, the range
@@ -54,6 +160,9 @@ pub(super) struct Impact {
     pub i2: usize,
     /// Which bodies were free (carried ballistically).
     pub free: Vec<bool>,
+    /// Why the solution does not hold: another contact on the solved bodies in the impact's
+    /// step ([`left_out_contact`]).
+    pub left_out: Option<String>,
 }
 
 /// Why a contact event's question has no impulse-momentum analysis.
@@ -150,7 +259,10 @@ impl Impact {
         } else {
             solve_impulses(&states, &rows, &[]).0
         };
+        let event = crate::analysis::impact::pair_normal_impulse(hit, i1, Some(i2), None);
+        let left_out = left_out_contact(facts, pre, hit, &[i1, i2], Some((i1, i2)), event);
         Some(Impact {
+            left_out,
             t_c: pre.time + tau,
             pre: states,
             post,
@@ -208,6 +320,9 @@ pub(super) struct Blow {
     /// Linear impulse each level joint gave its body2 during the blow, N s.
     pub joint_impulse: Vec<DVec2>,
     free: Vec<bool>,
+    /// Why the solution does not hold: another contact on the struck mechanism in the blow's
+    /// step ([`left_out_contact`]).
+    pub left_out: Option<String>,
 }
 
 impl Blow {
@@ -233,11 +348,24 @@ impl Blow {
             .zip(&ranges)
             .map(|(j, r)| joint_impulse(j.kind, s[j.body1].angle, j.axis, &lambda[r.0..r.1]))
             .collect();
+        let struck: Vec<usize> = hit.impulses.iter().map(|e| e.body).collect();
+        let event: f64 = hit.impulses.iter().map(|e| e.impulse.length()).sum();
         Blow {
+            left_out: left_out_contact(facts, pre, hit, &struck, None, event),
             t0: pre.time,
             post,
             joint_impulse,
-            free: (0..s.len()).map(|i| flies_free(hit, i)).collect(),
+            // Carried at g after the blow only when nothing held it up before (a block lying on
+            // a floor and struck sideways stays on it: carried at g it read v_y = -g dt).
+            free: (0..s.len())
+                .map(|i| {
+                    flies_free(hit, i)
+                        && !pre
+                            .contacts
+                            .iter()
+                            .any(|c| (c.body1 == i || c.body2 == i) && c.pushes())
+                })
+                .collect(),
         }
     }
 

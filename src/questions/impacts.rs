@@ -31,6 +31,9 @@ pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
 
 /// Follows the rebound's apex over the step that led to `s` (`event`: what the pair did then).
 pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
+    if m.inapplicable.is_none() {
+        m.inapplicable = not_applicable(m, s);
+    }
     if let Quantity::ReboundHeight { body, .. } = &m.q {
         if let Some(i) = m.body_index(s, body) {
             let phase = m.pair.as_ref().map_or(ContactPhase::Before, |p| p.phase);
@@ -43,6 +46,50 @@ pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
             }
         }
     }
+}
+
+/// Why the analysis of an impact quantity does not apply to the scene, if it does not: the
+/// impact solution left out another contact in the impact's step (`ReboundHeight`, `EnergyLost`
+/// and `ContactImpulse` read its post-impact state), or, for `ReboundHeight`, the body does not
+/// fly free under gravity alone after the contact (y_c + v'^2 / (2 g) is a projectile's apex):
+/// a joint, a spring, a coupling, a load or damping acts on it.
+fn not_applicable(m: &Meter, s: &Snapshot) -> Option<String> {
+    if matches!(m.q, Quantity::Restitution { .. }) {
+        return None;
+    }
+    if let Some(why) = m
+        .pair
+        .as_ref()
+        .and_then(|p| p.impact.as_ref())
+        .and_then(|imp| imp.left_out.clone())
+    {
+        return Some(why);
+    }
+    let Quantity::ReboundHeight { body, .. } = &m.q else {
+        return None;
+    };
+    let i = m.body_index(s, body)?;
+    let facts = &m.facts;
+    let what = if let Some(j) = facts.joints.iter().find(|j| j.body1 == i || j.body2 == i) {
+        format!("joint \"{}\" holds it", j.name)
+    } else if let Some(sp) = facts.springs.iter().find(|x| x.holds(i)) {
+        format!("spring \"{}\" pulls on it", sp.name)
+    } else if let Some(c) = s
+        .couplings
+        .iter()
+        .find(|c| c.terms.iter().any(|t| t.0 == i))
+    {
+        format!("coupling \"{}\" holds it", c.name)
+    } else if let Some(l) = s.loads.iter().find(|l| l.body == i) {
+        format!("load \"{}\" acts on it", l.name)
+    } else if facts.bodies.get(i).is_some_and(|x| x.damped) {
+        "it is damped".to_string()
+    } else {
+        return None;
+    };
+    Some(format!(
+        "body \"{body}\" does not fly free after the contact ({what}): the rebound height y_c + v'^2 / (2 g) (IM-13) is the apex of a body under gravity alone"
+    ))
 }
 
 /// Why an impact quantity has no engine value at the end of the run, when the pair says: it

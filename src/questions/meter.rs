@@ -111,6 +111,10 @@ impl Meter {
             Some(p) => p.update(f, &self.facts),
             None => None,
         };
+        if self.q.family() == QuantityFamily::Linkages {
+            // From the first sample on: a percussion distance may be read at t = 0.
+            linkages::advance(self);
+        }
         let Some(prev) = f.prev else {
             return;
         };

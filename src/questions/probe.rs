@@ -330,7 +330,14 @@ impl QuestionProbe {
                     let imp = pair.and_then(|p| p.impact.clone());
                     let lasting = pair.and_then(|p| p.not_impulsive());
                     let occ = match (&imp, lasting) {
-                        (Some(i), None) => Occasion::PostImpact(i),
+                        (Some(i), None) => {
+                            self.meter.inapplicable = self.solution_left_out(
+                                sample,
+                                Occasion::PostImpact(i),
+                                &i.left_out,
+                            );
+                            Occasion::PostImpact(i)
+                        }
                         (Some(_), Some(why)) => {
                             self.note = why;
                             Occasion::Plain
@@ -430,11 +437,36 @@ impl QuestionProbe {
     fn read_after_blow(&mut self, sample: &Sample) {
         let blow = sample.prev.map(|p| Blow::solve(&self.facts, p, sample.cur));
         let occ = match &blow {
-            Some(b) => Occasion::AfterBlow(b),
+            Some(b) => {
+                let occ = Occasion::AfterBlow(b);
+                self.meter.inapplicable = self.solution_left_out(sample, occ, &b.left_out);
+                occ
+            }
             None => Occasion::Plain,
         };
         self.value = Some(self.meter.read(sample, occ));
         self.done = true;
+    }
+
+    /// The meter's reason for no analysis after an impact or blow whose solution left a contact
+    /// out (`left_out`): the reason, when the quantity's analysis is the solution's (it differs
+    /// from the analysis without the solution: a velocity, a kinetic energy, a pin impulse);
+    /// else the meter's own reason, unchanged (a quantity whose analysis does not read the
+    /// solution keeps it).
+    fn solution_left_out(
+        &self,
+        sample: &Sample,
+        occ: Occasion,
+        left_out: &Option<String>,
+    ) -> Option<String> {
+        let own = self.meter.inapplicable.clone();
+        let Some(why) = left_out else { return own };
+        if own.is_some() {
+            return own;
+        }
+        let solved = self.meter.read(sample, occ).analysis;
+        let plain = self.meter.read(sample, Occasion::Plain).analysis;
+        (solved.is_some() && solved != plain).then(|| why.clone())
     }
 
     /// The question's result, with the grade of the student's answer when there is one.

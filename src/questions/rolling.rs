@@ -35,7 +35,11 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     let (Some(i), Some(o)) = (m.body_index(s, b), m.body_index(s, ground)) else {
         return;
     };
-    let why = if s.bodies[o].kind != BodyKind::Fixed {
+    let why = if m.facts.bodies.get(i).is_some_and(|x| x.disc.is_none()) {
+        Some(format!(
+            "body \"{b}\" is not round (its shape is not a Circle): the rolling closed forms take a contact point at a fixed distance r below G, which a box or polygon does not keep"
+        ))
+    } else if s.bodies[o].kind != BodyKind::Fixed {
         Some("the ground moves: the rolling closed forms are for a fixed slope (a wedge that slides changes the body's acceleration)".to_string())
     } else if let Some(what) = also_acting(s, i, o).or_else(|| {
         m.facts
