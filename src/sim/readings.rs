@@ -269,18 +269,75 @@ pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) 
             c.points = old[j].points.clone();
             continue;
         }
+        // The two calls' manifolds may differ in normal and in the solver's lever arms (a body
+        // rolling over a faceted track meets the next facet, a rolling body's contact moves
+        // along the other body, a wheel that struck a curb turns about its corner in the calls
+        // after the impact). The step's impulse must keep two things: the vector sum (the
+        // force, for Newton-Euler) and the sums of the normal and the friction parts each along
+        // its own call's axes (their ratio is Coulomb's F/N, which `SlipStarts` compares with
+        // mu to 0.1%). Both hold when the merged normal is the one along which the vector sum
+        // splits in the ratio of the scalar sums: to first order the impulse-weighted mean of
+        // the calls' normals (an impact's own, not a later call's after the bodies turned).
+        // Each merged point keeps the lever arms of its larger part, moved along the line of
+        // action so that its moment about each body's mass center is the sum of the two: the
+        // moments and the work at the bodies' mid-step velocities (J . (v + w x a) = J . v +
+        // w (a x J) in 2D) are then those of the separate impulses. Before, the scalars were
+        // added along the newest call's axes at its arms: Newton-Euler residuals of 1.6e-2 N and
+        // 3.2e-3 N m on a disc rolling in a ring of 7025 facets (0.9 mrad apart), and a wheel's
+        // impact with a curb read with a normal 0.017 rad late.
+        let n_old = old[j].normal;
+        let n_new = c.normal;
+        let vector =
+            |n: DVec2, p: &ContactPoint| n * p.normal_impulse + n.perp() * p.tangent_impulse;
+        let (mut normal_sum, mut friction_sum, mut total) = (0.0, 0.0, DVec2::ZERO);
+        for (n, points) in [(n_old, &old[j].points), (n_new, &c.points)] {
+            for p in points {
+                normal_sum += p.normal_impulse;
+                friction_sum += p.tangent_impulse;
+                total += vector(n, p);
+            }
+        }
+        let merged_normal = if total.length_squared() > 0.0 {
+            let angle = total.to_angle() - friction_sum.atan2(normal_sum);
+            DVec2::from_angle(angle)
+        } else {
+            n_new
+        };
+        // Each point as its impulse vector (in `tangent_impulse`'s place the vector's y while
+        // merging: resolved along the merged normal at the end).
+        let mut vectors: Vec<DVec2> = c.points.iter().map(|q| vector(n_new, q)).collect();
         for p in &old[j].points {
-            let q = c
-                .points
-                .iter_mut()
-                .min_by(|a, b| {
-                    (a.point - p.point)
+            let k = (0..c.points.len())
+                .min_by(|&a, &b| {
+                    (c.points[a].point - p.point)
                         .length_squared()
-                        .total_cmp(&(b.point - p.point).length_squared())
+                        .total_cmp(&(c.points[b].point - p.point).length_squared())
                 })
                 .expect("non-empty");
-            q.normal_impulse += p.normal_impulse;
-            q.tangent_impulse += p.tangent_impulse;
+            let q = &mut c.points[k];
+            let j_q = vectors[k];
+            let j_p = vector(n_old, p);
+            let both = j_q + j_p;
+            if let (Some((q1, q2)), Some((p1, p2))) = (q.arms, p.arms) {
+                let p_larger = j_p.length_squared() > j_q.length_squared();
+                let keep_moment = |qa: DVec2, pa: DVec2| {
+                    let moment = qa.perp_dot(j_q) + pa.perp_dot(j_p);
+                    let base = if p_larger { pa } else { qa };
+                    let len2 = both.length_squared();
+                    if len2 > 0.0 {
+                        base - both.perp() * ((moment - base.perp_dot(both)) / len2)
+                    } else {
+                        base
+                    }
+                };
+                q.arms = Some((keep_moment(q1, p1), keep_moment(q2, p2)));
+            }
+            vectors[k] = both;
+        }
+        c.normal = merged_normal;
+        for (q, v) in c.points.iter_mut().zip(vectors) {
+            q.normal_impulse = v.dot(merged_normal);
+            q.tangent_impulse = v.dot(merged_normal.perp());
         }
     }
     for (j, o) in old.into_iter().enumerate() {

@@ -333,7 +333,14 @@ impl Simulation {
         // symplectic and gains energy, x2.5e4 in 10 s at omega dt = 0.5 with 4 substeps), and
         // contact and joint impulses are summed over the n calls into the step's snapshot.
         let n = self.substeps().max(1);
-        let split = self.settings.substepping == Substepping::Split;
+        // A spinning ball's contact is followed exactly only over one-substep calls
+        // (sim/contact_points.rs).
+        let split = self.settings.substepping == Substepping::Split
+            || (n > 1
+                && super::contact_points::spinning_ball_touches(
+                    &self.world,
+                    self.snapshot.step == 0,
+                ));
         // The rapier calls of this step, (length, rapier substeps): n calls of one substep when
         // split, else one call of n; an impact cut (sim/impacts.rs) divides a call in two.
         let mut calls: std::collections::VecDeque<(f64, usize)> = if split {
@@ -449,8 +456,10 @@ impl Simulation {
             elapsed += h;
             // Round bodies' friction acts on their rims, not halfway into an overlap
             // (sim/contact_points.rs).
-            self.world
-                .step_with_events(&super::contact_points::RoundContactPoints, &());
+            self.world.step_with_events(
+                &super::contact_points::RoundContactPoints { call_dt: h as Real },
+                &(),
+            );
             let call_lambdas = self.solve_couplings();
             self.owe_carriers(&call_lambdas);
             for (l, x) in lambdas.iter_mut().zip(call_lambdas) {
