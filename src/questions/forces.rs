@@ -331,8 +331,9 @@ fn component_of(c: Component, v: DVec2, g: DVec2, o: DVec2) -> f64 {
 /// Why the pivot reaction's analysis (`pivot_reaction`) does not hold for joint k, judged on
 /// the step that led to `s` and kept for the run: the pin's other side is kinematic and moving
 /// (the axis is not fixed), the turning body is damped (damping's moment and work are in
-/// neither sum M_O nor the work-energy omega), or a contact or a blow acted on the turning body
-/// (omega from the work of gravity, loads and springs since the start misses its impulse).
+/// neither sum M_O nor the work-energy omega), or a contact acted on the turning body (omega
+/// from the work of gravity, loads, springs and impulse events since the start misses what an
+/// impact or friction took; an impulse event's work is booked, `path_work`).
 fn reaction_not_applicable(m: &Meter, s: &Snapshot, k: usize) -> Option<String> {
     let j = &s.joints[k];
     let (mb, ob) = if is_massive(&s.bodies[j.body2]) {
@@ -352,12 +353,6 @@ fn reaction_not_applicable(m: &Meter, s: &Snapshot, k: usize) -> Option<String> 
         return Some(format!(
             "body \"{}\" is damped: damping's moment and work are in neither sum M_O nor the work-energy omega",
             b.name
-        ));
-    }
-    if let Some(e) = s.impulses.iter().find(|e| e.body == mb) {
-        return Some(format!(
-            "the blow \"{}\" struck body \"{}\" at t = {:.4} s: the work-energy omega (gravity, loads and springs since the start) misses its impulse",
-            e.name, b.name, s.time
         ));
     }
     let touched = s
