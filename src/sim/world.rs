@@ -349,6 +349,9 @@ impl Simulation {
             std::iter::once((dt, n)).collect()
         };
         let mut cuts = 0;
+        // A blow (an impulse event) this step: its first call solves friction to convergence, as
+        // an impact's does (sim/impacts.rs, IMPACT_ITERATIONS).
+        let blow = !self.snapshot.impulses.is_empty();
         // Whether the coming call is the short one a cut planned for its contact (then no pair
         // touching in it is cut again).
         let mut impact_call_next = false;
@@ -369,8 +372,9 @@ impl Simulation {
         while let Some((mut h, sub)) = calls.pop_front() {
             let mut prediction = None;
             let impact_call = std::mem::take(&mut impact_call_next);
-            // Whether this call makes an impact's contact (sim/impacts.rs, IMPACT_ITERATIONS).
-            let mut impact_now = impact_call;
+            // Whether this call makes an impact's contact or takes a blow (sim/impacts.rs,
+            // IMPACT_ITERATIONS).
+            let mut impact_now = impact_call || (first_call && blow);
             if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
                 let plan = self.plan_call(h, !impact_call);
                 prediction = Some(plan.prediction);
