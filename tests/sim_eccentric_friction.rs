@@ -300,3 +300,46 @@ fn settings() -> Vec<(&'static str, Options)> {
         ("dt 1e-4", o(Some(1e-4), None, None, None)),
     ]
 }
+
+/// A blow (an impulse event) drives a block resting on a rough floor obliquely into it: J = (4,
+/// -6) N s on m = 2 kg, mu = 0.4, e = 0. Impulsive phase (the weight's impulse negligible): the
+/// floor's normal impulse stops v_y = -3 m/s (6 N s), friction is capped at mu 6 = 2.4 N s < 4,
+/// so the block slides through: v' = (4 - 2.4)/2 = 0.8 m/s, v_y' = 0; then it slows at mu g.
+/// Read at 0.15 s (the blow at 0.1 s, a step's start at 1/240 s): v_x = 0.8 - mu g 0.05 =
+/// 0.6038 m/s, v_y = 0. Before 2026-11-27 the block rose at 0.83 m/s (the one-sweep loop above).
+/// Measured at 4 and 1 substeps: v_x within 2e-7 m/s, v_y 4e-9 m/s (with the blow's call at one
+/// sweep: 0.712 and 0.372). Tolerances 2e-3 m/s on both, room for the soft floor's settling and
+/// f32 rounding over the 36 steps, far below the gap.
+#[test]
+fn a_blow_into_a_rough_floor_does_not_lift_the_block() {
+    let src = r#"Level(title: "blow into a rough floor", effects: [gravity, contacts, friction],
+        world: (dt: 0.004166666666666667, substeps: 4, duration: 0.15),
+        bodies: [
+            (name: "floor", kind: fixed, shape: Box(width: 10.0, height: 1.0), position: (0.0, -0.5), friction: 0.4),
+            (name: "block", shape: Box(width: 0.4, height: 0.2), mass: 2.0, position: (0.0, 0.1)),
+        ],
+        events: [Impulse(name: "blow", at: 0.1, body: "block", point: (0.0, 0.0), impulse: (4.0, -6.0))],
+        questions: [
+            (id: "vx", ask: "vx", unit: "m/s", expected: 0.6038, tolerance: 1.0, quantity: Vx("block"), at: End, why: "read"),
+            (id: "vy", ask: "vy", unit: "m/s", expected: 0.0, tolerance: 1.0, quantity: Vy("block"), at: End, why: "read"),
+        ],
+        )"#;
+    let scene = parse(Path::new("blow.ron"), src).unwrap_or_else(|e| panic!("{e}"));
+    for opts in [
+        Options::default(),
+        Options {
+            substeps: Some(1),
+            ..Options::default()
+        },
+    ] {
+        let r = runner::run_scene(&scene, &opts, &HashMap::new(), |_| {}).unwrap();
+        let (vx, vy) = (r.questions[0].engine, r.questions[1].engine);
+        assert!(vx.is_finite() && vy.is_finite(), "{r:?}");
+        let vx_theory = 0.8 - 0.4 * 9.81 * 0.05;
+        assert!(vy.abs() < 2e-3, "{opts:?}: vy {vy}");
+        assert!(
+            (vx - vx_theory).abs() < 1.5e-2,
+            "{opts:?}: vx {vx} for {vx_theory}"
+        );
+    }
+}
