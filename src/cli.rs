@@ -311,12 +311,20 @@ fn check(
                 // that pass, searched within a bound (study::advice).
                 match r {
                     Ok(mut report) if crate::study::advice::engine_failed(&report) => {
-                        report.advice = Some(crate::study::advice::advise_within(
-                            &scene,
-                            &opts,
-                            report.wall_ms,
-                            seconds,
-                        ));
+                        report.advice =
+                            Some(match crate::study::advice::beyond_settings(&report) {
+                                Some(why) => crate::report::Advice::NoneWithin {
+                                    none_within: 0.0,
+                                    why,
+                                    within_seconds: None,
+                                },
+                                None => crate::study::advice::advise_within(
+                                    &scene,
+                                    &opts,
+                                    report.wall_ms,
+                                    seconds,
+                                ),
+                            });
                         Ok(report)
                     }
                     Err(e @ RunError::Sim { .. }) => {

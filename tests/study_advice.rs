@@ -264,3 +264,33 @@ fn a_slow_level_is_searched_within_the_time_bound_and_says_so() {
         with - bare
     );
 }
+
+/// A level whose only failure is a check that cannot judge its scene gets no search: finer
+/// settings cannot change an assumption the scene breaks. The tenth new user's bar resting on
+/// a peg and struck down (tests/newuser/n10_11b) declares `center_of_percussion`, whose pin
+/// must take the blow alone; the peg shares it. Its questions pass; the check says it cannot
+/// judge, and the advice says why without a search (`none_within` 0).
+#[test]
+fn a_check_that_cannot_judge_its_scene_gets_no_search() {
+    let bin = env!("CARGO_BIN_EXE_rigidlab");
+    let out = Command::new(bin)
+        .args([
+            "check",
+            "--json",
+            "tests/newuser/n10_11b_pinned_bar_on_stop_struck_down.ron",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let level = &json["levels"][0];
+    assert_eq!(level["passed"], false, "{level}");
+    let advice = &level["advice"];
+    assert_eq!(advice["none_within"], 0.0, "{advice}");
+    let why = advice["why"].as_str().unwrap();
+    assert!(
+        why.starts_with("no setting changes this") && why.contains("center_of_percussion"),
+        "{why}"
+    );
+    assert!(!out.status.success());
+}

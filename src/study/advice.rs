@@ -91,6 +91,36 @@ pub fn engine_failed(r: &LevelReport) -> bool {
     r.error.is_some() || r.checks.iter().any(|c| !c.passed) || r.questions.iter().any(|q| !q.passed)
 }
 
+/// Why no setting can make the level pass, when every failure of its report is a check that
+/// cannot judge the scene (its formula's assumption broken: `checks::kinds::cannot_judge`,
+/// whose note starts "cannot judge"): finer settings cannot change that, so there is nothing to
+/// search. Found by the tenth new user (tests/newuser/n10_11b: a `center_of_percussion` check
+/// on a bar that rests on a peg was searched through to 32x and then blamed on the engine).
+pub fn beyond_settings(r: &LevelReport) -> Option<String> {
+    if r.error.is_some() || r.questions.iter().any(|q| !q.passed) {
+        return None;
+    }
+    let failing: Vec<_> = r.checks.iter().filter(|c| !c.passed).collect();
+    let judged_none = !failing.is_empty()
+        && failing
+            .iter()
+            .all(|c| c.samples == 0 && c.note.starts_with("cannot judge"));
+    judged_none.then(|| {
+        let which: Vec<_> = failing
+            .iter()
+            .map(|c| format!("{} on {} ({})", c.kind, c.subject, c.note))
+            .collect();
+        format!(
+            "no setting changes this: {} the scene; remove the check or change the scene",
+            if which.len() == 1 {
+                format!("the check {} cannot judge", which[0])
+            } else {
+                format!("the checks {} cannot judge", which.join("; "))
+            }
+        )
+    })
+}
+
 /// The advice for a level whose run failed at the options `opts` (the command line's
 /// overrides of the level's settings) in `failed_wall_ms` (0 when it stopped early or was not
 /// timed: candidates' times are then `runner::budget`'s estimates).
