@@ -364,3 +364,38 @@ fn a_pin_reaction_after_a_contact_is_not_booked() {
     let a = q.analysis.unwrap_or_else(|| panic!("{q:?}"));
     assert!((a - 9.0).abs() < 1e-4 * 9.0, "{q:?}");
 }
+
+/// The bar of `bar_on_stop` held level by its pin's lower limit instead of a stop (limits
+/// (0, 1) rad on the pin: gravity holds it on the lower one), struck at the right end by P.
+fn bar_on_limit(p: f64) -> Vec<QuestionResult> {
+    questions(&format!(
+        r#"Level(title: "bar on a limit", effects: [gravity, joints],
+        world: (dt: 0.004166666666666667, substeps: 4, duration: 0.3),
+        bodies: [
+            (name: "ground", kind: fixed),
+            (name: "bar", shape: Box(width: 1.0, height: 0.04), mass: 2.0, inertia: 0.16666666666666666, position: (0.5, 0.0)),
+        ],
+        joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor1: (0.0, 0.0), anchor2: (-0.5, 0.0), limits: (0.0, 1.0))],
+        events: [Impulse(name: "blow", at: 0.2, body: "bar", point: (0.5, 0.0), impulse: (0.0, {p}))],
+        questions: [
+            (id: "J", ask: "J", unit: "N s", expected: 0.0, tolerance: 100.0,
+             quantity: JointImpulse(joint: "pin", component: Y), at: AfterEvent("blow"), why: "read"),
+            (id: "w", ask: "w", unit: "rad/s", expected: 0.0, tolerance: 100.0, quantity: Omega("bar"), at: AfterEvent("blow"), why: "read"),
+        ])"#
+    ))
+}
+
+/// Struck down into its pin's limit, the bar does not turn: the limit takes the blow, which the
+/// solution (the joints as ideal pins) leaves out, so it is "not applicable", naming the limit.
+/// Struck up, off the limit, the pin solution holds as for the stop's twin: w = 3 P / (m L) =
+/// 15 rad/s and the pin's J = P / 2 = 5 N s for P = 10 N s.
+#[test]
+fn a_pinned_bar_struck_into_its_joint_limit_is_not_a_free_blow() {
+    for q in &bar_on_limit(-10.0) {
+        not_applicable(q, "the limit of joint \"pin\"");
+    }
+    for (q, e) in bar_on_limit(10.0).iter().zip([5.0, 15.0]) {
+        let a = q.analysis.unwrap_or_else(|| panic!("applies: {q:?}"));
+        assert!((a - e).abs() < 1e-3 * e, "{q:?}");
+    }
+}

@@ -10,7 +10,7 @@ use crate::analysis::cross;
 use crate::analysis::impulse_solver::{
     coupling_row, joint_impulse, joint_rows, point_row, row_velocity, solve_impulses, ConstraintRow,
 };
-use crate::analysis::touching::{flies_free, Approaching};
+use crate::analysis::touching::{flies_free, free_acceleration, Approaching};
 use crate::analysis::Motion;
 use crate::level::BodyKind;
 use crate::snapshot::{BodyState, ContactState, Snapshot};
@@ -102,6 +102,33 @@ pub(super) fn left_out_contact(
             })
             .sum()
     };
+    // A joint's limit or motor in the solved set: the solution holds the joints as ideal
+    // constraints, without the stop a limit makes or the impulse a motor adds in the step.
+    let joint_part = |snap: &Snapshot, name: &str| {
+        snap.joints
+            .iter()
+            .find(|j| j.name == name)
+            .map_or((0.0, 0.0), |j| (j.limit_impulse, j.motor_impulse))
+    };
+    let joint = hit
+        .joints
+        .iter()
+        .filter(|j| in_set(j.body1) || in_set(j.body2))
+        .flat_map(|j| {
+            let (limit, motor) = joint_part(hit, &j.name);
+            let (limit0, motor0) = joint_part(pre, &j.name);
+            [
+                ("limit", &j.name, (limit - limit0).abs()),
+                ("motor", &j.name, (motor - motor0).abs()),
+            ]
+        })
+        .filter(|x| x.2 > floor)
+        .max_by(|x, y| x.2.total_cmp(&y.2));
+    if let Some((part, name, d)) = joint {
+        return Some(format!(
+            "the {part} of joint \"{name}\" gave an impulse of {d:.3e} in the same step (against the event's {event:.3e} N s), which the impulse-momentum solution leaves out: it holds the joints as ideal constraints, without their limits and motors"
+        ));
+    }
     hit.contacts
         .iter()
         .filter(|c| (in_set(c.body1) || in_set(c.body2)) && !is_own(c.body1, c.body2))
@@ -228,7 +255,13 @@ impl Impact {
         let free: Vec<bool> = (0..pre.bodies.len())
             .map(|i| flies_free(hit, i) && !supported(i))
             .collect();
-        let acc = |i: usize| if free[i] { pre.gravity } else { DVec2::ZERO };
+        let acc = |i: usize| {
+            if free[i] {
+                free_acceleration(hit, i)
+            } else {
+                DVec2::ZERO
+            }
+        };
         let disc = |i: usize| facts.bodies.get(i).and_then(|x| x.disc);
         let (m1, m2) = (Motion::from(b1), Motion::from(b2));
         let touch = Approaching {

@@ -12,7 +12,7 @@ use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::{body_mechanical_energy, height, is_massive};
 use crate::analysis::energy::body_kinetic_energy;
-use crate::analysis::touching::{carried_back_at, impact_at_touch, ReadAt};
+use crate::analysis::touching::{carried_back_at, free_acceleration, impact_at_touch, ReadAt};
 use crate::analysis::Motion;
 use crate::level::{ContactComponent, Quantity};
 use crate::snapshot::Snapshot;
@@ -161,7 +161,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
                 motion: &m_pre[k],
                 time: pre.time,
                 acc: if imp.free[i] {
-                    pre.gravity
+                    free_acceleration(pre, i)
                 } else {
                     DVec2::ZERO
                 },
@@ -169,7 +169,7 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
             let after = |k: usize, i: usize| ReadAt {
                 motion: &m_post[k],
                 time: post.time,
-                acc: carried_back_at(imp.free[i], pushing, post.gravity),
+                acc: carried_back_at(imp.free[i], pushing, free_acceleration(post, i)),
             };
             let e = impact_at_touch(
                 imp.t_c,

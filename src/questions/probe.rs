@@ -543,7 +543,7 @@ fn read_carried(meter: &Meter, prev: &Arc<Snapshot>, tau: f64) -> Reading {
 /// bodies flying free (no joint, coupling, or contact that pushed in the step before) under
 /// gravity, other moving bodies at their velocity.
 fn carried_to(s: &Snapshot, tau: f64) -> Snapshot {
-    use crate::analysis::touching::flies_free;
+    use crate::analysis::touching::{flies_free, free_acceleration};
     use crate::snapshot::BodyKind;
     let mut out = s.clone();
     for (i, b) in out.bodies.iter_mut().enumerate() {
@@ -555,7 +555,7 @@ fn carried_to(s: &Snapshot, tau: f64) -> Snapshot {
             .iter()
             .any(|c| (c.body1 == i || c.body2 == i) && c.pushes());
         let a = if flies_free(s, i) && !held {
-            s.gravity
+            free_acceleration(s, i)
         } else {
             glam::DVec2::ZERO
         };

@@ -1,8 +1,9 @@
 //! Energy checks: `kinetic_energy_g`, `kinetic_energy_ic`, `work_energy`.
 
 use super::{
-    body_def, cached_body, dynamic_body, framed, misconfigured, observed_nothing, result, scale_or,
-    subject_index, subject_of, subject_set, textbook_mass, v2, BodySet, FrameProbe, Summary, Worst,
+    body_def, cached_body, cannot_judge_probe, damped_subject, dynamic_body, framed, misconfigured,
+    observed_nothing, result, scale_or, subject_index, subject_of, subject_set, textbook_mass, v2,
+    BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::{FrameAnalysis, FramePass};
@@ -395,6 +396,11 @@ pub(super) fn work_energy(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
         },
         None => None,
     };
+    // U' sums the diagram's impulses, which hold no body damping (rapier's velocity scaling
+    // takes energy the ledger cannot book).
+    if let Some(why) = damped_subject(level, body.as_deref()) {
+        return cannot_judge_probe(def, format!("the work-energy ledger: {why}"));
+    }
     framed(WorkEnergy {
         def: def.clone(),
         // Only the joints with a motor do work: a level without motors skips the joint scan.

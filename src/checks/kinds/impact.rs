@@ -15,7 +15,7 @@ use crate::analysis::kinetics::{for_each_external_impulse_linked, Before, Source
 use crate::analysis::momentum::angular_momentum_about;
 use crate::analysis::percussion::strike_on_fixed_obstacle;
 use crate::analysis::touching::{
-    carried_back_at, flies_free, impact_at_touch, Approaching, ReadAt,
+    carried_back_at, flies_free, free_acceleration, impact_at_touch, Approaching, ReadAt,
 };
 use crate::analysis::{cross, Motion};
 use crate::checks::{CheckResult, Probe};
@@ -271,7 +271,7 @@ impl Restitution {
         // Free over the approach: under gravity alone, not pushed by a contact the step before.
         let acc = [(i, self.pushed[0]), (k, self.pushed[1])].map(|(x, pushed)| {
             if !pushed && flies_free(s, x) {
-                s.gravity
+                free_acceleration(s, x)
             } else {
                 DVec2::ZERO
             }

@@ -381,6 +381,18 @@ pub(super) fn damped_body(level: &Level, b: &BodyDef, moments: bool) -> Option<S
     })
 }
 
+/// [`damped_body`] for a check's subject: the named body, or any dynamic body of the scene.
+pub(super) fn damped_subject(level: &Level, body: Option<&str>) -> Option<String> {
+    match body {
+        Some(name) => body_def(level, name).and_then(|b| damped_body(level, b, true)),
+        None => level
+            .bodies
+            .iter()
+            .filter(|b| b.kind == crate::level::BodyKind::Dynamic)
+            .find_map(|b| damped_body(level, b, true)),
+    }
+}
+
 /// "body \"bar\"", "the scene", plus the point when given.
 pub(super) fn subject_of(def: &CheckDef) -> String {
     let mut s = match &def.body {

@@ -1,8 +1,8 @@
 //! Momentum checks: `angular_momentum_fixed_point`, `impulse_momentum`.
 
 use super::{
-    body_def, cannot_judge_probe, damped_body, dynamic_body, framed, misconfigured, result,
-    scale_or, subject_index, subject_of, subject_set, v2, BodySet, FrameProbe, Summary, Worst,
+    cannot_judge_probe, damped_subject, dynamic_body, framed, misconfigured, result, scale_or,
+    subject_index, subject_of, subject_set, v2, BodySet, FrameProbe, Summary, Worst,
 };
 use crate::analysis::cross;
 use crate::analysis::frame::{FrameAnalysis, FramePass};
@@ -61,15 +61,7 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
         Ok(b) => b,
         Err(e) => return misconfigured(def, e),
     };
-    let damped = match &body {
-        Some(name) => body_def(level, name).and_then(|b| damped_body(level, b, true)),
-        None => level
-            .bodies
-            .iter()
-            .filter(|b| b.kind == crate::level::BodyKind::Dynamic)
-            .find_map(|b| damped_body(level, b, true)),
-    };
-    if let Some(why) = damped {
+    if let Some(why) = damped_subject(level, body.as_deref()) {
         return cannot_judge_probe(def, format!("sum M_O = dH_O/dt: {why}"));
     }
     if body.is_none() && def.point.is_none() {
@@ -265,6 +257,11 @@ pub(super) fn impulse_momentum(level: &Level, def: &CheckDef) -> Box<dyn Probe> 
         Ok(b) => b,
         Err(e) => return misconfigured(def, e),
     };
+    // The diagram's impulses hold no body damping (rapier's velocity scaling), as for
+    // `angular_momentum_fixed_point`.
+    if let Some(why) = damped_subject(level, body.as_deref()) {
+        return cannot_judge_probe(def, format!("the impulse-momentum ledger: {why}"));
+    }
     framed(ImpulseMomentum {
         def: def.clone(),
         body,
