@@ -135,7 +135,10 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     // and friction takes 2.4 N s x 0.4 m/s = 0.96 J in the blow and 0.64 J sliding: -1.6 J,
     // the blow's work P . v_mid (rigidlab -1.5837 J, the work-energy check within 2.2e-3).
     // The disagreement is the model's, kept as the user wrote it (their report, item 3).
-    ("n10_05b_block_on_floor_struck_obliquely_down.ron", "question loss"),
+    (
+        "n10_05b_block_on_floor_struck_obliquely_down.ron",
+        "question loss",
+    ),
     // A bar resting on a peg, struck down (n10_11b), declares `center_of_percussion`, whose
     // pin must take the blow alone: the check says it cannot judge (the peg pushes in the
     // strike step) and fails the level at every setting, as it should; the questions pass and
@@ -153,7 +156,10 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // on a 2 kg block lying on a floor rebounds with e M/(m + M) = 0.480 at every setting:
     // rapier's restitution pass leaves the resting contact out, as it leaves joints out
     // (docs/known-gaps.md); the analyses say "not applicable" (the floor acts in the step).
-    ("n10_13a_ball_dropped_on_block_resting_on_floor.ron", "question"),
+    (
+        "n10_13a_ball_dropped_on_block_resting_on_floor.ron",
+        "question",
+    ),
     // A fifth new user (tests/newuser/n5_*, 2026-11-26), docs/known-gaps.md. (Fixed
     // 2026-11-27: a ball placed on a rough floor with topspin got too little normal impulse in
     // its first step, the spinning contact, and reached -30 rad/s 2.2 ms late, 1.08e-2.)

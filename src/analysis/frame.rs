@@ -363,6 +363,7 @@ impl FrameAnalysis {
                 massive: &self.massive,
                 mids: &mut self.mids,
                 pushed_before: &self.pushed_before,
+                pushing: &self.pushing,
                 with_work: work,
             };
             pass.run();
@@ -435,8 +436,10 @@ struct Pass<'a> {
     massive: &'a [usize],
     /// Per body with mass, filled first: where gravity acts and the mean velocities.
     mids: &'a mut [Mid],
-    /// The pairs a contact pushed in the step before (`FrameAnalysis::pushed_before`).
+    /// The pairs a contact pushed in the step before (`FrameAnalysis::pushed_before`), and in
+    /// this step, with the pair's normal impulse.
     pushed_before: &'a [((usize, usize), f64)],
+    pushing: &'a [((usize, usize), f64)],
     /// Whether to compute the work of the impulses (`FramePass::Work`).
     with_work: bool,
 }
@@ -635,14 +638,16 @@ impl Pass<'_> {
             // user's block struck down by (4, -6) N s (tests/newuser/n10_05b): the floor's
             // 6 N s against the 0.041 N s of resting, booked at the block's 0.35 mm sink, gave
             // the work-energy ledger 1.0 J of 1.6 J too much.
-            let resting = self.with_work
-                && self
-                    .pushed_before
-                    .binary_search_by_key(&pair_key(c.body1, c.body2), |&(key, _)| key)
-                    .is_ok_and(|k| {
-                        let now: f64 = c.points.iter().map(|p| p.normal_impulse).sum();
-                        now <= 2.0 * self.pushed_before[k].1
-                    });
+            let resting = self.with_work && {
+                let key = pair_key(c.body1, c.body2);
+                let pair = |list: &[((usize, usize), f64)]| {
+                    list.binary_search_by_key(&key, |&(k, _)| k)
+                        .ok()
+                        .map(|k| list[k].1)
+                };
+                pair(self.pushed_before)
+                    .is_some_and(|before| pair(self.pushing).unwrap_or(0.0) <= 2.0 * before)
+            };
             let work = (Slot::Contacts, true);
             for p in &c.points {
                 let (j_n, j_t) = (c.normal * p.normal_impulse, t * p.tangent_impulse);
