@@ -1,7 +1,9 @@
 //! The closed-form constant-acceleration check (free fall, projectile).
 
 use super::super::{kind_name, CheckResult, ErrorTrack, Probe};
-use super::{body_def, cannot_judge, damping_of, in_window, window_note, window_of};
+use super::{
+    body_def, cannot_judge, contact_pushing, damping_of, in_window, window_note, window_of,
+};
 use crate::level::{CheckDef, Level};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -92,17 +94,8 @@ impl ConstantAcceleration {
         {
             return Some(format!("coupling \"{}\" acts on it", c.name));
         }
-        if let Some(c) = s.contacts.iter().find(|c| {
-            (c.body1 == i || c.body2 == i)
-                && c.points
-                    .iter()
-                    .any(|p| p.normal_impulse != 0.0 || p.tangent_impulse != 0.0)
-        }) {
-            let o = if c.body1 == i { c.body2 } else { c.body1 };
-            return Some(format!(
-                "a contact with \"{}\" pushes on it {at}",
-                s.bodies[o].name
-            ));
+        if let Some(why) = contact_pushing(s, i, &at) {
+            return Some(why);
         }
         if let Some(e) = s.impulses.iter().find(|e| e.body == i) {
             return Some(format!("the impulse event \"{}\" strikes it {at}", e.name));

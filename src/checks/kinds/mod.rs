@@ -381,6 +381,24 @@ pub(super) fn damped_body(level: &Level, b: &BodyDef, moments: bool) -> Option<S
     })
 }
 
+/// Why body i is not free in step `s`: a contact that gave it a normal or friction impulse
+/// ("a contact with \"floor\" pushes on it" and `at`, where in the run), if one did. For the
+/// checks whose formula holds only with no contact on the body (`constant_acceleration`, a
+/// `center_of_percussion` strike).
+pub(super) fn contact_pushing(s: &crate::snapshot::Snapshot, i: usize, at: &str) -> Option<String> {
+    let c = s.contacts.iter().find(|c| {
+        (c.body1 == i || c.body2 == i)
+            && c.points
+                .iter()
+                .any(|p| p.normal_impulse != 0.0 || p.tangent_impulse != 0.0)
+    })?;
+    let o = if c.body1 == i { c.body2 } else { c.body1 };
+    Some(format!(
+        "a contact with \"{}\" pushes on it {at}",
+        s.bodies[o].name
+    ))
+}
+
 /// [`damped_body`] for a check's subject: the named body, or any dynamic body of the scene.
 pub(super) fn damped_subject(level: &Level, body: Option<&str>) -> Option<String> {
     match body {

@@ -2,8 +2,9 @@
 //! through the center of percussion (CP-2).
 
 use super::{
-    body_def, cached_body, cannot_judge, cannot_judge_probe, damped_body, dynamic_body, framed,
-    misconfigured, result, scale_or, subject_of, textbook_mass, v2, FrameProbe, Summary, Worst,
+    body_def, cached_body, cannot_judge, cannot_judge_probe, contact_pushing, damped_body,
+    dynamic_body, framed, misconfigured, result, scale_or, subject_of, textbook_mass, v2,
+    FrameProbe, Summary, Worst,
 };
 use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::{for_each_external_impulse_linked, gravity_point, Before, Source};
@@ -191,17 +192,8 @@ impl CenterOfPercussion {
                 return Some(format!("joint \"{}\" also holds the body {at}", j.name));
             }
         }
-        if let Some(c) = s.contacts.iter().find(|c| {
-            (c.body1 == i || c.body2 == i)
-                && c.points
-                    .iter()
-                    .any(|p| p.normal_impulse != 0.0 || p.tangent_impulse != 0.0)
-        }) {
-            let o = if c.body1 == i { c.body2 } else { c.body1 };
-            return Some(format!(
-                "a contact with \"{}\" pushes on it {at}",
-                s.bodies[o].name
-            ));
+        if let Some(why) = contact_pushing(s, i, &at) {
+            return Some(why);
         }
         if let Some(sp) = s.springs.iter().find(|sp| {
             (sp.body1 == i || sp.body2 == Some(i))
