@@ -72,18 +72,35 @@ fn a_blow_into_the_floor_is_not_a_free_blow() {
     }
 }
 
-/// A bar (m = 2 kg, L = 1 m, I_O = m L^2 / 3) pinned at its left end, its right end resting on a
-/// fixed stop, struck at the right end by P at t = 0.2 s.
-fn bar_on_stop(p: f64) -> Vec<QuestionResult> {
+/// What holds the bar of [`pinned_bar`] level before the blow.
+#[derive(Clone, Copy)]
+enum Support {
+    /// A fixed stop under its right end.
+    Stop,
+    /// Its pin's lower limit (limits (0, 1) rad: gravity holds it on the lower one).
+    Limit,
+}
+
+/// A bar (m = 2 kg, L = 1 m, I_O = m L^2 / 3) pinned at its left end and held level by
+/// `support`, struck at the right end by P at t = 0.2 s.
+fn pinned_bar(p: f64, support: Support) -> Vec<QuestionResult> {
+    let (effects, stop, limits) = match support {
+        Support::Stop => (
+            "gravity, contacts, joints",
+            r#"(name: "stop", kind: fixed, shape: Box(width: 0.1, height: 0.2), position: (0.9, -0.12)),"#,
+            "",
+        ),
+        Support::Limit => ("gravity, joints", "", ", limits: (0.0, 1.0)"),
+    };
     questions(&format!(
-        r#"Level(title: "bar on a stop", effects: [gravity, contacts, joints],
+        r#"Level(title: "pinned bar", effects: [{effects}],
         world: (dt: 0.004166666666666667, substeps: 4, duration: 0.3),
         bodies: [
             (name: "ground", kind: fixed),
-            (name: "stop", kind: fixed, shape: Box(width: 0.1, height: 0.2), position: (0.9, -0.12)),
+            {stop}
             (name: "bar", shape: Box(width: 1.0, height: 0.04), mass: 2.0, inertia: 0.16666666666666666, position: (0.5, 0.0)),
         ],
-        joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor1: (0.0, 0.0), anchor2: (-0.5, 0.0))],
+        joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor1: (0.0, 0.0), anchor2: (-0.5, 0.0){limits})],
         events: [Impulse(name: "blow", at: 0.2, body: "bar", point: (0.5, 0.0), impulse: (0.0, {p}))],
         questions: [
             (id: "J", ask: "J", unit: "N s", expected: 0.0, tolerance: 100.0,
@@ -101,10 +118,10 @@ fn bar_on_stop(p: f64) -> Vec<QuestionResult> {
 /// blow (struck beyond the center of percussion at 2 L / 3).
 #[test]
 fn a_pinned_bar_struck_onto_its_stop_is_not_a_free_blow() {
-    for q in &bar_on_stop(-10.0) {
+    for q in &pinned_bar(-10.0, Support::Stop) {
         not_applicable(q, "contact of \"stop\" with \"bar\"");
     }
-    let up = bar_on_stop(10.0);
+    let up = pinned_bar(10.0, Support::Stop);
     // The solution from the resting state (its creep below 1e-4 rad/s and m/s): 1e-5 relative.
     for (q, e) in up.iter().zip([5.0, 15.0]) {
         let a = q.analysis.unwrap_or_else(|| panic!("applies: {q:?}"));
@@ -365,36 +382,16 @@ fn a_pin_reaction_after_a_contact_is_not_booked() {
     assert!((a - 9.0).abs() < 1e-4 * 9.0, "{q:?}");
 }
 
-/// The bar of `bar_on_stop` held level by its pin's lower limit instead of a stop (limits
-/// (0, 1) rad on the pin: gravity holds it on the lower one), struck at the right end by P.
-fn bar_on_limit(p: f64) -> Vec<QuestionResult> {
-    questions(&format!(
-        r#"Level(title: "bar on a limit", effects: [gravity, joints],
-        world: (dt: 0.004166666666666667, substeps: 4, duration: 0.3),
-        bodies: [
-            (name: "ground", kind: fixed),
-            (name: "bar", shape: Box(width: 1.0, height: 0.04), mass: 2.0, inertia: 0.16666666666666666, position: (0.5, 0.0)),
-        ],
-        joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor1: (0.0, 0.0), anchor2: (-0.5, 0.0), limits: (0.0, 1.0))],
-        events: [Impulse(name: "blow", at: 0.2, body: "bar", point: (0.5, 0.0), impulse: (0.0, {p}))],
-        questions: [
-            (id: "J", ask: "J", unit: "N s", expected: 0.0, tolerance: 100.0,
-             quantity: JointImpulse(joint: "pin", component: Y), at: AfterEvent("blow"), why: "read"),
-            (id: "w", ask: "w", unit: "rad/s", expected: 0.0, tolerance: 100.0, quantity: Omega("bar"), at: AfterEvent("blow"), why: "read"),
-        ])"#
-    ))
-}
-
 /// Struck down into its pin's limit, the bar does not turn: the limit takes the blow, which the
 /// solution (the joints as ideal pins) leaves out, so it is "not applicable", naming the limit.
 /// Struck up, off the limit, the pin solution holds as for the stop's twin: w = 3 P / (m L) =
 /// 15 rad/s and the pin's J = P / 2 = 5 N s for P = 10 N s.
 #[test]
 fn a_pinned_bar_struck_into_its_joint_limit_is_not_a_free_blow() {
-    for q in &bar_on_limit(-10.0) {
+    for q in &pinned_bar(-10.0, Support::Limit) {
         not_applicable(q, "the limit of joint \"pin\"");
     }
-    for (q, e) in bar_on_limit(10.0).iter().zip([5.0, 15.0]) {
+    for (q, e) in pinned_bar(10.0, Support::Limit).iter().zip([5.0, 15.0]) {
         let a = q.analysis.unwrap_or_else(|| panic!("applies: {q:?}"));
         assert!((a - e).abs() < 1e-3 * e, "{q:?}");
     }
