@@ -1,6 +1,7 @@
 //! Which contacts and joints touch each body in a snapshot, so that a reading about one body
 //! (or a pair) visits only its own: a check on every body of a scene would otherwise scan every
 //! contact and joint once per body, O(bodies x contacts) a step (benches/analysis.rs, C).
+//! Also `joined_bodies`: the set of bodies joined to some through pairs that act on each other.
 
 use crate::snapshot::Snapshot;
 
@@ -103,6 +104,47 @@ impl Adjacency {
     }
 }
 
+/// The bodies joined to `seeds` through `pairs` (two bodies that act on each other: a joint, a
+/// coupling, a spring), as a flag per body of `bodies`: the set grows until nothing changes, a
+/// pair (x, y), taken either way round, adding y when x is in the set, `passes_on(x)` (x hands
+/// the set on) and `admits(y)` (y may join it). The seeds are in the set as given: filter them
+/// first where they must be admitted. A pair naming a body past `bodies` joins nothing.
+///
+/// What a mechanism is depends on the reader: the bodies on one side of a joint (the joint left
+/// out of `pairs`, bodies with mass admitted), a mechanism and the supports it hangs on
+/// (dynamic bodies pass it on, fixed and kinematic ones do not), the bodies a motor drives.
+pub fn joined_bodies(
+    bodies: usize,
+    seeds: impl IntoIterator<Item = usize>,
+    pairs: impl IntoIterator<Item = (usize, usize)>,
+    passes_on: impl Fn(usize) -> bool,
+    admits: impl Fn(usize) -> bool,
+) -> Vec<bool> {
+    let mut inside = vec![false; bodies];
+    for i in seeds {
+        if let Some(x) = inside.get_mut(i) {
+            *x = true;
+        }
+    }
+    let pairs: Vec<(usize, usize)> = pairs
+        .into_iter()
+        .filter(|&(a, b)| a < bodies && b < bodies)
+        .collect();
+    let mut grew = true;
+    while grew {
+        grew = false;
+        for &(a, b) in &pairs {
+            for (x, y) in [(a, b), (b, a)] {
+                if inside[x] && !inside[y] && passes_on(x) && admits(y) {
+                    inside[y] = true;
+                    grew = true;
+                }
+            }
+        }
+    }
+    inside
+}
+
 /// The indices in two ascending lists, merged ascending, each once.
 pub(crate) fn merged<'a>(a: &'a [u32], b: &'a [u32]) -> impl Iterator<Item = usize> + 'a {
     let (mut i, mut j) = (0, 0);
@@ -144,6 +186,33 @@ mod tests {
         assert_eq!(a.of(2), &[1, 2]);
         assert_eq!(a.of(3), &[3]);
         assert_eq!(a.of(9), &[] as &[u32]);
+    }
+
+    #[test]
+    fn joined_bodies_follow_the_predicates() {
+        // A chain 0 - 1 - 2 - 3, body 4 apart, a pair naming body 9 (outside): ignored.
+        let pairs = [(0, 1), (2, 1), (2, 3), (4, 9)];
+        let all = |_: usize| true;
+        assert_eq!(
+            joined_bodies(5, [1], pairs, all, all),
+            vec![true, true, true, true, false]
+        );
+        // Body 2 does not pass the set on: 3 is reached only through it.
+        assert_eq!(
+            joined_bodies(5, [0], pairs, |i| i != 2, all),
+            vec![true, true, true, false, false]
+        );
+        // Body 2 may not join: neither may 3 behind it.
+        assert_eq!(
+            joined_bodies(5, [0], pairs, all, |i| i != 2),
+            vec![true, true, false, false, false]
+        );
+        // A seed joins as given, even one `admits` refuses; no seed, no set.
+        assert_eq!(
+            joined_bodies(5, [4], pairs, all, |i| i != 4),
+            vec![false, false, false, false, true]
+        );
+        assert_eq!(joined_bodies(5, [], pairs, all, all), vec![false; 5]);
     }
 
     #[test]

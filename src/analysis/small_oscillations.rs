@@ -32,6 +32,7 @@
 //! one) and motors are not in the model: a motor or a time-varying or follower load makes the
 //! analysis refuse, with the reason.
 
+use crate::analysis::links::joined_bodies;
 use crate::analysis::mass::of_body;
 use crate::level::{BodyKind, Coordinate, Effect, JointKind, Level, Profile, DEFAULT_DENSITY};
 use glam::DVec2;
@@ -234,23 +235,15 @@ impl Mechanism {
                 pairs.push((index(&s.body1).ok_or("spring body")?, b2));
             }
         }
-        // The connected set of dynamic bodies (fixed and kinematic bodies do not pass it on).
-        let mut inside = vec![false; n];
-        inside[around] = true;
-        let mut grew = true;
-        while grew {
-            grew = false;
-            for &(a, b) in &pairs {
-                if let Some(b) = b {
-                    for (x, y) in [(a, b), (b, a)] {
-                        if inside[x] && dynamic(x) && !inside[y] {
-                            inside[y] = true;
-                            grew = true;
-                        }
-                    }
-                }
-            }
-        }
+        // The connected set of dynamic bodies and what holds them (fixed and kinematic bodies
+        // join it but do not pass it on).
+        let inside = joined_bodies(
+            n,
+            [around],
+            pairs.iter().filter_map(|&(a, b)| Some((a, b?))),
+            dynamic,
+            |_| true,
+        );
         // The support: every kinematic body the set hangs on moves with one velocity, unturned.
         let mut support: Option<DVec2> = None;
         let mut support_acceleration: Option<DVec2> = None;

@@ -15,6 +15,7 @@ use crate::analysis::energy::{fixed_axis_speed_after_work, kinetic_energy_rate, 
 use crate::analysis::impact::{pair_contact, pair_normal_impulse};
 use crate::analysis::kinematics::{body_point_velocity, contact_slip};
 use crate::analysis::kinetics::fixed_axis_reaction;
+use crate::analysis::links::joined_bodies;
 use crate::analysis::mass::parallel_axis;
 use crate::level::{Component, ContactComponent, JointKind, Quantity};
 use crate::snapshot::Snapshot;
@@ -460,31 +461,19 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
 /// 3.18). None when there is none.
 fn friction_on_mechanism(s: &Snapshot, k: usize) -> Option<String> {
     let dynamic = |i: usize| s.bodies.get(i).is_some_and(is_massive);
-    let mut inside = vec![false; s.bodies.len()];
     let j = s.joints.get(k)?;
-    for b in [j.body1, j.body2] {
-        inside[b] = dynamic(b);
-    }
-    let mut pairs: Vec<(usize, usize)> = s.joints.iter().map(|x| (x.body1, x.body2)).collect();
-    for c in &s.couplings {
-        for a in &c.terms {
-            for b in &c.terms {
-                pairs.push((a.0, b.0));
-            }
-        }
-    }
-    let mut grew = true;
-    while grew {
-        grew = false;
-        for &(a, b) in &pairs {
-            for (x, y) in [(a, b), (b, a)] {
-                if inside[x] && dynamic(y) && !inside[y] {
-                    inside[y] = true;
-                    grew = true;
-                }
-            }
-        }
-    }
+    let couplings = s.couplings.iter().flat_map(|c| {
+        c.terms
+            .iter()
+            .flat_map(move |a| c.terms.iter().map(move |b| (a.0, b.0)))
+    });
+    let inside = joined_bodies(
+        s.bodies.len(),
+        [j.body1, j.body2].into_iter().filter(|&b| dynamic(b)),
+        s.joints.iter().map(|x| (x.body1, x.body2)).chain(couplings),
+        |_| true,
+        dynamic,
+    );
     let c = s.contacts.iter().find(|c| {
         (inside[c.body1] || inside[c.body2]) && c.points.iter().any(|p| p.tangent_impulse != 0.0)
     })?;

@@ -6,6 +6,7 @@
 use super::sample::Sample;
 use super::snapshot_reading::is_massive;
 use crate::analysis::kinetics::{for_each_external_impulse, Before, Source};
+use crate::analysis::links::joined_bodies;
 use crate::analysis::Motion;
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -128,7 +129,18 @@ pub(super) fn contact_needed(f: &Sample, i: usize, o: usize) -> Option<DVec2> {
 /// their momentum change minus every other external impulse on them (gravity, loads, springs,
 /// events, contacts and other joints reaching outside the group), IM-3.
 pub(super) fn side_impulse(prev: &Snapshot, s: &Snapshot, k: usize, moving: usize) -> DVec2 {
-    let side = joined_side(s, k, moving);
+    // The bodies joined to `moving` through joints other than k (bodies with mass only).
+    let side = joined_bodies(
+        s.bodies.len(),
+        [moving],
+        s.joints
+            .iter()
+            .enumerate()
+            .filter(|&(q, _)| q != k)
+            .map(|(_, j)| (j.body1, j.body2)),
+        |_| true,
+        |b| is_massive(&s.bodies[b]),
+    );
     let mut j = DVec2::ZERO;
     for (i, b) in s.bodies.iter().enumerate().filter(|&(i, _)| side[i]) {
         j += b.mass * (b.velocity - prev.bodies[i].velocity);
@@ -146,26 +158,4 @@ pub(super) fn side_impulse(prev: &Snapshot, s: &Snapshot, k: usize, moving: usiz
         },
     );
     j
-}
-
-/// The bodies joined to `moving` through joints other than k (bodies with mass only).
-fn joined_side(s: &Snapshot, k: usize, moving: usize) -> Vec<bool> {
-    let mut side = vec![false; s.bodies.len()];
-    side[moving] = true;
-    let mut grew = true;
-    while grew {
-        grew = false;
-        for (q, j) in s.joints.iter().enumerate() {
-            if q == k {
-                continue;
-            }
-            for (a, b) in [(j.body1, j.body2), (j.body2, j.body1)] {
-                if side[a] && !side[b] && is_massive(&s.bodies[b]) {
-                    side[b] = true;
-                    grew = true;
-                }
-            }
-        }
-    }
-    side
 }
