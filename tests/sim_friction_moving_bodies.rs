@@ -8,6 +8,8 @@
 //! 1/240 s, 0.33 mm = p/2 at every setting; the friction force 0.25% high). rigidlab now puts a
 //! ball's solver point on its rim (src/sim/contact_points.rs); this file holds that.
 
+mod common;
+
 use rigidlab::level::{parse, Precision};
 use rigidlab::runner;
 use rigidlab::sim::Options;
@@ -118,8 +120,8 @@ fn a_disc_rolls_on_a_pulled_plank_without_creeping() {
             let worst = s
                 .iter()
                 .filter(|x| x.0 > SETTLE)
-                .map(|x| x.1.abs())
-                .fold(0.0, f64::max);
+                .map(|x| x.1.abs());
+            let worst = common::worst(worst);
             // Before the fix the rim crept 4.3e-3 to 6.4e-3 m/s by 1 s at these settings (the
             // creep grows with omega: omega p/2). Now a few 1e-6 m/s, except at 1 substep,
             // where the contact's settling leaves a transient that peaks at 1.3e-4 m/s (f64) at
@@ -157,8 +159,8 @@ fn a_block_is_carried_by_static_friction_on_a_pulled_plank() {
             let worst = s
                 .iter()
                 .filter(|x| x.0 > SETTLE)
-                .map(|x| x.1.abs())
-                .fold(0.0, f64::max);
+                .map(|x| x.1.abs());
+            let worst = common::worst(worst);
             // No rim, no creep: the disc's 2e-4 m/s (measured below 1e-4: the 1-substep
             // settling transient again).
             assert!(

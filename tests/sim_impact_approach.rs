@@ -28,6 +28,8 @@
 //! every case within 0.1% (the bound), and rapier's own speculative contact
 //! (`impact_cuts: Some(false)`) outside it, so the cut is what the pass rests on.
 
+mod common;
+
 use rigidlab::level;
 use rigidlab::sim::{Options, Simulation};
 use std::path::Path;
@@ -101,7 +103,7 @@ fn a_wheel_hitting_a_curb_converges_to_the_impulse_solution_from_any_gap() {
                 rel(v.0, 0.88, 1.466667),
                 rel(v.1, 1.173333333, 1.466667),
             ];
-            let e = errs.iter().cloned().fold(0.0, f64::max);
+            let e = common::worst(errs);
             println!("curb, dt {dt:.2e} s, gap {gap:.0e} m: v' = ({:.6}, {:.6}) m/s, w' = {:.6} rad/s, worst rel error {e:.2e}", v.0, v.1, v.2);
             errors.push(e);
         }
@@ -137,7 +139,7 @@ fn an_oblique_impact_of_two_discs_converges_to_the_impulse_solution_from_any_gap
                 rel(v[1].0, 1.35, 2.0),
                 rel(v[1].1, 0.7794229, 2.0),
             ];
-            let e = errs.iter().cloned().fold(0.0, f64::max);
+            let e = common::worst(errs);
             println!(
             "oblique, dt {dt:.2e} s, gap {gap:.0e} m: v_A' = ({:.6}, {:.6}), v_B' = ({:.6}, {:.6}) m/s, worst rel error {e:.2e}",
             v[0].0, v[0].1, v[1].0, v[1].1

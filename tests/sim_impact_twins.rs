@@ -80,7 +80,7 @@ fn twin(scene: &Scene) -> Scene {
 
 /// The worst question error of a report, and the ids that failed.
 fn summary(r: &LevelReport) -> (f64, Vec<String>) {
-    let worst = r.questions.iter().map(|q| q.rel_error).fold(0.0, f64::max);
+    let worst = common::worst(r.questions.iter().map(|q| q.rel_error));
     let failed = r
         .questions
         .iter()

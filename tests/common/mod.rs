@@ -114,6 +114,16 @@ pub fn failures(r: &LevelReport) -> Vec<String> {
     out
 }
 
+/// The largest of `values` (0 for none). Panics on a NaN or an infinity: `fold(0.0, f64::max)`
+/// would drop a NaN (f64::max ignores it), and a test must not pass on a value it could not
+/// measure.
+pub fn worst(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, |m, x| {
+        assert!(x.is_finite(), "a value that could not be measured: {x}");
+        m.max(x)
+    })
+}
+
 /// |x - expected| / |expected|, or |x| when the expected answer is 0.
 pub fn rel(x: f64, expected: f64) -> f64 {
     if expected == 0.0 {
