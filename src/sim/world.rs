@@ -50,6 +50,9 @@ pub struct Simulation {
     /// Whether the last rapier call made an impact's contact: the next call then solves its
     /// unbiased pass to convergence too (sim/impacts.rs, `IMPACT_ITERATIONS`).
     pub(super) after_impact: bool,
+    /// How many times the impact planner cut the last step's calls (sim/impacts.rs): what the
+    /// tests read to see that a pair rapier never collides is not planned as an impact.
+    pub last_step_cuts: usize,
 }
 
 impl Simulation {
@@ -125,6 +128,7 @@ impl Simulation {
             contact_readings: true,
             prediction_distance,
             after_impact: false,
+            last_step_cuts: 0,
             has_kinematic: scene
                 .level
                 .bodies
@@ -479,6 +483,7 @@ impl Simulation {
                 merge_joints(&mut joint_sum, &self.snapshot.joints);
             }
         }
+        self.last_step_cuts = cuts;
         {
             let p = &mut self.world.integration_parameters;
             p.dt = dt as Real;
