@@ -29,7 +29,23 @@
 //!   0.67 s at 8 (0.008 us a joint-substep-iteration); 1800 steps at 32 substeps: 0.49 s (0.035
 //!   us a joint-substep); a pendulum at 1000 substeps, 1200 steps: 0.25 s (0.12 us); a chain of
 //!   40 at 96 substeps, 600 steps: 0.24 s (0.09 us). 0.06 us is their middle: the cost of a
-//!   joint's substep falls with the joints in the island.
+//!   joint's substep falls with the joints in the island. Those were taken (2026-11-26) when an
+//!   iteration was one biased sweep and every substep ended with rapier's one unbiased sweep.
+//!
+//!   Since 2026-11-27 an iteration is a biased and an unbiased sweep
+//!   (`num_internal_stabilization_iterations = solver_iterations`, sim/build.rs), so the
+//!   unbiased sweep moved from the substep to the iteration. Measured again on 2026-11-27 (CPU
+//!   time of the best of 3, `--iterations` over the level's, load average 2 to 3): the chain of
+//!   200 at 8 substeps, 3600 steps: 0.33 s at 1 iteration (as on 2026-11-26), 0.61 s at 4, 0.98
+//!   s at 8, 1.75 s at 16: 0.016 us a joint-substep-iteration; at 32 substeps, 600 steps: 0.17 s
+//!   at 1, 0.35 s at 4 (0.016 us). Contacts cost more a sweep: stress/pyramid_20 (590 pairs, 4
+//!   substeps) run 3600 steps: 0.72 s at 1 iteration, 1.36 s at 4, 2.12 s at 8 (0.024 us a
+//!   pair-substep-iteration); stress/mass_ratio_100 (429 pairs, 32 substeps, 600 steps): 0.40,
+//!   0.97, 1.73 s (0.023 us). [`ROW_ITERATION_US`] is their middle, 0.02 us (the chain's
+//!   estimate at 8 iterations 1.3x the run, the pyramid's 0.97x, mass_ratio_100's 1.0x; the
+//!   biased sweep alone, 0.008 us, gave 0.66x and 0.62x on the contact scenes), and
+//!   [`ROW_SUBSTEP_US`] gives up the unbiased sweep it held, 0.068 - 0.02 = 0.048 us, so that
+//!   a run at 1 iteration, which does the same sweeps as before, is priced as before.
 //! - [`PAIR_STEP_US`]: the library's contact levels (stress/pyramid_20, vertical_stack,
 //!   card_house, arch, newtons_cradle), fitted after the terms above.
 //! - [`PAIR_MADE_NS`]: rapier makes a contact pair in time proportional to the pairs its bodies
@@ -63,10 +79,11 @@ pub const SUBSTEP_US: f64 = 0.08;
 /// One body integrated in one substep, us.
 pub const BODY_SUBSTEP_US: f64 = 0.008;
 /// One constraint (a joint or a potential contact pair) prepared in one substep, us.
-pub const ROW_SUBSTEP_US: f64 = 0.06;
-/// One constraint solved in one solver iteration of one substep (a body-substep-iteration of
-/// the solver), us.
-pub const ROW_ITERATION_US: f64 = 0.008;
+pub const ROW_SUBSTEP_US: f64 = 0.048;
+/// One constraint solved in one solver iteration of one substep, us: the iteration's biased
+/// sweep and its unbiased (stabilization) sweep, both run `solver_iterations` times a substep
+/// since 2026-11-27 (sim/build.rs).
+pub const ROW_ITERATION_US: f64 = 0.02;
 /// One potential contact pair in the narrow phase, per step, us.
 pub const PAIR_STEP_US: f64 = 0.1;
 /// Making one contact pair, per pair its two bodies already have, ns (paid once, when the pairs
