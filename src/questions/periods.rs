@@ -418,6 +418,19 @@ fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
             j.name
         ));
     }
+    // A coupling (a gear mesh, a rack and pinion, a cable) moves other bodies with this one,
+    // and their inertia with it: a rack on a spring meshing with a pinion of inertia I vibrates
+    // with m + I / r^2, not m (tests/newuser/n11_11: 22.5% short).
+    if let Some(c) = s
+        .couplings
+        .iter()
+        .find(|c| c.terms.iter().any(|t| t.0 == i))
+    {
+        return Some(format!(
+            "coupling \"{}\" moves other bodies with the body: 2 pi sqrt(m / k) leaves out their inertia",
+            c.name
+        ));
+    }
     let info = facts.bodies.get(i)?;
     if info.damped {
         return Some("the body is damped (body damping, not a spring's damper)".into());
