@@ -376,6 +376,9 @@ fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<Str
             ));
         }
     }
+    if let Some(why) = coupled(s, i, "the pendulum's period") {
+        return Some(why);
+    }
     let info = facts.bodies.get(i)?;
     if info.damped {
         return Some("the body is damped: the formula is the undamped period".into());
@@ -384,6 +387,21 @@ fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<Str
         return Some(format!("load \"{load}\" acts on the body"));
     }
     None
+}
+
+/// A coupling (a gear mesh, a rack and pinion, a cable) on body i moves other bodies with it, and
+/// their inertia with it, which a one-body period `formula` leaves out: a rack on a spring meshing
+/// with a pinion of inertia I vibrates with m + I / r^2, not m (tests/newuser/n11_11: 22.5%
+/// short). The linearized period holds couplings as constraints.
+fn coupled(s: &Snapshot, i: usize, formula: &str) -> Option<String> {
+    let c = s
+        .couplings
+        .iter()
+        .find(|c| c.terms.iter().any(|t| t.0 == i))?;
+    Some(format!(
+        "coupling \"{}\" moves other bodies with the body: {formula} leaves out their inertia",
+        c.name
+    ))
 }
 
 /// Why the spring-mass period's analysis does not fit the scene: body i (with its partner, if
@@ -418,18 +436,8 @@ fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
             j.name
         ));
     }
-    // A coupling (a gear mesh, a rack and pinion, a cable) moves other bodies with this one,
-    // and their inertia with it: a rack on a spring meshing with a pinion of inertia I vibrates
-    // with m + I / r^2, not m (tests/newuser/n11_11: 22.5% short).
-    if let Some(c) = s
-        .couplings
-        .iter()
-        .find(|c| c.terms.iter().any(|t| t.0 == i))
-    {
-        return Some(format!(
-            "coupling \"{}\" moves other bodies with the body: 2 pi sqrt(m / k) leaves out their inertia",
-            c.name
-        ));
+    if let Some(why) = coupled(s, i, "2 pi sqrt(m / k)") {
+        return Some(why);
     }
     let info = facts.bodies.get(i)?;
     if info.damped {
