@@ -43,7 +43,7 @@
 //!   pair-substep-iteration); stress/mass_ratio_100 (429 pairs, 32 substeps, 600 steps): 0.40,
 //!   0.97, 1.73 s (0.023 us). [`ROW_ITERATION_US`] is their middle, 0.02 us (the chain's
 //!   estimate at 8 iterations 1.3x the run, the pyramid's 0.97x, mass_ratio_100's 1.0x; the
-//!   biased sweep alone, 0.008 us, gave 0.66x and 0.62x on the contact scenes), and
+//!   biased sweep alone, 0.008 us, gave 0.63x on both contact scenes), and
 //!   [`ROW_SUBSTEP_US`] gives up the unbiased sweep it held, 0.068 - 0.02 = 0.048 us, so that
 //!   a run at 1 iteration, which does the same sweeps as before, is priced as before.
 //! - [`PAIR_STEP_US`]: the library's contact levels (stress/pyramid_20, vertical_stack,
