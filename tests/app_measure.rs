@@ -26,8 +26,23 @@ fn the_period_timer_reads_the_pendulums_exact_period() {
     let bar = common::body_index(&phys.scene.level, "bar");
     let (t, n) = period_of(&phys, bar).expect("a period over 3.6 s of swinging");
     assert!(n >= 1, "{n} periods");
-    // The level's bar: I_O = 0.6669333 kg m^2, m = 2 kg, d = 0.5 m, released at 60 degrees.
-    let exact = pendulum_period(0.6669333, 2.0, 9.81, 0.5, 60f64.to_radians());
+    // The level's bar, read from the level so the theory follows it: a uniform box w x h of
+    // mass m pinned at anchor2 (body frame, from G), I_O = m (w^2 + h^2)/12 + m d^2 (MP-2);
+    // 0.6669333 kg m^2 for 1 m x 0.04 m, 2 kg, d = 0.5 m. Released at its level angle.
+    let level = &phys.scene.level;
+    let b = &level.bodies[bar];
+    let Some(rigidlab::level::Shape::Box { width, height }) = b.shape else {
+        panic!("the pendulum's bar is a box: {:?}", b.shape)
+    };
+    let m = b.mass.expect("the bar states its mass");
+    let pin = level
+        .joints
+        .iter()
+        .find(|j| j.body2 == "bar")
+        .expect("the bar's pin");
+    let d = pin.anchor2.0.hypot(pin.anchor2.1);
+    let i_o = m * (width * width + height * height) / 12.0 + m * d * d;
+    let exact = pendulum_period(i_o, m, 9.81, d, b.angle);
     // rapier loses 2.6% of the energy a period at this dt (the level's own note); the amplitude
     // falls by 0.015 rad a period and the large-amplitude period with it, by theta0 d theta0 / 8
     // = 0.2% a period: 0.5% covers the two periods measured and the crossings' linear
