@@ -132,14 +132,16 @@ fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
     );
     let preview = app.world().resource::<Editor>().preview.clone().unwrap();
     let r = preview.1.unwrap();
-    // Both readings within 1% of the closed form: the analysis reads theta from the engine's
+    // Both readings against the closed form: the analysis reads theta from the engine's
     // contact normal (the wedge's face is at 30 degrees exactly), the engine's value is a
-    // central difference of v (the library's classic_rolling_disc holds it to 2e-3).
+    // central difference of v (f32 rounding of v over 2 dt). Measured 2026-11-27: analysis
+    // 1.76e-4, engine 8.0e-6 (questions_rolling_applies.rs reads the same 1.9e-4, 1.1e-5);
+    // bounds 5e-4 and 5e-5, a 2.8x and a 6x margin.
     assert!(
-        (r.analysis.unwrap() - a_theory).abs() / a_theory < 0.01,
+        (r.analysis.unwrap() - a_theory).abs() / a_theory < 5e-4,
         "{r:?}"
     );
-    assert!((r.engine - a_theory).abs() / a_theory < 0.01, "{r:?}");
+    assert!((r.engine - a_theory).abs() / a_theory < 5e-5, "{r:?}");
 
     // Asked with "compute it": the expected answer is the analysis's value.
     let (note, ok) = ask(&mut app, &accel);

@@ -28,6 +28,8 @@ fn on_a_moving_plank_the_relative_motion_is_compared() {
     let c = &report.checks[0];
     assert!(c.passed, "{c:?}");
     assert!(c.note.contains("moving body"), "{}", c.note);
-    // The compared energy is the relative motion's, m u^2 / 3 (the world's would be m u^2 / 6).
-    assert!(rel(c.theory, 2.0 / 3.0) < 1e-2, "{c:?}");
+    // The compared energy is the relative motion's, m u^2 / 3 (the world's would be m u^2 / 6,
+    // 50% off). Measured 2026-11-27: 2.0e-6 (the engine's f32 velocities after the slide);
+    // 2e-5 is a 10x margin, 100x under the check's own 2e-3.
+    assert!(rel(c.theory, 2.0 / 3.0) < 2e-5, "{c:?}");
 }

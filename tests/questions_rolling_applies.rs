@@ -41,10 +41,10 @@ fn rolling(wedge_kind: &str, extra: &str) -> rigidlab::questions::QuestionResult
 #[test]
 fn on_a_fixed_wedge_the_closed_form_applies() {
     let q = rolling("fixed", "");
-    assert!(
-        (q.analysis.unwrap() - 9.81 * 0.5 / 1.5).abs() < 1e-2,
-        "{q:?}"
-    );
+    // The analysis reads theta from the engine's contact normal. Measured 2026-11-27: 1.9e-4
+    // of g sin 30 / 1.5 (the engine's own a 1.1e-5); 5e-4 is that with a 2.6x margin.
+    let a = 9.81 * 0.5 / 1.5;
+    assert!((q.analysis.unwrap() - a).abs() / a < 5e-4, "{q:?}");
     assert!(q.note.is_empty(), "{}", q.note);
 }
 
