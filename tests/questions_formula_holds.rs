@@ -58,8 +58,12 @@ fn struck_block(blow: (f64, f64)) -> Vec<QuestionResult> {
 fn a_blow_into_the_floor_is_not_a_free_blow() {
     for q in &struck_block((0.0, -2.0)) {
         not_applicable(q, "contact of \"floor\" with \"block\"");
-        // The engine: the floor stops the block within the step.
-        assert!(q.engine.abs() < 0.05, "{q:?}");
+        // The engine: the floor stops the block within the step, leaving the resting contact's
+        // settling creep (below 1e-4 m/s, as stated below): |vx|, |vy| < 1e-4 m/s and
+        // T < 1/2 m (1e-4 m/s)^2 = 5e-9 J. Measured 2026-11-27: vx -3.9e-10, vy -9.3e-10 m/s,
+        // T 5.6e-19 J.
+        let bound = if q.id == "T" { 0.5 * 1.0 * 1e-8 } else { 1e-4 };
+        assert!(q.engine.abs() < bound, "{q:?}");
     }
     let side = struck_block((2.0, 0.0));
     // The solution from the state of the step before the blow, where the resting block's
