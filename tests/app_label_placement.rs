@@ -92,6 +92,7 @@ fn labels_never_cover_each_other_and_stay_in_view() {
     let mut total = 0;
     let mut on_bodies = 0;
     let mut worst: (usize, String) = (0, String::new());
+    let mut crowded_seen = 0;
     for f in library_exercises() {
         let (rects, bodies, view) = placed(&f);
         total += rects.len();
@@ -116,6 +117,13 @@ fn labels_never_cover_each_other_and_stay_in_view() {
             .iter()
             .filter(|r| bodies.iter().any(|b| rect_hits_polygon(r, b)))
             .count();
+        let name = f.display().to_string();
+        if let Some(&(_, most)) = CROWDED.iter().find(|(c, _)| name.ends_with(c)) {
+            // Listed: its own count, apart from the library's share.
+            crowded_seen += 1;
+            assert!(n <= most, "{name}: {n} labels on bodies, listed at {most}");
+            continue;
+        }
         on_bodies += n;
         if n > worst.0 {
             worst = (n, f.display().to_string());
@@ -128,17 +136,25 @@ fn labels_never_cover_each_other_and_stay_in_view() {
         worst.1
     );
     // Measured 2026-11-24: 784 labels on 66 levels, 5 on a body (0.6%). A label may sit on a
-    // body only where no free spot
-    // is within four label sizes of its point (a pile of blocks, a ground that fills the view).
-    // The bound was 2%, three times that share. Measured 2026-11-26 on 103 levels: 21 of 944
-    // (2.2%), 7 of them on energy/rubbing_discs_friction_work.ron, whose two discs in contact
-    // fill the view so no free spot lies near their points. The bound, 3%, keeps the
-    // rule's margin over the new share without that level's crowding failing it.
+    // body only where no free spot is within four label sizes of its point (a pile of blocks, a
+    // ground that fills the view). The bound is 2%, three times that share. Measured 2026-11-26
+    // on 103 levels: 21 of 944 (2.2%), 7 of them on the one level listed in `CROWDED`, whose
+    // discs fill the view; it is held to its own count instead, and the rest to 2%. Measured
+    // 2026-11-27: 8 on that level; elsewhere 14 of 1006 labels on 85 levels (1.4%).
+    assert_eq!(
+        crowded_seen,
+        CROWDED.len(),
+        "a CROWDED level is no longer in the library"
+    );
     assert!(
-        (on_bodies as f64) <= 0.03 * total as f64,
-        "{on_bodies} of {total} labels on bodies"
+        (on_bodies as f64) <= 0.02 * total as f64,
+        "{on_bodies} of {total} labels on bodies (outside CROWDED)"
     );
 }
+
+/// Levels whose bodies fill the view, so no free spot lies near their labels' points: (file,
+/// the most labels that may sit on a body, as measured on 2026-11-27: 8; 7 on 2026-11-26).
+const CROWDED: &[(&str, usize)] = &[("levels/energy/rubbing_discs_friction_work.ron", 8)];
 
 /// The placer's own rules on a constructed case: three labels wanting one spot beside a body.
 #[test]
