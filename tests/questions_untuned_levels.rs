@@ -163,6 +163,29 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
         "n10_11b_pinned_bar_on_stop_struck_down.ron",
         "check center_of_percussion",
     ),
+    // An eleventh new user (tests/newuser/n11_*, 2026-11-27, n11_REPORT.md; fixed the same day:
+    // SpringPeriod and PendulumPeriod took the one-body closed form for a body a coupling joins
+    // to others, 22.5% short for a rack meshing with a pinion; they take the linearized period).
+    // A ball struck through its centre slides, then rolls (n11_07b): FrictionLoss books the
+    // blow's step at the slip before the blow (0), not at its mean, and misses 8.2e-3 J of
+    // -0.5714 (1.43e-2 at 1 to 16 substeps; 7e-3 at dt/2); the kinetic energy after is right to
+    // 3e-5. The same booking as the work ledger's before 154ed5e, not yet fixed here.
+    ("n11_07b_ball_struck_at_centre_slides_to_roll.ron", "question loss"),
+    // A collar sliding on a freely spinning arm (n11_01): every force is internal or through the
+    // pivot, so the whole-scene H_O check's reference moment is the engine's own residual
+    // (4e-4 N m): it fails at 8 and 16 substeps and dt/2 (1.3e-2 to 3.4e-2 of that scale) while H
+    // itself holds to 5e-4 of its value. The check's scale for a scene with no external moment is
+    // open; its four questions pass everywhere.
+    ("n11_01_collar_slides_on_free_spinning_arm.ron", "check angular_momentum_fixed_point"),
+    // The user's tolerances, kept as written: a slider flung out along a driven slot (n11_02),
+    // r growing as cosh(w t), reads its speed at 1 s 2.9e-3 off at its own settings for 2e-3
+    // (it passes at 2x substeps, the advice); a swinging bar struck (n11_10): JointImpulse at
+    // AfterEvent is the pin's impulse over the blow's whole step, its ordinary force included
+    // ((-0.058, +0.100) N s at this dt by the user's estimate), first order in dt: Jx 12% off at
+    // its dt, 6.2% at dt/2, where the user allowed 2% (docs/levels.md now says so).
+    ("n11_02_slider_in_slot_of_driven_arm.ron", "question speed_1"),
+    ("n11_10_swinging_bar_struck_angular_impulse.ron", "question Jx_pin"),
+    ("n11_10_swinging_bar_struck_angular_impulse.ron", "question Jy_pin"),
 ];
 
 /// Engine gaps the new user's levels run into, measured (docs/known-gaps.md), each a file and
@@ -392,4 +415,12 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // substeps), 1.9e-2 at 35 (8 substeps): up to 0.9% of m g, farther from the leaving point
     // than known-gaps.md's "at 30 degrees within 1.6e-3" suggests.
     ("n9_02_puck_off_smooth_cylinder.ron", "question N_25deg"),
+    // A velocity motor winding a cable (n11_09, the eleventh new user): the drum settles at
+    // 8.345 rad/s for its motor's 10, short by F h r^2 / I to 4 digits (h a substep's time; as
+    // if the cable pulled the drum back after the motor reached its rate within each call, not
+    // yet traced): the load's power -83.45 W for -100 (16.5%), 8.3% at 2x substeps,
+    // 4.1% at 4x, 1.0% at 64 (docs/known-gaps.md). Tension and torque are right (158.86 N).
+    ("n11_09_motor_hauls_block_efficiency.ron", "question P_out"),
+    ("n11_09_motor_hauls_block_efficiency.ron", "question U_f"),
+    ("n11_09_motor_hauls_block_efficiency.ron", "question eta"),
 ];
