@@ -132,19 +132,25 @@ fn block_on_incline_slides_with_a_equal_g_sin_minus_mu_cos() {
         let b = &s.bodies[1];
         let along = (b.com - x0).dot(dir);
         let t = s.time;
-        // Speed: exact a t but the soft contact takes a few steps to settle: 1% of v.
+        // Measured 2026-11-27 over the 51 steps from t = 0.167 s: the soft contact has settled
+        // by then. Speed: exact a t, worst 1.0e-6 of it (f32 rounding of v): bound 1e-5.
         assert!(
-            (b.velocity.length() - a * t).abs() < 0.01 * a * t + 1e-3,
+            (b.velocity.length() - a * t).abs() < 1e-5 * a * t,
             "t = {t}: v = {}",
             b.velocity.length()
         );
-        // Distance: closed form plus the integrator's a h t / 2 (h = dt / 4), within 1%.
+        // Distance: symplectic Euler's a t (t + h) / 2 (h = dt / 4, `discrete` above), off by a
+        // constant 2.9e-5 to 3.0e-5 m (the block's settling into the face in the first steps):
+        // bound 1e-4 m.
+        let h = s.dt / 4.0;
         assert!(
-            (along - 0.5 * a * t * t).abs() < 0.01 * 0.5 * a * t * t + 0.5 * a * s.dt / 4.0 * t,
-            "t = {t}: s = {along}"
+            (along - 0.5 * a * t * (t + h)).abs() < 1e-4,
+            "t = {t}: s = {along}, discrete {}",
+            0.5 * a * t * (t + h)
         );
-        // It slides along the face, not into or off it.
-        assert!((b.com - x0).perp_dot(dir).abs() < 2e-3);
+        // It slides along the face, not into or off it: measured at most 7.5e-5 m (the soft
+        // contact's depth); bound 2e-4 m.
+        assert!((b.com - x0).perp_dot(dir).abs() < 2e-4, "t = {t}");
     }
 }
 
