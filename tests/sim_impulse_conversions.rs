@@ -76,6 +76,7 @@ fn pendulum_tension_follows_theory_along_the_swing() {
         // Joint impulses are the last substep's, times substeps: first-order error in h = dt/substeps
         // times the rate of change of T (|dT/dt| <= 3 m g omega ~ 150 N/s here), so ~ 0.05 N.
         let err = (force - expected).length();
+        assert!(err.is_finite(), "force {force} against {expected}");
         worst = worst.max(err / (3.0 * m * G));
         if theta.abs() < 0.02 && at_bottom.is_none() {
             at_bottom = Some((force, m * G + m * v2 / l));

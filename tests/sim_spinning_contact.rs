@@ -51,7 +51,10 @@ fn spin_kick(omega: f64, dt: f64, substeps: usize, disc_first: bool) -> (f64, f6
                 .sum();
             first = Some(n / (G * s.dt));
         }
-        lowest = lowest.min(s.bodies[d].com.y - 0.2);
+        // f64::min would drop a NaN height: it must be measured.
+        let y = s.bodies[d].com.y - 0.2;
+        assert!(y.is_finite(), "t = {}: height {y}", s.time);
+        lowest = lowest.min(y);
     })
     .unwrap();
     (first.unwrap(), lowest)

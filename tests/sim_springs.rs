@@ -28,7 +28,10 @@ fn measure(k: f64, dt: f64, substeps: usize, duration: f64) -> (f64, f64) {
     let (mut worst, mut prev_x, mut prev_t) = (1.0_f64, sim.snapshot().springs[0].extension, 0.0);
     let mut crossings = Vec::new();
     sim.run(|s| {
-        worst = worst.max(energy(s) / e0);
+        // f64::max would drop a NaN energy: an exploded run must fail, not read 1.
+        let ratio = energy(s) / e0;
+        assert!(ratio.is_finite(), "E/E0 = {ratio} at t = {}", s.time);
+        worst = worst.max(ratio);
         let x = s.springs[0].extension;
         if prev_x < 0.0 && x >= 0.0 {
             crossings.push(prev_t + (s.time - prev_t) * (-prev_x) / (x - prev_x));
