@@ -248,7 +248,7 @@ impl Mechanism {
         let mut support: Option<DVec2> = None;
         let mut support_acceleration: Option<DVec2> = None;
         let mut grounded = false;
-        for (k, b) in level.bodies.iter().enumerate().filter(|(k, _)| inside[*k]) {
+        for (_, b) in level.bodies.iter().enumerate().filter(|(k, _)| inside[*k]) {
             match b.kind {
                 BodyKind::Dynamic => {}
                 BodyKind::Fixed => grounded = true,
@@ -288,7 +288,6 @@ impl Mechanism {
                     }
                     support = Some(vk);
                     support_acceleration = Some(ak);
-                    let _ = k;
                 }
             }
         }
