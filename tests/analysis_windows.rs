@@ -110,9 +110,7 @@ fn the_worst_window_is_found_between_the_extremes_of_the_residual() {
         8 => DVec2::new(-0.5, 0.0),
         _ => DVec2::ZERO,
     });
-    let max_from_start = ledger
-        .from_start()
-        .map(|w| w.linear_residual().length());
+    let max_from_start = ledger.from_start().map(|w| w.linear_residual().length());
     let max_from_start = common::worst(max_from_start);
     assert_close!(max_from_start, 0.3);
     let worst = ledger.worst_windows().linear;

@@ -170,22 +170,37 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     // blow's step at the slip before the blow (0), not at its mean, and misses 8.2e-3 J of
     // -0.5714 (1.43e-2 at 1 to 16 substeps; 7e-3 at dt/2); the kinetic energy after is right to
     // 3e-5. The same booking as the work ledger's before 154ed5e, not yet fixed here.
-    ("n11_07b_ball_struck_at_centre_slides_to_roll.ron", "question loss"),
+    (
+        "n11_07b_ball_struck_at_centre_slides_to_roll.ron",
+        "question loss",
+    ),
     // A collar sliding on a freely spinning arm (n11_01): every force is internal or through the
     // pivot, so the whole-scene H_O check's reference moment is the engine's own residual
     // (4e-4 N m): it fails at 8 and 16 substeps and dt/2 (1.3e-2 to 3.4e-2 of that scale) while H
     // itself holds to 5e-4 of its value. The check's scale for a scene with no external moment is
     // open; its four questions pass everywhere.
-    ("n11_01_collar_slides_on_free_spinning_arm.ron", "check angular_momentum_fixed_point"),
+    (
+        "n11_01_collar_slides_on_free_spinning_arm.ron",
+        "check angular_momentum_fixed_point",
+    ),
     // The user's tolerances, kept as written: a slider flung out along a driven slot (n11_02),
     // r growing as cosh(w t), reads its speed at 1 s 2.9e-3 off at its own settings for 2e-3
     // (it passes at 2x substeps, the advice); a swinging bar struck (n11_10): JointImpulse at
     // AfterEvent is the pin's impulse over the blow's whole step, its ordinary force included
     // ((-0.058, +0.100) N s at this dt by the user's estimate), first order in dt: Jx 12% off at
     // its dt, 6.2% at dt/2, where the user allowed 2% (docs/levels.md now says so).
-    ("n11_02_slider_in_slot_of_driven_arm.ron", "question speed_1"),
-    ("n11_10_swinging_bar_struck_angular_impulse.ron", "question Jx_pin"),
-    ("n11_10_swinging_bar_struck_angular_impulse.ron", "question Jy_pin"),
+    (
+        "n11_02_slider_in_slot_of_driven_arm.ron",
+        "question speed_1",
+    ),
+    (
+        "n11_10_swinging_bar_struck_angular_impulse.ron",
+        "question Jx_pin",
+    ),
+    (
+        "n11_10_swinging_bar_struck_angular_impulse.ron",
+        "question Jy_pin",
+    ),
 ];
 
 /// Engine gaps the new user's levels run into, measured (docs/known-gaps.md), each a file and
@@ -195,10 +210,22 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // on a 2 kg block lying on a floor rebounds with e M/(m + M) = 0.480 at every setting:
     // rapier's restitution pass leaves the resting contact out, as it leaves joints out
     // (docs/known-gaps.md); the analyses say "not applicable" (the floor acts in the step).
-    ("n10_13a_ball_dropped_on_block_resting_on_floor.ron", "question vy_after"),
-    ("n10_13a_ball_dropped_on_block_resting_on_floor.ron", "question e"),
-    ("n10_13a_ball_dropped_on_block_resting_on_floor.ron", "question apex"),
-    ("n10_13a_ball_dropped_on_block_resting_on_floor.ron", "question E_lost"),
+    (
+        "n10_13a_ball_dropped_on_block_resting_on_floor.ron",
+        "question vy_after",
+    ),
+    (
+        "n10_13a_ball_dropped_on_block_resting_on_floor.ron",
+        "question e",
+    ),
+    (
+        "n10_13a_ball_dropped_on_block_resting_on_floor.ron",
+        "question apex",
+    ),
+    (
+        "n10_13a_ball_dropped_on_block_resting_on_floor.ron",
+        "question E_lost",
+    ),
     // A fifth new user (tests/newuser/n5_*, 2026-11-26), docs/known-gaps.md. (Fixed
     // 2026-11-27: a ball placed on a rough floor with topspin got too little normal impulse in
     // its first step, the spinning contact, and reached -30 rad/s 2.2 ms late, 1.08e-2.)
@@ -375,7 +402,10 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // slip's start 1.2e-2 at 8 substeps), the puck in the ring 1.4% early at its own settings,
     // its speed then 2.1% high (1.3% low at 16 substeps). On 2026-11-27 only the disc's slip
     // start at dt/2 (1.9e-2) and the puck's speed at 16 substeps (1.34e-2) still fail.
-    ("n7_04_disc_over_cylinder_slips_leaves.ron", "question x_slip"),
+    (
+        "n7_04_disc_over_cylinder_slips_leaves.ron",
+        "question x_slip",
+    ),
     ("n7_05_puck_leaves_vertical_ring.ron", "question v_leave"),
     // An eighth new user on analyses past their assumptions (tests/newuser/n8_*, 2026-11-26;
     // n8_REPORT.md; fixed the same day: a pendulum on a kinematic trolley, moving or not, got

@@ -117,10 +117,7 @@ fn a_disc_rolls_on_a_pulled_plank_without_creeping() {
             (1.0 / 960.0, 4, 1),
         ] {
             let s = series(&text, &opts(dt, sub, it, precision), R);
-            let worst = s
-                .iter()
-                .filter(|x| x.0 > SETTLE)
-                .map(|x| x.1.abs());
+            let worst = s.iter().filter(|x| x.0 > SETTLE).map(|x| x.1.abs());
             let worst = common::worst(worst);
             // Before the fix the rim crept 4.3e-3 to 6.4e-3 m/s by 1 s at these settings (the
             // creep grows with omega: omega p/2). Now a few 1e-6 m/s, except at 1 substep,
@@ -156,10 +153,7 @@ fn a_block_is_carried_by_static_friction_on_a_pulled_plank() {
     for precision in [Precision::F32, Precision::F64] {
         for (dt, sub) in [(1.0 / 240.0, 4), (1.0 / 240.0, 1), (1.0 / 960.0, 16)] {
             let s = series(&block_on_plank(), &opts(dt, sub, 1, precision), 0.1);
-            let worst = s
-                .iter()
-                .filter(|x| x.0 > SETTLE)
-                .map(|x| x.1.abs());
+            let worst = s.iter().filter(|x| x.0 > SETTLE).map(|x| x.1.abs());
             let worst = common::worst(worst);
             // No rim, no creep: the disc's 2e-4 m/s (measured below 1e-4: the 1-substep
             // settling transient again).
