@@ -165,15 +165,9 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     ),
     // An eleventh new user (tests/newuser/n11_*, 2026-11-27, n11_REPORT.md; fixed the same day:
     // SpringPeriod and PendulumPeriod took the one-body closed form for a body a coupling joins
-    // to others, 22.5% short for a rack meshing with a pinion; they take the linearized period).
-    // A ball struck through its centre slides, then rolls (n11_07b): FrictionLoss books the
-    // blow's step at the slip before the blow (0), not at its mean, and misses 8.2e-3 J of
-    // -0.5714 (1.43e-2 at 1 to 16 substeps; 7e-3 at dt/2); the kinetic energy after is right to
-    // 3e-5. The same booking as the work ledger's before 154ed5e, not yet fixed here.
-    (
-        "n11_07b_ball_struck_at_centre_slides_to_roll.ron",
-        "question loss",
-    ),
+    // to others, 22.5% short for a rack meshing with a pinion; they take the linearized period;
+    // and FrictionLoss booked a blow's step at the slip before the blow, 1.43e-2 short for a
+    // ball struck through its centre, n11_07b: the slip after it now).
     // A collar sliding on a freely spinning arm (n11_01): every force is internal or through the
     // pivot, so the whole-scene H_O check's reference moment is the engine's own residual
     // (4e-4 N m): it fails at 8 and 16 substeps and dt/2 (1.3e-2 to 3.4e-2 of that scale) while H

@@ -8,6 +8,27 @@ pub fn linear_momentum(m: f64, v_g: DVec2) -> DVec2 {
     m * v_g
 }
 
+/// A rigid body's velocities just after impulses that act on it alone (IM-2, and IM-7 about G):
+/// v' = v + sum J / m and omega' = omega + sum((P - G) x J + L) / I_G, each impulse (J, P, L)
+/// its linear impulse, the point it acts at and a couple's angular impulse. A body without
+/// rotational inertia keeps its omega.
+pub fn velocities_after_impulses(
+    m: f64,
+    i_g: f64,
+    g: DVec2,
+    (v, omega): (DVec2, f64),
+    impulses: impl IntoIterator<Item = (DVec2, DVec2, f64)>,
+) -> (DVec2, f64) {
+    let (mut linear, mut angular) = (DVec2::ZERO, 0.0);
+    for (j, p, l) in impulses {
+        linear += j;
+        angular += cross(p - g, j) + l;
+    }
+    let v = if m > 0.0 { v + linear / m } else { v };
+    let omega = if i_g > 0.0 { omega + angular / i_g } else { omega };
+    (v, omega)
+}
+
 /// Angular momentum about the mass center, H_G = I_G omega (6/13).
 pub fn angular_momentum_g(i_g: f64, omega: f64) -> f64 {
     i_g * omega
@@ -487,5 +508,29 @@ impl ImpulseMomentumLedger {
             linear: self.between(l1, l2),
             angular: self.between(a1, a2),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn impulses_change_the_velocities_as_impulse_momentum_says() {
+        // A 2 kg bar (I_G = 0.5) at rest, struck by (0, 3) N s at 0.5 m right of G, with a
+        // 0.25 N m s couple: v' = (0, 1.5) m/s, omega' = (0.5 * 3 + 0.25) / 0.5 = 3.5 rad/s.
+        let g = DVec2::new(1.0, 2.0);
+        let (v, w) = velocities_after_impulses(
+            2.0,
+            0.5,
+            g,
+            (DVec2::ZERO, 0.0),
+            [(DVec2::new(0.0, 3.0), g + DVec2::new(0.5, 0.0), 0.25)],
+        );
+        assert!((v - DVec2::new(0.0, 1.5)).length() < 1e-15, "{v}");
+        assert!((w - 3.5).abs() < 1e-15, "{w}");
+        // No impulse: the velocities as they were; no inertia: omega kept.
+        let kept = velocities_after_impulses(1.0, 0.0, g, (DVec2::X, 2.0), []);
+        assert_eq!(kept, (DVec2::X, 2.0));
     }
 }
