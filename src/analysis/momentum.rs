@@ -25,7 +25,11 @@ pub fn velocities_after_impulses(
         angular += cross(p - g, j) + l;
     }
     let v = if m > 0.0 { v + linear / m } else { v };
-    let omega = if i_g > 0.0 { omega + angular / i_g } else { omega };
+    let omega = if i_g > 0.0 {
+        omega + angular / i_g
+    } else {
+        omega
+    };
     (v, omega)
 }
 
