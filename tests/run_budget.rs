@@ -184,19 +184,41 @@ fn the_estimate_is_the_formula_docs_cli_md_states() {
         (DOC.0, DOC.1, DOC.2, DOC.3, DOC.4, DOC.5)
     );
     assert_eq!((w.pairs, w.questions, w.checks), (DOC.6, DOC.7, DOC.8));
-    let step_us = w.calls_per_step as f64 * 1.3
-        + w.bodies as f64 * 0.05
-        + w.substeps as f64
-            * (0.08
-                + w.bodies as f64 * 0.008
-                + (w.joints as f64 + w.pairs) * (0.06 + w.iterations as f64 * 0.008))
-        + w.pairs * 0.1
-        + w.questions as f64 * 0.15
-        + w.checks as f64 * 0.8;
-    let seconds = 0.01 + w.steps * step_us * 1e-6 + w.pair_degrees * 17e-9;
+    let seconds_of = |w: &Work| {
+        let step_us = w.calls_per_step as f64 * 1.3
+            + w.bodies as f64 * 0.05
+            + w.substeps as f64
+                * (0.08
+                    + w.bodies as f64 * 0.008
+                    + (w.joints as f64 + w.pairs) * (0.048 + w.iterations as f64 * 0.02))
+            + w.pairs * 0.1
+            + w.questions as f64 * 0.15
+            + w.checks as f64 * 0.8;
+        0.01 + w.steps * step_us * 1e-6 + w.pair_degrees * 17e-9
+    };
+    let seconds = seconds_of(&w);
     assert!(
         (e.seconds - seconds).abs() < 1e-12,
         "{} vs {seconds}",
+        e.seconds
+    );
+    // At 8 iterations the rows' iteration term counts (each iteration a biased and an unbiased
+    // sweep since 2026-11-27): the same formula with I = 8, dearer than at 1.
+    let e8 = Estimate::of(
+        &load("levels/energy/block_friction_work.ron").level,
+        &Options {
+            solver_iterations: Some(8),
+            ..Options::default()
+        },
+        Mode::Check,
+        None,
+    );
+    assert_eq!(e8.work.iterations, 8);
+    assert!(
+        (e8.seconds - seconds_of(&e8.work)).abs() < 1e-12 && e8.seconds > e.seconds,
+        "{} vs {} (1 iteration {})",
+        e8.seconds,
+        seconds_of(&e8.work),
         e.seconds
     );
     assert!((e.seconds - DOC.9).abs() < 1e-9, "{}", e.seconds);
