@@ -146,9 +146,10 @@ impl Simulation {
         };
         // rapier makes no contact between two bodies that a joint with its contacts off joins
         // (every joint rigidlab builds, sim/build.rs; rapier's `pair_update.rs` filters them the
-        // same way), so such a pair is never an impact. Planned as one, a chain's links touching
-        // at their pins once their colliders are on were cut every call, each cut's call at
-        // IMPACT_ITERATIONS: the stretched chain with all effects ran 8.3 s, 0.33 s uncut.
+        // same way), so such a pair is never an impact. Planned as one, a four-bar's links
+        // touching at their pins once their colliders are on (all effects) were cut for as they
+        // closed, each cut's call at IMPACT_ITERATIONS: 5x the run's cost for the same motion
+        // (tests/sim_impact_planner_joints.rs).
         let jointed = |a: &Collider, b: &Collider| match (a.parent(), b.parent()) {
             (Some(p), Some(q)) => w
                 .impulse_joints
