@@ -645,8 +645,9 @@ impl Pass<'_> {
                         .ok()
                         .map(|k| list[k].1)
                 };
-                pair(self.pushed_before)
-                    .is_some_and(|before| pair(self.pushing).unwrap_or(0.0) <= 2.0 * before)
+                pair(self.pushed_before).is_some_and(|before| {
+                    !super::impact::pushes_impulsively(pair(self.pushing).unwrap_or(0.0), before)
+                })
             };
             let work = (Slot::Contacts, true);
             for p in &c.points {

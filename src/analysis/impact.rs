@@ -74,6 +74,16 @@ pub fn pair_contact_linked(
     pair_contact_among(snap, a, b, links.contacts_of(a).iter().map(|&k| k as usize))
 }
 
+/// Whether a contact pushes impulsively this step: over twice the normal impulse it gave the
+/// step before (a floor under a block struck down into it, a support under a body struck from
+/// above), where a resting contact pushes about the same every step. Its impulse then changes
+/// the velocities within the step, and the bodies' motion over the step is taken from the
+/// velocities before it (analysis/frame.rs books it at the mean velocity; FrictionLoss and
+/// FrictionWork slip from the velocities before the step's blow, not after).
+pub fn pushes_impulsively(now: f64, before: f64) -> bool {
+    now > 2.0 * before
+}
+
 /// The total normal impulse over the step between bodies a and b (`b` None: between a and any
 /// body), N s: the normal impulses of the contacts' points summed in the snapshot's order, a
 /// negative one counted as zero (a contact only pushes; rapier's impulses are never negative, so

@@ -12,6 +12,7 @@ use crate::analysis::energy::{
     body_kinetic_energy, coulomb_friction_work_on_body, damper_work, friction_pair_loss,
     friction_work_on_body, mechanical_efficiency, power,
 };
+use crate::analysis::impact::{pair_normal_impulse, pushes_impulsively};
 use crate::analysis::kinematics::{body_point_velocity, point_velocity};
 use crate::analysis::kinetics::contact_arms_at_start;
 use crate::analysis::momentum::{linear_momentum, velocities_after_impulses};
@@ -122,32 +123,25 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                 // friction then slips at the velocities after the blow, not from those before (a
                 // ball struck through its centre, tests/newuser/n11_07b, booked its blow's step
                 // at half its slip: 8.2e-3 J of 0.5714 short). Unless the contact itself pushes
-                // impulsively, over twice its last step's normal impulse (as analysis/frame.rs
-                // judges a push): then its slip grows with the blow, from the velocities before
-                // (a block struck down into its floor, n10_05b).
-                let pushed = |snap: &Snapshot| -> f64 {
-                    snap.contacts
-                        .iter()
-                        .filter(|c| (c.body1, c.body2) == (i, o) || (c.body1, c.body2) == (o, i))
-                        .flat_map(|c| &c.points)
-                        .map(|p| p.normal_impulse.max(0.0))
-                        .sum()
-                };
-                let impulsive = pushed(s) > 2.0 * pushed(prev);
+                // impulsively (`pushes_impulsively`): then its slip grows with the blow, from the
+                // velocities before (a block struck down into its floor, n10_05b).
+                let impulsive = pushes_impulsively(
+                    pair_normal_impulse(s, i, Some(o), None),
+                    pair_normal_impulse(prev, i, Some(o), None),
+                );
                 let start = |k: usize| {
                     let a = &prev.bodies[k];
-                    let blows = s.impulses.iter().filter(|e| e.body == k);
                     if impulsive {
-                        (a.velocity, a.omega)
-                    } else {
-                        velocities_after_impulses(
-                            a.mass,
-                            a.inertia,
-                            a.com,
-                            (a.velocity, a.omega),
-                            blows.map(|e| (e.impulse, e.point, e.angular_impulse)),
-                        )
+                        return (a.velocity, a.omega);
                     }
+                    let blows = s.impulses.iter().filter(|e| e.body == k);
+                    velocities_after_impulses(
+                        a.mass,
+                        a.inertia,
+                        a.com,
+                        (a.velocity, a.omega),
+                        blows.map(|e| (e.impulse, e.point, e.angular_impulse)),
+                    )
                 };
                 // Each body at the step's mean velocities (v_G, omega).
                 let mean = |k: usize| {
