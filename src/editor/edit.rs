@@ -155,266 +155,40 @@ impl Edit {
                 declare(level, &[Effect::Contacts]);
                 Ok(format!("added {name}, a ground line at y = {y} m"))
             }
-            Edit::AddWall { x, height } => {
-                let name = fresh_name(level, "wall");
-                let mut b = ground_body(&name, 0.0, 0.0);
-                b.position = (*x, 0.0);
-                b.shape = Some(Shape::Segment {
-                    a: (0.0, 0.0),
-                    b: (0.0, *height),
-                });
-                level.bodies.push(b);
-                declare(level, &[Effect::Contacts]);
-                Ok(format!("added {name}, a wall at x = {x} m"))
-            }
-            Edit::AddIncline { at, angle, length } => {
-                if !(*angle > 0.0 && *angle < std::f64::consts::FRAC_PI_2) {
-                    return Err(format!(
-                        "an incline's angle must be between 0 and 90 degrees, not {:.1}",
-                        angle.to_degrees()
-                    ));
-                }
-                let name = fresh_name(level, "incline");
-                let h = length * angle.tan();
-                // Vertices about the lower corner: base along x, the vertical side at the far end.
-                let shape = Shape::Polygon {
-                    points: vec![(0.0, 0.0), (*length, 0.0), (*length, h)],
-                };
-                level
-                    .bodies
-                    .push(body(&name, BodyKind::Fixed, Some(shape), *at));
-                declare(level, &[Effect::Contacts]);
-                Ok(format!(
-                    "added {name}, an incline at {:.1} degrees, {length} m long",
-                    angle.to_degrees()
-                ))
-            }
+            Edit::AddWall { x, height } => add_wall(level, x, height),
+            Edit::AddIncline { at, angle, length } => add_incline(level, at, angle, length),
             Edit::AddArc {
                 center,
                 radius,
                 start,
                 end,
                 side,
-            } => {
-                let name = fresh_name(level, "arc");
-                let shape = Shape::Arc {
-                    center: (0.0, 0.0),
-                    radius: *radius,
-                    start: *start,
-                    end: *end,
-                    side: *side,
-                    chord_error: None,
-                };
-                level
-                    .bodies
-                    .push(body(&name, BodyKind::Fixed, Some(shape), *center));
-                declare(level, &[Effect::Contacts]);
-                Ok(format!(
-                    "added {name}, an arc track of radius {radius} m about ({}, {}) m from {:.1} to {:.1} degrees, ridden on its {}",
-                    center.0,
-                    center.1,
-                    start.to_degrees(),
-                    end.to_degrees(),
-                    side_name(*side)
-                ))
-            }
+            } => add_arc(level, center, radius, start, end, side),
             Edit::AddTrack {
                 points,
                 closed,
                 solid,
-            } => {
-                let name = fresh_name(level, "track");
-                let shape = Shape::Polyline {
-                    points: points.clone(),
-                    closed: *closed,
-                    solid: *solid,
-                };
-                level
-                    .bodies
-                    .push(body(&name, BodyKind::Fixed, Some(shape), (0.0, 0.0)));
-                declare(level, &[Effect::Contacts]);
-                Ok(format!(
-                    "added {name}, a{} polyline track of {} points{}",
-                    if *closed { " closed" } else { "n open" },
-                    points.len(),
-                    match solid {
-                        None => ", two-sided".to_string(),
-                        Some(s) => format!(", solid on its {}", solid_name(*s)),
-                    }
-                ))
-            }
-            Edit::AddBody { shape, at, mass } => {
-                let (stem, shape) = match shape {
-                    NewShape::Box { width, height } => (
-                        "box",
-                        Shape::Box {
-                            width: *width,
-                            height: *height,
-                        },
-                    ),
-                    NewShape::Disc { radius } => ("disc", Shape::Circle { radius: *radius }),
-                    NewShape::Bar { length, thickness } => (
-                        "bar",
-                        Shape::Box {
-                            width: *length,
-                            height: *thickness,
-                        },
-                    ),
-                    NewShape::Polygon { points } => (
-                        "polygon",
-                        Shape::Polygon {
-                            points: points.clone(),
-                        },
-                    ),
-                };
-                let name = fresh_name(level, stem);
-                // A disc placed into a fixed body (a click inside an incline's wedge) is set
-                // onto the surface under it; another shape is placed as asked, with a warning.
-                let (at, placed) = match &shape {
-                    Shape::Circle { radius } => match snap_disc(level, DVec2::from(*at), *radius) {
-                        Some((c, onto)) => ((c.x, c.y), format!(", set onto {onto}'s surface")),
-                        None => (*at, String::new()),
-                    },
-                    _ => match overlapped(level, DVec2::from(*at), inscribed(&shape)) {
-                        Some(o) => (
-                            *at,
-                            format!("; it overlaps {o}: drag it clear while paused at t = 0"),
-                        ),
-                        None => (*at, String::new()),
-                    },
-                };
-                let mut b = body(&name, BodyKind::Dynamic, Some(shape), at);
-                b.mass = Some(*mass);
-                level.bodies.push(b);
-                let added = declare(level, &[Effect::Gravity, Effect::Contacts]);
-                Ok(format!(
-                    "added {name} ({mass} kg) at ({:.3}, {:.3}) m{placed}{added}",
-                    at.0, at.1
-                ))
-            }
+            } => add_track(level, points, closed, solid),
+            Edit::AddBody { shape, at, mass } => add_body(level, shape, at, mass),
             Edit::AddJoint {
                 kind,
                 body1,
                 body2,
                 at,
-            } => {
-                let b2 = find(level, body2)?.clone();
-                let (b1, note) = match body1 {
-                    Some(n) => (find(level, n)?.clone(), String::new()),
-                    None => {
-                        let name = fresh_name(level, "anchor");
-                        let b = body(&name, BodyKind::Fixed, None, *at);
-                        level.bodies.push(b.clone());
-                        (b, format!(" to {name}, a fixed point"))
-                    }
-                };
-                if b1.name == b2.name {
-                    return Err(format!(
-                        "a joint needs two bodies; both ends are on {}",
-                        b1.name
-                    ));
-                }
-                let name = fresh_name(level, joint_stem(*kind));
-                level.joints.push(JointDef {
-                    name: name.clone(),
-                    kind: *kind,
-                    body1: b1.name.clone(),
-                    body2: b2.name.clone(),
-                    anchor1: local_point(&b1, *at),
-                    anchor2: local_point(&b2, *at),
-                    axis: (1.0, 0.0),
-                    limits: None,
-                    motor: None,
-                    starts_apart: false,
-                });
-                let added = declare(level, &[Effect::Joints]);
-                Ok(format!(
-                    "added {name} joining {} and {}{note}{added}",
-                    b1.name, b2.name
-                ))
-            }
+            } => add_joint(level, kind, body1, body2, at),
             Edit::AddSpring {
                 body1,
                 at1,
                 body2,
                 at2,
                 stiffness,
-            } => {
-                let b1 = find(level, body1)?.clone();
-                let (p2, b2name) = match body2 {
-                    Some(n) => {
-                        let b2 = find(level, n)?;
-                        (local_point(b2, *at2), Some(b2.name.clone()))
-                    }
-                    None => (*at2, None),
-                };
-                let rest = DVec2::from(*at1).distance(DVec2::from(*at2));
-                let name = fresh_name(level, "spring");
-                level.springs.push(SpringDef {
-                    name: name.clone(),
-                    body1: b1.name.clone(),
-                    point1: local_point(&b1, *at1),
-                    body2: b2name,
-                    point2: p2,
-                    stiffness: *stiffness,
-                    rest_length: rest,
-                    damping: 0.0,
-                });
-                let added = declare(level, &[Effect::Springs]);
-                Ok(format!(
-                    "added {name}, k = {stiffness} N/m, rest length {rest:.4} m{added}"
-                ))
-            }
+            } => add_spring(level, body1, at1, body2, at2, stiffness),
             Edit::AddTorsionSpring {
                 body1,
                 body2,
                 stiffness,
-            } => {
-                let b1 = find(level, body1)?.name.clone();
-                let b2 = match body2 {
-                    Some(n) => Some(find(level, n)?.name.clone()),
-                    None => None,
-                };
-                if b2.as_deref() == Some(b1.as_str()) {
-                    return Err(format!(
-                        "a torsion spring needs two bodies; both ends are on {b1}"
-                    ));
-                }
-                let name = fresh_name(level, "coil");
-                level.torsion_springs.push(TorsionSpringDef {
-                    name: name.clone(),
-                    body1: b1.clone(),
-                    body2: b2.clone(),
-                    stiffness: *stiffness,
-                    rest_angle: None,
-                    damping: 0.0,
-                });
-                let added = declare(level, &[Effect::Springs]);
-                Ok(format!(
-                    "added {name}, a torsion spring of k = {stiffness} N m/rad between {b1} and {}, at rest as it starts{added}",
-                    b2.as_deref().unwrap_or("the ground")
-                ))
-            }
-            Edit::SetMotor { joint, target } => {
-                let j = level
-                    .joints
-                    .iter_mut()
-                    .find(|j| &j.name == joint)
-                    .ok_or_else(|| format!("there is no joint named \"{joint}\""))?;
-                j.motor = target.map(|t| Motor::Velocity {
-                    target: t,
-                    max_force: None,
-                });
-                let added = if target.is_some() {
-                    declare(level, &[Effect::Motors])
-                } else {
-                    String::new()
-                };
-                Ok(match target {
-                    Some(t) => format!("{joint} drives at {t} per second{added}"),
-                    None => format!("{joint} has no motor"),
-                })
-            }
+            } => add_torsion_spring(level, body1, body2, stiffness),
+            Edit::SetMotor { joint, target } => set_motor(level, joint, target),
             Edit::Set {
                 body: name,
                 property,
@@ -449,28 +223,7 @@ impl Edit {
                 level.questions.push((**q).clone());
                 Ok(format!("asked {}: {}", q.id, q.ask))
             }
-            Edit::ReplaceQuestion { index, question } => {
-                if level
-                    .questions
-                    .iter()
-                    .enumerate()
-                    .any(|(i, x)| i != *index && x.id == question.id)
-                {
-                    return Err(format!("a question \"{}\" is already there", question.id));
-                }
-                let Some(slot) = level.questions.get_mut(*index) else {
-                    return Err(format!(
-                        "there is no question {} (the level has {})",
-                        index + 1,
-                        level.questions.len()
-                    ));
-                };
-                *slot = (**question).clone();
-                Ok(format!(
-                    "question {} rewritten: {}",
-                    question.id, question.ask
-                ))
-            }
+            Edit::ReplaceQuestion { index, question } => replace_question(level, index, question),
             Edit::RemoveQuestion { id } => {
                 let Some(i) = level.questions.iter().position(|q| &q.id == id) else {
                     return Err(format!("there is no question \"{id}\""));
@@ -495,6 +248,317 @@ impl Edit {
             }
         }
     }
+}
+
+/// A fixed wall: a vertical segment at `x` from y = 0 up `height`.
+fn add_wall(level: &mut Level, x: &f64, height: &f64) -> Result<String, String> {
+    let name = fresh_name(level, "wall");
+    let mut b = ground_body(&name, 0.0, 0.0);
+    b.position = (*x, 0.0);
+    b.shape = Some(Shape::Segment {
+        a: (0.0, 0.0),
+        b: (0.0, *height),
+    });
+    level.bodies.push(b);
+    declare(level, &[Effect::Contacts]);
+    Ok(format!("added {name}, a wall at x = {x} m"))
+}
+
+/// A fixed right-triangle wedge rising at `angle` over `length`, its lower corner at `at`.
+fn add_incline(level: &mut Level, at: &V2, angle: &f64, length: &f64) -> Result<String, String> {
+    if !(*angle > 0.0 && *angle < std::f64::consts::FRAC_PI_2) {
+        return Err(format!(
+            "an incline's angle must be between 0 and 90 degrees, not {:.1}",
+            angle.to_degrees()
+        ));
+    }
+    let name = fresh_name(level, "incline");
+    let h = length * angle.tan();
+    // Vertices about the lower corner: base along x, the vertical side at the far end.
+    let shape = Shape::Polygon {
+        points: vec![(0.0, 0.0), (*length, 0.0), (*length, h)],
+    };
+    level
+        .bodies
+        .push(body(&name, BodyKind::Fixed, Some(shape), *at));
+    declare(level, &[Effect::Contacts]);
+    Ok(format!(
+        "added {name}, an incline at {:.1} degrees, {length} m long",
+        angle.to_degrees()
+    ))
+}
+
+/// A fixed circular arc track about `center`.
+fn add_arc(
+    level: &mut Level,
+    center: &V2,
+    radius: &f64,
+    start: &f64,
+    end: &f64,
+    side: &ArcSide,
+) -> Result<String, String> {
+    let name = fresh_name(level, "arc");
+    let shape = Shape::Arc {
+        center: (0.0, 0.0),
+        radius: *radius,
+        start: *start,
+        end: *end,
+        side: *side,
+        chord_error: None,
+    };
+    level
+        .bodies
+        .push(body(&name, BodyKind::Fixed, Some(shape), *center));
+    declare(level, &[Effect::Contacts]);
+    Ok(format!(
+        "added {name}, an arc track of radius {radius} m about ({}, {}) m from {:.1} to {:.1} degrees, ridden on its {}",
+        center.0,
+        center.1,
+        start.to_degrees(),
+        end.to_degrees(),
+        side_name(*side)
+    ))
+}
+
+/// A fixed polyline track through `points`.
+fn add_track(
+    level: &mut Level,
+    points: &[V2],
+    closed: &bool,
+    solid: &Option<TrackSide>,
+) -> Result<String, String> {
+    let name = fresh_name(level, "track");
+    let shape = Shape::Polyline {
+        points: points.to_vec(),
+        closed: *closed,
+        solid: *solid,
+    };
+    level
+        .bodies
+        .push(body(&name, BodyKind::Fixed, Some(shape), (0.0, 0.0)));
+    declare(level, &[Effect::Contacts]);
+    Ok(format!(
+        "added {name}, a{} polyline track of {} points{}",
+        if *closed { " closed" } else { "n open" },
+        points.len(),
+        match solid {
+            None => ", two-sided".to_string(),
+            Some(s) => format!(", solid on its {}", solid_name(*s)),
+        }
+    ))
+}
+
+/// A dynamic body at `at`: a disc is set onto a fixed surface it was placed into; another shape overlapping one is placed with a warning.
+fn add_body(level: &mut Level, shape: &NewShape, at: &V2, mass: &f64) -> Result<String, String> {
+    let (stem, shape) = match shape {
+        NewShape::Box { width, height } => (
+            "box",
+            Shape::Box {
+                width: *width,
+                height: *height,
+            },
+        ),
+        NewShape::Disc { radius } => ("disc", Shape::Circle { radius: *radius }),
+        NewShape::Bar { length, thickness } => (
+            "bar",
+            Shape::Box {
+                width: *length,
+                height: *thickness,
+            },
+        ),
+        NewShape::Polygon { points } => (
+            "polygon",
+            Shape::Polygon {
+                points: points.clone(),
+            },
+        ),
+    };
+    let name = fresh_name(level, stem);
+    // A disc placed into a fixed body (a click inside an incline's wedge) is set
+    // onto the surface under it; another shape is placed as asked, with a warning.
+    let (at, placed) = match &shape {
+        Shape::Circle { radius } => match snap_disc(level, DVec2::from(*at), *radius) {
+            Some((c, onto)) => ((c.x, c.y), format!(", set onto {onto}'s surface")),
+            None => (*at, String::new()),
+        },
+        _ => match overlapped(level, DVec2::from(*at), inscribed(&shape)) {
+            Some(o) => (
+                *at,
+                format!("; it overlaps {o}: drag it clear while paused at t = 0"),
+            ),
+            None => (*at, String::new()),
+        },
+    };
+    let mut b = body(&name, BodyKind::Dynamic, Some(shape), at);
+    b.mass = Some(*mass);
+    level.bodies.push(b);
+    let added = declare(level, &[Effect::Gravity, Effect::Contacts]);
+    Ok(format!(
+        "added {name} ({mass} kg) at ({:.3}, {:.3}) m{placed}{added}",
+        at.0, at.1
+    ))
+}
+
+/// A joint at `at` between `body1` (None: a fixed anchor made there) and `body2`.
+fn add_joint(
+    level: &mut Level,
+    kind: &JointKind,
+    body1: &Option<String>,
+    body2: &str,
+    at: &V2,
+) -> Result<String, String> {
+    let b2 = find(level, body2)?.clone();
+    let (b1, note) = match body1 {
+        Some(n) => (find(level, n)?.clone(), String::new()),
+        None => {
+            let name = fresh_name(level, "anchor");
+            let b = body(&name, BodyKind::Fixed, None, *at);
+            level.bodies.push(b.clone());
+            (b, format!(" to {name}, a fixed point"))
+        }
+    };
+    if b1.name == b2.name {
+        return Err(format!(
+            "a joint needs two bodies; both ends are on {}",
+            b1.name
+        ));
+    }
+    let name = fresh_name(level, joint_stem(*kind));
+    level.joints.push(JointDef {
+        name: name.clone(),
+        kind: *kind,
+        body1: b1.name.clone(),
+        body2: b2.name.clone(),
+        anchor1: local_point(&b1, *at),
+        anchor2: local_point(&b2, *at),
+        axis: (1.0, 0.0),
+        limits: None,
+        motor: None,
+        starts_apart: false,
+    });
+    let added = declare(level, &[Effect::Joints]);
+    Ok(format!(
+        "added {name} joining {} and {}{note}{added}",
+        b1.name, b2.name
+    ))
+}
+
+/// A linear spring, unstretched as the scene starts.
+fn add_spring(
+    level: &mut Level,
+    body1: &str,
+    at1: &V2,
+    body2: &Option<String>,
+    at2: &V2,
+    stiffness: &f64,
+) -> Result<String, String> {
+    let b1 = find(level, body1)?.clone();
+    let (p2, b2name) = match body2 {
+        Some(n) => {
+            let b2 = find(level, n)?;
+            (local_point(b2, *at2), Some(b2.name.clone()))
+        }
+        None => (*at2, None),
+    };
+    let rest = DVec2::from(*at1).distance(DVec2::from(*at2));
+    let name = fresh_name(level, "spring");
+    level.springs.push(SpringDef {
+        name: name.clone(),
+        body1: b1.name.clone(),
+        point1: local_point(&b1, *at1),
+        body2: b2name,
+        point2: p2,
+        stiffness: *stiffness,
+        rest_length: rest,
+        damping: 0.0,
+    });
+    let added = declare(level, &[Effect::Springs]);
+    Ok(format!(
+        "added {name}, k = {stiffness} N/m, rest length {rest:.4} m{added}"
+    ))
+}
+
+/// A torsion spring at rest at the angle the scene starts with.
+fn add_torsion_spring(
+    level: &mut Level,
+    body1: &str,
+    body2: &Option<String>,
+    stiffness: &f64,
+) -> Result<String, String> {
+    let b1 = find(level, body1)?.name.clone();
+    let b2 = match body2 {
+        Some(n) => Some(find(level, n)?.name.clone()),
+        None => None,
+    };
+    if b2.as_deref() == Some(b1.as_str()) {
+        return Err(format!(
+            "a torsion spring needs two bodies; both ends are on {b1}"
+        ));
+    }
+    let name = fresh_name(level, "coil");
+    level.torsion_springs.push(TorsionSpringDef {
+        name: name.clone(),
+        body1: b1.clone(),
+        body2: b2.clone(),
+        stiffness: *stiffness,
+        rest_angle: None,
+        damping: 0.0,
+    });
+    let added = declare(level, &[Effect::Springs]);
+    Ok(format!(
+        "added {name}, a torsion spring of k = {stiffness} N m/rad between {b1} and {}, at rest as it starts{added}",
+        b2.as_deref().unwrap_or("the ground")
+    ))
+}
+
+/// A velocity motor on a joint, or none.
+fn set_motor(level: &mut Level, joint: &str, target: &Option<f64>) -> Result<String, String> {
+    let j = level
+        .joints
+        .iter_mut()
+        .find(|j| &j.name == joint)
+        .ok_or_else(|| format!("there is no joint named \"{joint}\""))?;
+    j.motor = target.map(|t| Motor::Velocity {
+        target: t,
+        max_force: None,
+    });
+    let added = if target.is_some() {
+        declare(level, &[Effect::Motors])
+    } else {
+        String::new()
+    };
+    Ok(match target {
+        Some(t) => format!("{joint} drives at {t} per second{added}"),
+        None => format!("{joint} has no motor"),
+    })
+}
+
+/// The question at `index` rewritten, its id kept unique.
+fn replace_question(
+    level: &mut Level,
+    index: &usize,
+    question: &QuestionDef,
+) -> Result<String, String> {
+    if level
+        .questions
+        .iter()
+        .enumerate()
+        .any(|(i, x)| i != *index && x.id == question.id)
+    {
+        return Err(format!("a question \"{}\" is already there", question.id));
+    }
+    let Some(slot) = level.questions.get_mut(*index) else {
+        return Err(format!(
+            "there is no question {} (the level has {})",
+            index + 1,
+            level.questions.len()
+        ));
+    };
+    *slot = question.clone();
+    Ok(format!(
+        "question {} rewritten: {}",
+        question.id, question.ask
+    ))
 }
 
 /// A fixed body's outline in world coordinates: a convex polygon counter-clockwise (boxes and
