@@ -345,6 +345,18 @@ pub fn markdown(
     plots: &[(String, String)],
 ) -> String {
     let mut s = String::new();
+    intro(&mut s, studies, plan);
+    cheapest_table(&mut s, studies);
+    effects_table(&mut s, studies);
+    knob_table(&mut s, studies);
+    conservation_table(&mut s, studies, plan);
+    level_sections(&mut s, studies, plots);
+    skipped_list(&mut s, skipped);
+    s
+}
+
+/// The title and the method: how errors and costs were measured, and the machine's load.
+fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
     let _ = writeln!(s, "# What accuracy costs in time\n");
     let _ = writeln!(
         s,
@@ -382,8 +394,10 @@ pub fn markdown(
          otherwise `self_consistency_m`. A setting meets the level's tolerance when every graded check and \
          question of the level passes at that setting.\n"
     );
+}
 
-    // Table 1: the cheapest setting meeting the tolerance against rapier's defaults.
+/// Table 1: the cheapest setting meeting the tolerance against rapier's defaults.
+fn cheapest_table(s: &mut String, studies: &[LevelStudy]) {
     let _ = writeln!(s, "## Cheapest setting that meets each level's tolerance\n");
     let _ = writeln!(
         s,
@@ -425,8 +439,10 @@ pub fn markdown(
             }
         );
     }
+}
 
-    // Table 2: declared effects against all effects.
+/// Table 2: declared effects against all effects.
+fn effects_table(s: &mut String, studies: &[LevelStudy]) {
     let _ = writeln!(
         s,
         "\n## Declared effects against all effects (cost at the level's settings)\n"
@@ -462,8 +478,10 @@ pub fn markdown(
             goal
         );
     }
+}
 
-    // Table 3: knob gains and the verdict per class.
+/// Table 3: knob gains and the verdict per class.
+fn knob_table(s: &mut String, studies: &[LevelStudy]) {
     let _ = writeln!(s, "\n## Which knob buys accuracy most cheaply\n");
     let _ = writeln!(
         s,
@@ -532,6 +550,11 @@ pub fn markdown(
             num(p),
         );
     }
+    class_verdicts(s, studies);
+}
+
+/// Table 3's second half: per class of scene, which knob family buys accuracy most cheaply.
+fn class_verdicts(s: &mut String, studies: &[LevelStudy]) {
     type Member = fn(&str) -> bool;
     let groups: [(&str, Member); 3] = [
         ("contact scenes", |c| {
@@ -647,8 +670,10 @@ pub fn markdown(
     for v in verdicts {
         let _ = writeln!(s, "{v}");
     }
+}
 
-    // Table 4: conservation.
+/// Table 4: energy and momentum drift of the conservative variants.
+fn conservation_table(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
     let cons: Vec<&LevelStudy> = studies.iter().filter(|st| st.conserved.any()).collect();
     if !cons.is_empty() {
         let _ = writeln!(s, "\n## Conservation (conservative variants)\n");
@@ -690,8 +715,10 @@ pub fn markdown(
             }
         }
     }
+}
 
-    // Per level: plot, notes, every row.
+/// Per level: its settings, notes, plot and every row.
+fn level_sections(s: &mut String, studies: &[LevelStudy], plots: &[(String, String)]) {
     let _ = writeln!(s, "\n## Levels\n");
     for st in studies {
         let _ = writeln!(s, "### {} — {} ({})\n", st.name, st.title, st.class);
@@ -737,11 +764,14 @@ pub fn markdown(
         }
         let _ = writeln!(s);
     }
+}
+
+/// The levels the study could not run, and why.
+fn skipped_list(s: &mut String, skipped: &[(String, String)]) {
     if !skipped.is_empty() {
         let _ = writeln!(s, "## Skipped\n");
         for (n, why) in skipped {
             let _ = writeln!(s, "- {n}: {why}");
         }
     }
-    s
 }
