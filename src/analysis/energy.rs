@@ -16,6 +16,18 @@ pub fn kinetic_energy_fixed_axis(i_o: f64, omega: f64) -> f64 {
 }
 
 /// Kinetic energy in general plane motion: T = 1/2 m v_G^2 + 1/2 I_G omega^2 (6/9, the König theorem).
+///
+/// # Examples
+///
+/// The 2 kg disc (I_G = 0.25 kg m^2) rolling at 2 m/s, omega = -4 rad/s:
+/// T = 1/2 (2)(4) + 1/2 (0.25)(16) = 6 J, which is 1/2 I_C omega^2 about its contact point (6/10).
+/// ```
+/// use glam::DVec2;
+/// use rigidlab::analysis::energy::{kinetic_energy, kinetic_energy_about_ic};
+/// let t = kinetic_energy(2.0, DVec2::new(2.0, 0.0), 0.25, -4.0);
+/// assert_eq!(t, 6.0);
+/// assert_eq!(kinetic_energy_about_ic(2.0, 0.25, DVec2::new(0.0, 0.5), DVec2::ZERO, -4.0), t);
+/// ```
 pub fn kinetic_energy(m: f64, v_g: DVec2, i_g: f64, omega: f64) -> f64 {
     0.5 * m * v_g.length_squared() + 0.5 * i_g * omega * omega
 }

@@ -5,6 +5,18 @@ use super::{cross, k_cross};
 use glam::DVec2;
 
 /// Velocity of a body point: v_P = v_G + omega k x r_{P/G} (RK-6, RK-4 vector form).
+///
+/// # Examples
+///
+/// A wheel of radius 0.5 m rolling to the right at v_G = 2 m/s turns clockwise at
+/// omega = -v_G / r = -4 rad/s: its top moves at 2 v_G and its contact point is at rest (RK-8).
+/// ```
+/// use glam::DVec2;
+/// use rigidlab::analysis::kinematics::point_velocity;
+/// let (v_g, omega) = (DVec2::new(2.0, 0.0), -4.0);
+/// assert_eq!(point_velocity(v_g, omega, DVec2::new(0.0, 0.5)), DVec2::new(4.0, 0.0));
+/// assert_eq!(point_velocity(v_g, omega, DVec2::new(0.0, -0.5)), DVec2::ZERO);
+/// ```
 pub fn point_velocity(v_g: DVec2, omega: f64, r: DVec2) -> DVec2 {
     v_g + k_cross(omega, r)
 }
@@ -15,6 +27,17 @@ pub fn body_point_velocity(b: &crate::snapshot::BodyState, p: DVec2) -> DVec2 {
 }
 
 /// Acceleration of a body point: a_P = a_G + alpha k x r_{P/G} - omega^2 r_{P/G} (RK-10).
+///
+/// # Examples
+///
+/// The same wheel rolling at constant speed: its contact point, at rest, accelerates
+/// towards G at omega^2 r = 16 x 0.5 = 8 m/s^2.
+/// ```
+/// use glam::DVec2;
+/// use rigidlab::analysis::kinematics::point_acceleration;
+/// let a = point_acceleration(DVec2::ZERO, 0.0, -4.0, DVec2::new(0.0, -0.5));
+/// assert_eq!(a, DVec2::new(0.0, 8.0));
+/// ```
 pub fn point_acceleration(a_g: DVec2, alpha: f64, omega: f64, r: DVec2) -> DVec2 {
     a_g + k_cross(alpha, r) - omega * omega * r
 }
@@ -47,6 +70,18 @@ pub fn wrap_angle(a: f64) -> f64 {
 /// The instantaneous center of zero velocity C: r_C = r_A + (k x v_A)/omega (RK-11).
 /// `None` when omega = 0 (pure translation: C is at infinity) or when C lies farther than
 /// `max_distance` from A (numerically at infinity).
+///
+/// # Examples
+///
+/// The rolling wheel's center at (0, 0.5) moving at 2 m/s with omega = -4 rad/s: C is
+/// the contact point, (0, 0).
+/// ```
+/// use glam::DVec2;
+/// use rigidlab::analysis::kinematics::instantaneous_center;
+/// let c = instantaneous_center(DVec2::new(0.0, 0.5), DVec2::new(2.0, 0.0), -4.0, 1e6).unwrap();
+/// assert!(c.length() < 1e-12);
+/// assert_eq!(instantaneous_center(DVec2::ZERO, DVec2::X, 0.0, 1e6), None); // translation
+/// ```
 #[inline]
 pub fn instantaneous_center(
     r_a: DVec2,

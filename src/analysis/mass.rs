@@ -53,6 +53,16 @@ pub fn slender_bar_inertia(m: f64, l: f64) -> f64 {
 }
 
 /// Slender bar about one end: I_O = 1/3 m l^2 (MP-6, = MP-2 with d = l/2).
+///
+/// # Examples
+///
+/// A 3 kg bar 2 m long pinned at one end: I_O = 1/3 (3)(2^2) = 4 kg m^2, which is also
+/// I_G = 1 kg m^2 moved by the parallel-axis theorem through d = 1 m (MP-2).
+/// ```
+/// use rigidlab::analysis::mass::{parallel_axis, slender_bar_end_inertia, slender_bar_inertia};
+/// assert_eq!(slender_bar_end_inertia(3.0, 2.0), 4.0);
+/// assert_eq!(parallel_axis(slender_bar_inertia(3.0, 2.0), 3.0, 1.0), 4.0);
+/// ```
 pub fn slender_bar_end_inertia(m: f64, l: f64) -> f64 {
     m * l * l / 3.0
 }
@@ -89,6 +99,16 @@ pub fn parallel_axis(i_g: f64, m: f64, d: f64) -> f64 {
 }
 
 /// Radius of gyration k = sqrt(I / m) (MP-3); 0 for a massless body.
+///
+/// # Examples
+///
+/// The same bar about its end: k_O = sqrt(4 / 3) = 1.1547 m, so that I_O = m k_O^2.
+/// ```
+/// use rigidlab::analysis::mass::radius_of_gyration;
+/// let k = radius_of_gyration(4.0, 3.0);
+/// assert!((k - 1.154_700_538_4).abs() < 1e-10);
+/// assert_eq!(radius_of_gyration(1.0, 0.0), 0.0);
+/// ```
 pub fn radius_of_gyration(i: f64, m: f64) -> f64 {
     if m > 0.0 {
         (i / m).max(0.0).sqrt()
@@ -138,6 +158,21 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
 /// Area properties of a simple polygon by triangulation from the origin (MP-9 "polygon: by
 /// triangulation"): each edge (p_i, p_i+1) spans a triangle with the origin of signed area
 /// c_i / 2, c_i = p_i x p_i+1, and second moment c_i/12 (x_i^2 + x_i x_i+1 + x_i+1^2 + same in y).
+///
+/// # Examples
+///
+/// A 2 m x 1 m rectangle with a corner at the origin: A = 2 m^2, centroid (1, 0.5), and
+/// J_C = A (a^2 + b^2) / 12 = 2 (4 + 1) / 12 = 0.8333 m^4 (MP-9 per unit density).
+/// ```
+/// use glam::DVec2;
+/// use rigidlab::analysis::mass::polygon_area_props;
+/// let p = polygon_area_props(&[
+///     DVec2::new(0.0, 0.0), DVec2::new(2.0, 0.0), DVec2::new(2.0, 1.0), DVec2::new(0.0, 1.0),
+/// ]);
+/// assert!((p.area - 2.0).abs() < 1e-12);
+/// assert!((p.centroid - DVec2::new(1.0, 0.5)).length() < 1e-12);
+/// assert!((p.polar - 10.0 / 12.0).abs() < 1e-12);
+/// ```
 pub fn polygon_area_props(points: &[DVec2]) -> AreaProps {
     let n = points.len();
     let (mut a2, mut cx, mut cy, mut j) = (0.0, 0.0, 0.0, 0.0);

@@ -40,6 +40,18 @@ pub fn angular_momentum_g(i_g: f64, omega: f64) -> f64 {
 
 /// Angular momentum about any point O, fixed or moving: H_O = I_G omega + (r_{G/O} x m v_G)_z
 /// (6/15, JH's addition theorem).
+///
+/// # Examples
+///
+/// A 2 kg disc (r = 0.5 m, I_G = 0.25 kg m^2) rolling right at 2 m/s: about its contact
+/// point, H = I_G omega + (r_G/O x m v_G) = 0.25(-4) + (0.5 x 2 x 2)(-1) = -3 kg m^2/s, which is
+/// I_C omega = (0.25 + 2 x 0.5^2)(-4) (6/15 against 6/16).
+/// ```
+/// use glam::DVec2;
+/// use rigidlab::analysis::momentum::angular_momentum_about;
+/// let h = angular_momentum_about(2.0, 0.25, DVec2::new(0.0, 0.5), DVec2::new(2.0, 0.0), -4.0, DVec2::ZERO);
+/// assert!((h - (-3.0)).abs() < 1e-12);
+/// ```
 pub fn angular_momentum_about(
     m: f64,
     i_g: f64,

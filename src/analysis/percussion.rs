@@ -5,6 +5,18 @@ use glam::DVec2;
 
 /// Distance from the pivot O to the center of percussion Q along OG: q = I_O/(m r_bar) =
 /// k_O^2 / r_bar (CP-1). `None` when r_bar = 0: rotation about G has no Q (a pure couple).
+///
+/// # Examples
+///
+/// A uniform bar of length l pinned at its end: q = (m l^2/3) / (m l/2) = 2l/3 (JH P9.7.13;
+/// for l = 1.2 m the center of percussion is 0.8 m below the pin).
+/// ```
+/// use rigidlab::analysis::percussion::center_of_percussion_distance;
+/// let (m, l) = (3.0, 1.2);
+/// let q = center_of_percussion_distance(m * l * l / 3.0, m, l / 2.0).unwrap();
+/// assert!((q - 0.8).abs() < 1e-12);
+/// assert_eq!(center_of_percussion_distance(1.0, m, 0.0), None); // turning about G
+/// ```
 pub fn center_of_percussion_distance(i_o: f64, m: f64, r_bar: f64) -> Option<f64> {
     if r_bar > 0.0 && m > 0.0 {
         Some(i_o / (m * r_bar))
