@@ -5,17 +5,17 @@
 //! zero at the center of percussion h = 2L/3, P/2 along the blow at the tip h = L.
 #![cfg(feature = "app")]
 
-use rigidlab::app::Physics;
+use rigidlab::app::Run;
 use rigidlab::level;
 use rigidlab::sim::Options;
 use std::path::Path;
 
 fn the_blow(file: &str) -> rigidlab::app::blows::Blow {
     let scene = level::load(Path::new(file)).unwrap();
-    let mut phys = Physics::new(scene, Options::default(), false);
+    let mut phys = Run::new(scene, Options::default());
     while phys.blows.is_empty() {
         assert!(
-            phys.advance() && !phys.paused,
+            phys.advance() && !phys.at_end(),
             "{file}: no blow before the level's end"
         );
     }

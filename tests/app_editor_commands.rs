@@ -8,7 +8,7 @@ mod common;
 use bevy::prelude::*;
 use common::app::{editor_app as app, phys, send};
 use rigidlab::app::editor::{EditorCommand, Placeable};
-use rigidlab::app::Physics;
+use rigidlab::app::{PhysicsCommand, Playback};
 use rigidlab::editor::{self, Edit, Property};
 use rigidlab::level::JointKind;
 use std::process::Command;
@@ -50,7 +50,7 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
     assert_eq!(phys(&app).scene.level.joints.len(), 1);
 
     // Play a few steps, then edit: the run starts over from the edited scene, paused.
-    app.world_mut().resource_mut::<Physics>().paused = false;
+    app.world_mut().resource_mut::<Playback>().paused = false;
     for _ in 0..5 {
         app.update();
     }
@@ -63,7 +63,7 @@ fn build_edit_undo_redo_save_and_check_a_pendulum() {
         }),
     );
     assert!(ok, "{note}");
-    assert!(phys(&app).paused && phys(&app).snapshot().is_initial());
+    assert!(app.world().resource::<Playback>().paused && phys(&app).snapshot().is_initial());
     let mass = |app: &App| {
         phys(app)
             .snapshot()
@@ -146,7 +146,9 @@ fn another_level_starts_with_nothing_to_undo() {
         "levels/kinetics/pendulum_on_accelerating_cart.ron",
     ))
     .expect("a library level");
-    app.world_mut().resource_mut::<Physics>().load(other);
+    app.world_mut()
+        .write_message(PhysicsCommand::Open(Box::new(other)));
+    app.update();
     app.update();
     let ed = app.world().resource::<rigidlab::app::editor::Editor>();
     assert!(!ed.history.can_undo(), "the last level's edit is offered");

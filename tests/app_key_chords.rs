@@ -17,7 +17,7 @@ use rigidlab::app::panels::shortcuts::{self, chords, egui_events, Chord, Held};
 use rigidlab::app::panels::UiState;
 use rigidlab::app::tools::ToolState;
 use rigidlab::app::view::View;
-use rigidlab::app::Physics;
+use rigidlab::app::Run;
 use rigidlab::editor::{Edit, Property};
 
 #[test]
@@ -83,12 +83,12 @@ fn undo_and_redo_pressed_within_one_frame_work_in_the_app() {
         .add_systems(Update, shortcuts::keys);
     app.update();
     let ground_y = |app: &App| {
-        app.world().resource::<Physics>().scene.level.bodies[0]
+        app.world().resource::<Run>().scene.level.bodies[0]
             .position
             .1
     };
     let before = ground_y(&app);
-    let name = app.world().resource::<Physics>().scene.level.bodies[0]
+    let name = app.world().resource::<Run>().scene.level.bodies[0]
         .name
         .clone();
     app.world_mut()

@@ -9,7 +9,7 @@ use rigidlab::app::draw::Drawing;
 use rigidlab::app::labels::{self, overlap_area, rect_hits_polygon};
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::view::{self, View};
-use rigidlab::app::Physics;
+use rigidlab::app::Run;
 use rigidlab::level;
 use rigidlab::sim::Options;
 use std::path::{Path, PathBuf};
@@ -18,8 +18,7 @@ use std::path::{Path, PathBuf};
 /// scene area in a 1280 x 800 window), placed. Returns (labels, bodies on screen, view).
 fn placed(file: &Path) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
     let scene = level::load(file).unwrap();
-    let mut phys = Physics::new(scene.clone(), Options::default(), false);
-    phys.stop_at_end = false;
+    let mut phys = Run::new(scene.clone(), Options::default());
     let steps = (phys.sim.total_steps() / 2).min(600);
     for _ in 0..steps {
         if !phys.advance() {
@@ -258,8 +257,7 @@ fn a_label_moves_with_its_point_while_its_spot_is_free() {
 fn labels_on_a_running_level_hold_their_places() {
     let file = Path::new("levels/kinetics/physical_pendulum.ron");
     let scene = level::load(file).unwrap();
-    let mut phys = Physics::new(scene.clone(), Options::default(), false);
-    phys.stop_at_end = false;
+    let mut phys = Run::new(scene.clone(), Options::default());
     let mut v = View {
         viewport: Rect::new(300.0, 0.0, 950.0, 762.0),
         ..Default::default()

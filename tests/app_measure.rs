@@ -8,13 +8,14 @@ mod common;
 use rigidlab::analysis::closed_forms::pendulum_period;
 use rigidlab::app::panels::measure::period_of;
 use rigidlab::app::panels::plots::body_csv;
-use rigidlab::app::Physics;
+use rigidlab::app::Run;
 use rigidlab::sim::Options;
 
-fn played(file: &str) -> Physics {
+/// The level played to its end, where the window stops it.
+fn played(file: &str) -> Run {
     let scene = common::load(file);
-    let mut phys = Physics::new(scene, Options::default(), false);
-    while !phys.paused {
+    let mut phys = Run::new(scene, Options::default());
+    while !phys.at_end() {
         assert!(phys.advance());
     }
     phys

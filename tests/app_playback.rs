@@ -4,64 +4,62 @@
 mod common;
 
 use glam::DVec2;
-use rigidlab::app::playback::{restart, toggle_play};
-use rigidlab::app::tools::ToolState;
-use rigidlab::app::Physics;
+use rigidlab::app::physics::play_step;
+use rigidlab::app::playback::{restart, toggle_play, Playback};
+use rigidlab::app::Run;
 use rigidlab::sim::Options;
 
-fn pendulum_at_its_end() -> Physics {
+/// The pendulum played until its playback paused (at the level's end, where it stops).
+fn pendulum_at_its_end() -> (Run, Playback) {
     let scene = common::load("levels/kinetics/simple_pendulum.ron");
-    let mut phys = Physics::new(scene, Options::default(), false);
-    while !phys.paused {
-        assert!(phys.advance());
+    let mut phys = Run::new(scene, Options::default());
+    let mut play = Playback::new(false);
+    while !play.paused {
+        assert!(play_step(&mut phys, &mut play));
     }
     assert!(
         phys.at_end(),
         "the run paused before its end at t = {}",
         phys.snapshot().time
     );
-    phys
+    (phys, play)
 }
 
 /// The trap: Space at the end ran on past it and unticked "stop at the level's end".
 #[test]
 fn play_at_the_levels_end_starts_the_exercise_over() {
-    let mut phys = pendulum_at_its_end();
-    let mut tools = ToolState::default();
-    toggle_play(&mut phys, &mut tools);
-    assert!(!phys.paused, "play did not play");
+    let (mut phys, mut play) = pendulum_at_its_end();
+    toggle_play(&mut phys, &mut play);
+    assert!(!play.paused, "play did not play");
     assert_eq!(
         phys.snapshot().step,
         0,
         "play at the end did not start over"
     );
-    assert!(phys.stop_at_end, "the stop at the end was unticked");
+    assert!(play.stop_at_end, "the stop at the end was unticked");
 }
 
 /// Running past the end stays possible, but only when the user unticked the stop.
 #[test]
 fn play_at_the_end_runs_on_when_the_stop_is_off() {
-    let mut phys = pendulum_at_its_end();
-    let mut tools = ToolState::default();
+    let (mut phys, mut play) = pendulum_at_its_end();
     let step = phys.snapshot().step;
-    phys.stop_at_end = false;
-    toggle_play(&mut phys, &mut tools);
-    assert!(!phys.paused);
-    assert!(phys.advance());
+    play.stop_at_end = false;
+    toggle_play(&mut phys, &mut play);
+    assert!(!play.paused);
+    assert!(play_step(&mut phys, &mut play));
     assert_eq!(phys.snapshot().step, step + 1);
 }
 
-/// Reset puts back everything a run changed: t = 0, the stop at the end, the impulse arrow.
+/// Reset puts back everything a run changed: t = 0, the stop at the end (the impulse arrow is
+/// the tools', cleared where Reset is asked for: the playback panel and the R key).
 #[test]
-fn reset_restores_the_stop_and_clears_the_impulse_arrow() {
-    let mut phys = pendulum_at_its_end();
-    let mut tools = ToolState::default();
-    tools.last_impulse = Some((DVec2::ZERO, DVec2::X, 0.3));
-    phys.stop_at_end = false;
-    restart(&mut phys, &mut tools);
+fn reset_restores_the_stop() {
+    let (mut phys, mut play) = pendulum_at_its_end();
+    play.stop_at_end = false;
+    restart(&mut phys, &mut play);
     assert_eq!(phys.snapshot().step, 0);
-    assert!(phys.stop_at_end);
-    assert!(tools.last_impulse.is_none());
+    assert!(play.stop_at_end);
 }
 
 /// Step back and the timeline: going back replays the run from t = 0 with the user's pushes at
@@ -70,7 +68,7 @@ fn reset_restores_the_stop_and_clears_the_impulse_arrow() {
 #[test]
 fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
     let scene = common::load("levels/kinetics/physical_pendulum.ron");
-    let mut phys = Physics::new(scene, Options::default(), false);
+    let mut phys = Run::new(scene, Options::default());
     let bar = common::body_index(&phys.scene.level, "bar");
     let mut kept = None;
     for step in 0..120u64 {
@@ -92,10 +90,7 @@ fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
     }
     let s = phys.snapshot();
     assert_eq!(s.step, 70);
-    assert!(
-        phys.paused && phys.interfered,
-        "the push is still part of this run"
-    );
+    assert!(phys.interfered, "the push is still part of this run");
     for (a, b) in s.bodies.iter().zip(&kept.bodies) {
         assert_eq!(
             (a.com, a.angle, a.velocity, a.omega),
@@ -116,7 +111,7 @@ fn a_seek_back_reaches_the_runs_own_state_with_the_users_push_replayed() {
 #[test]
 fn a_seek_within_a_frames_budget_resumes_next_frame() {
     let scene = common::load("levels/kinetics/physical_pendulum.ron");
-    let mut phys = Physics::new(scene.clone(), Options::default(), false);
+    let mut phys = Run::new(scene.clone(), Options::default());
     for _ in 0..200 {
         assert!(phys.advance());
     }

@@ -4,7 +4,7 @@
 use bevy::app::ScheduleRunnerPlugin;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
-use rigidlab::app::{Physics, PhysicsPlugin};
+use rigidlab::app::{PhysicsPlugin, Run};
 use rigidlab::level;
 use rigidlab::sim::Options;
 use rigidlab::snapshot::Snapshot;
@@ -16,7 +16,7 @@ use std::time::Duration;
 struct Recorded(Vec<Snapshot>);
 
 /// Runs after the physics set in every FixedUpdate; keeps each new step's snapshot.
-fn record(phys: Res<Physics>, mut rec: ResMut<Recorded>) {
+fn record(phys: Res<Run>, mut rec: ResMut<Recorded>) {
     let s = phys.snapshot();
     if s.step > 0 && rec.0.last().is_none_or(|last| last.step != s.step) {
         rec.0.push(s.clone());
@@ -51,7 +51,7 @@ fn same_trajectory(file: &str) {
 
     let mut app = headless_app(&scene);
     let steps = (2.0 / scene.level.world.dt).round() as usize;
-    let step_of = |app: &App| app.world().resource::<Physics>().snapshot().step;
+    let step_of = |app: &App| app.world().resource::<Run>().snapshot().step;
     // The first update runs Startup; the fixed clock starts with it (zero elapsed time).
     app.update();
     let mut updates = 0;
@@ -73,7 +73,7 @@ fn same_trajectory(file: &str) {
         steps,
         "{file}: the plugin ran past the level's end"
     );
-    let phys = app.world().resource::<Physics>();
+    let phys = app.world().resource::<Run>();
     let mut window = vec![phys.initial.clone()];
     window.extend(app.world().resource::<Recorded>().0.iter().cloned());
 
@@ -145,7 +145,7 @@ fn plugin_steps_match_the_core_runner_bit_for_bit_bouncing_ball() {
 fn free_body_diagram_of_a_sliding_block_shows_n_and_mu_n() {
     use rigidlab::app::quantities::{free_body_arrows, ForceKind};
     let scene = level::load(Path::new("levels/kinetics/incline_friction.ron")).unwrap();
-    let mut phys = Physics::new(scene, Options::default(), false);
+    let mut phys = Run::new(scene, Options::default());
     let mut prev = phys.snapshot().clone();
     while phys.snapshot().time < 0.5 {
         prev = phys.snapshot().clone();
@@ -185,16 +185,20 @@ fn free_body_diagram_of_a_sliding_block_shows_n_and_mu_n() {
 #[test]
 fn saved_scene_loads_back_identically() {
     let scene = level::load(Path::new("levels/kinetics/simple_pendulum.ron")).unwrap();
-    let mut phys = Physics::new(scene, Options::default(), false);
+    let mut phys = Run::new(scene, Options::default());
     for _ in 0..20 {
         assert!(phys.advance());
     }
     let dir = std::env::temp_dir().join(format!("rigidlab-app-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("saved.ron");
-    rigidlab::app::panels::save(&phys, &path).unwrap();
+    let expected = rigidlab::editor::capture(&phys.scene.level, phys.snapshot());
+    let moment = level::Scene {
+        file: phys.scene.file.clone(),
+        level: expected.clone(),
+    };
+    rigidlab::app::user_files::save_level(&moment, &path).unwrap();
     let back = level::load(&path).unwrap();
-    let expected = rigidlab::app::panels::capture(&phys.scene.level, phys.snapshot());
     assert_eq!(back.level, expected);
     // The captured state is the current one: the bob's pose and velocity, exactly.
     let bob = phys.snapshot().body_index("bob").unwrap();
@@ -258,8 +262,7 @@ fn render_shows_the_bob_where_the_core_puts_it() {
     assert_eq!((img.width(), img.height()), (opts.width, opts.height));
 
     // Where the bob should be: the core's state at t, through the view's fit.
-    let mut phys = Physics::new(scene.clone(), Options::default(), false);
-    phys.stop_at_end = false;
+    let mut phys = Run::new(scene.clone(), Options::default());
     for _ in 0..(t / phys.sim.dt()).round() as u64 {
         assert!(phys.advance());
     }
@@ -332,7 +335,7 @@ fn solver_panel_error_is_the_accuracy_studys_figure() {
         if let Some(n) = substeps {
             setting.substeps = n;
         }
-        let mut phys = Physics::new(scene.clone(), setting.options(), false);
+        let mut phys = Run::new(scene.clone(), setting.options());
         let mut live = rigidlab::app::LiveChecks::new(&phys);
         while !phys.at_end() {
             assert!(phys.advance(), "{file}: {:?}", phys.error);

@@ -18,7 +18,7 @@ use rigidlab::app::panels::UiState;
 use rigidlab::app::tools::ToolState;
 use rigidlab::app::unsaved::{Answer, Leaving, Unsaved, UnsavedPlugin};
 use rigidlab::app::view::View;
-use rigidlab::app::Physics;
+use rigidlab::app::Run;
 use rigidlab::editor::{Edit, Property};
 use std::path::{Path, PathBuf};
 
@@ -32,11 +32,11 @@ fn app() -> App {
 fn unsaved(app: &App) -> bool {
     app.world()
         .resource::<Editor>()
-        .unsaved(app.world().resource::<Physics>())
+        .unsaved(app.world().resource::<Run>())
 }
 
 fn lower_ground(app: &mut App) {
-    let name = app.world().resource::<Physics>().scene.level.bodies[0]
+    let name = app.world().resource::<Run>().scene.level.bodies[0]
         .name
         .clone();
     app.world_mut()
@@ -76,7 +76,7 @@ fn the_editor_knows_what_is_unsaved() {
     assert!(note.1, "{}", note.0);
     assert!(!unsaved(&app), "saved, still unsaved");
     lower_ground(&mut app);
-    let name = app.world().resource::<Physics>().scene.level.bodies[0]
+    let name = app.world().resource::<Run>().scene.level.bodies[0]
         .name
         .clone();
     app.world_mut()
@@ -159,7 +159,7 @@ fn click(app: &mut App, answer: Answer, save_as: &Path) -> Result<Option<Leaving
     let world = app.world_mut();
     let settled = world.resource_scope(|world, mut u: Mut<Unsaved>| {
         world.resource_scope(|world, mut editor: Mut<Editor>| {
-            u.settle(answer, &mut editor, world.resource::<Physics>(), save_as)
+            u.settle(answer, &mut editor, world.resource::<Run>(), save_as)
         })
     });
     if let Ok((Some(Leaving::Close(w)), _)) = &settled {
@@ -221,7 +221,7 @@ fn closing_with_unsaved_edits_waits_for_the_answer_and_each_answer_does_what_it_
         Ok(Some(Leaving::Close(w)))
     );
     let back = rigidlab::level::load(&saved).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(back.level, app.world().resource::<Physics>().scene.level);
+    assert_eq!(back.level, app.world().resource::<Run>().scene.level);
     assert_eq!(
         back.level.bodies[0].position.1, -1.0,
         "the edit was not saved"
@@ -232,7 +232,7 @@ fn closing_with_unsaved_edits_waits_for_the_answer_and_each_answer_does_what_it_
     // Discard: nothing written, the window goes.
     let w = app.world_mut().spawn_empty().id();
     lower_ground(&mut app);
-    let name = app.world().resource::<Physics>().scene.level.bodies[0]
+    let name = app.world().resource::<Run>().scene.level.bodies[0]
         .name
         .clone();
     app.world_mut()
@@ -267,7 +267,7 @@ fn shortcuts_wait_while_the_question_is_open() {
         .add_systems(Update, shortcuts::keys);
     app.update();
     let ground_y = |app: &App| {
-        app.world().resource::<Physics>().scene.level.bodies[0]
+        app.world().resource::<Run>().scene.level.bodies[0]
             .position
             .1
     };

@@ -10,7 +10,7 @@
 
 use bevy::prelude::*;
 use rigidlab::app::view::{palette, View};
-use rigidlab::app::Physics;
+use rigidlab::app::Run;
 use rigidlab::level;
 use rigidlab::report::Report;
 use rigidlab::sim::Options;
@@ -111,7 +111,7 @@ fn the_page_draws_the_bob_where_the_core_puts_it() {
     let step = status["step"].as_u64().unwrap();
     assert!(status["paused"].as_bool().unwrap() && status["at_end"].as_bool().unwrap());
     let scene = level::load(Path::new("levels/kinetics/simple_pendulum.ron")).unwrap();
-    let mut phys = Physics::new(scene, Options::default(), false);
+    let mut phys = Run::new(scene, Options::default());
     for _ in 0..step {
         assert!(phys.advance());
     }

@@ -10,7 +10,7 @@ use bevy::app::ScheduleRunnerPlugin;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use rigidlab::app::advice::{try_settings, AdvicePlugin, AdviceState, WindowAdvice};
-use rigidlab::app::{LiveChecks, Physics, PhysicsPlugin};
+use rigidlab::app::{LiveChecks, PhysicsPlugin, Playback, Run};
 use rigidlab::level::Scene;
 use rigidlab::report::Advice;
 use rigidlab::sim::Options;
@@ -37,14 +37,14 @@ fn state(app: &App) -> AdviceState {
 /// Plays the run to the level's end (one step an update), as the window does.
 fn play_to_end(app: &mut App) {
     let steps = {
-        let w = &app.world().resource::<Physics>().sim.level.world;
-        (w.duration / app.world().resource::<Physics>().sim.dt()).round() as usize
+        let w = &app.world().resource::<Run>().sim.level.world;
+        (w.duration / app.world().resource::<Run>().sim.dt()).round() as usize
     };
     for _ in 0..steps + 10 {
         app.update();
     }
     assert!(
-        app.world().resource::<Physics>().at_end(),
+        app.world().resource::<Run>().at_end(),
         "the run did not end"
     );
     assert!(
@@ -124,12 +124,13 @@ fn a_failing_level_gets_settings_that_pass_beside_its_checks_without_freezing() 
     assert!(line.contains(&format!("{cost_ratio}x")), "{line}");
 
     // "run at these settings": the rerun passes, and then there is nothing to advise.
-    app.world_mut()
-        .resource_scope(|_, mut phys: Mut<Physics>| try_settings(&mut phys, &settings));
+    let rerun = try_settings(app.world().resource::<Run>(), &settings);
+    app.world_mut().write_message(rerun);
+    app.update();
     // Then Play.
-    app.world_mut().resource_mut::<Physics>().paused = false;
+    app.world_mut().resource_mut::<Playback>().paused = false;
     {
-        let phys = app.world().resource::<Physics>();
+        let phys = app.world().resource::<Run>();
         assert_eq!(phys.sim.dt(), settings.dt);
         assert_eq!(phys.sim.substeps(), settings.substeps);
     }

@@ -464,7 +464,7 @@ fn the_window_builds_and_saves_the_loop() {
     use common::app::{editor_app, send};
     use rigidlab::app::editor::{EditorCommand, Placeable};
     use rigidlab::app::tools::track_edit;
-    use rigidlab::app::Physics;
+    use rigidlab::app::Run;
 
     let mut app = editor_app();
     // The place tool's arc: a half-circle bowl whose bottom is the click, sized for the scene
@@ -493,7 +493,7 @@ fn the_window_builds_and_saves_the_loop() {
     assert!(ok && note.contains("arc1"), "{note}");
     send(&mut app, EditorCommand::Undo);
     // A refusal is a note, not a panic, and changes nothing.
-    let before = app.world().resource::<Physics>().scene.level.clone();
+    let before = app.world().resource::<Run>().scene.level.clone();
     let (why, ok) = send(
         &mut app,
         EditorCommand::Apply(Edit::AddTrack {
@@ -503,7 +503,7 @@ fn the_window_builds_and_saves_the_loop() {
         }),
     );
     assert!(!ok && why.contains("crosses itself"), "{why}");
-    assert_eq!(app.world().resource::<Physics>().scene.level, before);
+    assert_eq!(app.world().resource::<Run>().scene.level, before);
 
     for e in loop_edits() {
         let (note, ok) = send(&mut app, EditorCommand::Apply(e));
@@ -514,7 +514,7 @@ fn the_window_builds_and_saves_the_loop() {
     let (note, ok) = send(&mut app, EditorCommand::Save(path.clone()));
     assert!(ok, "{note}");
     let saved = level::load(&path).unwrap();
-    assert_eq!(saved.level, app.world().resource::<Physics>().scene.level);
+    assert_eq!(saved.level, app.world().resource::<Run>().scene.level);
     assert_speeds(&check(&path));
     let _ = std::fs::remove_dir_all(&dir);
 }

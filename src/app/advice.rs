@@ -3,7 +3,8 @@
 //! prints), searched on a thread of its own so the frames go on. Natively only: a page has no
 //! threads to spare, and the panel says to run `rigidlab check` there.
 
-use super::physics::{LiveChecks, Physics};
+use super::physics::{LiveChecks, PhysicsCommand};
+use super::run::Run;
 use crate::level::Precision;
 use crate::report::{Advice, AdvisedSettings, LevelReport};
 use crate::study::advice::{self, SEARCH_SECONDS};
@@ -25,7 +26,7 @@ pub enum AdviceState {
 /// The advice for the scene's last run to its end.
 #[derive(Resource, Default)]
 pub struct WindowAdvice {
-    /// The run (`Physics::generation`) it is for.
+    /// The run (`Run::generation`) it is for.
     generation: Option<u64>,
     pub state: AdviceState,
     #[cfg(not(target_arch = "wasm32"))]
@@ -69,28 +70,35 @@ impl WindowAdvice {
     }
 }
 
-/// Runs the scene again at the advised settings (the solver panel shows them; its "level's
-/// settings" goes back).
-pub fn try_settings(phys: &mut Physics, s: &AdvisedSettings) {
-    phys.options.dt = Some(s.dt);
-    phys.options.substeps = Some(s.substeps);
-    phys.options.precision = Some(s.precision);
-    phys.reset();
+/// The run's settings with the advised ones in (the solver panel shows them; its "level's
+/// settings" goes back): the scene runs again at them.
+pub fn try_settings(run: &Run, s: &AdvisedSettings) -> PhysicsCommand {
+    let mut options = run.options.clone();
+    options.dt = Some(s.dt);
+    options.substeps = Some(s.substeps);
+    options.precision = Some(s.precision);
+    PhysicsCommand::Settings(options)
 }
 
-/// The advice under the checks: its line, and a button that reruns at the settings it names.
-pub fn panel(ui: &mut bevy_egui::egui::Ui, advice: &WindowAdvice, phys: &mut Physics) {
+/// The advice under the checks: its line, and a button that reruns at the settings it names
+/// (asked in `out`).
+pub fn panel(
+    ui: &mut bevy_egui::egui::Ui,
+    advice: &WindowAdvice,
+    phys: &Run,
+    out: &mut Vec<PhysicsCommand>,
+) {
     let Some(line) = advice.line() else {
         return;
     };
-    ui.label(super::panels::rich(line, super::view::palette::FRICTION).small());
+    ui.label(super::ui::rich(line, super::view::palette::FRICTION).small());
     if let Some(s) = advice.settings() {
         if ui
             .small_button("run at these settings")
             .on_hover_text("the solver panel takes them; \"level's settings\" there goes back")
             .clicked()
         {
-            try_settings(phys, &s);
+            out.push(try_settings(phys, &s));
         }
     }
 }
@@ -104,7 +112,7 @@ impl Plugin for AdvicePlugin {
     }
 }
 
-fn advise_failed_run(phys: Res<Physics>, live: NonSend<LiveChecks>, mut adv: ResMut<WindowAdvice>) {
+fn advise_failed_run(phys: Res<Run>, live: NonSend<LiveChecks>, mut adv: ResMut<WindowAdvice>) {
     #[cfg(not(target_arch = "wasm32"))]
     if let Some(rx) = &adv.job {
         let got = match rx.lock() {

@@ -5,7 +5,8 @@
 //! the camera left where the user put it; an edit the validator refuses leaves the scene as it was
 //! and says why in the panel.
 
-use super::physics::Physics;
+use super::physics::PhysicsCommand;
+use super::run::Run;
 use crate::editor::{self, Edit, History, NewShape};
 use crate::level::{JointKind, QuestionDef, Scene};
 use crate::questions::QuestionResult;
@@ -81,7 +82,7 @@ pub struct Editor {
     pub history: History,
     /// What the last command did, and whether it worked.
     pub note: Option<(String, bool)>,
-    /// The level the history belongs to (`Physics::view_generation`: a newly opened level
+    /// The level the history belongs to (`Run::view_generation`: a newly opened level
     /// starts a new history).
     level_generation: u64,
     /// The file just saved (the level browser rescans): the path asked for, or the numbered
@@ -90,71 +91,90 @@ pub struct Editor {
     /// The scene as last opened or saved, and the level it belongs to (`view_generation`):
     /// the edits since are unsaved work (app/unsaved.rs asks before they are thrown away).
     saved: Option<(u64, crate::level::Level)>,
+    /// A new scene was sent to the run: the next level on screen is its, with this history and
+    /// nothing to lose yet.
+    adopt_next: bool,
     /// The last question previewed (or computed) and its values, or why it could not be.
     pub preview: Option<(QuestionDef, Result<QuestionResult, String>)>,
 }
 
 impl Editor {
     /// The scene on screen has edits not saved since it was opened (undone edits do not count).
-    pub fn unsaved(&self, phys: &Physics) -> bool {
+    pub fn unsaved(&self, phys: &Run) -> bool {
         matches!(&self.saved, Some((g, level)) if *g == phys.view_generation && *level != phys.scene.level)
     }
 
     /// The scene on screen counts as saved (it was just written).
-    pub fn mark_saved(&mut self, phys: &Physics) {
-        self.saved = Some((phys.view_generation, phys.scene.level.clone()));
+    pub fn mark_saved(&mut self, phys: &Run) {
+        self.mark_saved_level(phys.view_generation, &phys.scene.level);
+    }
+
+    /// `level` of the level on screen `view_generation` counts as saved.
+    fn mark_saved_level(&mut self, view_generation: u64, level: &crate::level::Level) {
+        self.saved = Some((view_generation, level.clone()));
     }
 }
 
-/// Registers the commands and applies them before the physics step of the frame.
+/// Registers the commands and applies them before the physics step of the frame: an edited scene
+/// goes to the run as a [`PhysicsCommand::Edited`], applied in the same frame.
 pub struct EditorPlugin;
 
 impl Plugin for EditorPlugin {
     fn build(&self, app: &mut App) {
         app.add_message::<EditorCommand>()
             .init_resource::<Editor>()
-            .add_systems(Update, run_commands.before(super::PhysicsStep));
+            .add_systems(Update, run_commands.before(super::physics::PhysicsStep));
     }
 }
 
 fn run_commands(
     mut commands: MessageReader<EditorCommand>,
     mut ed: ResMut<Editor>,
-    mut phys: ResMut<Physics>,
+    run: Res<Run>,
+    mut run_commands: MessageWriter<PhysicsCommand>,
 ) {
-    // A newly opened level starts a new history, at once: its undo button must not offer the
-    // last level's edits, nor its panel show their note.
-    if ed.level_generation != phys.view_generation {
-        ed.history.clear();
-        ed.note = None;
-        ed.preview = None;
-        ed.level_generation = phys.view_generation;
+    if ed.level_generation != run.view_generation {
+        if std::mem::take(&mut ed.adopt_next) {
+            // The new scene this editor made: its history goes on, and it is nothing to lose.
+            ed.level_generation = run.view_generation;
+            ed.mark_saved(&run);
+        } else {
+            // A newly opened level starts a new history, at once: its undo button must not
+            // offer the last level's edits, nor its panel show their note.
+            ed.history.clear();
+            ed.note = None;
+            ed.preview = None;
+            ed.level_generation = run.view_generation;
+        }
     }
+    // The scene as this frame's commands left it (the run takes it after them).
+    let mut edited: Option<(Scene, bool)> = None;
     for c in commands.read() {
+        let phys: &Scene = edited.as_ref().map_or(&run.scene, |(s, _)| s);
         if ed
             .saved
             .as_ref()
-            .is_none_or(|(g, _)| *g != phys.view_generation)
+            .is_none_or(|(g, _)| *g != run.view_generation)
         {
             // The level as opened, before its first edit.
-            ed.mark_saved(&phys);
+            ed.mark_saved(&run);
         }
         let next: Result<(Scene, String), String> = match c {
-            EditorCommand::Apply(e) => ed.history.apply(&phys.scene, e),
+            EditorCommand::Apply(e) => ed.history.apply(phys, e),
             EditorCommand::Undo => ed
                 .history
-                .undo(&phys.scene)
+                .undo(phys)
                 .map(|s| (s, "undone".to_string()))
                 .ok_or_else(|| "nothing to undo".to_string()),
             EditorCommand::Redo => ed
                 .history
-                .redo(&phys.scene)
+                .redo(phys)
                 .map(|s| (s, "redone".to_string()))
                 .ok_or_else(|| "nothing to redo".to_string()),
             EditorCommand::New => {
                 let fresh = editor::empty_scene(PathBuf::from("my-scene.ron"));
                 ed.history
-                    .apply(&phys.scene, &Edit::Replace(Box::new(fresh.level.clone())))
+                    .apply(phys, &Edit::Replace(Box::new(fresh.level.clone())))
                     .map(|(s, _)| {
                         // Saved under its own name, not the level it replaced.
                         let s = Scene {
@@ -168,7 +188,7 @@ fn run_commands(
                     })
             }
             EditorCommand::Preview(q) => {
-                let r = preview_question(&phys.scene, &Options::default(), q);
+                let r = preview_question(phys, &Options::default(), q);
                 ed.note = Some(match &r {
                     Ok(r) => (preview_note(r), true),
                     Err(e) => (e.clone(), false),
@@ -183,7 +203,7 @@ fn run_commands(
             } => {
                 let mut q = (**question).clone();
                 let computed = if *compute {
-                    let r = preview_question(&phys.scene, &Options::default(), &q);
+                    let r = preview_question(phys, &Options::default(), &q);
                     ed.preview = Some((q.clone(), r.clone()));
                     match r {
                         Ok(QuestionResult {
@@ -214,16 +234,17 @@ fn run_commands(
                             question: Box::new(q),
                         },
                     };
-                    ed.history.apply(&phys.scene, &e)
+                    ed.history.apply(phys, &e)
                 })
             }
             EditorCommand::Save(path) => {
                 ed.note = Some(
                     // A file already there is kept: the scene goes under a numbered name.
-                    match super::panels::capture::save_level_as(&phys.scene, path) {
+                    match super::user_files::save_level_as(phys, path) {
                         Ok((used, m)) => {
                             ed.just_saved = Some(used);
-                            ed.mark_saved(&phys);
+                            let level = phys.level.clone();
+                            ed.mark_saved_level(run.view_generation, &level);
                             (m, true)
                         }
                         Err(e) => (e, false),
@@ -234,21 +255,23 @@ fn run_commands(
         };
         match next {
             Ok((scene, note)) => {
-                // The scene as it starts: the run starts over, paused, the view kept (a new
-                // scene is fitted: the old view may not even show its ground).
-                if *c == EditorCommand::New {
-                    phys.load(scene);
-                    ed.level_generation = phys.view_generation;
-                    // A new scene is nothing to lose yet.
-                    ed.mark_saved(&phys);
-                } else {
-                    phys.load_keep_view(scene);
-                }
-                phys.paused = true;
+                // A new scene is fitted (the old view may not even show its ground) and is
+                // nothing to lose yet; an edit keeps the user's view.
+                let new = *c == EditorCommand::New;
+                ed.adopt_next |= new;
+                let refit = new || edited.as_ref().is_some_and(|(_, r)| *r);
+                edited = Some((scene, refit));
                 ed.note = Some((note, true));
             }
             Err(why) => ed.note = Some((why, false)),
         }
+    }
+    if let Some((scene, refit)) = edited {
+        // The scene as it starts: the run starts over from it, paused.
+        run_commands.write(PhysicsCommand::Edited {
+            scene: Box::new(scene),
+            refit,
+        });
     }
 }
 

@@ -57,10 +57,14 @@ fn count_frame(
     time: Res<Time<Real>>,
     mut rate: ResMut<FrameRate>,
     mut exit: MessageWriter<AppExit>,
-    phys: Option<Res<super::physics::Physics>>,
+    phys: Option<Res<super::run::Run>>,
+    playback: Option<Res<super::playback::Playback>>,
 ) {
     // Paused, a native window waits for input (app/power.rs): those waits are not frame times.
-    let waiting = super::power::enabled() && phys.is_some_and(|p| !super::power::animating(&p));
+    let waiting = super::power::enabled()
+        && phys
+            .zip(playback)
+            .is_some_and(|(p, b)| !super::power::animating(&p, &b));
     if waiting {
         rate.frames += 1;
     } else {

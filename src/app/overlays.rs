@@ -4,12 +4,13 @@
 
 use super::draw::{si, Drawing, Prim};
 use super::geometry::{self, Outline};
-use super::physics::Physics;
 use super::quantities::{self, ForceKind};
+use super::run::Run;
 use super::view::palette;
 use crate::analysis::frame::{diagram_balance, DiagramBalance};
 use crate::analysis::kinematics::body_point_velocity;
 use crate::analysis::momentum::scene_angular_momentum_about;
+use crate::level::{Effect, Level};
 use crate::snapshot::{BodyKind, Snapshot};
 use bevy::prelude::*;
 use glam::DVec2;
@@ -173,13 +174,7 @@ fn force_color(k: ForceKind) -> Color {
 }
 
 /// Builds every enabled overlay into `d`.
-pub fn build(
-    ov: &Overlays,
-    phys: &Physics,
-    outlines: &[Outline],
-    scales: &Scales,
-    d: &mut Drawing,
-) {
+pub fn build(ov: &Overlays, phys: &Run, outlines: &[Outline], scales: &Scales, d: &mut Drawing) {
     let s = phys.snapshot();
     let px = d.m_per_px;
     let few = subjects(ov, s);
@@ -481,7 +476,7 @@ pub fn build(
 /// The level's blows from their time on: the impulse as an arrow ending where it struck (fixed
 /// length: a blow has no force scale) and, at each joint of the struck body, the joint's impulsive
 /// response over the blow's step.
-fn blows(phys: &Physics, scales: &Scales, labels: bool, d: &mut Drawing) {
+fn blows(phys: &Run, scales: &Scales, labels: bool, d: &mut Drawing) {
     let now = phys.snapshot().time;
     let len = (0.2 * scales.size).max(30.0 * d.m_per_px);
     for blow in phys.blows.iter().filter(|b| b.time <= now + 1e-12) {
@@ -533,7 +528,7 @@ fn blows(phys: &Physics, scales: &Scales, labels: bool, d: &mut Drawing) {
 /// The center of percussion of body `i` if it is pinned to a fixed body: on the line from the pin O
 /// through G at q = k_O^2 / r_G from O (MK art. 6/4, eq. 6/5 with I_O = I_G + m r_G^2). A blow
 /// there leaves the pin without reaction. Returns (O, P, q).
-pub fn center_of_percussion(phys: &Physics, i: usize) -> Option<(DVec2, DVec2, f64)> {
+pub fn center_of_percussion(phys: &Run, i: usize) -> Option<(DVec2, DVec2, f64)> {
     let s = phys.snapshot();
     let b = s.bodies.get(i)?;
     if b.kind != BodyKind::Dynamic || b.mass <= 0.0 {
@@ -759,4 +754,45 @@ pub fn overlay_keys(
             *flag = !*flag;
         }
     }
+}
+
+/// The color key of the overlays that are on (force kinds only where the scene has them).
+pub fn legend_entries(ov: &Overlays, level: &Level, window: usize) -> Vec<(String, Color)> {
+    let mut v = Vec::new();
+    let mut add = |on: bool, text: &str, c: Color| {
+        if on {
+            v.push((format!("— {text}"), c));
+        }
+    };
+    add(ov.velocity, "velocity v_G", palette::VELOCITY);
+    add(ov.acceleration, "acceleration a_G", palette::ACCEL);
+    add(
+        ov.instant_center,
+        "instantaneous center IC",
+        palette::CENTER,
+    );
+    if ov.free_body {
+        let has = |e: Effect| level.effects.contains(&e);
+        add(has(Effect::Gravity), "weight mg", palette::GRAVITY);
+        add(has(Effect::Contacts), "contact normal N", palette::NORMAL);
+        add(has(Effect::Friction), "friction F", palette::FRICTION);
+        add(
+            !level.joints.is_empty(),
+            "joint reaction R",
+            palette::REACTION,
+        );
+        add(!level.couplings.is_empty(), "coupling T", palette::COUPLING);
+        add(!level.springs.is_empty(), "spring Fs", palette::SPRING);
+        add(!level.loads.is_empty(), "load P", palette::LOAD);
+    }
+    add(ov.kinetic, "kinetic diagram m a_G, I_G α", palette::ACCEL);
+    add(ov.momentum, "angular momentum H_O", palette::MOMENTUM);
+    add(ov.trails, "trail of G", palette::TRAIL);
+    if (ov.free_body || ov.kinetic) && window > 1 {
+        v.push((
+            format!("forces: mean over the last {window} steps (1/60 s)"),
+            palette::TEXT,
+        ));
+    }
+    v
 }

@@ -13,7 +13,9 @@
 //! window focus, and tests count frames).
 
 use super::editor::EditorCommand;
-use super::physics::Physics;
+use super::physics::PhysicsCommand;
+use super::playback::Playback;
+use super::run::Run;
 use bevy::prelude::*;
 use bevy::winit::{UpdateMode, WinitSettings};
 use bevy_egui::{EguiInput, EguiInputSet, EguiPreUpdateSet};
@@ -51,8 +53,8 @@ impl Plugin for PowerPlugin {
 }
 
 /// True when the coming frames show something new without any input.
-pub fn animating(phys: &Physics) -> bool {
-    !phys.paused || phys.seek.is_some() || phys.steps_requested > 0
+pub fn animating(phys: &Run, playback: &Playback) -> bool {
+    !playback.paused || phys.seek.is_some() || playback.steps_requested > 0
 }
 
 fn drop_repeated_modifiers(
@@ -72,14 +74,16 @@ fn drop_repeated_modifiers(
 }
 
 fn redraw_when_needed(
-    phys: Res<Physics>,
+    (phys, playback): (Res<Run>, Res<Playback>),
     edits: MessageReader<EditorCommand>,
+    run_commands: MessageReader<PhysicsCommand>,
     settings: Option<ResMut<WinitSettings>>,
 ) {
     let Some(mut settings) = settings else {
         return;
     };
-    let want = if animating(&phys) || !edits.is_empty() {
+    // A command or an edit asked for this frame is applied in the next one: draw it.
+    let want = if animating(&phys, &playback) || !edits.is_empty() || !run_commands.is_empty() {
         WinitSettings::game()
     } else {
         WinitSettings {

@@ -3,9 +3,11 @@
 //! GPU). The physics runs headless to T first, step by step as in `rigidlab check`.
 
 use super::overlays::Overlays;
-use super::physics::{LiveChecks, Physics};
+use super::physics::LiveChecks;
+use super::playback::Playback;
+use super::run::Run;
+use super::scene::ScenePlugin;
 use super::view::{palette, View, WorldCamera};
-use super::ScenePlugin;
 use crate::level::Scene;
 use crate::sim::Options;
 use bevy::app::SubApps;
@@ -176,8 +178,8 @@ pub fn render_frame(
 ) -> Result<Frame, String> {
     vulkan_check()?;
     quiet_wayland_probe();
-    let mut phys = Physics::new(scene.clone(), Options::default(), true);
-    phys.stop_at_end = false;
+    // Runs past the level's end when asked a later time: `advance` steps whatever the playback.
+    let mut phys = Run::new(scene.clone(), Options::default());
     let mut live = LiveChecks::new(&phys);
     let steps = (time / phys.sim.dt()).round() as u64;
     for _ in 0..steps {
@@ -190,7 +192,6 @@ pub fn render_frame(
         }
         live.observe(&phys);
     }
-    phys.paused = true;
 
     // Bevy reports a missing or broken GPU by panicking: turn that into an error.
     let hook = std::panic::take_hook();
@@ -214,7 +215,7 @@ pub fn render_frame(
 type Captured = Arc<Mutex<Option<Result<Frame, String>>>>;
 
 fn run_renderer(
-    phys: Physics,
+    phys: Run,
     live: LiveChecks,
     out: Option<&Path>,
     opts: &RenderOptions,
@@ -245,6 +246,7 @@ fn run_renderer(
     app.insert_resource(Time::<Fixed>::from_seconds(phys.sim.dt()));
     app.insert_non_send(live);
     app.insert_resource(phys);
+    app.insert_resource(Playback::new(true));
     app.insert_resource(opts.overlays.clone());
     app.insert_resource(View {
         viewport: Rect::new(0.0, 0.0, opts.width as f32, opts.height as f32),

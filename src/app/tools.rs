@@ -6,7 +6,9 @@
 use super::draw::{si, Drawing, Prim};
 use super::editor::{EditorCommand, Placeable};
 use super::overlays::{Overlays, Scales};
-use super::physics::{Physics, PhysicsStep};
+use super::physics::{PhysicsCommand, PhysicsStep};
+use super::playback::Playback;
+use super::run::{Hold, Run};
 use super::view::{self, palette, Outlines, View};
 use crate::editor::{Edit, NewShape, Property};
 use crate::level::JointKind;
@@ -106,9 +108,6 @@ impl Protractor {
 /// Aiming time: a drag of D meters gives the body a velocity change of about D / AIM_TIME.
 pub const AIM_TIME: f64 = 0.5;
 
-/// Mouse spring natural frequency, Hz (critically damped).
-const SPRING_HZ: f64 = 1.5;
-
 pub struct ToolsPlugin;
 
 impl Plugin for ToolsPlugin {
@@ -117,11 +116,12 @@ impl Plugin for ToolsPlugin {
             .add_systems(Update, forget_marks.before(mouse_tools))
             .add_systems(
                 Update,
-                mouse_tools
-                    .before(super::SceneDraw)
-                    .run_if(super::unsaved::not_asking),
-            )
-            .add_systems(FixedUpdate, apply_grab.before(PhysicsStep));
+                (mouse_tools.run_if(super::unsaved::not_asking), hold_grabbed)
+                    .chain()
+                    // Before the step, so what they ask is applied this frame (and so before the
+                    // scene is drawn, which comes after the step).
+                    .before(PhysicsStep),
+            );
     }
 }
 
@@ -139,8 +139,8 @@ impl ToolState {
     }
 }
 
-/// A different level opened (`Physics::view_generation`): its marks go.
-fn forget_marks(phys: Res<Physics>, mut state: ResMut<ToolState>, mut seen: Local<Option<u64>>) {
+/// A different level opened (`Run::view_generation`): its marks go.
+fn forget_marks(phys: Res<Run>, mut state: ResMut<ToolState>, mut seen: Local<Option<u64>>) {
     if seen.is_some_and(|g| g != phys.view_generation) {
         state.forget_marks();
     }
@@ -155,7 +155,9 @@ pub fn impulse_of_drag(m: f64, d: DVec2) -> DVec2 {
 #[allow(clippy::too_many_arguments)]
 fn mouse_tools(
     mut state: ResMut<ToolState>,
-    mut phys: ResMut<Physics>,
+    phys: Res<Run>,
+    playback: Res<Playback>,
+    mut run_commands: MessageWriter<PhysicsCommand>,
     mut ov: ResMut<Overlays>,
     view: Res<View>,
     outlines: Res<Outlines>,
@@ -326,7 +328,7 @@ fn mouse_tools(
         }
         // Paused at t = 0 the scene is being set up: a drag moves the body (an edit, undoable).
         if let (Some(g), Some(p)) = (grab.filter(|g| g.pulling), world) {
-            if phys.paused && phys.snapshot().is_initial() {
+            if playback.paused && phys.snapshot().is_initial() {
                 if let Some(def) = phys.scene.level.bodies.get(g.body) {
                     let b = &phys.snapshot().bodies[g.body];
                     let d = p - b.world_point(g.local);
@@ -361,7 +363,11 @@ fn mouse_tools(
                 let j = impulse_of_drag(b.mass, a.end - at);
                 let time = s.time;
                 if j.length() > 0.0 {
-                    phys.apply_impulse(a.body, at, j);
+                    run_commands.write(PhysicsCommand::Impulse {
+                        body: a.body,
+                        at,
+                        impulse: j,
+                    });
                     state.last_impulse = Some((at, j, time));
                 }
             }
@@ -371,13 +377,7 @@ fn mouse_tools(
 
 /// The joint the join tool makes at `p`: between the topmost moving body there and the next body
 /// under it, or that body and the ground (a fixed point made there) when it is alone.
-fn join_at(
-    phys: &Physics,
-    outlines: &Outlines,
-    p: DVec2,
-    tol: f64,
-    kind: JointKind,
-) -> Option<Edit> {
+fn join_at(phys: &Run, outlines: &Outlines, p: DVec2, tol: f64, kind: JointKind) -> Option<Edit> {
     let (moving, other) = moving_and_partner(phys, outlines, p, tol)?;
     let name = |i: usize| phys.scene.level.bodies[i].name.clone();
     Some(Edit::AddJoint {
@@ -391,7 +391,7 @@ fn join_at(
 /// The topmost moving body at `p` and the next body under it (None: the ground), as the join
 /// and torsion tools connect them.
 fn moving_and_partner(
-    phys: &Physics,
+    phys: &Run,
     outlines: &Outlines,
     p: DVec2,
     tol: f64,
@@ -407,7 +407,7 @@ fn moving_and_partner(
 /// The torsion spring the torsion tool makes at `p`: on the topmost moving body there, to the
 /// next body under it or to the ground; k puts the body alone on it at about 1 Hz about G
 /// (k = I_G (2 pi)^2, rounded).
-fn torsion_at(phys: &Physics, outlines: &Outlines, p: DVec2, tol: f64) -> Option<Edit> {
+fn torsion_at(phys: &Run, outlines: &Outlines, p: DVec2, tol: f64) -> Option<Edit> {
     let (moving, other) = moving_and_partner(phys, outlines, p, tol)?;
     let name = |i: usize| phys.scene.level.bodies[i].name.clone();
     let k = phys.snapshot().bodies[moving].inertia * std::f64::consts::TAU.powi(2);
@@ -457,35 +457,25 @@ fn spring_stiffness(m: f64) -> f64 {
     super::editor::nice_length(k, 1.0)
 }
 
-/// The mouse spring: a critically damped pull of the grabbed point toward the mouse, applied as the
-/// impulse of the force over the coming step (rigidlab resets forces each step, impulses stay).
-fn apply_grab(state: Res<ToolState>, mut phys: ResMut<Physics>) {
-    let Some(g) = state.grab.filter(|g| g.pulling) else {
-        return;
-    };
-    if phys.paused {
-        return;
+/// The body being dragged with the mouse spring, told to the run when it changes (the run pulls
+/// it before every step while it plays, `Run::pull_held`).
+fn hold_grabbed(
+    state: Res<ToolState>,
+    run: Res<Run>,
+    mut run_commands: MessageWriter<PhysicsCommand>,
+) {
+    let hold = state.grab.filter(|g| g.pulling).map(|g| Hold {
+        body: g.body,
+        local: g.local,
+        target: g.target,
+    });
+    if hold != run.held {
+        run_commands.write(PhysicsCommand::Hold(hold));
     }
-    let s = phys.snapshot();
-    let Some(b) = s.bodies.get(g.body) else {
-        return;
-    };
-    let p = b.world_point(g.local);
-    let v = crate::analysis::kinematics::body_point_velocity(b, p);
-    let w = std::f64::consts::TAU * SPRING_HZ;
-    let m = b.mass;
-    // F = m (w^2 (target - p) - 2 w v_p) - m g, limited to 30 m g (or 30 m w^2 x 1 m without gravity).
-    let mut f = (w * w * (g.target - p) - 2.0 * w * v) * m - s.gravity * m;
-    let limit = 30.0 * m * s.gravity.length().max(w * w);
-    if f.length() > limit {
-        f = f.normalize() * limit;
-    }
-    let dt = phys.sim.dt();
-    phys.apply_impulse(g.body, p, f * dt);
 }
 
 /// What the tools draw: the mouse spring, the aimed impulse, the last impulse.
-pub fn preview(state: &ToolState, phys: &Physics, scales: &Scales, d: &mut Drawing) {
+pub fn preview(state: &ToolState, phys: &Run, scales: &Scales, d: &mut Drawing) {
     let s = phys.snapshot();
     if let (Some((_, from)), Some(g)) = (state.spring_from, state.cursor) {
         d.prims.push(Prim::Dashed(from, g, palette::TOOL));

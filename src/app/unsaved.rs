@@ -6,8 +6,8 @@
 //! window is opened with `close_when_requested: false`, so nothing else closes it).
 
 use super::editor::Editor;
-use super::panels::capture::save_level_as;
-use super::physics::Physics;
+use super::run::Run;
+use super::user_files::save_level_as;
 use crate::level::Scene;
 use bevy::prelude::*;
 use bevy::window::WindowCloseRequested;
@@ -79,7 +79,7 @@ impl Unsaved {
         &mut self,
         answer: Answer,
         editor: &mut Editor,
-        phys: &Physics,
+        phys: &Run,
         save_path: &Path,
     ) -> Result<(Option<Leaving>, Option<String>), String> {
         self.asking.as_ref().ok_or("no question is open")?;
@@ -109,7 +109,7 @@ impl Plugin for UnsavedPlugin {
 pub fn close_requests(
     mut requests: MessageReader<WindowCloseRequested>,
     editor: Res<Editor>,
-    phys: Res<Physics>,
+    phys: Res<Run>,
     mut unsaved: ResMut<Unsaved>,
     mut commands: Commands,
 ) {

@@ -4,6 +4,7 @@
 //! `name-2.ext`; `crate::files::write_new`), writes the file whole before it takes its name, and
 //! says where it went or why it could not, for the status line.
 
+use crate::level::Scene;
 use bevy::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -49,7 +50,7 @@ pub fn deliver_as(path: &Path, bytes: &[u8], mime: &str) -> Result<(PathBuf, Str
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_else(|| "rigidlab-file".into());
-        super::web::download(&name, bytes, mime)?;
+        super::page_files::download(&name, bytes, mime)?;
         Ok((PathBuf::from(&name), format!("downloaded {name}")))
     }
 }
@@ -80,4 +81,33 @@ pub fn save_screenshot(image: &Image, path: &Path) -> Result<String, String> {
     deliver(path, &bytes, "image/png")
         .map(|m| format!("screenshot {m}"))
         .map_err(|e| format!("screenshot {e}"))
+}
+
+/// Writes a level, checked first to load back identically (`editor::checked_text`), to the
+/// user's file (a download in the browser). A file already at `path` is kept: the level goes
+/// under a numbered name beside it ([`deliver`]).
+pub fn save_level(scene: &Scene, path: &Path) -> Result<String, String> {
+    save_level_as(scene, path).map(|(_, m)| m)
+}
+
+/// [`save_level`], with the file the level was written to.
+pub fn save_level_as(scene: &Scene, path: &Path) -> Result<(PathBuf, String), String> {
+    let text = crate::editor::checked_text(scene, path)?;
+    let (used, done) = deliver_as(path, text.as_bytes(), "text/plain")?;
+    Ok((used, format!("{done} (loads back identically)")))
+}
+
+/// The file name the save field starts with: the level's own stem with `-saved`, in the folder
+/// the level browser lists (natively; the page downloads it).
+pub fn default_save_path(scene: &Scene) -> String {
+    let stem = scene
+        .file
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| "scene".into());
+    if cfg!(target_arch = "wasm32") {
+        format!("{stem}-saved.ron")
+    } else {
+        format!("{SAVED_LEVELS}/{stem}-saved.ron")
+    }
 }

@@ -2,7 +2,8 @@
 //! under a point. The line drawing of bodies, joints, springs and ground is `scene_lines.rs`.
 
 use super::geometry::{self, Bounds, Outline};
-use super::physics::Physics;
+use super::playback::Playback;
+use super::run::Run;
 use crate::level::{Level, Scene, Shape};
 use crate::sim::Options;
 use crate::simulation::AnySimulation;
@@ -54,9 +55,9 @@ pub struct View {
     pub fit: bool,
     /// Bounds of the motion the fit used (also sets arrow scales).
     pub bounds: Bounds,
-    /// The `Physics::view_generation` the camera last refit for.
+    /// The `Run::view_generation` the camera last refit for.
     pub generation: Option<u64>,
-    /// The `Physics::generation` `bounds` were computed for (a fit after a spawn or a solver
+    /// The `Run::generation` `bounds` were computed for (a fit after a spawn or a solver
     /// change recomputes them).
     pub bounds_generation: Option<u64>,
     /// The fastest speed seen in this run (sets the velocity arrow scale), m/s.
@@ -325,7 +326,7 @@ pub fn motion_bounds(scene: &Scene, options: &Options) -> Bounds {
 
 /// Refits on a new scene, then applies the view to the camera.
 pub fn sync_camera(
-    phys: Res<Physics>,
+    (phys, playback): (Res<Run>, Res<Playback>),
     mut view: ResMut<View>,
     mut cams: Query<(&mut Transform, &mut Projection, &mut Camera), With<WorldCamera>>,
     windows: Query<&Window>,
@@ -363,7 +364,7 @@ pub fn sync_camera(
         .map(|b| b.com)
         .collect();
     let in_view = moving.is_empty() || moving.iter().any(|&p| world(p));
-    if view.bodies_in_view && !in_view && !phys.paused {
+    if view.bodies_in_view && !in_view && !playback.paused {
         view.fit = true;
         view.bounds = current_bounds(s);
         view.bounds_generation = Some(phys.generation);
@@ -453,7 +454,7 @@ pub fn pan_zoom(
 /// Spawns the filled meshes of a new scene (and refreshes outlines).
 pub fn spawn_meshes(
     mut commands: Commands,
-    phys: Res<Physics>,
+    phys: Res<Run>,
     mut outlines: ResMut<Outlines>,
     old: Query<Entity, With<BodyMesh>>,
     mut meshes: ResMut<Assets<Mesh>>,
@@ -518,7 +519,7 @@ pub fn body_outlines(level: &Level) -> Vec<Outline> {
 }
 
 /// Moves the meshes to the bodies' poses.
-pub fn sync_meshes(phys: Res<Physics>, mut q: Query<(&BodyMesh, &mut Transform)>) {
+pub fn sync_meshes(phys: Res<Run>, mut q: Query<(&BodyMesh, &mut Transform)>) {
     let s = phys.snapshot();
     for (m, mut t) in q.iter_mut() {
         if let Some(b) = s.bodies.get(m.0) {

@@ -1,5 +1,5 @@
 //! The sandbox in a web page (wasm32, WebGL2): the same plugins as the native window
-//! ([`super::add_sandbox`]) drawn into the page's `<canvas id="rigidlab">`, with the level library
+//! ([`super::sandbox::add_sandbox`]) drawn into the page's `<canvas id="rigidlab">`, with the level library
 //! compiled in (a page has no file system).
 //!
 //! The page's URL chooses what opens (`web/index.html` documents it):
@@ -14,15 +14,15 @@
 //! and grade): what a screen reader, a teacher's script or the browser test reads.
 
 use super::frame_rate::FrameRate;
-use super::panels::{self, Browser, UiState};
-use super::physics::Physics;
+use super::panels::{self, Browser, Exercise, UiState};
+use super::playback::Playback;
+use super::run::Run;
 use super::view::View;
 use crate::level::Scene;
 use bevy::prelude::*;
 use include_dir::{include_dir, Dir};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use wasm_bindgen::JsCast;
 
 /// The level library, compiled in.
 static LEVELS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/levels");
@@ -86,9 +86,9 @@ pub fn start() {
             Some(Ok(s)) => (s, None),
             // A level asked for and not opened: an empty scene, the reason in the status line
             // and the library beside it, never another exercise the student would take for it.
-            Some(Err(e)) => (super::empty_scene(), Some(e.to_string())),
+            Some(Err(e)) => (super::sandbox::empty_scene(), Some(e.to_string())),
             None => (
-                super::empty_scene(),
+                super::sandbox::empty_scene(),
                 Some(format!(
                     "no level {} in the library: the URL's ?level= is a path under levels/, e.g. kinetics/simple_pendulum.ron",
                     p.display()
@@ -122,7 +122,7 @@ pub fn start() {
         }),
         ..default()
     }));
-    super::add_sandbox(&mut app, scene, browser, !query.play);
+    super::sandbox::add_sandbox(&mut app, scene, browser, !query.play);
     app.insert_resource(PageState { note });
     app.add_systems(Update, (show_page_note, open_picked_file));
     app.add_systems(Last, publish_status);
@@ -144,7 +144,9 @@ fn show_page_note(page: Res<PageState>, mut st: ResMut<UiState>, mut shown: Loca
 }
 
 fn first_or_empty(browser: &Browser) -> Scene {
-    browser.first_loadable().unwrap_or_else(super::empty_scene)
+    browser
+        .first_loadable()
+        .unwrap_or_else(super::sandbox::empty_scene)
 }
 
 /// Runs `scenes` with the core's runner and default settings, as `rigidlab check` does.
@@ -177,9 +179,11 @@ struct PageState {
 }
 
 fn publish_status(
-    phys: Res<Physics>,
+    phys: Res<Run>,
+    playback: Res<Playback>,
     view: Res<View>,
     st: Res<UiState>,
+    ex: Res<Exercise>,
     rate: Res<FrameRate>,
     page: Res<PageState>,
     editor: Res<super::editor::Editor>,
@@ -192,8 +196,8 @@ fn publish_status(
         .iter()
         .enumerate()
         .map(|(k, q)| {
-            let rect = st.answer_boxes.get(k).copied().flatten();
-            let grade = st.grades.get(k).cloned().flatten();
+            let rect = ex.answer_boxes.get(k).copied().flatten();
+            let grade = ex.grades.get(k).cloned().flatten();
             let (message, right) = match &grade {
                 Some(g) => {
                     let (m, r) = panels::grade_message(q, g);
@@ -204,7 +208,7 @@ fn publish_status(
             serde_json::json!({
                 "id": q.id,
                 "box": rect.map(|r| [r.min.x, r.min.y, r.width(), r.height()]),
-                "typed": st.answers.get(k),
+                "typed": ex.answers.get(k),
                 "grade": message,
                 "right": right,
             })
@@ -215,7 +219,7 @@ fn publish_status(
         "title": phys.sim.level.title,
         "t": s.time,
         "step": s.step,
-        "paused": phys.paused,
+        "paused": playback.paused,
         "at_end": s.time >= phys.sim.level.world.duration - 0.5 * phys.sim.dt(),
         "frames": rate.frames,
         "frame_ms_median": rate.median_ms(),
@@ -265,19 +269,6 @@ fn open_picked_file(mut st: ResMut<UiState>) {
     }
 }
 
-/// Opens the page's file chooser (`<input id="pick" type="file">`; its change handler in
-/// `web/index.html` hands the text to [`open_picked_file`]). Called on a button click: the
-/// browser allows it within the click's user activation.
-pub fn pick_file() {
-    if let Some(input) = web_sys::window()
-        .and_then(|w| w.document())
-        .and_then(|d| d.get_element_by_id("pick"))
-        .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok())
-    {
-        input.click();
-    }
-}
-
 /// Sets the text of the page element `id` (absent: nothing to do; the page may not have it).
 fn set_text(id: &str, text: &str) {
     if let Some(el) = web_sys::window()
@@ -286,30 +277,4 @@ fn set_text(id: &str, text: &str) {
     {
         el.set_text_content(Some(text));
     }
-}
-
-/// Offers `bytes` to the user as a download named `name` (a saved scene, an exported table).
-pub fn download(name: &str, bytes: &[u8], mime: &str) -> Result<(), String> {
-    let fail = |what: &str| format!("cannot download {name}: {what}");
-    let array = js_sys::Uint8Array::from(bytes);
-    let parts = js_sys::Array::of1(&array);
-    let props = web_sys::BlobPropertyBag::new();
-    props.set_type(mime);
-    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &props)
-        .map_err(|_| fail("the browser refused to make a Blob"))?;
-    let url = web_sys::Url::create_object_url_with_blob(&blob)
-        .map_err(|_| fail("the browser refused an object URL"))?;
-    let document = web_sys::window()
-        .and_then(|w| w.document())
-        .ok_or_else(|| fail("no document"))?;
-    let a: web_sys::HtmlAnchorElement = document
-        .create_element("a")
-        .map_err(|_| fail("cannot create a link"))?
-        .dyn_into()
-        .map_err(|_| fail("not a link"))?;
-    a.set_href(&url);
-    a.set_download(name);
-    a.click();
-    web_sys::Url::revoke_object_url(&url).ok();
-    Ok(())
 }

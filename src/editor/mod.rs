@@ -6,9 +6,11 @@
 //! starts over from it. So a scene built in the window is a valid level file by construction.
 //! The window (`app::editor`) sends [`Edit`]s; tests send the same ones without a window.
 
+pub mod capture;
 mod edit;
 mod history;
 
+pub use capture::{capture, checked_text};
 pub use edit::{parse_points, points_text, side_name, solid_name, Edit, NewShape, Property};
 pub use history::History;
 

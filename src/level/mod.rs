@@ -8,6 +8,7 @@ pub mod curves;
 mod error;
 pub mod format;
 pub mod motion;
+pub mod profiles;
 mod validate;
 mod warnings;
 

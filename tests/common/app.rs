@@ -8,7 +8,7 @@ use bevy::input::ButtonState;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
-use rigidlab::app::{Physics, PhysicsPlugin};
+use rigidlab::app::{PhysicsPlugin, Run};
 use rigidlab::editor;
 use rigidlab::level::Level;
 use std::path::PathBuf;
@@ -47,8 +47,8 @@ pub fn send(app: &mut App, c: EditorCommand) -> (String, bool) {
         .expect("the editor answers every command")
 }
 
-pub fn phys(app: &App) -> &Physics {
-    app.world().resource::<Physics>()
+pub fn phys(app: &App) -> &Run {
+    app.world().resource::<Run>()
 }
 
 /// The scene's level on screen.

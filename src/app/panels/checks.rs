@@ -1,9 +1,10 @@
 //! The "theory against engine" panel: every check and question of the level with its worst
 //! error, tolerance and verdict, as `rigidlab check` reports them at the level's end.
 
-use super::super::physics::{LiveChecks, Physics};
+use super::super::physics::LiveChecks;
+use super::super::run::Run;
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::rich;
 use crate::questions::QuestionResult;
 use bevy_egui::egui;
 
@@ -28,7 +29,7 @@ pub fn shown_error(q: &QuestionResult) -> (&'static str, f64) {
 }
 
 /// Draws the panel: the live results once the run reached the level's end, else what will be shown.
-pub(super) fn checks(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks) {
+pub(super) fn checks(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks) {
     let level = &phys.sim.level;
     if level.checks.is_empty() && level.questions.is_empty() {
         return;

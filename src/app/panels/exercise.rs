@@ -2,13 +2,39 @@
 //! effects, and its questions with an answer box each. A typed answer is graded with the
 //! level's own rule; the value rigidlab measured is shown only once the answer is right.
 
-use super::super::physics::{LiveChecks, Physics};
+use super::super::physics::LiveChecks;
+use super::super::run::Run;
+use super::super::ui::{fmt, rich};
 use super::super::view::palette;
-use super::{fmt, rich, UiState};
+use bevy::prelude::Resource;
 use bevy_egui::egui;
 
+/// The student's side of the exercise: the answers typed and their grades, one per question
+/// (emptied when the run starts over).
+#[derive(Resource, Debug, Clone, Default)]
+pub struct Exercise {
+    pub answers: Vec<String>,
+    /// A student's grade per question.
+    pub grades: Vec<Option<Grade>>,
+    /// Where each answer box was drawn last frame (egui points = CSS pixels in the page; the web
+    /// page publishes them so a browser test can click into a box and type).
+    pub answer_boxes: Vec<Option<egui::Rect>>,
+}
+
+impl Exercise {
+    /// A run of a level with `n` questions starts: grades and boxes go, answers typed stay
+    /// while the number of questions does.
+    pub fn start(&mut self, n: usize) {
+        if self.answers.len() != n {
+            self.answers = vec![String::new(); n];
+        }
+        self.grades = vec![None; n];
+        self.answer_boxes = vec![None; n];
+    }
+}
+
 /// Draws the panel and grades the answers the student submits.
-pub(super) fn exercise(ui: &mut egui::Ui, phys: &Physics, live: &LiveChecks, st: &mut UiState) {
+pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mut Exercise) {
     let level = &phys.sim.level;
     ui.heading(&level.title);
     if !level.source.book.is_empty() || !level.source.problem.is_empty() {

@@ -1,7 +1,7 @@
 //! The help window (F1 or ?): every key, overlay, tool and what the colors mean.
 
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::rich;
 use bevy_egui::egui;
 
 /// Draws the help window while `open`; its close button clears `open`.

@@ -1,9 +1,9 @@
 //! The level browser (left panel, top): the levels folder grouped by topic, each level with its
 //! title and statement on hover; a level that does not load shows why instead of opening.
 
-use super::super::physics::Physics;
+use super::super::run::Run;
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::rich;
 use crate::level::{self, Scene};
 use bevy::prelude::*;
 use bevy_egui::egui;
@@ -152,7 +152,7 @@ fn group_of(root: &Path, f: &Path) -> String {
 pub(super) fn level_browser(
     ui: &mut egui::Ui,
     browser: &mut Browser,
-    phys: &Physics,
+    phys: &Run,
     load: &mut Option<Scene>,
 ) {
     ui.horizontal(|ui| {
@@ -171,7 +171,7 @@ pub(super) fn level_browser(
             .on_hover_text("open a .ron level file from this computer")
             .clicked()
         {
-            super::super::web::pick_file();
+            super::super::page_files::pick_file();
         }
     });
     if let Some(e) = &browser.error {

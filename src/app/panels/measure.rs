@@ -3,10 +3,10 @@
 //! position, velocity and acceleration (RK-6, RK-10), and the ruler's and protractor's last
 //! measurements.
 
-use super::super::physics::Physics;
+use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::rich;
 use crate::analysis::kinematics::{body_point_velocity, point_acceleration};
 use crate::analysis::oscillation::Crossings;
 use bevy_egui::egui;
@@ -30,7 +30,7 @@ impl Stopwatch {
 
 /// The period of the selected body's swing or oscillation from its recorded omega (or, for a
 /// body that does not turn, its velocity along its largest motion), and how many periods it spans.
-pub fn period_of(phys: &Physics, i: usize) -> Option<(f64, usize)> {
+pub fn period_of(phys: &Run, i: usize) -> Option<(f64, usize)> {
     let samples = phys.body_series.get(i)?;
     let turning = samples.iter().any(|p| p.omega.abs() > 1e-6);
     let mut c = Crossings::default();
@@ -53,7 +53,7 @@ pub fn period_of(phys: &Physics, i: usize) -> Option<(f64, usize)> {
 
 pub(super) fn measure(
     ui: &mut egui::Ui,
-    phys: &Physics,
+    phys: &Run,
     tools: &mut ToolState,
     watch: &mut Stopwatch,
     selected: Option<usize>,
@@ -152,7 +152,7 @@ pub(super) fn measure(
 /// The clicked point P of body `i` (select tool): where it is, v_P = v_G + omega k x r_P/G
 /// (RK-6) and a_P = a_G + alpha k x r_P/G - omega^2 r_P/G (RK-10), with a_G and alpha over the
 /// last physics step (as the acceleration overlay draws them).
-fn point_readout(ui: &mut egui::Ui, phys: &Physics, i: usize, local: DVec2) {
+fn point_readout(ui: &mut egui::Ui, phys: &Run, i: usize, local: DVec2) {
     let s = phys.snapshot();
     let Some(b) = s.bodies.get(i) else {
         return;

@@ -2,10 +2,11 @@
 //! graded questions on the left; playback, overlays, tools, solver settings, energy and momentum
 //! plots and the checks on the right; the status bar with the keyboard shortcuts at the bottom.
 //!
-//! This file lays the panels out (the [`PanelsPlugin`]'s one egui system) and holds the state
-//! they share ([`UiState`]); each panel's file says what it shows.
+//! This file lays the panels out (the [`PanelsPlugin`]'s one egui system); the state they share
+//! is [`UiState`] (state.rs) and the exercise's [`Exercise`]; each panel's file says what it
+//! shows. Panels read the run and ask for changes to it with [`PhysicsCommand`]s, which this
+//! system writes; they import from beside and below them, never from this file.
 
-pub(crate) mod capture;
 pub mod checks;
 mod exercise;
 pub mod help;
@@ -19,24 +20,28 @@ pub mod questions_editor;
 mod scene_editor;
 pub mod shortcuts;
 mod solver;
+pub mod state;
 mod tool_controls;
 pub mod tour;
 mod track_editor;
 
-pub use capture::{capture, save};
-pub use exercise::{grade, grade_message, Grade};
+pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{Browser, Entry};
-pub use overlay_controls::legend_entries;
 pub use solver::study_error;
+pub use state::UiState;
 
-use super::color32;
+use super::advice::WindowAdvice;
 use super::editor::{Editor, EditorCommand};
 use super::frame_rate::FrameRate;
 use super::overlays::Overlays;
-use super::physics::{LiveChecks, Physics};
+use super::physics::{LiveChecks, PhysicsCommand};
+use super::playback::Playback;
 use super::prefs::{Prefs, PrefsFile};
+use super::run::Run;
 use super::tools::ToolState;
+use super::ui::rich;
 use super::unsaved::{Leaving, Unsaved};
+use super::user_files::default_save_path;
 use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
 use bevy::camera::visibility::RenderLayers;
@@ -46,7 +51,6 @@ use bevy::render::render_resource::BlendState;
 use bevy_egui::{
     egui, EguiContexts, EguiGlobalSettings, EguiPrimaryContextPass, PrimaryEguiContext,
 };
-use capture::default_save_path;
 use checks::checks;
 use exercise::exercise;
 use level_browser::level_browser;
@@ -59,69 +63,12 @@ use solver::solver;
 use std::path::PathBuf;
 use tool_controls::tool_controls;
 
-/// Panel state that is not the simulation's.
-#[derive(Resource, Debug, Clone)]
-pub struct UiState {
-    pub answers: Vec<String>,
-    /// A student's grade per question.
-    pub grades: Vec<Option<Grade>>,
-    /// Where each answer box was drawn last frame (egui points = CSS pixels in the page; the web
-    /// page publishes them so a browser test can click into a box and type).
-    pub answer_boxes: Vec<Option<egui::Rect>>,
-    /// A level opened from outside the panels (the web page's file picker), opened next frame as
-    /// a click in the level browser is.
-    pub pending_open: Option<Scene>,
-    /// The help window is open (F1 or ?).
-    pub help: bool,
-    pub time_scale: f64,
-    pub save_path: String,
-    pub message: Option<(String, bool)>,
-    pub generation: Option<u64>,
-    /// The title and statement being typed in the build panel (read from the level when it changes).
-    pub edit_title: Option<(String, String)>,
-    /// The first-steps tour.
-    pub tour: tour::Tour,
-    /// Where the build panel's buttons were drawn last frame, by name (the web page publishes
-    /// them so a browser test can build a scene as a user would, by clicking).
-    pub buttons: std::collections::BTreeMap<String, egui::Rect>,
-    /// The level file the save field was filled for.
-    pub save_for: Option<PathBuf>,
-    /// The measuring panel's stopwatch.
-    pub stopwatch: measure::Stopwatch,
-    /// What the selected body's plot shows.
-    pub body_plot: plots::BodyPlot,
-    /// What it is plotted against (None: time).
-    pub body_plot_against: Option<plots::BodyPlot>,
-}
-
-impl Default for UiState {
-    fn default() -> Self {
-        UiState {
-            answers: Vec::new(),
-            grades: Vec::new(),
-            answer_boxes: Vec::new(),
-            pending_open: None,
-            help: false,
-            time_scale: 1.0,
-            save_path: String::new(),
-            message: None,
-            generation: None,
-            edit_title: None,
-            body_plot: Default::default(),
-            body_plot_against: None,
-            stopwatch: Default::default(),
-            save_for: None,
-            tour: Default::default(),
-            buttons: Default::default(),
-        }
-    }
-}
-
 pub struct PanelsPlugin;
 
 impl Plugin for PanelsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<UiState>()
+            .init_resource::<Exercise>()
             .init_resource::<shortcuts::EguiKeys>()
             .add_systems(
                 PreUpdate,
@@ -129,7 +76,11 @@ impl Plugin for PanelsPlugin {
             )
             .add_systems(
                 Update,
-                (keys, super::view::pan_zoom, super::overlays::overlay_keys),
+                (
+                    keys.before(super::physics::PhysicsStep),
+                    super::view::pan_zoom,
+                    super::overlays::overlay_keys,
+                ),
             )
             .add_systems(EguiPrimaryContextPass, panels);
     }
@@ -169,24 +120,14 @@ pub fn spawn_cameras(
     ));
 }
 
-/// Text in one of the palette's colors.
-pub(super) fn rich(text: impl Into<String>, c: Color) -> egui::RichText {
-    egui::RichText::new(text.into()).color(color32(c))
-}
-
-/// A number with an SI prefix, as the overlays write magnitudes.
-pub(super) fn fmt(x: f64) -> String {
-    super::draw::si(x, "")
-}
-
 /// The egui system: lays out the side panels and the status bar, and leaves the rest of the
 /// window to the scene; opens the level the browser asked for.
 // A Bevy system takes what it reads as parameters, at most 16 (hence the tuple's).
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn panels(
     mut contexts: EguiContexts,
-    mut phys: ResMut<Physics>,
-    live: NonSend<LiveChecks>,
+    (phys, play_state, mut run_commands): (Res<Run>, Res<Playback>, MessageWriter<PhysicsCommand>),
+    (live, mut exercise_state): (NonSend<LiveChecks>, ResMut<Exercise>),
     mut view: ResMut<View>,
     mut ov: ResMut<Overlays>,
     mut tools: ResMut<ToolState>,
@@ -204,7 +145,7 @@ fn panels(
     (mut unsaved, mut commands, advice): (
         Option<ResMut<Unsaved>>,
         Commands,
-        Option<Res<super::advice::WindowAdvice>>,
+        Option<Res<WindowAdvice>>,
     ),
 ) -> Result {
     let rate = rate.map(|r| r.clone()).unwrap_or_default();
@@ -231,12 +172,7 @@ fn panels(
     }
     if st.generation != Some(phys.generation) {
         st.generation = Some(phys.generation);
-        let n = phys.sim.level.questions.len();
-        if st.answers.len() != n {
-            st.answers = vec![String::new(); n];
-        }
-        st.grades = vec![None; n];
-        st.answer_boxes = vec![None; n];
+        exercise_state.start(phys.sim.level.questions.len());
         st.edit_title = None;
         if st.save_path.is_empty() {
             st.save_path = default_save_path(&phys.scene);
@@ -263,21 +199,34 @@ fn panels(
             egui::ScrollArea::vertical().show(ui, |ui| {
                 level_browser(ui, &mut browser, &phys, &mut load);
                 ui.separator();
-                exercise(ui, &phys, &live, st);
+                exercise(ui, &phys, &live, &mut exercise_state);
             });
         });
 
+    // What the panels ask of the run, written in the order asked.
+    let mut asked: Vec<PhysicsCommand> = Vec::new();
     egui::Panel::right("controls")
         .resizable(true)
         .default_size(330.0)
         .size_range(260.0..=520.0)
         .show(&mut root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                playback(ui, &mut phys, st, &mut view, &mut tools, ov.selected);
+                let restarts = playback(
+                    ui,
+                    (&phys, &play_state),
+                    &mut st.time_scale,
+                    &mut view,
+                    ov.selected,
+                    &mut asked,
+                );
+                if restarts {
+                    // The impulse tool's arrow goes with the run it struck.
+                    tools.last_impulse = None;
+                }
                 ui.separator();
                 overlay_controls(ui, &mut ov, &phys);
                 ui.separator();
-                tool_controls(ui, &mut tools, &mut phys, st);
+                tool_controls(ui, &mut tools, &phys, st);
                 ui.separator();
                 let mut out = Vec::new();
                 scene_editor(ui, &phys, &editor, &mut tools, ov.selected, st, &mut out);
@@ -297,7 +246,7 @@ fn panels(
                     edits.write(c);
                 }
                 ui.separator();
-                solver(ui, &mut phys, &live);
+                solver(ui, &phys, &live, &mut asked);
                 ui.separator();
                 measure::measure(
                     ui,
@@ -320,10 +269,14 @@ fn panels(
                 ui.separator();
                 checks(ui, &phys, &live);
                 if let Some(a) = advice.as_deref() {
-                    super::advice::panel(ui, a, &mut phys);
+                    super::advice::panel(ui, a, &phys, &mut asked);
                 }
             });
         });
+
+    for c in asked {
+        run_commands.write(c);
+    }
 
     egui::Panel::bottom("status").show(&mut root, |ui| {
         ui.horizontal_wrapped(|ui| {
@@ -353,7 +306,8 @@ fn panels(
 
     help::help(&ctx, &mut st.help);
     let mut t = std::mem::take(&mut st.tour);
-    let finished = tour::tour(&ctx, &mut t, &phys, &ov, st, &editor);
+    let answered = exercise_state.grades.iter().any(|g| g.is_some());
+    let finished = tour::tour(&ctx, &mut t, &phys, &ov, (answered, st.help), &editor);
     st.tour = t;
     if let Some(p) = prefs.as_deref_mut() {
         let now = Prefs {
@@ -387,7 +341,9 @@ fn panels(
     if !ctx.text_edit_focused() && !ctx.is_pointer_over_egui() {
         ctx.memory_mut(|m| m.stop_text_input());
     }
-    phys.track(ov.selected);
+    if phys.tracked != ov.selected {
+        run_commands.write(PhysicsCommand::Track(ov.selected));
+    }
     if editor.just_saved.take().is_some() {
         // A level saved into the folder the browser lists shows there at once. The save field
         // keeps the name asked for: saving again keeps both files (the next numbered name).
@@ -441,10 +397,7 @@ fn panels(
         ov.point = None;
         ov.origin = default_origin(&scene.level);
         tools.last_impulse = None;
-        phys.options = Default::default();
-        phys.stop_at_end = true;
-        phys.paused = true;
-        phys.load(scene);
+        run_commands.write(PhysicsCommand::Open(Box::new(scene)));
     }
     Ok(())
 }

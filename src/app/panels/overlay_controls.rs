@@ -2,58 +2,16 @@
 //! instantaneous center, free-body and kinetic diagrams, H about O, trails, magnitudes), their
 //! color key, and which body they are drawn for.
 
-use super::super::overlays::Overlays;
-use super::super::physics::Physics;
+use super::super::overlays::{legend_entries, Overlays};
 use super::super::quantities::ForceKind;
+use super::super::run::Run;
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::rich;
-use crate::level::{Effect, Level};
 use bevy::prelude::*;
 use bevy_egui::egui;
 
-/// The color key of the overlays that are on (force kinds only where the scene has them).
-pub fn legend_entries(ov: &Overlays, level: &Level, window: usize) -> Vec<(String, Color)> {
-    let mut v = Vec::new();
-    let mut add = |on: bool, text: &str, c: Color| {
-        if on {
-            v.push((format!("— {text}"), c));
-        }
-    };
-    add(ov.velocity, "velocity v_G", palette::VELOCITY);
-    add(ov.acceleration, "acceleration a_G", palette::ACCEL);
-    add(
-        ov.instant_center,
-        "instantaneous center IC",
-        palette::CENTER,
-    );
-    if ov.free_body {
-        let has = |e: Effect| level.effects.contains(&e);
-        add(has(Effect::Gravity), "weight mg", palette::GRAVITY);
-        add(has(Effect::Contacts), "contact normal N", palette::NORMAL);
-        add(has(Effect::Friction), "friction F", palette::FRICTION);
-        add(
-            !level.joints.is_empty(),
-            "joint reaction R",
-            palette::REACTION,
-        );
-        add(!level.couplings.is_empty(), "coupling T", palette::COUPLING);
-        add(!level.springs.is_empty(), "spring Fs", palette::SPRING);
-        add(!level.loads.is_empty(), "load P", palette::LOAD);
-    }
-    add(ov.kinetic, "kinetic diagram m a_G, I_G α", palette::ACCEL);
-    add(ov.momentum, "angular momentum H_O", palette::MOMENTUM);
-    add(ov.trails, "trail of G", palette::TRAIL);
-    if (ov.free_body || ov.kinetic) && window > 1 {
-        v.push((
-            format!("forces: mean over the last {window} steps (1/60 s)"),
-            palette::TEXT,
-        ));
-    }
-    v
-}
-
 /// Draws the panel.
-pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Physics) {
+pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run) {
     ui.heading("Overlays");
     egui::Grid::new("overlays").num_columns(2).show(ui, |ui| {
         ui.checkbox(&mut ov.velocity, "velocity (V)");

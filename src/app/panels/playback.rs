@@ -2,22 +2,24 @@
 //! time scale, whether to stop at the level's end, and why a run is slowed or no longer the
 //! exercise's.
 
-use super::super::physics::Physics;
-use super::super::playback::{restart, step_back, toggle_play};
-use super::super::tools::ToolState;
+use super::super::physics::PhysicsCommand;
+use super::super::playback::{play_restarts, Playback};
+use super::super::run::Run;
+use super::super::ui::{fmt, rich};
 use super::super::view::{palette, View};
-use super::{fmt, rich, UiState};
 use bevy_egui::egui;
 
-/// Draws the panel.
+/// Draws the panel; what it asks of the run goes to `out`. True when it asked for the run to
+/// start over (Reset, or Play at the level's end).
 pub(super) fn playback(
     ui: &mut egui::Ui,
-    phys: &mut Physics,
-    st: &mut UiState,
+    (phys, play): (&Run, &Playback),
+    time_scale: &mut f64,
     view: &mut View,
-    tools: &mut ToolState,
     selected: Option<usize>,
-) {
+    out: &mut Vec<PhysicsCommand>,
+) -> bool {
+    let mut restarts = false;
     let (time, step) = (phys.snapshot().time, phys.snapshot().step);
     let duration = phys.sim.level.world.duration;
     ui.heading("Playback");
@@ -37,7 +39,7 @@ pub(super) fn playback(
             .text("timeline"),
     );
     if r.changed() {
-        phys.seek = Some((at / dt).round() as u64);
+        out.push(PhysicsCommand::Seek((at / dt).round() as u64));
     }
     if let Some(target) = phys.seek {
         ui.label(
@@ -54,26 +56,27 @@ pub(super) fn playback(
             .on_hover_text("one step back (Left arrow): the run replayed to the step before")
             .clicked()
         {
-            step_back(phys);
+            out.push(PhysicsCommand::StepBack);
         }
-        let label = if phys.paused { "▶ Play" } else { "⏸ Pause" };
+        let label = if play.paused { "▶ Play" } else { "⏸ Pause" };
         if ui.button(label).clicked() {
-            toggle_play(phys, tools);
+            restarts |= play_restarts(phys, play);
+            out.push(PhysicsCommand::TogglePlay);
         }
         if ui
             .button("⏭ Step")
             .on_hover_text("one physics step (dt)")
             .clicked()
         {
-            phys.paused = true;
-            phys.steps_requested += 1;
+            out.push(PhysicsCommand::Step);
         }
         if ui
             .button("⟲ Reset")
             .on_hover_text("back to t = 0 as the level opened (R)")
             .clicked()
         {
-            restart(phys, tools);
+            restarts = true;
+            out.push(PhysicsCommand::Restart);
         }
         if ui
             .button("Fit")
@@ -87,15 +90,21 @@ pub(super) fn playback(
     ui.horizontal(|ui| {
         ui.label("time scale");
         ui.add(
-            egui::Slider::new(&mut st.time_scale, 1.0 / 64.0..=8.0)
+            egui::Slider::new(time_scale, 1.0 / 64.0..=8.0)
                 .logarithmic(true)
                 .max_decimals(3),
         );
     });
-    ui.checkbox(
-        &mut phys.stop_at_end,
-        "stop at the level's end (where `rigidlab check` stops)",
-    );
+    let mut stop_at_end = play.stop_at_end;
+    if ui
+        .checkbox(
+            &mut stop_at_end,
+            "stop at the level's end (where `rigidlab check` stops)",
+        )
+        .changed()
+    {
+        out.push(PhysicsCommand::StopAtEnd(stop_at_end));
+    }
     if view.follow.is_some_and(|i| Some(i) != selected) {
         view.follow = None;
     }
@@ -155,7 +164,7 @@ pub(super) fn playback(
     if let Some(e) = &phys.error {
         ui.label(rich(e.clone(), palette::NORMAL));
     }
-    if phys.behind && !phys.paused {
+    if play.behind && !play.paused {
         ui.label(rich(
             "The physics takes longer than real time here: it runs slowed down.",
             palette::FRICTION,
@@ -167,4 +176,5 @@ pub(super) fn playback(
             palette::FRICTION,
         ));
     }
+    restarts
 }

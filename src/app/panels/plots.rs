@@ -3,10 +3,10 @@
 //! (theta, omega, x_G, y_G, |v_G|, the joints' reaction |R|), each with a cursor readout and a
 //! CSV export.
 
-use super::super::color32;
-use super::super::physics::{BodySample, Physics, SeriesPoint};
+use super::super::run::{BodySample, Run, SeriesPoint};
+use super::super::ui::color32;
+use super::super::ui::{fmt, rich};
 use super::super::view::palette;
-use super::{fmt, rich};
 use bevy::prelude::*;
 use bevy_egui::egui;
 
@@ -100,7 +100,7 @@ pub fn energy_csv(series: &[SeriesPoint]) -> String {
 /// plot: omega against theta), and its CSV.
 pub(super) fn body_plot(
     ui: &mut egui::Ui,
-    phys: &Physics,
+    phys: &Run,
     selected: Option<usize>,
     (choice, against): (&mut BodyPlot, &mut Option<BodyPlot>),
     message: &mut Option<(String, bool)>,
@@ -185,7 +185,7 @@ pub(super) fn body_plot(
 /// The selected body's CSV export button (every body plot has one).
 fn body_export(
     ui: &mut egui::Ui,
-    phys: &Physics,
+    phys: &Run,
     name: &str,
     samples: &[BodySample],
     message: &mut Option<(String, bool)>,
@@ -349,7 +349,7 @@ fn export_path(name: &str) -> std::path::PathBuf {
 /// Draws the panel from the run's energy and momentum series.
 pub(super) fn plots(
     ui: &mut egui::Ui,
-    phys: &Physics,
+    phys: &Run,
     origin: glam::DVec2,
     message: &mut Option<(String, bool)>,
 ) {

@@ -4,9 +4,9 @@
 //! validator's refusal under the form. Every change goes to the editor as an [`EditorCommand`].
 
 use super::super::editor::{preview_note, Editor, EditorCommand};
+use super::super::ui::rich;
 use super::super::view::palette;
 use super::number_field::{number_field, Accepts};
-use super::rich;
 use crate::editor::Edit;
 use crate::level::{self, BodyKind, Level, Quantity, QuestionDef, When};
 use crate::questions::QuestionResult;

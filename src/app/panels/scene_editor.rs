@@ -3,11 +3,12 @@
 //! editor as an [`EditorCommand`] (app/editor.rs), which validates it and restarts the run.
 
 use super::super::editor::{joint_name, Editor, EditorCommand, Placeable};
-use super::super::physics::Physics;
+use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
+use super::super::ui::rich;
 use super::super::view::palette;
 use super::number_field::{number_field, Accepts};
-use super::{rich, UiState};
+use super::state::UiState;
 use crate::editor::{Edit, Property};
 use crate::level::{BodyDef, BodyKind, JointKind, Shape};
 use bevy_egui::egui;
@@ -16,7 +17,7 @@ use std::path::PathBuf;
 /// Draws the panel; the commands it sends are in `out`.
 pub(super) fn scene_editor(
     ui: &mut egui::Ui,
-    phys: &Physics,
+    phys: &Run,
     editor: &Editor,
     tools: &mut ToolState,
     selected: Option<usize>,

@@ -8,12 +8,13 @@
 
 use super::super::editor::EditorCommand;
 use super::super::overlays::Overlays;
-use super::super::physics::Physics;
-use super::super::playback::{restart, step_back, toggle_play};
+use super::super::physics::PhysicsCommand;
+use super::super::playback::{play_restarts, Playback};
+use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
 use super::super::user_files;
 use super::super::view::View;
-use super::UiState;
+use super::state::UiState;
 use bevy::input::keyboard::{Key, KeyboardFocusLost, KeyboardInput};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
@@ -150,7 +151,7 @@ pub fn keys_to_egui(
 pub fn keys(
     keys: Res<ButtonInput<KeyCode>>,
     (mut messages, mut held): (MessageReader<KeyboardInput>, Local<Held>),
-    mut phys: ResMut<Physics>,
+    (phys, playback, mut run_commands): (Res<Run>, Res<Playback>, MessageWriter<PhysicsCommand>),
     mut view: ResMut<View>,
     mut ui: ResMut<UiState>,
     mut tools: ResMut<ToolState>,
@@ -170,17 +171,21 @@ pub fn keys(
         return;
     }
     if keys.just_pressed(KeyCode::Space) {
-        toggle_play(&mut phys, &mut tools);
+        if play_restarts(&phys, &playback) {
+            // The impulse tool's arrow goes with the run it struck.
+            tools.last_impulse = None;
+        }
+        run_commands.write(PhysicsCommand::TogglePlay);
     }
     if keys.just_pressed(KeyCode::KeyS) || keys.just_pressed(KeyCode::ArrowRight) {
-        phys.paused = true;
-        phys.steps_requested += 1;
+        run_commands.write(PhysicsCommand::Step);
     }
     if keys.just_pressed(KeyCode::ArrowLeft) {
-        step_back(&mut phys);
+        run_commands.write(PhysicsCommand::StepBack);
     }
     if keys.just_pressed(KeyCode::KeyR) {
-        restart(&mut phys, &mut tools);
+        tools.last_impulse = None;
+        run_commands.write(PhysicsCommand::Restart);
     }
     if keys.just_pressed(KeyCode::Home) {
         view.fit = true;

@@ -2,13 +2,19 @@
 //! step time, the energy change since t = 0, and the error against the textbook answers as the
 //! accuracy study measures it ([`study_error`]).
 
-use super::super::physics::{LiveChecks, Physics};
+use super::super::physics::{LiveChecks, PhysicsCommand};
+use super::super::run::Run;
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::rich;
 use bevy_egui::egui;
 
-/// Draws the panel; a changed setting overrides the level's and restarts the run.
-pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
+/// Draws the panel; a changed setting overrides the level's and restarts the run (asked in `out`).
+pub(super) fn solver(
+    ui: &mut egui::Ui,
+    phys: &Run,
+    live: &LiveChecks,
+    out: &mut Vec<PhysicsCommand>,
+) {
     ui.heading("Solver");
     let dt = phys.sim.dt();
     let mut new_dt = dt;
@@ -41,10 +47,11 @@ pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
         ui.end_row();
     });
     if changed {
-        phys.options.dt = Some(new_dt);
-        phys.options.substeps = Some(substeps);
-        phys.options.solver_iterations = Some(iterations);
-        phys.reset();
+        let mut options = phys.options.clone();
+        options.dt = Some(new_dt);
+        options.substeps = Some(substeps);
+        options.solver_iterations = Some(iterations);
+        out.push(PhysicsCommand::Settings(options));
     }
     match phys.step_times.median_ms() {
         // A web page's clock ticks in 0.1 ms steps (browsers coarsen `performance.now()`): a
@@ -109,8 +116,7 @@ pub(super) fn solver(ui: &mut egui::Ui, phys: &mut Physics, live: &LiveChecks) {
         _ => {}
     }
     if phys.options != Default::default() && ui.small_button("level's settings").clicked() {
-        phys.options = Default::default();
-        phys.reset();
+        out.push(PhysicsCommand::Settings(Default::default()));
     }
 }
 

@@ -1,11 +1,12 @@
 //! The tools panel: the mouse tool (select and drag, impulse, set O) and saving the current state
 //! (mid-run) as a level file; building scenes is the build panel's (scene_editor.rs).
 
-use super::super::physics::Physics;
+use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
+use super::super::ui::rich;
+use super::super::user_files::save_level;
 use super::super::view::palette;
-use super::capture::save;
-use super::{rich, UiState};
+use super::state::UiState;
 use bevy_egui::egui;
 use std::path::Path;
 
@@ -13,7 +14,7 @@ use std::path::Path;
 pub(super) fn tool_controls(
     ui: &mut egui::Ui,
     tools: &mut ToolState,
-    phys: &mut Physics,
+    phys: &Run,
     st: &mut UiState,
 ) {
     ui.heading("Tools");
@@ -42,7 +43,13 @@ pub(super) fn tool_controls(
     {
         let stem = st.save_path.trim_end_matches(".ron").to_string();
         let path = format!("{stem}-at-{t:.3}s.ron");
-        st.message = Some(match save(phys, Path::new(&path)) {
+        // The bodies' poses and velocities now as the new level's start (t = 0 at the scene as
+        // edited).
+        let scene = crate::level::Scene {
+            file: phys.scene.file.clone(),
+            level: crate::editor::capture(&phys.scene.level, phys.snapshot()),
+        };
+        st.message = Some(match save_level(&scene, Path::new(&path)) {
             Ok(m) => (m, true),
             Err(e) => (e, false),
         });

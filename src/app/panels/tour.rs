@@ -4,9 +4,9 @@
 
 use super::super::editor::Editor;
 use super::super::overlays::Overlays;
-use super::super::physics::Physics;
+use super::super::run::Run;
+use super::super::ui::rich;
 use super::super::view::palette;
-use super::{rich, UiState};
 use bevy_egui::egui;
 
 /// What the tour has seen that leaves no trace in the window's state.
@@ -37,9 +37,9 @@ impl Tour {
 /// The steps, and whether each is done.
 pub fn steps(
     tour: &Tour,
-    phys: &Physics,
+    phys: &Run,
     ov: &Overlays,
-    st: &UiState,
+    answered: bool,
     editor: &Editor,
 ) -> Vec<(&'static str, bool)> {
     vec![
@@ -61,7 +61,7 @@ pub fn steps(
         ),
         (
             "Type your answer into a question's box and press Enter",
-            st.grades.iter().any(|g| g.is_some()),
+            answered,
         ),
         (
             "Build: new scene, place a bar, and pin it with the join tool",
@@ -75,21 +75,21 @@ pub fn steps(
 pub(super) fn tour(
     ctx: &egui::Context,
     tour: &mut Tour,
-    phys: &Physics,
+    phys: &Run,
     ov: &Overlays,
-    st: &UiState,
+    (answered, help): (bool, bool),
     editor: &Editor,
 ) -> bool {
     if phys.seek.is_some() {
         tour.went_back = true;
     }
-    if st.help {
+    if help {
         tour.saw_help = true;
     }
     if !tour.open {
         return false;
     }
-    let live = steps(tour, phys, ov, st, editor);
+    let live = steps(tour, phys, ov, answered, editor);
     let steps = tour.tick(live);
     let done = steps.iter().filter(|(_, d)| *d).count();
     let mut finished = false;

@@ -5,9 +5,9 @@
 //! note at the top of the panel, and the scene stays as it was.
 
 use super::super::editor::EditorCommand;
+use super::super::ui::rich;
 use super::super::view::palette;
 use super::number_field::{number_field, Accepts};
-use super::rich;
 use crate::editor::{parse_points, points_text, side_name, solid_name, Edit, Property};
 use crate::level::{curves, ArcSide, BodyDef, Shape, TrackSide};
 use bevy_egui::egui;

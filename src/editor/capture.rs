@@ -1,10 +1,12 @@
-//! The current state as a level file: [`capture`] turns the running scene into a level that
-//! starts now, and [`save`] writes it after checking that it loads back identically.
+//! A level from a running scene, and a level's file text checked before it is written.
+//!
+//! [`capture`] turns the state of a run into a level that starts at that moment (the window's
+//! "save this moment"); [`checked_text`] is the level as RON, refused unless it loads back
+//! identically, so nothing is written that rigidlab would not read back as the scene on screen.
 
-use super::super::physics::Physics;
 use crate::level::{self, BodyKind, Level, Scene};
 use crate::snapshot::Snapshot;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The current state as a level (t becomes 0): poses and velocities from the snapshot; events still
 /// to come are shifted; checks and questions, which are about the exercise from its start, are
@@ -43,7 +45,7 @@ pub fn capture(level: &Level, s: &Snapshot) -> Level {
     // Load tables continue from now: the value at t first, then the rows still to come.
     for l in out.loads.iter_mut() {
         if let Some(level::Profile::Table(rows)) = &mut l.force {
-            let now = crate::sim::vector_profile_at(&level::Profile::Table(rows.clone()), t);
+            let now = level::profiles::vector_profile_at(&level::Profile::Table(rows.clone()), t);
             let mut new = vec![(0.0, now)];
             new.extend(
                 rows.iter()
@@ -53,7 +55,7 @@ pub fn capture(level: &Level, s: &Snapshot) -> Level {
             *rows = new;
         }
         if let Some(level::Profile::Table(rows)) = &mut l.torque {
-            let now = crate::sim::scalar_profile_at(&level::Profile::Table(rows.clone()), t);
+            let now = level::profiles::scalar_profile_at(&level::Profile::Table(rows.clone()), t);
             let mut new = vec![(0.0, now)];
             new.extend(
                 rows.iter()
@@ -68,27 +70,9 @@ pub fn capture(level: &Level, s: &Snapshot) -> Level {
     out
 }
 
-/// Writes the current state as a level (t becomes 0; at t = 0 the scene as edited).
-pub fn save(phys: &Physics, path: &Path) -> Result<String, String> {
-    let level = capture(&phys.scene.level, phys.snapshot());
-    save_level(
-        &Scene {
-            file: phys.scene.file.clone(),
-            level,
-        },
-        path,
-    )
-}
-
-/// Writes a level and reads it back: it must parse, validate, and be equal; then it goes to the
-/// user's file (a download in the browser). A file already at `path` is kept: the level goes under
-/// a numbered name beside it (`user_files::deliver`).
-pub fn save_level(scene: &Scene, path: &Path) -> Result<String, String> {
-    save_level_as(scene, path).map(|(_, m)| m)
-}
-
-/// [`save_level`], with the file the level was written to.
-pub fn save_level_as(scene: &Scene, path: &Path) -> Result<(PathBuf, String), String> {
+/// The level's file text, if it loads back from `path` as the same level: it must parse,
+/// validate and be equal; else why not, for the status line.
+pub fn checked_text(scene: &Scene, path: &Path) -> Result<String, String> {
     let level = &scene.level;
     let text = level::to_ron(level);
     let back = level::parse(path, &text)
@@ -96,24 +80,5 @@ pub fn save_level_as(scene: &Scene, path: &Path) -> Result<(PathBuf, String), St
     if &back.level != level {
         return Err("not saved: the level read back differs from the scene".into());
     }
-    let (used, done) = super::super::user_files::deliver_as(path, text.as_bytes(), "text/plain")?;
-    Ok((used, format!("{done} (loads back identically)")))
-}
-
-/// The file name the save field starts with: the level's own stem with `-saved`, in the folder
-/// the level browser lists (natively; the page downloads it).
-pub(super) fn default_save_path(scene: &Scene) -> String {
-    let stem = scene
-        .file
-        .file_stem()
-        .map(|s| s.to_string_lossy().to_string())
-        .unwrap_or_else(|| "scene".into());
-    if cfg!(target_arch = "wasm32") {
-        format!("{stem}-saved.ron")
-    } else {
-        format!(
-            "{}/{stem}-saved.ron",
-            super::super::user_files::SAVED_LEVELS
-        )
-    }
+    Ok(text)
 }

@@ -1,0 +1,202 @@
+//! The running scene drawn: body meshes, lines, the overlays and their labels, and (in renders)
+//! the title, time and color key; no panels, no camera of its own. The native window, the page
+//! and `rigidlab render` all draw with this plugin.
+
+use super::draw::{self, Drawing};
+use super::labels;
+use super::overlays::{self, Overlays, Scales};
+use super::physics::PhysicsStep;
+use super::run::Run;
+use super::scene_lines;
+use super::tools;
+use super::ui::color32;
+use super::view::{self, palette, Outlines, View};
+use bevy::prelude::*;
+use bevy_egui::{egui, EguiContexts, EguiPrimaryContextPass};
+
+/// Drawing of the running scene: meshes, lines, overlays, labels (no panels, no camera).
+pub struct ScenePlugin {
+    /// Paint the title/time/legend box (renders; the sandbox shows these in its panels).
+    pub legend: bool,
+}
+
+/// The set of the scene drawing systems (after the physics step).
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct SceneDraw;
+
+impl Plugin for ScenePlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<View>()
+            .init_resource::<Outlines>()
+            .init_resource::<Drawing>()
+            .init_resource::<Overlays>()
+            .add_systems(
+                Update,
+                (
+                    view::spawn_meshes,
+                    view::sync_camera,
+                    view::sync_meshes,
+                    build_drawing,
+                    draw::emit_gizmos,
+                )
+                    .chain()
+                    .in_set(SceneDraw)
+                    .after(PhysicsStep),
+            )
+            .add_systems(EguiPrimaryContextPass, paint_labels);
+        if self.legend {
+            app.add_systems(EguiPrimaryContextPass, paint_legend.after(paint_labels));
+        }
+    }
+}
+
+/// Body lines, overlays and scale bar of this frame.
+pub fn build_drawing(
+    phys: Res<Run>,
+    mut view: ResMut<View>,
+    outlines: Res<Outlines>,
+    ov: Res<Overlays>,
+    tool: Option<Res<tools::ToolState>>,
+    mut d: ResMut<Drawing>,
+) {
+    let s = phys.snapshot();
+    if view.generation_speed != Some(phys.generation) {
+        view.generation_speed = Some(phys.generation);
+        view.max_speed = 0.0;
+    }
+    let fastest = s
+        .bodies
+        .iter()
+        .map(|b| b.velocity.length())
+        .fold(0.0, f64::max);
+    if fastest.is_finite() && fastest > view.max_speed {
+        view.max_speed = fastest;
+    }
+    d.clear(view.m_per_px);
+    scene_lines::scene_lines(
+        &phys.sim.level,
+        &outlines.bodies,
+        &outlines.index,
+        s,
+        view.m_per_px,
+        &mut d,
+    );
+    if let Some(i) = ov.selected {
+        scene_lines::highlight(&outlines.bodies, s, i, &mut d);
+    }
+    let mut scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
+    scales.gain = ov.arrow_scale;
+    let vp = view.viewport;
+    let (a, b) = (
+        view.to_world(Vec2::new(vp.min.x, vp.max.y)),
+        view.to_world(Vec2::new(vp.max.x, vp.min.y)),
+    );
+    scales.visible = Some((a.min(b), a.max(b)));
+    overlays::build(&ov, &phys, &outlines.bodies, &scales, &mut d);
+    if let Some(tool) = tool {
+        tools::preview(&tool, &phys, &scales, &mut d);
+    }
+    scene_lines::scale_bar(&view, &mut d);
+}
+
+fn egui_rect(r: Rect) -> egui::Rect {
+    egui::Rect::from_min_max(egui::pos2(r.min.x, r.min.y), egui::pos2(r.max.x, r.max.y))
+}
+
+/// The labels of the drawing, in screen space, each on a light box so it reads over lines.
+fn paint_labels(
+    mut contexts: EguiContexts,
+    d: Res<Drawing>,
+    view: Res<View>,
+    mut last: Local<Vec<(Vec2, Rect)>>,
+) -> Result {
+    let ctx = contexts.ctx_mut()?;
+    let painter = ctx
+        .layer_painter(egui::LayerId::new(
+            egui::Order::Background,
+            egui::Id::new("rigidlab-labels"),
+        ))
+        .with_clip_rect(egui_rect(view.viewport));
+    let bg = color32(palette::BACKGROUND.with_alpha(0.8));
+    let galleys: Vec<_> = d
+        .labels
+        .iter()
+        .map(|l| {
+            painter.layout_no_wrap(
+                l.text.clone(),
+                egui::FontId::proportional(l.size),
+                color32(l.color),
+            )
+        })
+        .collect();
+    let wants: Vec<labels::Want> = d
+        .labels
+        .iter()
+        .zip(&galleys)
+        .map(|(l, g)| label_want(l, Vec2::new(g.size().x, g.size().y), &view))
+        .collect();
+    let rects = labels::place_keeping(&wants, &screen_bodies(&d, &view), view.viewport, &last);
+    *last = wants
+        .iter()
+        .map(|w| w.home)
+        .zip(rects.iter().copied())
+        .collect();
+    for ((l, galley), r) in d.labels.iter().zip(galleys).zip(rects) {
+        painter.rect_filled(egui_rect(r).expand(1.5), 2.0, bg);
+        painter.galley(egui::pos2(r.min.x, r.min.y), galley, color32(l.color));
+    }
+    Ok(())
+}
+
+/// Where a label wants to be: centered on its point (plus its offset), or pushed out along
+/// `dir` until its box clears the point (labels at arrow tips).
+pub fn label_want(l: &draw::Label, size: Vec2, view: &View) -> labels::Want {
+    let push = 5.0 + 0.5 * (l.dir.x.abs() * size.x + l.dir.y.abs() * size.y);
+    let p = view.to_screen(l.at) + l.offset + l.dir * push;
+    labels::Want {
+        home: p - 0.5 * size,
+        size,
+    }
+}
+
+/// The drawing's bodies in screen coordinates, for the label placer.
+pub fn screen_bodies(d: &Drawing, view: &View) -> Vec<Vec<Vec2>> {
+    d.bodies
+        .iter()
+        .map(|poly| poly.iter().map(|p| view.to_screen(*p)).collect())
+        .collect()
+}
+
+/// Title, time and the color key (renders).
+fn paint_legend(mut contexts: EguiContexts, phys: Res<Run>, ov: Res<Overlays>) -> Result {
+    let ctx = contexts.ctx_mut()?;
+    egui::Area::new(egui::Id::new("rigidlab-legend"))
+        .fixed_pos(egui::pos2(10.0, 8.0))
+        .show(ctx, |ui| {
+            egui::Frame::new()
+                .fill(color32(palette::BACKGROUND.with_alpha(0.85)))
+                .inner_margin(6.0)
+                .show(ui, |ui| {
+                    let s = phys.snapshot();
+                    ui.label(
+                        egui::RichText::new(&phys.sim.level.title)
+                            .strong()
+                            .color(color32(palette::TEXT)),
+                    );
+                    ui.label(
+                        egui::RichText::new(format!(
+                            "t = {:.3} s   dt = {:.4} s",
+                            s.time,
+                            phys.sim.dt()
+                        ))
+                        .color(color32(palette::TEXT)),
+                    );
+                    for (text, color) in
+                        overlays::legend_entries(&ov, &phys.sim.level, phys.frame_window())
+                    {
+                        ui.label(egui::RichText::new(text).color(color32(color)));
+                    }
+                });
+        });
+    Ok(())
+}
