@@ -44,10 +44,11 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             if let Some(i) = m.body_index(s, body) {
                 if m.crossings.is_empty() {
                     // (The joints' anchors from a stepped snapshot: the initial one has none.)
-                    if pendulum_breaks(m, s, i, joint).is_none() {
+                    let special = pendulum_breaks(m, s, i, joint);
+                    if special.is_none() {
                         m.closed_form = pendulum_theory(m, s, body, joint);
                     }
-                    general(m, i, |shape| shape[i].1);
+                    general(m, i, special, |shape| shape[i].1);
                     m.crossings.add(prev.time, prev.bodies[i].omega);
                 }
                 m.crossings.add(s.time, s.bodies[i].omega);
@@ -71,13 +72,14 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         .find(|x| !x.torsion && (x.body1 == i || x.body2 == Some(i)));
                     m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
                     m.spring_partner = spring_partner(init, i);
-                    if spring_mass_breaks(m, init, i).is_none() {
+                    let special = spring_mass_breaks(m, init, i);
+                    if special.is_none() {
                         m.closed_form = spring_mass_theory(m, init, i);
                     }
                     match m.spring_axis {
                         Some(a) => {
                             let partner = m.spring_partner;
-                            general(m, i, |shape| {
+                            general(m, i, special, |shape| {
                                 let own = shape[i].0;
                                 (own - partner.map_or(DVec2::ZERO, |j| shape[j].0)).dot(a)
                             });
@@ -256,13 +258,22 @@ const AMPLITUDE_MATTERS: f64 = 1e-5;
 /// The general method's period for body i, into `m.linearized`, or why there is none, into
 /// `m.inapplicable`. `measured` is the excited mode's component in the coordinate whose rate
 /// the engine's zero crossings follow (from the mode's shape, per body (dx_G, dtheta)).
-fn general(m: &mut Meter, i: usize, measured: impl Fn(&[(DVec2, f64)]) -> f64) {
+/// `special`: why the one-body closed form does not fit either, when it does not (the note
+/// then says both).
+fn general(
+    m: &mut Meter,
+    i: usize,
+    special: Option<String>,
+    measured: impl Fn(&[(DVec2, f64)]) -> f64,
+) {
     match general_period(m, i, measured) {
         Ok(t) => m.linearized = Some(t),
         Err(e) => {
-            m.inapplicable = Some(format!(
-                "the linearized equations of the scene (PL-14) give no period: {e}"
-            ))
+            let general = format!("the linearized equations of the scene (PL-14) give no period: {e}");
+            m.inapplicable = Some(match special {
+                Some(why) => format!("{why}, so the one-body formula does not fit; {general}"),
+                None => general,
+            })
         }
     }
 }
