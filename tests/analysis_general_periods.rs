@@ -153,12 +153,7 @@ fn the_questions_read_the_general_method() {
             assert!(
                 q.passed,
                 "{file} {}: engine {} against {} ({:.2e} > {:.0e}) {}",
-                q.id,
-                q.engine,
-                q.expected,
-                q.rel_error,
-                q.tolerance,
-                q.note
+                q.id, q.engine, q.expected, q.rel_error, q.tolerance, q.note
             );
         }
     }
@@ -188,7 +183,10 @@ fn closed_forms_agree_where_they_apply() {
             let Some((general, closed)) = c else {
                 continue;
             };
-            println!("{file} {}: general {general:.9}, closed form {closed:.9}", q.id);
+            println!(
+                "{file} {}: general {general:.9}, closed form {closed:.9}",
+                q.id
+            );
             assert!(
                 rel(*general, *closed) < 1e-5,
                 "{file} {}: the general method {general} and the closed form {closed} disagree",

@@ -66,7 +66,10 @@ fn pieces(b: &BodyDef) -> Option<Vec<Piece>> {
             }]
         }
         Shape::Capsule { length, radius } => vec![Piece {
-            core: vec![w(DVec2::new(-0.5 * length, 0.0)), w(DVec2::new(0.5 * length, 0.0))],
+            core: vec![
+                w(DVec2::new(-0.5 * length, 0.0)),
+                w(DVec2::new(0.5 * length, 0.0)),
+            ],
             radius: *radius,
         }],
         Shape::Polygon { points } => vec![Piece {
@@ -209,7 +212,9 @@ pub fn resting_contacts(
                 ));
             }
             let mu = if friction {
-                body.friction.unwrap_or(0.0).max(other.friction.unwrap_or(0.0))
+                body.friction
+                    .unwrap_or(0.0)
+                    .max(other.friction.unwrap_or(0.0))
             } else {
                 0.0
             };
@@ -253,7 +258,9 @@ fn classify(
         .filter(|(_, n)| n.0 - a.radius - b.radius <= tol)
         .collect();
     let Some((p, (_, t, s, e))) = touching.first().copied() else {
-        return Err(format!("{pair} along a feature the linearization does not read"));
+        return Err(format!(
+            "{pair} along a feature the linearization does not read"
+        ));
     };
     if !(1e-6..=1.0 - 1e-6).contains(&t) {
         return Err(format!(

@@ -85,9 +85,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                             });
                             m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
                         }
-                        None => {
-                            m.inapplicable = Some("no linear spring acts on the body".into())
-                        }
+                        None => m.inapplicable = Some("no linear spring acts on the body".into()),
                     }
                 }
                 if let Some(a) = m.spring_axis {
@@ -269,7 +267,8 @@ fn general(
     match general_period(m, i, measured) {
         Ok(t) => m.linearized = Some(t),
         Err(e) => {
-            let general = format!("the linearized equations of the scene (PL-14) give no period: {e}");
+            let general =
+                format!("the linearized equations of the scene (PL-14) give no period: {e}");
             m.inapplicable = Some(match special {
                 Some(why) => format!("{why}, so the one-body formula does not fit; {general}"),
                 None => general,
@@ -509,7 +508,8 @@ fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
             (false, Some(b)) if b == i => Some(x.body1),
             _ => return false,
         };
-        let moves = other.is_some_and(|o| s.bodies.get(o).is_some_and(|b| b.kind != BodyKind::Fixed));
+        let moves =
+            other.is_some_and(|o| s.bodies.get(o).is_some_and(|b| b.kind != BodyKind::Fixed));
         !x.torsion && moves && other != partner
     }) {
         return Some(format!(
