@@ -38,6 +38,7 @@ pub mod mass;
 pub mod momentum;
 pub mod oscillation;
 pub mod percussion;
+pub mod resting_contacts;
 pub mod small_oscillations;
 pub mod touching;
 pub mod virtual_work;

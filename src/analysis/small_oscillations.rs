@@ -34,6 +34,7 @@
 
 use crate::analysis::links::joined_bodies;
 use crate::analysis::mass::of_body;
+use crate::analysis::resting_contacts::{resting_contacts, Hold, RestingContact};
 use crate::level::{BodyKind, Coordinate, Effect, JointKind, Level, Profile, DEFAULT_DENSITY};
 use glam::DVec2;
 use nalgebra::{DMatrix, DVector};
@@ -120,6 +121,10 @@ pub struct Mechanism {
     pub gravity: DVec2,
     /// The support's constant acceleration a: in its frame gravity is g - a.
     pub support_acceleration: DVec2,
+    /// The support's velocity at t = 0 (the members' velocities are relative to it).
+    pub support_velocity: DVec2,
+    /// The faces the members rest on at the start, held as rolling or smooth contacts.
+    pub contacts: Vec<RestingContact>,
 }
 
 /// One mode of small oscillation.
@@ -341,8 +346,11 @@ impl Mechanism {
                 DVec2::ZERO
             },
             support_acceleration: a_support,
+            support_velocity: v_support,
             ..Default::default()
         };
+        let moving: Vec<usize> = (0..n).filter(|&k| inside[k] && dynamic(k)).collect();
+        m.contacts = resting_contacts(level, &moving, m.gravity - a_support)?;
         if has(Effect::Joints) {
             for j in &level.joints {
                 let (b1, b2) = (index(&j.body1).unwrap_or(0), index(&j.body2).unwrap_or(0));
@@ -589,6 +597,21 @@ impl<'a> Model<'a> {
         for (s, &k) in self.slots.iter().enumerate() {
             if self.m.members[k].lock_rotation {
                 g.push(q[3 * s + 2]);
+            }
+        }
+        // Resting contacts: the distance from the face kept; rolling also keeps the distance
+        // rolled along the face plus r theta (RK-8: v_G along the face = -omega r); a flat face
+        // keeps its angle.
+        for c in &self.m.contacts {
+            let (gk, ak) = p.0[c.body];
+            let center = self.point(&p, c.body, c.point);
+            let along = DVec2::new(c.normal.y, -c.normal.x);
+            match c.hold {
+                Hold::Rolling { radius } => {
+                    g.extend([c.normal.dot(center), along.dot(center) + radius * ak])
+                }
+                Hold::Sliding => g.push(c.normal.dot(center)),
+                Hold::Flat => g.extend([c.normal.dot(gk), l * ak]),
             }
         }
         DVector::from_vec(g)

@@ -31,9 +31,16 @@ pub(super) struct Meter {
     pub crossings: Crossings,
     /// Direction of the spring a `SpringPeriod` body oscillates along.
     pub spring_axis: Option<DVec2>,
-    /// Periods: the linearized period (PL-14) that stands in for a closed form whose
-    /// preconditions the scene breaks.
+    /// Periods: the general method's period, from the linearized equations of the whole scene
+    /// (PL-14), which is the analysis.
     pub linearized: Option<f64>,
+    /// Periods: the one-body closed form's period, where its assumptions hold (a cross-check
+    /// of `linearized`, never the analysis).
+    pub closed_form: Option<f64>,
+    /// `ModePeriod`: per snapshot body, the weights (m dx_G, I_G dtheta) of the mode's
+    /// modal rate eta' = phi^T M v, and the support's velocity at t = 0 and acceleration.
+    pub modal_weights: Option<Vec<(DVec2, f64)>>,
+    pub support_motion: (DVec2, DVec2),
     /// `EquilibriumAngle`: the body's angle at its last two extremes (interpolated), and the
     /// equilibrium angle of its mechanism (PL-14), found once.
     pub swing: Extremes,
@@ -85,6 +92,9 @@ impl Meter {
             crossings: Crossings::default(),
             spring_axis: None,
             linearized: None,
+            closed_form: None,
+            modal_weights: None,
+            support_motion: (DVec2::ZERO, DVec2::ZERO),
             swing: Extremes::default(),
             equilibrium: None,
             spring_partner: None,

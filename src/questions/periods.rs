@@ -1,19 +1,26 @@
-//! Periods of oscillation: a body swinging on a pivot, a body on springs.
+//! Periods of oscillation: a body swinging on a pivot, a body on springs, one mode of a
+//! mechanism.
 //!
 //! The engine's period is the mean time between successive zero crossings of the same
-//! direction of the body's velocity (angular for a pendulum, along the spring for a spring
-//! mass), i.e. between its extremes; the analyses are the exact large-amplitude pendulum period
-//! (PL-5 with the elliptic integral, or the energy integral where a torsion spring to the ground
-//! acts on the pivot) and 2 pi sqrt(m / k), damped where the springs' dampers act.
+//! direction of a rate (between the extremes of its coordinate): the body's omega for a
+//! pendulum, its velocity along its first spring (less its partner's, for a free pair) for a
+//! spring mass, the modal rate phi^T M v for a mode.
 //!
-//! Each closed form holds for the scene it was derived for: the pendulum swings on a fixed pin
-//! under gravity and torsion springs to the ground alone (no other joint, spring, load, motor or
-//! damping); the spring mass moves along its springs' one line, on linear springs and dampers
-//! alone (no torsion spring, load, pin or body damping). Where the scene is another, the period
-//! of the mode the start excites, from the equations of motion linearized about the equilibrium
-//! (PL-14, `analysis::small_oscillations`), stands in; where that does not apply either (no
-//! stable equilibrium, a swing too large for "small", several modes excited, a motor), the
-//! analysis says why ([`Meter::inapplicable`]). Contacts during the run are not looked at.
+//! The analysis is always the general method, the equations of motion of the whole scene
+//! linearized about its equilibrium (PL-14, `analysis::small_oscillations`: mass, stiffness and
+//! damping matrices with the joints, couplings, rolling and smooth resting contacts eliminated):
+//! the period of the mode the start excites, at the start's amplitude when the mechanism has
+//! one degree of freedom and no damper (the energy integral along it, exact at any swing: the
+//! elliptic-integral pendulum period, PL-5), the linearized (damped) period otherwise. Where it
+//! cannot be formed or does not fit (no stable equilibrium, several modes excited, a swing too
+//! large for "small", a contact that neither rolls nor slides smoothly, a motor), the analysis
+//! says why ([`Meter::inapplicable`]) and gives no number.
+//!
+//! The one-body closed forms (the exact pendulum period with torsion springs to the ground,
+//! 2 pi sqrt(m / sum k) and its reduced-mass and damped forms) are kept as cross-checks only,
+//! computed where their assumptions, stated as predicates ([`pendulum_breaks`],
+//! [`spring_mass_breaks`]), hold; tests hold them to the general method
+//! (`QuestionProbe::closed_form_cross_check`).
 
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
@@ -30,16 +37,18 @@ use crate::level::{BodyKind, JointKind};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
-/// Follows the oscillating velocity over the step from `prev` to `s`.
+/// Follows the oscillating rate over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     match &m.q {
         Quantity::PendulumPeriod { body, joint } => {
             if let Some(i) = m.body_index(s, body) {
                 if m.crossings.is_empty() {
-                    m.inapplicable = pendulum_breaks(m, s, i, joint);
-                    if m.inapplicable.is_some() {
-                        linearize(m, i, |shape| shape[i].1);
+                    // (The joints' anchors from a stepped snapshot: the initial one has none.)
+                    let special = pendulum_breaks(m, s, i, joint);
+                    if special.is_none() {
+                        m.closed_form = pendulum_theory(m, s, body, joint);
                     }
+                    general(m, i, special, |shape| shape[i].1);
                     m.crossings.add(prev.time, prev.bodies[i].omega);
                 }
                 m.crossings.add(s.time, s.bodies[i].omega);
@@ -63,21 +72,44 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         .find(|x| !x.torsion && (x.body1 == i || x.body2 == Some(i)));
                     m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
                     m.spring_partner = spring_partner(init, i);
-                    m.inapplicable = spring_mass_breaks(m, init, i);
-                    if let (Some(_), Some(a)) = (&m.inapplicable, m.spring_axis) {
-                        let partner = m.spring_partner;
-                        linearize(m, i, |shape| {
-                            let own = shape[i].0;
-                            (own - partner.map_or(DVec2::ZERO, |j| shape[j].0)).dot(a)
-                        });
+                    let special = spring_mass_breaks(m, init, i);
+                    if special.is_none() {
+                        m.closed_form = spring_mass_theory(m, init, i);
                     }
-                    if let Some(a) = m.spring_axis {
-                        m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
+                    match m.spring_axis {
+                        Some(a) => {
+                            let partner = m.spring_partner;
+                            general(m, i, special, |shape| {
+                                let own = shape[i].0;
+                                (own - partner.map_or(DVec2::ZERO, |j| shape[j].0)).dot(a)
+                            });
+                            m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
+                        }
+                        None => m.inapplicable = Some("no linear spring acts on the body".into()),
                     }
                 }
                 if let Some(a) = m.spring_axis {
                     m.crossings.add(s.time, rate(s, a, m.spring_partner));
                 }
+            }
+        }
+        Quantity::ModePeriod { body, mode } => {
+            if m.crossings.is_empty() {
+                let init: &Snapshot = m.init.as_deref().unwrap_or(prev);
+                match mode_of(m, init, body, *mode) {
+                    Ok((t, w, support)) => {
+                        m.linearized = Some(t);
+                        m.modal_weights = Some(w);
+                        m.support_motion = support;
+                    }
+                    Err(e) => m.inapplicable = Some(e),
+                }
+                if let Some(r) = modal_rate(m, prev) {
+                    m.crossings.add(prev.time, r);
+                }
+            }
+            if let Some(r) = modal_rate(m, s) {
+                m.crossings.add(s.time, r);
             }
         }
         Quantity::EquilibriumAngle(body) => {
@@ -103,6 +135,69 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     }
 }
 
+/// Mode `index` (0 the slowest) of the mechanism that holds `body`: its period (damped where
+/// dampers act), the modal rate's weights per snapshot body, and the support's velocity at
+/// t = 0 and acceleration; or why there is no such mode to time.
+#[allow(clippy::type_complexity)]
+fn mode_of(
+    m: &Meter,
+    init: &Snapshot,
+    body: &str,
+    index: usize,
+) -> Result<(f64, Vec<(DVec2, f64)>, (DVec2, DVec2)), String> {
+    let level = m.facts.level.as_ref().ok_or("the level is not kept")?;
+    let around = level
+        .bodies
+        .iter()
+        .position(|b| b.name == body)
+        .ok_or("the body is not in the level")?;
+    let mech = Mechanism::of_level(level, around)?;
+    let osc = mech.small_oscillations()?;
+    let mode = osc.modes.get(index).ok_or_else(|| {
+        format!(
+            "the mechanism has {} oscillating mode(s): mode {index} does not exist (0 is the slowest)",
+            osc.modes.len()
+        )
+    })?;
+    if osc.period_error > SMALL_AMPLITUDE_PERIOD_ERROR {
+        return Err(format!(
+            "the start's swing is not small: along its most excited mode the period at that amplitude differs from the linearized one by {:.2} %, over the {:.1} % bound",
+            100.0 * osc.period_error,
+            100.0 * SMALL_AMPLITUDE_PERIOD_ERROR
+        ));
+    }
+    let period = mode
+        .damped_period
+        .ok_or("the mode is overdamped: it does not oscillate")?;
+    // phi^T M v per body: (m dx_G) . v_G + (I_G dtheta) omega, by name into the snapshot.
+    let mut weights = vec![(DVec2::ZERO, 0.0); init.bodies.len()];
+    for (k, b) in mech.members.iter().enumerate().filter(|(_, b)| b.moves) {
+        let j = m
+            .body_index(init, &b.name)
+            .ok_or("a body of the mechanism is not in the snapshot")?;
+        let (dx, dth) = mode.shape[k];
+        weights[j] = (dx * b.mass, dth * b.inertia);
+    }
+    Ok((
+        period,
+        weights,
+        (mech.support_velocity, mech.support_acceleration),
+    ))
+}
+
+/// The modal rate eta' = phi^T M v at snapshot s, velocities taken relative to the support.
+fn modal_rate(m: &Meter, s: &Snapshot) -> Option<f64> {
+    let w = m.modal_weights.as_ref()?;
+    let (v0, a) = m.support_motion;
+    let vs = v0 + a * s.time;
+    Some(
+        w.iter()
+            .zip(&s.bodies)
+            .map(|((mx, ith), b)| mx.dot(b.velocity - vs) + ith * b.omega)
+            .sum(),
+    )
+}
+
 /// The equilibrium angle of body i's mechanism (PL-14's equilibrium, in the frame of a support
 /// that may accelerate uniformly: VW-4), or why there is none to compare with.
 fn equilibrium_angle(m: &Meter, i: usize) -> Result<f64, String> {
@@ -118,54 +213,9 @@ fn equilibrium_angle(m: &Meter, i: usize) -> Result<f64, String> {
 pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     Some(match &m.q {
-        Quantity::PendulumPeriod { .. } | Quantity::SpringPeriod(_) if m.linearized.is_some() => {
-            (m.crossings.period(), m.linearized)
-        }
-        Quantity::PendulumPeriod { body: b, joint } => {
-            (m.crossings.period(), pendulum_theory(m, s, b, joint))
-        }
-        Quantity::SpringPeriod(b) => {
-            let i = m.body_index(s, b)?;
-            // Each spring's k = 2 V_e / x^2, from the first snapshot where it is stretched.
-            let k: f64 = m
-                .init
-                .as_ref()?
-                .springs
-                .iter()
-                .chain(&s.springs)
-                .filter(|x| {
-                    !x.torsion && (x.body1 == i || x.body2 == Some(i)) && x.extension.abs() > 1e-9
-                })
-                .map(|x| (x.name.clone(), 2.0 * x.energy / (x.extension * x.extension)))
-                .fold(Vec::<(String, f64)>::new(), |mut v, (n, k)| {
-                    if !v.iter().any(|(m, _)| *m == n) {
-                        v.push((n, k));
-                    }
-                    v
-                })
-                .iter()
-                .map(|(_, k)| k)
-                .sum();
-            // Two free bodies on their springs: the relative motion, with the reduced mass.
-            let mass = match m.spring_partner {
-                Some(j) => reduced_mass(s.bodies[i].mass, s.bodies[j].mass),
-                None => s.bodies[i].mass,
-            };
-            // The dampers of the body's springs (the level's c; 0 without the `damping` effect).
-            let c: f64 = m
-                .facts
-                .springs
-                .iter()
-                .filter(|x| !x.torsion && x.holds(i))
-                .map(|x| x.damping)
-                .sum();
-            let theory = if c > 0.0 {
-                damped_period(mass, k, c)
-            } else {
-                (k > 0.0).then(|| spring_mass_period(mass, k))
-            };
-            (m.crossings.period(), theory)
-        }
+        Quantity::PendulumPeriod { .. }
+        | Quantity::SpringPeriod(_)
+        | Quantity::ModePeriod { .. } => (m.crossings.period(), m.linearized),
         Quantity::EquilibriumAngle(b) => {
             let i = m.body_index(s, b)?;
             // The middle of the last whole swing; a body that has not swung twice is read
@@ -181,31 +231,57 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
     })
 }
 
-/// Where the closed form's preconditions break (`m.inapplicable` says which), the linearized
-/// period (PL-14) of the mode the start excites stands in: `m.linearized` is set and
-/// `m.inapplicable` cleared. Where the linearization does not apply either, `m.inapplicable`
-/// gets its reason too. `measured` is the excited mode's component in the coordinate whose
-/// rate the engine's zero crossings follow (from the mode's shape, per body (dx_G, dtheta)).
-fn linearize(m: &mut Meter, i: usize, measured: impl Fn(&[(DVec2, f64)]) -> f64) {
-    let Some(why) = m.inapplicable.clone() else {
-        return;
+/// The one-body spring-mass closed form for body i where [`spring_mass_breaks`] holds it:
+/// 2 pi sqrt(m / sum k) with the level's k and the engine's m, the reduced mass for a free
+/// pair, damped where the springs' dampers act (a cross-check of the general method only).
+fn spring_mass_theory(m: &Meter, s: &Snapshot, i: usize) -> Option<f64> {
+    let springs = || m.facts.springs.iter().filter(|x| !x.torsion && x.holds(i));
+    let k: f64 = springs().map(|x| x.stiffness).sum();
+    let c: f64 = springs().map(|x| x.damping).sum();
+    let mass = match m.spring_partner {
+        Some(j) => reduced_mass(s.bodies[i].mass, s.bodies[j].mass),
+        None => s.bodies[i].mass,
     };
-    match linearized_period(m, i, measured) {
-        Ok(t) => {
-            m.linearized = Some(t);
-            m.inapplicable = None;
-        }
+    if c > 0.0 {
+        damped_period(mass, k, c)
+    } else {
+        (k > 0.0).then(|| spring_mass_period(mass, k))
+    }
+}
+
+/// The amplitude's lengthening of a one-degree-of-freedom period above which the period at the
+/// start's amplitude is the analysis, not the linearized one.
+const AMPLITUDE_MATTERS: f64 = 1e-5;
+
+/// The general method's period for body i, into `m.linearized`, or why there is none, into
+/// `m.inapplicable`. `measured` is the excited mode's component in the coordinate whose rate
+/// the engine's zero crossings follow (from the mode's shape, per body (dx_G, dtheta)).
+/// `special`: why the one-body closed form does not fit either, when it does not (the note
+/// then says both).
+fn general(
+    m: &mut Meter,
+    i: usize,
+    special: Option<String>,
+    measured: impl Fn(&[(DVec2, f64)]) -> f64,
+) {
+    match general_period(m, i, measured) {
+        Ok(t) => m.linearized = Some(t),
         Err(e) => {
-            m.inapplicable = Some(format!(
-                "{why}; the linearized period (PL-14) does not apply either: {e}"
-            ))
+            let general =
+                format!("the linearized equations of the scene (PL-14) give no period: {e}");
+            m.inapplicable = Some(match special {
+                Some(why) => format!("{why}, so the one-body formula does not fit; {general}"),
+                None => general,
+            })
         }
     }
 }
 
-/// The period of the mode the start excites, damped where dampers act, when the start is
-/// within the small-amplitude bound; otherwise why not.
-fn linearized_period(
+/// The period of the mode the start excites: at the start's amplitude (the energy integral
+/// along the one free coordinate, exact at any swing) for one degree of freedom without
+/// dampers; else the linearized period, damped where dampers act, when the start is within
+/// the small-amplitude bound; otherwise why not.
+fn general_period(
     m: &Meter,
     i: usize,
     measured: impl Fn(&[(DVec2, f64)]) -> f64,
@@ -221,6 +297,17 @@ fn linearized_period(
         .fold(0.0, f64::max);
     if along.abs() <= 1e-6 * scale {
         return Err("the excited mode does not move the coordinate the period is read from".into());
+    }
+    // One degree of freedom without dampers: the energy integral is the period at the start's
+    // amplitude, exact at any swing, where the swing lengthens it measurably (over 1e-5: the
+    // integral's own error, (ds / reach)^2 and its turning points, is about 2e-6, so under that
+    // the linear period is the nearer).
+    let one_dof = osc.modes.len() + osc.free_motions == 1;
+    let undamped = mode.damped_period == Some(mode.period);
+    if one_dof && undamped && osc.period_error > AMPLITUDE_MATTERS {
+        if let Some(t) = osc.amplitude_period {
+            return Ok(t);
+        }
     }
     if osc.period_error > SMALL_AMPLITUDE_PERIOD_ERROR {
         return Err(format!(
@@ -309,8 +396,10 @@ fn pendulum_theory(m: &Meter, s: &Snapshot, body: &str, joint: &str) -> Option<f
     energy_integral_period(i_o, v, phi0, b0.omega, 4.0 * std::f64::consts::PI)
 }
 
-/// Why the pendulum period's analysis does not fit the scene: it is the period of body i
-/// swinging on a fixed pin under gravity and torsion springs to the ground, nothing else.
+/// The pendulum closed form's assumptions, as a predicate: None where they hold, else the first
+/// that fails. It is the period of body i swinging on a fixed pin (or one translating uniformly)
+/// under gravity and torsion springs to the ground, nothing else: no other joint, linear spring
+/// (a spring at the tip adds k L^2 to the restoring moment), load, motor, damping or coupling.
 fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<String> {
     let facts = &m.facts;
     let j = facts.joints.iter().find(|x| x.name == joint)?;
@@ -404,11 +493,43 @@ fn coupled(s: &Snapshot, i: usize, formula: &str) -> Option<String> {
     ))
 }
 
-/// Why the spring-mass period's analysis does not fit the scene: body i (with its partner, if
-/// any) moves along the one line of its linear springs, under them and their dampers alone.
+/// The spring-mass closed form's assumptions, as a predicate: None where they hold, else the
+/// first that fails. Body i (with its partner, if any) moves along the one line of its linear
+/// springs, under them and their dampers alone: every spring joins it to the ground or to one
+/// free partner (a second moving body on its springs couples their motions: two modes, neither
+/// 2 pi sqrt(m / sum k)), and it rests on nothing (a rolling contact adds I_G / r^2 to m).
 fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
     let facts = &m.facts;
     let axis = m.spring_axis?;
+    let partner = m.spring_partner;
+    if let Some(x) = s.springs.iter().find(|x| {
+        let other = match (x.body1 == i, x.body2) {
+            (true, o) => o,
+            (false, Some(b)) if b == i => Some(x.body1),
+            _ => return false,
+        };
+        let moves =
+            other.is_some_and(|o| s.bodies.get(o).is_some_and(|b| b.kind != BodyKind::Fixed));
+        !x.torsion && moves && other != partner
+    }) {
+        return Some(format!(
+            "spring \"{}\" joins the body to another that moves on other springs or joints: the bodies' motions are coupled (several modes), which 2 pi sqrt(m / sum k) leaves out",
+            x.name
+        ));
+    }
+    let rests = facts
+        .level
+        .as_ref()
+        .and_then(|l| {
+            let k = l.bodies.iter().position(|b| b.name == s.bodies[i].name)?;
+            Mechanism::of_level(l, k).ok()
+        })
+        .is_some_and(|mech| !mech.contacts.is_empty());
+    if rests {
+        return Some(
+            "the body rests on a face at the start: rolling adds I_G / r^2 to the mass, which 2 pi sqrt(m / sum k) leaves out".into(),
+        );
+    }
     for x in facts.springs.iter().filter(|x| x.holds(i)) {
         if x.torsion {
             return Some(format!("torsion spring \"{}\" acts on the body", x.name));

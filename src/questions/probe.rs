@@ -109,6 +109,13 @@ impl QuestionProbe {
         &self.def.id
     }
 
+    /// For a period: the general method's value (the linearized equations of the whole scene,
+    /// PL-14) and the one-body closed form's, when the closed form's assumptions hold; the
+    /// closed form is a cross-check only (tests hold the two together). None otherwise.
+    pub fn closed_form_cross_check(&self) -> Option<(f64, f64)> {
+        Some((self.meter.linearized?, self.meter.closed_form?))
+    }
+
     /// Whether the question has been read for good (later snapshots change nothing).
     pub fn is_done(&self) -> bool {
         self.done

@@ -230,6 +230,13 @@ pub enum Quantity {
     /// displacement along its first spring; analysis = 2 pi sqrt(m / sum k) with the engine's m
     /// and each spring's k = 2 V_e / x^2 from the snapshot.
     SpringPeriod(String),
+    /// Period of one mode of small oscillation of the mechanism that holds `body`, s; `mode` 0 is
+    /// the slowest. Analysis: the eigen-period 2 pi / omega_i of K phi = omega^2 M phi about the
+    /// equilibrium (PL-14, `analysis::small_oscillations`; the damped 2 pi / omega_d with
+    /// dampers). Engine: the mean time between same-direction zero crossings of the modal rate
+    /// eta_i' = phi_i^T M v (per body m dx_G . v_G + I_G dtheta omega, v relative to the
+    /// support), which holds mode i alone in the linear motion whatever the start mixes.
+    ModePeriod { body: String, mode: usize },
     /// The angle a body swings about (or rests at), rad: engine = the middle of its last whole
     /// swing (the mean of the angle's last two extremes; the angle at the sample when it has
     /// not swung twice and is still); analysis = the equilibrium of its mechanism found by the
@@ -400,7 +407,7 @@ impl Quantity {
             | Q::RelativeAccel(..)
             | Q::RollingAcceleration { .. } => "m/s^2",
             Q::Alpha(_) => "rad/s^2",
-            Q::Time | Q::PendulumPeriod { .. } | Q::SpringPeriod(_) => "s",
+            Q::Time | Q::PendulumPeriod { .. } | Q::SpringPeriod(_) | Q::ModePeriod { .. } => "s",
             Q::EquilibriumAngle(_) => "rad",
             Q::JointForce(_)
             | Q::ContactForce(_)
@@ -527,7 +534,10 @@ impl Quantity {
             | Q::Efficiency { .. }
             | Q::GroupKineticEnergy(_)
             | Q::GroupMomentum(_) => F::WorkAndPower,
-            Q::PendulumPeriod { .. } | Q::SpringPeriod(_) | Q::EquilibriumAngle(_) => F::Periods,
+            Q::PendulumPeriod { .. }
+            | Q::SpringPeriod(_)
+            | Q::ModePeriod { .. }
+            | Q::EquilibriumAngle(_) => F::Periods,
             Q::RollingAcceleration { .. }
             | Q::RollingFriction { .. }
             | Q::RollingFrictionNeeded { .. } => F::Rolling,

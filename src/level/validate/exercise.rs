@@ -309,6 +309,7 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         | Q::Direction(b)
         | Q::GravityWork(b)
         | Q::SpringPeriod(b)
+        | Q::ModePeriod { body: b, .. }
         | Q::EquilibriumAngle(b)
         | Q::PointX { body: b, .. }
         | Q::PointY { body: b, .. }
