@@ -87,6 +87,13 @@ pub struct PairContact {
     pub normal_impulse: f64,
     /// Number of contact points.
     pub points: usize,
+    /// Where the solver applied the pair's impulses (impulse-weighted mean, or the first point
+    /// when none pushed): the points' lever arms (`ContactPoint::arms`) from a side with mass,
+    /// carried with its mass center to the snapshot. While the bodies overlap by a soft
+    /// contact's settled depth, the surface points are that depth apart and the friction row
+    /// holds this point still (a ball's rim under rigidlab's contact hook, else rapier's
+    /// midpoint). None when no point has arms or neither side has mass.
+    pub solver_point: Option<DVec2>,
 }
 
 /// The contact between a and b in `snap`, if their colliders touch (or are within prediction distance).
@@ -175,6 +182,7 @@ fn pair_contact_among(
     // from it.
     let (mut sa, mut sb) = (DVec2::ZERO, DVec2::ZERO);
     let mut first: Option<(DVec2, DVec2, (DVec2, DVec2))> = None;
+    let (mut solver_sum, mut solver_first, mut solver_all) = (DVec2::ZERO, None, true);
     for c in ids.map(|k| &snap.contacts[k]) {
         let Some(sign) = pair_sign(c, a, b) else {
             continue;
@@ -189,6 +197,13 @@ fn pair_contact_among(
                 (other, p.point)
             };
             first.get_or_insert((p.point, n, on));
+            match solver_point(snap, c, p) {
+                Some(q) => {
+                    solver_first.get_or_insert(q);
+                    solver_sum += q * p.normal_impulse;
+                }
+                None => solver_all = false,
+            }
             wsum += p.normal_impulse;
             psum += p.point * p.normal_impulse;
             nsum += n * p.normal_impulse;
@@ -203,12 +218,30 @@ fn pair_contact_among(
         out.normal = nsum.normalize_or(n0);
         out.point = psum / wsum;
         out.surfaces = (sa / wsum, sb / wsum);
+        out.solver_point = solver_all.then(|| solver_sum / wsum);
     } else {
         out.normal = n0;
         out.point = p0;
         out.surfaces = on0;
+        out.solver_point = solver_first.filter(|_| solver_all);
     }
     Some(out)
+}
+
+/// The world point at which the solver applied a contact point's impulses: its lever arm from
+/// the mass center of body2 (or body1) when that body has mass, added to that mass center now
+/// (rapier freezes a recycled contact's arms and carries them with the mass center). None
+/// without arms or when neither body has mass.
+fn solver_point(
+    snap: &Snapshot,
+    c: &ContactState,
+    p: &crate::snapshot::ContactPoint,
+) -> Option<DVec2> {
+    let (arm1, arm2) = p.arms?;
+    let has_mass = |k: usize| snap.bodies.get(k).filter(|x| x.mass > 0.0);
+    has_mass(c.body2)
+        .map(|x| x.com + arm2)
+        .or_else(|| has_mass(c.body1).map(|x| x.com + arm1))
 }
 
 /// What one impact did, from the states at the two ends of its bracket.
