@@ -775,3 +775,104 @@ fn a_cable_that_turns_a_pulley_without_over_is_warned_about() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A kinematic plate driven by `motion`, with a speed question on it (issue 41).
+fn driven(motion: &str, world: &str) -> String {
+    format!(
+        "Level(title: \"driven\", effects: [gravity],
+  world: ({world}),
+  bodies: [
+    (name: \"plate\", kind: kinematic, shape: Box(width: 1.0, height: 0.1),
+     motion: {motion}),
+  ],
+  questions: [(id: \"x\", ask: \"x\", unit: \"m\", expected: 195.0, tolerance: 1e-3,
+     quantity: X(\"plate\"), at: Time(1.0), why: \"x = a t^2 / 2\")])"
+    )
+}
+
+#[test]
+fn a_prescribed_motion_past_the_engines_caps_is_refused_at_its_motion() {
+    // Before (issue 41): `Accelerate` 4e50 m/s^2 left the body still (its velocity overflows f32)
+    // while its velocity read 2e50 m/s, and the level passed with exit 0. rapier clamps every
+    // body's speed at 400 m/s after each substep, a kinematic body's too, and its angular rate at
+    // (pi/4) / dt: past either the body cannot follow its motion, in f32 or f64.
+    let world = "dt: 0.01, duration: 1.0";
+    for (motion, what) in [
+        // |a| T = 4e50 m/s.
+        ("Accelerate(acceleration: (4e50, 0.0), angular: 0.0)", "m/s"),
+        // |A| w = 1e300 m/s.
+        (
+            "Oscillate(amplitude: (1e300, 0.0), angular_amplitude: 0.0, omega: 1.0, phase: 0.0)",
+            "m/s",
+        ),
+        // 1000 m/s^2 for 1 s: 1000 m/s, 2.5 times the cap (the body ended 320 m along, not 500).
+        (
+            "Accelerate(acceleration: (0.0, 1000.0), angular: 0.0)",
+            "m/s",
+        ),
+        // |A| w = 0.1 m x 5000 rad/s = 500 m/s (cos(w t) covers [-1, 1] in 1 s).
+        (
+            "Oscillate(amplitude: (0.1, 0.0), angular_amplitude: 0.0, omega: 5000.0, phase: 0.0)",
+            "m/s",
+        ),
+        // 100 rad/s^2 for 1 s: 100 rad/s against (pi/4) / 0.01 s = 78.5 rad/s.
+        (
+            "Accelerate(acceleration: (0.0, 0.0), angular: 100.0)",
+            "rad/s",
+        ),
+    ] {
+        let text = driven(motion, world);
+        let (line, col, msg) = error_of(&text);
+        assert_eq!(
+            (line, col),
+            (line_of(&text, "motion:"), 6),
+            "{motion}: at `motion`: {msg}"
+        );
+        assert!(
+            msg.contains(&format!("{what} within world.duration, past the engine's")),
+            "{motion}: {msg}"
+        );
+        assert!(msg.contains("help: "), "{motion}: {msg}");
+    }
+    // The angular cap goes with `allow_fast_rotation` (rapier lifts it); the speed cap does not.
+    let fast = "dt: 0.01, duration: 1.0, allow_fast_rotation: true";
+    parse(
+        Path::new("ok.ron"),
+        &driven("Accelerate(acceleration: (0.0, 0.0), angular: 100.0)", fast),
+    )
+    .unwrap();
+    error_of(&driven(
+        "Accelerate(acceleration: (4e50, 0.0), angular: 0.0)",
+        fast,
+    ));
+}
+
+#[test]
+fn a_prescribed_motion_within_the_cap_is_followed() {
+    // 390 m/s^2 for 1 s: 390 m/s at the end, within 400. The body's x at 1 s is a t^2 / 2 =
+    // 195 m; rapier moves it at the mean velocity of each call (exact for a linear v(t)), and
+    // f32 rounds 195 m to 1.5e-5 m a step: 1e-3 relative is far above that.
+    let text = driven(
+        "Accelerate(acceleration: (390.0, 0.0), angular: 0.0)",
+        "dt: 0.01, duration: 1.0",
+    );
+    let scene = parse(Path::new("ok.ron"), &text).unwrap();
+    let r = common::run(&scene, &rigidlab::sim::Options::default());
+    assert!(r.passed, "{:?}", r.questions);
+    // At dt 0.02 s from the command line the angular cap halves but the speed cap stays: a
+    // turning motion within the level's cap and past the run's stops the run (exit 1), never a
+    // pass on the motion's rates.
+    let turning = driven(
+        "Accelerate(acceleration: (0.0, 0.0), angular: 70.0)",
+        "dt: 0.01, duration: 1.0",
+    );
+    let scene = parse(Path::new("ok.ron"), &turning).unwrap();
+    let opts = rigidlab::sim::Options {
+        dt: Some(0.02),
+        ..Default::default()
+    };
+    let e = rigidlab::runner::run_scene(&scene, &opts, &Default::default(), |_| {})
+        .expect_err("stopped at the cap")
+        .to_string();
+    assert!(e.contains("plate") && e.contains("rad/s"), "{e}");
+}

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::level::curves;
+use crate::level::motion;
 
 pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
     match s {
@@ -378,7 +379,7 @@ fn motion(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
                 &format!("body \"{name}\" motion acceleration"),
                 pos,
             )?;
-            v.finite(angular, &format!("body \"{name}\" motion angular"), pos)
+            v.finite(angular, &format!("body \"{name}\" motion angular"), pos)?;
         }
         Motion::Oscillate {
             amplitude,
@@ -398,7 +399,51 @@ fn motion(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
                 &format!("body \"{name}\" motion omega (the circular frequency)"),
                 "rad/s",
                 pos,
-            )
+            )?;
         }
     }
+    motion_within_caps(v, b, m, pos)
+}
+
+/// A prescribed motion within what the engine moves a body at: rapier clamps every body's
+/// speed after each substep, a kinematic body's too, at 400 m/s ([`motion::SPEED_CAP`]) and its
+/// angular rate at (pi/4) / dt unless `world.allow_fast_rotation`. Past either the body stays
+/// behind its motion (at 1e3 m/s^2 for 1 s it was 180 m short; past f32's range it did not move
+/// at all) while the snapshot reads the motion's own rates, so a question on them passed. The
+/// caps are the same in f32 and f64 (rapier2d-f64 clamps alike), so `precision` does not lift
+/// them. The rates are the body's `velocity` and `omega` plus the motion's, at their largest over
+/// `world.duration`.
+fn motion_within_caps(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
+    let w = &v.level.world;
+    let speed = motion::largest_speed(b, m, w.duration);
+    if !(speed <= motion::SPEED_CAP) {
+        return Err(v.err(
+            pos,
+            format!(
+                "body \"{}\"'s prescribed motion reaches {speed:.3e} m/s within world.duration, past the engine's speed cap of {} m/s: rapier clamps every body's speed there, a kinematic body's too, so the body would stay behind its motion",
+                b.name,
+                motion::SPEED_CAP
+            ),
+            format!(
+                "keep the speed within {} m/s over world.duration: `velocity` plus the acceleration times the duration (Accelerate), or plus the amplitude times omega (Oscillate); the cap is the same in f32 and f64",
+                motion::SPEED_CAP
+            ),
+        ));
+    }
+    if w.allow_fast_rotation {
+        return Ok(());
+    }
+    let rate = motion::largest_rate(b, m, w.duration);
+    let cap = std::f64::consts::FRAC_PI_4 / w.dt;
+    if !(rate <= cap) {
+        return Err(v.err(
+            pos,
+            format!(
+                "body \"{}\"'s prescribed motion turns at {rate:.3e} rad/s within world.duration, past the engine's cap of (pi/4) / dt = {cap:.4} rad/s at world.dt = {} s: rapier clamps every body's angular rate there, so the body would stay behind its motion",
+                b.name, w.dt
+            ),
+            "lower the motion's angular rate, shorten world.dt, or set `allow_fast_rotation: true` in `world` (which lifts the cap)",
+        ));
+    }
+    Ok(())
 }
