@@ -389,6 +389,23 @@ mod cli {
         ]);
         assert_eq!(code, 2, "{err}");
         assert!(err.contains("unknown unit `furlong`"), "{err}");
+        // An angle the question has not (issue 41: 1.5614 m*rev/s was graded right for
+        // 9.81 m/s, as 2 pi x 1.5614), and an operator with nothing after it.
+        for (typed, needle) in [
+            ("speed=1.5614 m*rev/s", "the question asks for m/s"),
+            ("speed=9.81 m*rad/s", "the question asks for m/s"),
+            ("speed=9.81 m/s*", "needs a unit on each side"),
+        ] {
+            let (code, out, err) = rigidlab(&[
+                "check",
+                "levels/kinematics/free_fall.ron",
+                "--answer",
+                typed,
+            ]);
+            assert_eq!(code, 2, "{typed}: {err}");
+            assert!(err.contains(needle), "{typed}: {err}");
+            assert!(!out.contains("correct"), "{typed}: {out}");
+        }
     }
 
     #[test]
