@@ -893,3 +893,51 @@ fn a_prescribed_motion_within_the_cap_is_followed() {
         .to_string();
     assert!(e.contains("plate") && e.contains("rad/s"), "{e}");
 }
+
+/// A sliding ball on a lane with one question and, optionally, a coupling (issue 41).
+fn lane(quantity: &str, at: &str, couplings: &str) -> String {
+    let unit = if quantity.starts_with("Slip") || quantity.starts_with("Relative") {
+        "m/s"
+    } else {
+        "N"
+    };
+    format!(
+        "Level(title: \"lane\", effects: [gravity, contacts, friction, joints],
+  world: (dt: 0.01, duration: 1.0),
+  bodies: [
+    (name: \"lane\", kind: fixed, shape: Box(width: 30.0, height: 1.0), position: (13.0, -0.5)),
+    (name: \"ball\", shape: Circle(radius: 0.11), mass: 7.0, position: (0.0, 0.11), velocity: (8.0, 0.0), friction: 0.2),
+  ],
+  {couplings}
+  questions: [
+    (id: \"q\", ask: \"q\", unit: \"{unit}\", expected: 1.0, tolerance: 0.01,
+     quantity: {quantity}, at: {at}, why: \"w\"),
+  ],
+)"
+    )
+}
+
+#[test]
+fn an_averaging_window_below_zero_or_past_the_run_is_refused() {
+    // Before (issue 41): ContactForceFrom(window: -1.0) was accepted and read the two steps
+    // around the sample; JointReaction and MotorTorque refused it already.
+    for window in ["-1.0", "2.0", "1e300"] {
+        let text = lane(
+            &format!("ContactForceFrom(body: \"ball\", other: \"lane\", window: {window})"),
+            "Time(0.5)",
+            "",
+        );
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, "quantity: "), "{window}: {msg}");
+        assert!(msg.contains("window"), "{window}: {msg}");
+    }
+    // 0 (the default) and the whole run are windows.
+    for window in ["0.0", "1.0"] {
+        let text = lane(
+            &format!("ContactForceFrom(body: \"ball\", other: \"lane\", window: {window})"),
+            "Time(0.5)",
+            "",
+        );
+        parse(Path::new("ok.ron"), &text).unwrap_or_else(|e| panic!("{window}: {e}"));
+    }
+}

@@ -191,8 +191,22 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         _ => {}
     }
     match &q.quantity {
-        Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
-            v.non_negative(*window, "averaging window", "s", at("quantity"))?
+        Quantity::JointReaction { window, .. }
+        | Quantity::MotorTorque { window, .. }
+        | Quantity::ContactForceFrom { window, .. } => {
+            // 0 is the default (the two steps around the sample); a window longer than the run
+            // could never be filled.
+            v.non_negative(*window, "averaging window", "s", at("quantity"))?;
+            if *window > v.level.world.duration {
+                return Err(v.err(
+                    at("quantity"),
+                    format!(
+                        "question \"{}\" averages over a window of {window} s, longer than the run (world.duration = {} s)",
+                        q.id, v.level.world.duration
+                    ),
+                    "give `window` in seconds, at most world.duration (0, the default, is the two steps around the sample)",
+                ));
+            }
         }
         _ => {}
     }
@@ -401,3 +415,4 @@ pub(super) fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field
         format!("name a {kind} of this level"),
     ))
 }
+
