@@ -941,3 +941,66 @@ fn an_averaging_window_below_zero_or_past_the_run_is_refused() {
         parse(Path::new("ok.ron"), &text).unwrap_or_else(|e| panic!("{window}: {e}"));
     }
 }
+
+#[test]
+fn a_body_paired_with_itself_is_refused() {
+    // Before (issue 41): SlipSpeed of a body against itself was accepted.
+    for (quantity, at, field) in [
+        (
+            "SlipSpeed(body: \"ball\", other: \"ball\")",
+            "Time(0.5)",
+            "quantity: ",
+        ),
+        (
+            "ContactNormalForce(body: \"ball\", other: \"ball\")",
+            "Time(0.5)",
+            "quantity: ",
+        ),
+        (
+            "RelativeSpeed(\"ball\", \"ball\")",
+            "Time(0.5)",
+            "quantity: ",
+        ),
+        (
+            "SlipSpeed(body: \"ball\", other: \"lane\")",
+            "SlipEnds(body: \"ball\", other: \"ball\")",
+            "at: ",
+        ),
+    ] {
+        let text = lane(quantity, at, "");
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, field), "{quantity} {at}: {msg}");
+        assert!(msg.contains("with itself"), "{quantity} {at}: {msg}");
+    }
+    parse(
+        Path::new("ok.ron"),
+        &lane(
+            "SlipSpeed(body: \"ball\", other: \"lane\")",
+            "Time(0.5)",
+            "",
+        ),
+    )
+    .unwrap();
+}
+
+#[test]
+fn a_coupling_of_a_coordinate_with_itself_is_refused() {
+    // Before (issue 41): x of "ball" coupled with x of "ball" was accepted.
+    let q = "SlipSpeed(body: \"ball\", other: \"lane\")";
+    let text = lane(
+        q,
+        "Time(0.5)",
+        "couplings: [(name: \"c\", terms: [(body: \"ball\", coordinate: x, ratio: 1.0), (body: \"ball\", coordinate: x, ratio: 2.0)])],",
+    );
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "couplings: ["), "{msg}");
+    assert!(msg.contains("to itself"), "{msg}");
+    // Two coordinates of one body may be tied (a yo-yo's y and angle), and a coordinate may
+    // take a term per strand among others' (CABLE: the pulley's angle twice).
+    let yoyo = lane(
+        q,
+        "Time(0.5)",
+        "couplings: [(name: \"c\", terms: [(body: \"ball\", coordinate: y, ratio: 1.0), (body: \"ball\", coordinate: angle, ratio: 0.11)])],",
+    );
+    parse(Path::new("ok.ron"), &yoyo).unwrap();
+}
