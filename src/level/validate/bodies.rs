@@ -102,8 +102,34 @@ fn polyline(v: &V, points: &[V2], closed: bool, pos: (usize, usize)) -> R {
             "split the track over several fixed bodies, or use `Arc` for its circular parts",
         ));
     }
+    track_in_range(v, points, "polyline point", pos)?;
     let n = points.len();
-    match curves::polyline_fault(points, closed) {
+    // The engine builds the track from its points rounded to its precision: test those too
+    // (points 1e-300 apart are distinct in f64 and one point in f32).
+    let rounded: Vec<V2> = points.iter().map(|p| engine_point(v, *p)).collect();
+    let fault = curves::polyline_fault(points, closed).or_else(|| {
+        v.level
+            .world
+            .precision
+            .is_f32()
+            .then(|| curves::polyline_fault(&rounded, closed))
+            .flatten()
+    });
+    if let Some(curves::PolylineFault::ZeroEdge(k)) = &fault {
+        if points[*k] != points[(*k + 1) % n] {
+            return Err(v.err(
+                pos,
+                format!(
+                    "polyline points {k} {:?} and {} {:?} are one point in f32, the engine's precision",
+                    points[*k],
+                    (*k + 1) % n,
+                    points[(*k + 1) % n]
+                ),
+                "move them apart (f32 keeps about 7 significant digits), or remove one",
+            ));
+        }
+    }
+    match fault {
         None => Ok(()),
         Some(curves::PolylineFault::ZeroEdge(k)) => Err(v.err(
             pos,
@@ -162,6 +188,15 @@ fn arc(
             ));
         }
     }
+    track_in_range(
+        v,
+        &[
+            (center.0 - radius, center.1 - radius),
+            (center.0 + radius, center.1 + radius),
+        ],
+        "arc extent (center -+ radius)",
+        pos,
+    )?;
     let e = curves::chord_error(radius, chord_error);
     let n = curves::arc_facets(radius, sweep, e);
     if n > curves::MAX_ARC_FACETS {
@@ -174,6 +209,77 @@ fn arc(
             ),
             format!("give `chord_error: {least:.3e}` (m) or more"),
         ));
+    }
+    // The facets as the engine holds them: no two neighbouring vertices one point (an arc of
+    // radius 1e-300 is one point in f32).
+    let (points, _) = curves::arc_points(center, radius, start, end, e);
+    let rounded: Vec<V2> = points.iter().map(|p| engine_point(v, *p)).collect();
+    if let Some(k) = rounded.windows(2).position(|w| w[0] == w[1]) {
+        return Err(v.err(
+            pos,
+            format!(
+                "this arc's facet vertices {k} {:?} and {} {:?} are one point in {}, the engine's precision",
+                points[k],
+                k + 1,
+                points[k + 1],
+                v.level.world.precision.name()
+            ),
+            "give a larger radius or a larger chord_error (fewer, longer facets)",
+        ));
+    }
+    Ok(())
+}
+
+/// The largest size of a track coordinate at each precision, m: the largest power of two
+/// whose ulp is within rapier's allowed contact error (`normalized_allowed_linear_error`,
+/// 0.005 m at `length_unit` 1). Past it the engine cannot place a contact on the track to its own
+/// tolerance: f32 spaces numbers 0.0078 m apart from 65,536 m on; f64 5.9e-3 m from 3.5e13 m.
+pub(super) fn track_limit(precision: Precision) -> f64 {
+    match precision {
+        Precision::F32 => 65_536.0,
+        Precision::F64 => 35_184_372_088_832.0, // 2^45
+    }
+}
+
+/// The point as the engine holds it: rounded to f32 unless the level runs in f64.
+fn engine_point(v: &V, p: V2) -> V2 {
+    if v.level.world.precision.is_f32() {
+        (p.0 as f32 as f64, p.1 as f32 as f64)
+    } else {
+        p
+    }
+}
+
+/// Every coordinate of a track within [`track_limit`] of its body's origin (issue 41: a
+/// polyline at 1e39 m, past f32's range, was validated in f64 and built as infinities).
+fn track_in_range(v: &V, points: &[V2], what: &str, pos: (usize, usize)) -> R {
+    let precision = v.level.world.precision;
+    let limit = track_limit(precision);
+    for p in points {
+        let size = p.0.abs().max(p.1.abs());
+        if !(size < limit) {
+            let ulp = |x: f64| match precision {
+                Precision::F32 => (x as f32).abs() * f32::EPSILON,
+                Precision::F64 => (x * f64::EPSILON) as f32,
+            };
+            return Err(v.err(
+                pos,
+                format!(
+                    "{what} {p:?} is {size:.4e} m from its body's origin, past the {limit} m where {} spaces numbers more than rapier's allowed contact error of 0.005 m apart ({:.2e} m there)",
+                    precision.name(),
+                    ulp(limit)
+                ),
+                match precision {
+                    Precision::F32 => format!(
+                        "keep track coordinates within {limit} m of the body's origin, or set `precision: f64` in `world` (up to {:.2e} m)",
+                        track_limit(Precision::F64)
+                    ),
+                    Precision::F64 => format!(
+                        "keep track coordinates within {limit:.2e} m of the body's origin"
+                    ),
+                },
+            ));
+        }
     }
     Ok(())
 }
