@@ -1004,3 +1004,39 @@ fn a_coupling_of_a_coordinate_with_itself_is_refused() {
     );
     parse(Path::new("ok.ron"), &yoyo).unwrap();
 }
+
+#[test]
+fn a_level_that_starts_with_a_byte_order_mark_loads() {
+    // Before (issue 41): refused as "Expected opening `(`" at 1:1 (Notepad saves UTF-8 so).
+    let text =
+        std::fs::read_to_string(common::repo_path("levels/kinematics/free_fall.ron")).unwrap();
+    let with_bom = format!("\u{feff}{text}");
+    let plain = parse(Path::new("a.ron"), &text).unwrap();
+    let bom = parse(Path::new("a.ron"), &with_bom).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(bom.level, plain.level);
+    // Read from a file too (bytes first), and an error's position is the editor's: the BOM is
+    // not a column. The broken field is `mass: 1.0` on the ball's line, after `BALL`'s text.
+    let dir = std::env::temp_dir().join(format!("rigidlab-bom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("bom.ron");
+    std::fs::write(&f, with_bom.as_bytes()).unwrap();
+    rigidlab::level::load(&f).unwrap_or_else(|e| panic!("{e}"));
+    let broken = "Level(title: \"t\", effects: [gravity], bodies: [(name: \"b\", mass: -1.0)])";
+    let plain_e = parse(Path::new("b.ron"), broken).unwrap_err();
+    let bom_e = parse(Path::new("b.ron"), &format!("\u{feff}{broken}")).unwrap_err();
+    assert_eq!(
+        (bom_e.line, bom_e.col),
+        (plain_e.line, plain_e.col),
+        "{bom_e}"
+    );
+    std::fs::write(&f, format!("\u{feff}{broken}")).unwrap();
+    let file_e = rigidlab::level::load(&f).unwrap_err();
+    assert_eq!(
+        (file_e.line, file_e.col),
+        (plain_e.line, plain_e.col),
+        "{file_e}"
+    );
+    // A BOM anywhere else is still an error (it is not whitespace in RON).
+    assert!(parse(Path::new("c.ron"), &format!("{text}\u{feff}")).is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}
