@@ -1040,3 +1040,34 @@ fn a_level_that_starts_with_a_byte_order_mark_loads() {
     assert!(parse(Path::new("c.ron"), &format!("{text}\u{feff}")).is_err());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_level_nested_too_deep_says_so_in_the_users_words() {
+    // Before (issue 41): "Exceeded recursion limit, try increasing `ron::Options::recursion_limit`
+    // and using `serde_stacker` to protect against a stack overflow": ron's hint to a programmer.
+    let mut parts = "(shape: Circle(radius: 0.1), offset: (0.0, 0.0), angle: 0.0)".to_string();
+    for _ in 0..200 {
+        parts = format!("(shape: Compound(parts: [{parts}]), offset: (0.0, 0.0), angle: 0.0)");
+    }
+    let text = format!(
+        "Level(title: \"deep\", effects: [gravity],\n  bodies: [(name: \"b\", mass: 1.0, inertia: 1.0, shape: Compound(parts: [{parts}]))])"
+    );
+    let (line, col, msg) = error_of(&text);
+    assert_eq!(line, 2, "{msg}");
+    assert!(col > 1, "{msg}");
+    assert!(msg.contains("nests brackets more than 128 deep"), "{msg}");
+    assert!(msg.contains("brackets opened and never closed"), "{msg}");
+    for dev in ["recursion_limit", "serde_stacker", "ron::"] {
+        assert!(!msg.contains(dev), "{dev}: {msg}");
+    }
+    // Twin: ten compounds deep is fine.
+    let mut parts = "(shape: Circle(radius: 0.1), offset: (0.0, 0.0), angle: 0.0)".to_string();
+    for _ in 0..10 {
+        parts = format!("(shape: Compound(parts: [{parts}]), offset: (0.0, 0.0), angle: 0.0)");
+    }
+    parse(
+        Path::new("ok.ron"),
+        &format!("Level(title: \"ok\", effects: [gravity], bodies: [(name: \"b\", mass: 1.0, inertia: 1.0, shape: Compound(parts: [{parts}]))])"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+}

@@ -24,10 +24,15 @@ pub struct Scene {
     pub level: Level,
 }
 
+/// How deep ron reads nested brackets before it stops (its default, which keeps the parser's
+/// recursion off the end of the stack).
+const RECURSION_LIMIT: usize = 128;
+
 /// The RON options every level is read and written with.
 pub fn ron_options() -> ron::Options {
     ron::Options::default()
         .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .with_recursion_limit(RECURSION_LIMIT)
 }
 
 /// The largest level file read, bytes: 15 times the library's largest (stress/joint_grid_30,
@@ -209,6 +214,19 @@ fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
         E::MissingStructField { field, .. } => format!("add `{field}: ...` (see docs/levels.md)"),
         E::DuplicateStructField { .. } => "write each field once".to_string(),
         E::ExpectedFloat | E::ExpectedInteger => "write a number, e.g. 1.0".to_string(),
+        E::ExceededRecursionLimit => {
+            // ron's own message names its API (`recursion_limit`, `serde_stacker`): a hint for
+            // the program, not for the level's author.
+            return LevelError {
+                file: path.to_path_buf(),
+                line: e.span.start.line,
+                col: e.span.start.col,
+                message: format!(
+                    "the level nests brackets more than {RECURSION_LIMIT} deep here"
+                ),
+                help: "a level needs a few levels of brackets (a compound's parts nest one shape in another): check for brackets opened and never closed, and flatten compounds nested in compounds into one list of parts".to_string(),
+            };
+        }
         _ => "see docs/levels.md for the level format".to_string(),
     };
     LevelError {
