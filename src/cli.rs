@@ -193,7 +193,10 @@ fn answers_for(
     let mut out = HashMap::new();
     for q in &scene.level.questions {
         if let Some(text) = answers.get(&q.id) {
-            let v = crate::questions::units::answer_in(text, &q.unit).map_err(|e| {
+            // Converted to the quantity's SI unit, the question's unit up to notation (validation
+            // holds it there): a question in `1/s` still takes an answer in rad/s.
+            let si = q.quantity.si_unit(&scene.level);
+            let v = crate::questions::units::answer_in(text, si).map_err(|e| {
                 format!(
                     "error: --answer {}={text}: {e}\n  help: give the answer in {} or a unit of the same kind",
                     q.id, q.unit

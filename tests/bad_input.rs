@@ -389,6 +389,23 @@ mod cli {
         ]);
         assert_eq!(code, 2, "{err}");
         assert!(err.contains("unknown unit `furlong`"), "{err}");
+        // An angle the question has not (issue 41: 1.5614 m*rev/s was graded right for
+        // 9.81 m/s, as 2 pi x 1.5614), and an operator with nothing after it.
+        for (typed, needle) in [
+            ("speed=1.5614 m*rev/s", "the question asks for m/s"),
+            ("speed=9.81 m*rad/s", "the question asks for m/s"),
+            ("speed=9.81 m/s*", "needs a unit on each side"),
+        ] {
+            let (code, out, err) = rigidlab(&[
+                "check",
+                "levels/kinematics/free_fall.ron",
+                "--answer",
+                typed,
+            ]);
+            assert_eq!(code, 2, "{typed}: {err}");
+            assert!(err.contains(needle), "{typed}: {err}");
+            assert!(!out.contains("correct"), "{typed}: {out}");
+        }
     }
 
     #[test]
@@ -774,4 +791,283 @@ fn a_cable_that_turns_a_pulley_without_over_is_warned_about() {
         assert!(warnings.is_empty(), "{cable}: {warnings:?}");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A kinematic plate driven by `motion`, with a speed question on it (issue 41).
+fn driven(motion: &str, world: &str) -> String {
+    format!(
+        "Level(title: \"driven\", effects: [gravity],
+  world: ({world}),
+  bodies: [
+    (name: \"plate\", kind: kinematic, shape: Box(width: 1.0, height: 0.1),
+     motion: {motion}),
+  ],
+  questions: [(id: \"x\", ask: \"x\", unit: \"m\", expected: 195.0, tolerance: 1e-3,
+     quantity: X(\"plate\"), at: Time(1.0), why: \"x = a t^2 / 2\")])"
+    )
+}
+
+#[test]
+fn a_prescribed_motion_past_the_engines_caps_is_refused_at_its_motion() {
+    // Before (issue 41): `Accelerate` 4e50 m/s^2 left the body still (its velocity overflows f32)
+    // while its velocity read 2e50 m/s, and the level passed with exit 0. rapier clamps every
+    // body's speed at 400 m/s after each substep, a kinematic body's too, and its angular rate at
+    // (pi/4) / dt: past either the body cannot follow its motion, in f32 or f64.
+    let world = "dt: 0.01, duration: 1.0";
+    for (motion, what) in [
+        // |a| T = 4e50 m/s.
+        ("Accelerate(acceleration: (4e50, 0.0), angular: 0.0)", "m/s"),
+        // |A| w = 1e300 m/s.
+        (
+            "Oscillate(amplitude: (1e300, 0.0), angular_amplitude: 0.0, omega: 1.0, phase: 0.0)",
+            "m/s",
+        ),
+        // 1000 m/s^2 for 1 s: 1000 m/s, 2.5 times the cap (the body ended 320 m along, not 500).
+        (
+            "Accelerate(acceleration: (0.0, 1000.0), angular: 0.0)",
+            "m/s",
+        ),
+        // |A| w = 0.1 m x 5000 rad/s = 500 m/s (cos(w t) covers [-1, 1] in 1 s).
+        (
+            "Oscillate(amplitude: (0.1, 0.0), angular_amplitude: 0.0, omega: 5000.0, phase: 0.0)",
+            "m/s",
+        ),
+        // 100 rad/s^2 for 1 s: 100 rad/s against (pi/4) / 0.01 s = 78.5 rad/s.
+        (
+            "Accelerate(acceleration: (0.0, 0.0), angular: 100.0)",
+            "rad/s",
+        ),
+    ] {
+        let text = driven(motion, world);
+        let (line, col, msg) = error_of(&text);
+        assert_eq!(
+            (line, col),
+            (line_of(&text, "motion:"), 6),
+            "{motion}: at `motion`: {msg}"
+        );
+        assert!(
+            msg.contains(&format!("{what} within world.duration, past the engine's")),
+            "{motion}: {msg}"
+        );
+        assert!(msg.contains("help: "), "{motion}: {msg}");
+    }
+    // The angular cap goes with `allow_fast_rotation` (rapier lifts it); the speed cap does not.
+    let fast = "dt: 0.01, duration: 1.0, allow_fast_rotation: true";
+    parse(
+        Path::new("ok.ron"),
+        &driven("Accelerate(acceleration: (0.0, 0.0), angular: 100.0)", fast),
+    )
+    .unwrap();
+    error_of(&driven(
+        "Accelerate(acceleration: (4e50, 0.0), angular: 0.0)",
+        fast,
+    ));
+}
+
+#[test]
+fn a_prescribed_motion_within_the_cap_is_followed() {
+    // 390 m/s^2 for 1 s: 390 m/s at the end, within 400. The body's x at 1 s is a t^2 / 2 =
+    // 195 m; rapier moves it at the mean velocity of each call (exact for a linear v(t)), and
+    // f32 rounds 195 m to 1.5e-5 m a step: 1e-3 relative is far above that.
+    let text = driven(
+        "Accelerate(acceleration: (390.0, 0.0), angular: 0.0)",
+        "dt: 0.01, duration: 1.0",
+    );
+    let scene = parse(Path::new("ok.ron"), &text).unwrap();
+    let r = common::run(&scene, &rigidlab::sim::Options::default());
+    assert!(r.passed, "{:?}", r.questions);
+    // At dt 0.02 s from the command line the angular cap halves but the speed cap stays: a
+    // turning motion within the level's cap and past the run's stops the run (exit 1), never a
+    // pass on the motion's rates.
+    let turning = driven(
+        "Accelerate(acceleration: (0.0, 0.0), angular: 70.0)",
+        "dt: 0.01, duration: 1.0",
+    );
+    let scene = parse(Path::new("ok.ron"), &turning).unwrap();
+    let opts = rigidlab::sim::Options {
+        dt: Some(0.02),
+        ..Default::default()
+    };
+    let e = rigidlab::runner::run_scene(&scene, &opts, &Default::default(), |_| {})
+        .expect_err("stopped at the cap")
+        .to_string();
+    assert!(e.contains("plate") && e.contains("rad/s"), "{e}");
+}
+
+/// A sliding ball on a lane with one question and, optionally, a coupling (issue 41).
+fn lane(quantity: &str, at: &str, couplings: &str) -> String {
+    let unit = if quantity.starts_with("Slip") || quantity.starts_with("Relative") {
+        "m/s"
+    } else {
+        "N"
+    };
+    format!(
+        "Level(title: \"lane\", effects: [gravity, contacts, friction, joints],
+  world: (dt: 0.01, duration: 1.0),
+  bodies: [
+    (name: \"lane\", kind: fixed, shape: Box(width: 30.0, height: 1.0), position: (13.0, -0.5)),
+    (name: \"ball\", shape: Circle(radius: 0.11), mass: 7.0, position: (0.0, 0.11), velocity: (8.0, 0.0), friction: 0.2),
+  ],
+  {couplings}
+  questions: [
+    (id: \"q\", ask: \"q\", unit: \"{unit}\", expected: 1.0, tolerance: 0.01,
+     quantity: {quantity}, at: {at}, why: \"w\"),
+  ],
+)"
+    )
+}
+
+#[test]
+fn an_averaging_window_below_zero_or_past_the_run_is_refused() {
+    // Before (issue 41): ContactForceFrom(window: -1.0) was accepted and read the two steps
+    // around the sample; JointReaction and MotorTorque refused it already.
+    for window in ["-1.0", "2.0", "1e300"] {
+        let text = lane(
+            &format!("ContactForceFrom(body: \"ball\", other: \"lane\", window: {window})"),
+            "Time(0.5)",
+            "",
+        );
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, "quantity: "), "{window}: {msg}");
+        assert!(msg.contains("window"), "{window}: {msg}");
+    }
+    // 0 (the default) and the whole run are windows.
+    for window in ["0.0", "1.0"] {
+        let text = lane(
+            &format!("ContactForceFrom(body: \"ball\", other: \"lane\", window: {window})"),
+            "Time(0.5)",
+            "",
+        );
+        parse(Path::new("ok.ron"), &text).unwrap_or_else(|e| panic!("{window}: {e}"));
+    }
+}
+
+#[test]
+fn a_body_paired_with_itself_is_refused() {
+    // Before (issue 41): SlipSpeed of a body against itself was accepted.
+    for (quantity, at, field) in [
+        (
+            "SlipSpeed(body: \"ball\", other: \"ball\")",
+            "Time(0.5)",
+            "quantity: ",
+        ),
+        (
+            "ContactNormalForce(body: \"ball\", other: \"ball\")",
+            "Time(0.5)",
+            "quantity: ",
+        ),
+        (
+            "RelativeSpeed(\"ball\", \"ball\")",
+            "Time(0.5)",
+            "quantity: ",
+        ),
+        (
+            "SlipSpeed(body: \"ball\", other: \"lane\")",
+            "SlipEnds(body: \"ball\", other: \"ball\")",
+            "at: ",
+        ),
+    ] {
+        let text = lane(quantity, at, "");
+        let (line, _, msg) = error_of(&text);
+        assert_eq!(line, line_of(&text, field), "{quantity} {at}: {msg}");
+        assert!(msg.contains("with itself"), "{quantity} {at}: {msg}");
+    }
+    parse(
+        Path::new("ok.ron"),
+        &lane(
+            "SlipSpeed(body: \"ball\", other: \"lane\")",
+            "Time(0.5)",
+            "",
+        ),
+    )
+    .unwrap();
+}
+
+#[test]
+fn a_coupling_of_a_coordinate_with_itself_is_refused() {
+    // Before (issue 41): x of "ball" coupled with x of "ball" was accepted.
+    let q = "SlipSpeed(body: \"ball\", other: \"lane\")";
+    let text = lane(
+        q,
+        "Time(0.5)",
+        "couplings: [(name: \"c\", terms: [(body: \"ball\", coordinate: x, ratio: 1.0), (body: \"ball\", coordinate: x, ratio: 2.0)])],",
+    );
+    let (line, _, msg) = error_of(&text);
+    assert_eq!(line, line_of(&text, "couplings: ["), "{msg}");
+    assert!(msg.contains("to itself"), "{msg}");
+    // Two coordinates of one body may be tied (a yo-yo's y and angle), and a coordinate may
+    // take a term per strand among others' (CABLE: the pulley's angle twice).
+    let yoyo = lane(
+        q,
+        "Time(0.5)",
+        "couplings: [(name: \"c\", terms: [(body: \"ball\", coordinate: y, ratio: 1.0), (body: \"ball\", coordinate: angle, ratio: 0.11)])],",
+    );
+    parse(Path::new("ok.ron"), &yoyo).unwrap();
+}
+
+#[test]
+fn a_level_that_starts_with_a_byte_order_mark_loads() {
+    // Before (issue 41): refused as "Expected opening `(`" at 1:1 (Notepad saves UTF-8 so).
+    let text =
+        std::fs::read_to_string(common::repo_path("levels/kinematics/free_fall.ron")).unwrap();
+    let with_bom = format!("\u{feff}{text}");
+    let plain = parse(Path::new("a.ron"), &text).unwrap();
+    let bom = parse(Path::new("a.ron"), &with_bom).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(bom.level, plain.level);
+    // Read from a file too (bytes first), and an error's position is the editor's: the BOM is
+    // not a column. The broken field is `mass: 1.0` on the ball's line, after `BALL`'s text.
+    let dir = std::env::temp_dir().join(format!("rigidlab-bom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("bom.ron");
+    std::fs::write(&f, with_bom.as_bytes()).unwrap();
+    rigidlab::level::load(&f).unwrap_or_else(|e| panic!("{e}"));
+    let broken = "Level(title: \"t\", effects: [gravity], bodies: [(name: \"b\", mass: -1.0)])";
+    let plain_e = parse(Path::new("b.ron"), broken).unwrap_err();
+    let bom_e = parse(Path::new("b.ron"), &format!("\u{feff}{broken}")).unwrap_err();
+    assert_eq!(
+        (bom_e.line, bom_e.col),
+        (plain_e.line, plain_e.col),
+        "{bom_e}"
+    );
+    std::fs::write(&f, format!("\u{feff}{broken}")).unwrap();
+    let file_e = rigidlab::level::load(&f).unwrap_err();
+    assert_eq!(
+        (file_e.line, file_e.col),
+        (plain_e.line, plain_e.col),
+        "{file_e}"
+    );
+    // A BOM anywhere else is still an error (it is not whitespace in RON).
+    assert!(parse(Path::new("c.ron"), &format!("{text}\u{feff}")).is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_level_nested_too_deep_says_so_in_the_users_words() {
+    // Before (issue 41): "Exceeded recursion limit, try increasing `ron::Options::recursion_limit`
+    // and using `serde_stacker` to protect against a stack overflow": ron's hint to a programmer.
+    let mut parts = "(shape: Circle(radius: 0.1), offset: (0.0, 0.0), angle: 0.0)".to_string();
+    for _ in 0..200 {
+        parts = format!("(shape: Compound(parts: [{parts}]), offset: (0.0, 0.0), angle: 0.0)");
+    }
+    let text = format!(
+        "Level(title: \"deep\", effects: [gravity],\n  bodies: [(name: \"b\", mass: 1.0, inertia: 1.0, shape: Compound(parts: [{parts}]))])"
+    );
+    let (line, col, msg) = error_of(&text);
+    assert_eq!(line, 2, "{msg}");
+    assert!(col > 1, "{msg}");
+    assert!(msg.contains("nests brackets more than 128 deep"), "{msg}");
+    assert!(msg.contains("brackets opened and never closed"), "{msg}");
+    for dev in ["recursion_limit", "serde_stacker", "ron::"] {
+        assert!(!msg.contains(dev), "{dev}: {msg}");
+    }
+    // Twin: ten compounds deep is fine.
+    let mut parts = "(shape: Circle(radius: 0.1), offset: (0.0, 0.0), angle: 0.0)".to_string();
+    for _ in 0..10 {
+        parts = format!("(shape: Compound(parts: [{parts}]), offset: (0.0, 0.0), angle: 0.0)");
+    }
+    parse(
+        Path::new("ok.ron"),
+        &format!("Level(title: \"ok\", effects: [gravity], bodies: [(name: \"b\", mass: 1.0, inertia: 1.0, shape: Compound(parts: [{parts}]))])"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

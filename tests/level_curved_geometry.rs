@@ -273,3 +273,61 @@ fn known_gap_fast_riders_on_concave_facets_lose_energy_in_proportion_to_dt() {
         "not first order in dt: {coarse} at 1/240 s, {fine} at 1/960 s"
     );
 }
+
+#[test]
+fn tracks_are_validated_as_the_engine_holds_them() {
+    // Before (issue 41): validated in f64, built in f32. Points 1e-300 apart are distinct in
+    // f64 and one point in f32 (both round to 0); coordinates of 1e39 m are past f32's range
+    // (3.4e38) and were built as infinities; an arc of radius 1e-300 is one point.
+    for (shape, needle) in [
+        (
+            "Polyline(points: [(0.0, 0.0), (1e-300, 0.0), (1.0, 1.0)])",
+            "one point in f32",
+        ),
+        (
+            "Polyline(points: [(0.0, 0.0), (1e39, 0.0)])",
+            "past the 65536 m",
+        ),
+        (
+            "Arc(center: (1e39, 0.0), radius: 1.0, start: 0.0, end: 3.0, side: inside)",
+            "past the 65536 m",
+        ),
+        (
+            "Arc(radius: 1e-300, start: 0.0, end: 3.0, side: inside)",
+            "one point in f32",
+        ),
+        // 65,536 m is where f32 spaces numbers 0.0078 m apart, past rapier's allowed contact
+        // error of 0.005 m: 1e5 m is refused in f32.
+        (
+            "Polyline(points: [(0.0, 0.0), (1e5, 0.0)])",
+            "past the 65536 m",
+        ),
+    ] {
+        let text = level_with(&format!("(name: \"track\", kind: fixed, shape: {shape})"));
+        let e = refuse(&text);
+        assert_eq!((e.line, e.col), shape_pos(&text), "{shape}: {e}");
+        assert!(e.to_string().contains(needle), "{shape}: {e}");
+        assert!(e.to_string().contains("help: "), "{shape}: {e}");
+    }
+    // Twins: in f64 a track at 1e5 m is held to 1.5e-11 m and accepted; 1e39 is refused there
+    // too (past 2^45 m, where f64's spacing passes 0.005 m). Points 1e-3 apart are distinct.
+    let f64_level = |shape: &str| {
+        level_with(&format!("(name: \"track\", kind: fixed, shape: {shape})"))
+            .replace("effects:", "world: (precision: f64),\n  effects:")
+    };
+    level::parse(
+        Path::new("ok.ron"),
+        &f64_level("Polyline(points: [(0.0, 0.0), (1e5, 0.0)])"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    refuse(&f64_level("Polyline(points: [(0.0, 0.0), (1e39, 0.0)])"));
+    parse(&level_with(
+        "(name: \"track\", kind: fixed, shape: Polyline(points: [(0.0, 0.0), (1e-3, 0.0), (1.0, 1.0)]))",
+    ));
+    // Every level of the library and the tests' folders still loads.
+    for dir in ["levels", "tests/newuser", "tests/hard_readings"] {
+        for f in common::ron_files(dir, &[]) {
+            level::load(&f).unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
+}

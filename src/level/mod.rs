@@ -25,9 +25,15 @@ pub struct Scene {
     pub level: Level,
 }
 
+/// How deep ron reads nested brackets before it stops (its default, which keeps the parser's
+/// recursion off the end of the stack).
+const RECURSION_LIMIT: usize = 128;
+
 /// The RON options every level is read and written with.
 pub fn ron_options() -> ron::Options {
-    ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .with_recursion_limit(RECURSION_LIMIT)
 }
 
 /// The largest level file read, bytes: 15 times the library's largest (stress/joint_grid_30,
@@ -47,6 +53,7 @@ pub fn load_with_warnings(path: &Path) -> Result<(Scene, Vec<LevelWarning>), Lev
     let bytes = read(path)?;
     let scene = parse_bytes(path, &bytes)?;
     let text = std::str::from_utf8(&bytes).unwrap_or_default();
+    let text = text.strip_prefix(BOM).unwrap_or(text);
     let warnings = warnings::find(path, text, &scene.level);
     Ok((scene, warnings))
 }
@@ -146,6 +153,7 @@ pub fn file_kind(meta: &std::fs::Metadata) -> &'static str {
 /// Parses and validates a level file's bytes: text that is not UTF-8 is an error at the line and
 /// column of the first bad byte.
 pub fn parse_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LevelError> {
+    let bytes = bytes.strip_prefix(BOM.as_bytes()).unwrap_or(bytes);
     match std::str::from_utf8(bytes) {
         Ok(text) => parse(path, text),
         Err(e) => {
@@ -167,8 +175,15 @@ pub fn parse_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LevelError> {
     }
 }
 
-/// Parses and validates level text; `path` is only used in messages.
+/// The byte-order mark some editors (Notepad) put before UTF-8 text. It is not part of the
+/// text: a level that starts with one is read without it, and its line and column numbers count
+/// from the first character after it, as the editor shows them.
+const BOM: &str = "\u{feff}";
+
+/// Parses and validates level text; `path` is only used in messages. A leading byte-order mark
+/// is skipped (ron refused it as "Expected opening `(`").
 pub fn parse(path: &Path, text: &str) -> Result<Scene, LevelError> {
+    let text = text.strip_prefix(BOM).unwrap_or(text);
     let level: Level = ron_options()
         .from_str(text)
         .map_err(|e| syntax_error(path, &e))?;
@@ -200,6 +215,19 @@ fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
         E::MissingStructField { field, .. } => format!("add `{field}: ...` (see docs/levels.md)"),
         E::DuplicateStructField { .. } => "write each field once".to_string(),
         E::ExpectedFloat | E::ExpectedInteger => "write a number, e.g. 1.0".to_string(),
+        E::ExceededRecursionLimit => {
+            // ron's own message names its API (`recursion_limit`, `serde_stacker`): a hint for
+            // the program, not for the level's author.
+            return LevelError {
+                file: path.to_path_buf(),
+                line: e.span.start.line,
+                col: e.span.start.col,
+                message: format!(
+                    "the level nests brackets more than {RECURSION_LIMIT} deep here"
+                ),
+                help: "a level needs a few levels of brackets (a compound's parts nest one shape in another): check for brackets opened and never closed, and flatten compounds nested in compounds into one list of parts".to_string(),
+            };
+        }
         _ => "see docs/levels.md for the level format".to_string(),
     };
     LevelError {

@@ -71,6 +71,70 @@ impl Motion {
     }
 }
 
+/// rapier's speed cap, m/s: `normalized_max_linear_velocity` (400) times `length_unit` (1, which
+/// rigidlab keeps), applied to every body after each substep, kinematic ones included, in f32 and
+/// f64 alike. A prescribed motion must stay within it (validation).
+pub const SPEED_CAP: f64 = 400.0;
+
+/// The range of cos over [a, b] (b >= a), as (least, largest); the whole [-1, 1] when the
+/// interval spans a turn or its ends are too large to place between multiples of pi.
+fn cos_range(a: f64, b: f64) -> (f64, f64) {
+    use std::f64::consts::{PI, TAU};
+    if !(b - a < TAU && a.abs() < 1e12 && b.abs() < 1e12) {
+        return (-1.0, 1.0);
+    }
+    let (mut lo, mut hi) = (a.cos().min(b.cos()), a.cos().max(b.cos()));
+    let mut k = (a / PI).ceil();
+    while k * PI <= b {
+        if k.rem_euclid(2.0) == 0.0 {
+            hi = 1.0;
+        } else {
+            lo = -1.0;
+        }
+        k += 1.0;
+    }
+    (lo, hi)
+}
+
+/// The ends of the factor a motion's rate grows with over [0, duration]: a t for `Accelerate`
+/// (t from 0 to the duration), w cos(w t + phi) for `Oscillate` (cos over the phases the run
+/// covers). A rate r0 + s f has a convex size in f, so its largest is at one of these.
+fn factor_ends(m: &Motion, duration: f64) -> [f64; 2] {
+    match *m {
+        Motion::Accelerate { .. } => [0.0, duration],
+        Motion::Oscillate { omega, phase, .. } => {
+            let (lo, hi) = cos_range(phase, phase + omega * duration);
+            [omega * lo, omega * hi]
+        }
+    }
+}
+
+/// The largest speed of the body frame's origin over [0, duration], m/s: its `velocity` plus
+/// the motion's rate, |v0 + a t| or |v0 + A w cos(w t + phi)|.
+pub fn largest_speed(b: &BodyDef, m: &Motion, duration: f64) -> f64 {
+    let unit = m.scaled(1.0, |_, _| 1.0).linear;
+    factor_ends(m, duration)
+        .iter()
+        .map(|f| (b.velocity.0 + unit.0 * f).hypot(b.velocity.1 + unit.1 * f))
+        .fold(
+            0.0,
+            |a: f64, x| if x.is_nan() { f64::INFINITY } else { a.max(x) },
+        )
+}
+
+/// The largest angular rate of the body over [0, duration], rad/s: |omega0 + alpha t| or
+/// |omega0 + Theta w cos(w t + phi)|.
+pub fn largest_rate(b: &BodyDef, m: &Motion, duration: f64) -> f64 {
+    let unit = m.scaled(1.0, |_, _| 1.0).angular;
+    factor_ends(m, duration)
+        .iter()
+        .map(|f| (b.omega + unit * f).abs())
+        .fold(
+            0.0,
+            |a: f64, x| if x.is_nan() { f64::INFINITY } else { a.max(x) },
+        )
+}
+
 /// The pose (origin, angle) at time t of a body that starts at its `position` and `angle` with
 /// its `velocity` and `omega`, moved by its `motion` if it has one.
 pub fn pose_at(b: &BodyDef, t: f64) -> Planar {

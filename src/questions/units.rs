@@ -83,9 +83,54 @@ mod tests {
             answer_in("6.283185307179586 rad/s", "Hz").unwrap(),
             1.0
         ));
-        // A frequency asked in Hz and typed in 1/s, a rate asked in 1/s typed in rad/s.
+        // A rate asked in rad/s and typed in 1/s: the angle left out is read in radians.
         assert!(close(answer_in("3 1/s", "rad/s").unwrap(), 3.0));
-        assert!(close(answer_in("3 rad/s", "1/s").unwrap(), 3.0));
+    }
+
+    #[test]
+    fn an_angle_the_question_has_not_is_refused() {
+        // Before (issue 41): 1.5614 m*rev/s was converted to 2 pi x 1.5614 = 9.8106 m/s and
+        // graded right for 9.81 m/s; m*rad/s and m*deg/s were read as m/s (x 1, x pi/180).
+        for typed in [
+            "1.5614 m*rev/s",
+            "9.81 m*rad/s",
+            "562 m*deg/s",
+            "9.81 m rad/s",
+        ] {
+            let e = answer_in(typed, "m/s").unwrap_err();
+            assert!(
+                e.contains("rad") && e.contains("the question asks for m/s"),
+                "{typed}: {e}"
+            );
+        }
+        // Another quantity with no angle: a force, a coefficient (dimensionless).
+        assert!(answer_in("3 N*rad", "N").is_err());
+        assert!(answer_in("0.5 rad", "1").is_err());
+        // Where the question has the angle, every angle unit still converts.
+        assert!(close(answer_in("0.5 rev/s", "rad/s").unwrap(), PI));
+        assert!(close(answer_in("180 deg", "rad").unwrap(), PI));
+        assert!(close(answer_in("0.5", "1").unwrap(), 0.5));
+    }
+
+    #[test]
+    fn an_operator_without_a_unit_on_each_side_is_refused() {
+        // Before (issue 41): `m/s*` read as m/s (empty factors were skipped).
+        for typed in [
+            "9.81 m/s*",
+            "9.81 *m/s",
+            "9.81 m**s",
+            "9.81 m/",
+            "9.81 /s",
+            "9.81 m/s.",
+        ] {
+            let e = answer_in(typed, "m/s").unwrap_err();
+            assert!(e.contains("needs a unit on each side"), "{typed}: {e}");
+        }
+        // Spaces, `*`, `.` and `·` between units still multiply; an empty unit is dimensionless.
+        assert!(close(answer_in("2 N * m", "N m").unwrap(), 2.0));
+        assert!(close(answer_in("2 N.m", "N m").unwrap(), 2.0));
+        assert!(close(answer_in("2 kg  m^2 / s", "kg m^2/s").unwrap(), 2.0));
+        assert!(Unit::parse("").is_ok());
     }
 
     #[test]

@@ -460,7 +460,7 @@ impl Simulation {
             // so the call's impulses (all of one substep) are read along the very rows they
             // acted on.
             let rows_from = (split || self.settings.impact_cuts).then(|| self.joint_poses());
-            self.prescribe_velocities(t0 + elapsed, t0 + elapsed + h);
+            self.prescribe_velocities(t0 + elapsed, t0 + elapsed + h)?;
             elapsed += h;
             // Round bodies' friction acts on their rims, not halfway into an overlap
             // (sim/contact_points.rs).
@@ -541,8 +541,18 @@ impl Simulation {
     /// rapier's position-based kinematic body, takes the rates from poses rounded to f32: at
     /// 37 m a pose's ulp over a 2 ms step is 2e-3 m/s of velocity noise, which shook a
     /// pendulum's omega across zero at its extremes.)
-    fn prescribe_velocities(&mut self, t0: f64, t1: f64) {
+    ///
+    /// rapier clamps every body's speed after each substep, a kinematic body's too (at its
+    /// `max_linear_velocity`, 400 m/s, and its angular rate at (pi/4) / dt unless fast rotation
+    /// is allowed): a motion past either would leave the body behind while the snapshot reads
+    /// the motion's rates, so the run stops instead. Validation refuses such a motion at the
+    /// level's own dt (`level/validate/bodies.rs`); this catches a `--dt` that makes it so.
+    fn prescribe_velocities(&mut self, t0: f64, t1: f64) -> Result<(), SimError> {
         use crate::level::motion::pose_at;
+        let cap = self.world.integration_parameters.max_linear_velocity() as f64;
+        let h = t1 - t0;
+        let turn_cap = (!self.settings.allow_fast_rotation)
+            .then(|| std::f64::consts::FRAC_PI_4 / self.settings.dt);
         for (i, b) in self.level.bodies.iter().enumerate() {
             if b.motion.is_none() {
                 continue;
@@ -553,11 +563,38 @@ impl Simulation {
                 let p = pose_at(b, t);
                 DVec2::new(p.linear.0, p.linear.1) + DVec2::from_angle(p.angular).rotate(c)
             };
-            let h = t1 - t0;
             let turn = pose_at(b, t1).angular - pose_at(b, t0).angular;
-            rb.set_linvel(vd((com(t1) - com(t0)) / h), true);
-            rb.set_angvel((turn / h) as Real, true);
+            let (v, omega) = ((com(t1) - com(t0)) / h, turn / h);
+            let fast = !(v.length() <= cap * (1.0 + 1e-6));
+            let spins = turn_cap.is_some_and(|m| !(omega.abs() <= m * (1.0 + 1e-6)));
+            if fast || spins {
+                let what = if fast {
+                    format!(
+                        "{:.3e} m/s, past rapier's speed cap of {cap} m/s",
+                        v.length()
+                    )
+                } else {
+                    format!(
+                        "{:.3e} rad/s, past rapier's cap of (pi/4) / dt = {:.4} rad/s",
+                        omega.abs(),
+                        turn_cap.unwrap_or_default()
+                    )
+                };
+                return Err(SimError {
+                    step: self.snapshot.step + 1,
+                    time: t1,
+                    body: b.name.clone(),
+                    quantity: format!(
+                        "has a prescribed motion that reaches {what}: rapier clamps every body's \
+                         rates there, so the body would not follow its motion; keep the motion \
+                         within the cap (docs/levels.md, \"motion\")"
+                    ),
+                });
+            }
+            rb.set_linvel(vd(v), true);
+            rb.set_angvel(omega as Real, true);
         }
+        Ok(())
     }
 
     /// A prescribed body's velocity and omega in the snapshot are its motion's at the step's

@@ -14,8 +14,12 @@ use std::f64::consts::PI;
 ///
 /// The angle is dimensionless in SI (a rad/s is a 1/s), but a cycle is 2 pi rad: so that an
 /// angular rate typed in Hz or rev/s converts with 2 pi, angles carry an exponent of their own
-/// (rad, deg, rev, and Hz = rev/s, rpm = rev/min). Two units agree when kg, m and s agree and
-/// either their angle exponents agree or one of them names no angle (a `1/s` is read as rad/s).
+/// (rad, deg, rev, and Hz = rev/s, rpm = rev/min). An answer converts to a question's unit when
+/// kg, m and s agree and either their angle exponents agree or the answer names no angle (a
+/// `1/s` typed for rad/s is read in radians). An angle the question's unit does not have is
+/// refused, not dropped: `m*rev/s` for a speed in m/s would be 2 pi m/s in SI, a factor the
+/// student never meant (it graded 1.5614 "m*rev/s" right for 9.81 m/s, issue 41), and no
+/// speed, force or energy is written with an angle in it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Unit {
     pub factor: f64,
@@ -69,7 +73,8 @@ const TABLE: &[(&str, f64, [i32; 3], i32)] = &[
 impl Unit {
     /// Parses a unit expression: names from the table joined by `*`, `.`, `·` or spaces, with
     /// `^n` powers (n may be negative); everything after a `/` divides (`m/s^2`, `ft*lb/s`,
-    /// `kg m^2`, `1/s`).
+    /// `kg m^2`, `1/s`). An operator needs a unit on each side (`m/s*`, `*m`, `m**s` and `m/`
+    /// are refused, not read as `m/s`, `m`, `m s`, `m`).
     pub fn parse(text: &str) -> Result<Unit, String> {
         let mut u = Unit {
             factor: 1.0,
@@ -85,9 +90,23 @@ impl Unit {
                 "`{text}`: write one `/` at most (everything after it divides)"
             ));
         }
-        for (part, sign) in [(num, 1), (den.unwrap_or(""), -1)] {
+        let lonely = |op: &str| {
+            format!("`{text}`: `{op}` needs a unit on each side (write e.g. `m/s`, `N*m`, `1/s`)")
+        };
+        if den.is_some_and(|d| num.trim().is_empty() || d.trim().is_empty()) {
+            return Err(lonely("/"));
+        }
+        let is_op = |c: char| c == '*' || c == '.' || c == '\u{b7}';
+        // An empty unit is dimensionless (`unit: ""`), as `1` is.
+        let parts = [(num, 1)].into_iter().chain(den.map(|d| (d, -1)));
+        for (part, sign) in parts.filter(|(p, _)| !p.trim().is_empty()) {
+            // Between two operators, or an operator and an end, there must be a unit.
+            if part.split(is_op).any(|piece| piece.trim().is_empty()) {
+                let op = part.chars().find(|c| is_op(*c)).unwrap_or('*');
+                return Err(lonely(&op.to_string()));
+            }
             for factor in part
-                .split(|c: char| c == '*' || c == '.' || c == '\u{b7}' || c.is_whitespace())
+                .split(|c: char| is_op(c) || c.is_whitespace())
                 .filter(|s| !s.is_empty())
             {
                 let (name, power) = match factor.split_once('^') {
@@ -131,11 +150,11 @@ impl Unit {
         Ok(u)
     }
 
-    /// Whether a value in this unit converts to `other`: kg, m and s agree, and the angle does
-    /// or one of the two names none (then it is taken in radians).
+    /// Whether an answer in this unit converts to a question's unit `other`: kg, m and s agree,
+    /// and the angle does or this unit names none (then it is taken in radians). An angle that
+    /// `other` does not have is refused (see [`Unit`]).
     pub fn converts_to(&self, other: &Unit) -> bool {
-        self.dims == other.dims
-            && (self.angle == other.angle || self.angle == 0 || other.angle == 0)
+        self.dims == other.dims && (self.angle == other.angle || self.angle == 0)
     }
 
     /// The dimension in words, for error messages: "kg m^2 s^-3", "rad s^-1".

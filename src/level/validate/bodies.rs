@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::level::curves;
+use crate::level::motion;
 
 pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
     match s {
@@ -101,8 +102,34 @@ fn polyline(v: &V, points: &[V2], closed: bool, pos: (usize, usize)) -> R {
             "split the track over several fixed bodies, or use `Arc` for its circular parts",
         ));
     }
+    track_in_range(v, points, "polyline point", pos)?;
     let n = points.len();
-    match curves::polyline_fault(points, closed) {
+    // The engine builds the track from its points rounded to its precision: test those too
+    // (points 1e-300 apart are distinct in f64 and one point in f32).
+    let rounded: Vec<V2> = points.iter().map(|p| engine_point(v, *p)).collect();
+    let fault = curves::polyline_fault(points, closed).or_else(|| {
+        v.level
+            .world
+            .precision
+            .is_f32()
+            .then(|| curves::polyline_fault(&rounded, closed))
+            .flatten()
+    });
+    if let Some(curves::PolylineFault::ZeroEdge(k)) = &fault {
+        if points[*k] != points[(*k + 1) % n] {
+            return Err(v.err(
+                pos,
+                format!(
+                    "polyline points {k} {:?} and {} {:?} are one point in f32, the engine's precision",
+                    points[*k],
+                    (*k + 1) % n,
+                    points[(*k + 1) % n]
+                ),
+                "move them apart (f32 keeps about 7 significant digits), or remove one",
+            ));
+        }
+    }
+    match fault {
         None => Ok(()),
         Some(curves::PolylineFault::ZeroEdge(k)) => Err(v.err(
             pos,
@@ -161,6 +188,15 @@ fn arc(
             ));
         }
     }
+    track_in_range(
+        v,
+        &[
+            (center.0 - radius, center.1 - radius),
+            (center.0 + radius, center.1 + radius),
+        ],
+        "arc extent (center -+ radius)",
+        pos,
+    )?;
     let e = curves::chord_error(radius, chord_error);
     let n = curves::arc_facets(radius, sweep, e);
     if n > curves::MAX_ARC_FACETS {
@@ -173,6 +209,77 @@ fn arc(
             ),
             format!("give `chord_error: {least:.3e}` (m) or more"),
         ));
+    }
+    // The facets as the engine holds them: no two neighbouring vertices one point (an arc of
+    // radius 1e-300 is one point in f32).
+    let (points, _) = curves::arc_points(center, radius, start, end, e);
+    let rounded: Vec<V2> = points.iter().map(|p| engine_point(v, *p)).collect();
+    if let Some(k) = rounded.windows(2).position(|w| w[0] == w[1]) {
+        return Err(v.err(
+            pos,
+            format!(
+                "this arc's facet vertices {k} {:?} and {} {:?} are one point in {}, the engine's precision",
+                points[k],
+                k + 1,
+                points[k + 1],
+                v.level.world.precision.name()
+            ),
+            "give a larger radius or a larger chord_error (fewer, longer facets)",
+        ));
+    }
+    Ok(())
+}
+
+/// The largest size of a track coordinate at each precision, m: the largest power of two
+/// whose ulp is within rapier's allowed contact error (`normalized_allowed_linear_error`,
+/// 0.005 m at `length_unit` 1). Past it the engine cannot place a contact on the track to its own
+/// tolerance: f32 spaces numbers 0.0078 m apart from 65,536 m on; f64 5.9e-3 m from 3.5e13 m.
+pub(super) fn track_limit(precision: Precision) -> f64 {
+    match precision {
+        Precision::F32 => 65_536.0,
+        Precision::F64 => 35_184_372_088_832.0, // 2^45
+    }
+}
+
+/// The point as the engine holds it: rounded to f32 unless the level runs in f64.
+fn engine_point(v: &V, p: V2) -> V2 {
+    if v.level.world.precision.is_f32() {
+        (p.0 as f32 as f64, p.1 as f32 as f64)
+    } else {
+        p
+    }
+}
+
+/// Every coordinate of a track within [`track_limit`] of its body's origin (issue 41: a
+/// polyline at 1e39 m, past f32's range, was validated in f64 and built as infinities).
+fn track_in_range(v: &V, points: &[V2], what: &str, pos: (usize, usize)) -> R {
+    let precision = v.level.world.precision;
+    let limit = track_limit(precision);
+    for p in points {
+        let size = p.0.abs().max(p.1.abs());
+        if !(size < limit) {
+            let ulp = |x: f64| match precision {
+                Precision::F32 => (x as f32).abs() * f32::EPSILON,
+                Precision::F64 => (x * f64::EPSILON) as f32,
+            };
+            return Err(v.err(
+                pos,
+                format!(
+                    "{what} {p:?} is {size:.4e} m from its body's origin, past the {limit} m where {} spaces numbers more than rapier's allowed contact error of 0.005 m apart ({:.2e} m there)",
+                    precision.name(),
+                    ulp(limit)
+                ),
+                match precision {
+                    Precision::F32 => format!(
+                        "keep track coordinates within {limit} m of the body's origin, or set `precision: f64` in `world` (up to {:.2e} m)",
+                        track_limit(Precision::F64)
+                    ),
+                    Precision::F64 => format!(
+                        "keep track coordinates within {limit:.2e} m of the body's origin"
+                    ),
+                },
+            ));
+        }
     }
     Ok(())
 }
@@ -378,7 +485,7 @@ fn motion(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
                 &format!("body \"{name}\" motion acceleration"),
                 pos,
             )?;
-            v.finite(angular, &format!("body \"{name}\" motion angular"), pos)
+            v.finite(angular, &format!("body \"{name}\" motion angular"), pos)?;
         }
         Motion::Oscillate {
             amplitude,
@@ -398,7 +505,51 @@ fn motion(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
                 &format!("body \"{name}\" motion omega (the circular frequency)"),
                 "rad/s",
                 pos,
-            )
+            )?;
         }
     }
+    motion_within_caps(v, b, m, pos)
+}
+
+/// A prescribed motion within what the engine moves a body at: rapier clamps every body's
+/// speed after each substep, a kinematic body's too, at 400 m/s ([`motion::SPEED_CAP`]) and its
+/// angular rate at (pi/4) / dt unless `world.allow_fast_rotation`. Past either the body stays
+/// behind its motion (at 1e3 m/s^2 for 1 s it was 180 m short; past f32's range it did not move
+/// at all) while the snapshot reads the motion's own rates, so a question on them passed. The
+/// caps are the same in f32 and f64 (rapier2d-f64 clamps alike), so `precision` does not lift
+/// them. The rates are the body's `velocity` and `omega` plus the motion's, at their largest over
+/// `world.duration`.
+fn motion_within_caps(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
+    let w = &v.level.world;
+    let speed = motion::largest_speed(b, m, w.duration);
+    if !(speed <= motion::SPEED_CAP) {
+        return Err(v.err(
+            pos,
+            format!(
+                "body \"{}\"'s prescribed motion reaches {speed:.3e} m/s within world.duration, past the engine's speed cap of {} m/s: rapier clamps every body's speed there, a kinematic body's too, so the body would stay behind its motion",
+                b.name,
+                motion::SPEED_CAP
+            ),
+            format!(
+                "keep the speed within {} m/s over world.duration: `velocity` plus the acceleration times the duration (Accelerate), or plus the amplitude times omega (Oscillate); the cap is the same in f32 and f64",
+                motion::SPEED_CAP
+            ),
+        ));
+    }
+    if w.allow_fast_rotation {
+        return Ok(());
+    }
+    let rate = motion::largest_rate(b, m, w.duration);
+    let cap = std::f64::consts::FRAC_PI_4 / w.dt;
+    if !(rate <= cap) {
+        return Err(v.err(
+            pos,
+            format!(
+                "body \"{}\"'s prescribed motion turns at {rate:.3e} rad/s within world.duration, past the engine's cap of (pi/4) / dt = {cap:.4} rad/s at world.dt = {} s: rapier clamps every body's angular rate there, so the body would stay behind its motion",
+                b.name, w.dt
+            ),
+            "lower the motion's angular rate, shorten world.dt, or set `allow_fast_rotation: true` in `world` (which lifts the cap)",
+        ));
+    }
+    Ok(())
 }

@@ -191,11 +191,26 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         _ => {}
     }
     match &q.quantity {
-        Quantity::JointReaction { window, .. } | Quantity::MotorTorque { window, .. } => {
-            v.non_negative(*window, "averaging window", "s", at("quantity"))?
+        Quantity::JointReaction { window, .. }
+        | Quantity::MotorTorque { window, .. }
+        | Quantity::ContactForceFrom { window, .. } => {
+            // 0 is the default (the two steps around the sample); a window longer than the run
+            // could never be filled.
+            v.non_negative(*window, "averaging window", "s", at("quantity"))?;
+            if *window > v.level.world.duration {
+                return Err(v.err(
+                    at("quantity"),
+                    format!(
+                        "question \"{}\" averages over a window of {window} s, longer than the run (world.duration = {} s)",
+                        q.id, v.level.world.duration
+                    ),
+                    "give `window` in seconds, at most world.duration (0, the default, is the two steps around the sample)",
+                ));
+            }
         }
         _ => {}
     }
+    same_body_twice(v, q)?;
     match &q.quantity {
         Quantity::GroupKineticEnergy(b) | Quantity::GroupMomentum(b) if b.is_empty() => {
             return Err(v.err(
@@ -401,4 +416,60 @@ pub(super) fn question_ref(v: &V, q: &QuestionDef, kind: &str, name: &str, field
         ),
         format!("name a {kind} of this level"),
     ))
+}
+
+/// A pair quantity or event must name two bodies: a body's slip, contact or impact against
+/// itself, or its motion relative to itself, is no reading (`SlipSpeed` of a body against
+/// itself was accepted, issue 41).
+fn same_body_twice(v: &V, q: &QuestionDef) -> R {
+    use Quantity as Q;
+    let pair = |q: &Quantity| -> Option<(String, String)> {
+        match q {
+            Q::FrictionWork { body, other }
+            | Q::FrictionLoss { body, other }
+            | Q::ContactNormalForce { body, other }
+            | Q::ContactForceFrom { body, other, .. }
+            | Q::SlipSpeed { body, other }
+            | Q::ReboundHeight { body, other }
+            | Q::Restitution { body, other }
+            | Q::EnergyLost { body, other }
+            | Q::ContactImpulse { body, other, .. } => Some((body.clone(), other.clone())),
+            Q::RollingAcceleration { body, ground }
+            | Q::RollingFriction { body, ground }
+            | Q::RollingFrictionNeeded { body, ground } => Some((body.clone(), ground.clone())),
+            Q::RelativeDistance(a, b)
+            | Q::RelativeSpeed(a, b)
+            | Q::RelativeAngle(a, b)
+            | Q::RelativeAccel(a, b) => Some((a.clone(), b.clone())),
+            _ => None,
+        }
+    };
+    let event = match &q.at {
+        When::SlipEnds { body, other, .. } | When::SlipStarts { body, other, .. } => {
+            Some((body.clone(), other.clone()))
+        }
+        When::FirstContact {
+            body,
+            other: Some(other),
+        }
+        | When::ContactEnds {
+            body,
+            other: Some(other),
+        } => Some((body.clone(), other.clone())),
+        When::Crossing { of, .. } | When::MaxOf { of, .. } | When::MinOf { of, .. } => pair(of),
+        _ => None,
+    };
+    for (field, p) in [("quantity", pair(&q.quantity)), ("at", event)] {
+        if let Some((a, b)) = p.filter(|(a, b)| a == b) {
+            return Err(v.err(
+                v.loc.field_pos("questions", &q.id, field),
+                format!(
+                    "question \"{}\" pairs the body \"{a}\" with itself (its `{field}` names \"{b}\" twice)",
+                    q.id
+                ),
+                "name the other body of the pair: the one it touches, slips or rolls on, or moves relative to",
+            ));
+        }
+    }
+    Ok(())
 }

@@ -23,6 +23,25 @@ pub(super) fn coupling(v: &V, c: &CouplingDef) -> R {
         ));
     }
     let mut any_dynamic = false;
+    // A cable over a pulley names the pulley's angle once per strand; but a coupling whose
+    // every term names one coordinate ties it to itself (issue 41): it holds it still, or, with
+    // ratios summing to 0, does nothing.
+    if let Some(t) = c.terms.first().filter(|t| {
+        c.terms
+            .iter()
+            .all(|u| u.body == t.body && u.coordinate == t.coordinate)
+    }) {
+        return Err(v.err(
+            pos,
+            format!(
+                "coupling \"{}\" ties the {} of body \"{}\" to itself: every term names it",
+                c.name,
+                format!("{:?}", t.coordinate).to_lowercase(),
+                t.body
+            ),
+            "name the other coordinates the coupling ties it to (another body's, or another coordinate of this one)",
+        ));
+    }
     for t in &c.terms {
         let b = v.body_ref(&t.body, "couplings", &c.name, "body")?;
         any_dynamic |=
