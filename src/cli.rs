@@ -38,14 +38,16 @@ pub enum Command {
         #[arg(long = "answer", value_parser = parse_answer)]
         answers: Vec<(String, String)>,
         /// Do not search finer settings for a failing level (by default the cheapest settings
-        /// that pass, up to 32x the level's cost and 2 s of search, are reported under it as
-        /// its advice).
+        /// that pass, up to 32x the level's cost and 2 s of estimated runs, are reported under
+        /// it as its advice).
         #[arg(long)]
         no_advice: bool,
-        /// The wall time, s, the advice may spend searching a level (default 2; a level whose
-        /// own run takes seconds needs more to be searched through).
-        #[arg(long, value_name = "S", value_parser = parse_seconds, default_value_t = crate::study::advice::SEARCH_SECONDS)]
-        advice_seconds: f64,
+        /// How much the advice may search a level, in the run budget's estimated seconds
+        /// (docs/cli.md; default 2, about 2 s on an idle 2-core machine): an estimate, not wall
+        /// time, so the advice is the same on a busy machine. A level whose own run takes
+        /// seconds needs more to be searched through.
+        #[arg(long, alias = "advice-seconds", value_name = "S", value_parser = parse_seconds, default_value_t = crate::study::advice::SEARCH_COST_S)]
+        advice_cost: f64,
         #[command(flatten)]
         solver: SolverArgs,
     },
@@ -208,7 +210,7 @@ fn answers_for(
     Ok(out)
 }
 
-/// `--advice-seconds`: a positive, finite number of seconds.
+/// `--advice-cost`: a positive, finite number of (estimated) seconds.
 fn parse_seconds(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
@@ -229,13 +231,13 @@ pub fn main() -> ExitCode {
             json,
             answers,
             no_advice,
-            advice_seconds,
+            advice_cost,
             solver,
         }) => check(
             &paths,
             json,
             answers,
-            (!no_advice).then_some(advice_seconds),
+            (!no_advice).then_some(advice_cost),
             &solver,
         ),
         Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
@@ -307,34 +309,26 @@ fn check(
                 if let Some(b) = bar {
                     b.finish_and_clear();
                 }
-                let Some(seconds) = advice else {
+                let Some(cost_s) = advice else {
                     return r;
                 };
                 // A level the engine failed (or that stopped early): the cheapest settings
                 // that pass, searched within a bound (study::advice).
                 match r {
                     Ok(mut report) if crate::study::advice::engine_failed(&report) => {
-                        report.advice =
-                            Some(match crate::study::advice::beyond_settings(&report) {
-                                Some(why) => crate::report::Advice::NoneWithin {
-                                    none_within: 0.0,
-                                    why,
-                                    within_seconds: None,
-                                },
-                                None => crate::study::advice::advise_within(
-                                    &scene,
-                                    &opts,
-                                    report.wall_ms,
-                                    seconds,
-                                ),
-                            });
+                        report.advice = Some(crate::study::advice::advise_within(
+                            &scene,
+                            &opts,
+                            Some(&report),
+                            cost_s,
+                        ));
                         Ok(report)
                     }
                     Err(e @ RunError::Sim { .. }) => {
                         stderr!("{e}");
                         let mut report = failed(f, &e.to_string());
                         report.advice = Some(crate::study::advice::advise_within(
-                            &scene, &opts, 0.0, seconds,
+                            &scene, &opts, None, cost_s,
                         ));
                         Ok(report)
                     }

@@ -160,7 +160,7 @@ fn run_with(
         sim_time: sim.snapshot().time,
         wall_ms,
         effects: sim.settings.effects.names(),
-        settings: Some(sim.settings.clone()),
+        settings: Some(sim.settings_as_run()),
         checks,
         questions,
         error: None,

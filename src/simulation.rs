@@ -64,6 +64,12 @@ impl AnySimulation {
         &self.settings
     }
 
+    /// The settings as a report states them: how the steps so far were really called
+    /// (`sim::Settings::as_run`).
+    pub fn settings_as_run(&self) -> Settings {
+        forward!(self, s => s.settings.as_run(&s.calls))
+    }
+
     pub fn dt(&self) -> f64 {
         self.settings.dt
     }

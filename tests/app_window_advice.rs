@@ -66,8 +66,8 @@ fn wait_for_advice(app: &mut App) -> (AdviceState, Duration) {
         if !matches!(s, AdviceState::Searching) {
             return (s, longest);
         }
-        // The search is bounded at study::advice::SEARCH_SECONDS (2 s) of runs plus the one
-        // running when it is reached: 60 s is far past any answer.
+        // The search is bounded at study::advice::SEARCH_COST_S (2 s) of estimated runs: 60 s
+        // is far past any answer.
         assert!(started.elapsed().as_secs() < 60, "the search never ended");
         std::thread::sleep(Duration::from_millis(5));
     }

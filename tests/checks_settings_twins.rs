@@ -287,7 +287,15 @@ fn the_checks_see_the_resolved_settings() {
         .expect("the level has a kinetic_energy_g check");
     assert!(ke.note.contains("S = 8 substeps"), "{}", ke.note);
     assert!(report.passed, "{report:#?}");
-    // The simulation exposes the same record.
+    // The simulation exposes the same record, which the report completes with how the run's
+    // steps were called: all 432 split, as planned (one rapier call per substep).
     let sim = Simulation::new(&scene, &opts);
-    assert_eq!(sim.settings(), settings);
+    assert_eq!(settings.split_steps, report.steps);
+    assert_eq!(
+        sim.settings(),
+        &rigidlab::sim::Settings {
+            split_steps: 0,
+            ..settings.clone()
+        }
+    );
 }

@@ -185,7 +185,7 @@ fn the_estimate_is_the_formula_docs_cli_md_states() {
     );
     assert_eq!((w.pairs, w.questions, w.checks), (DOC.6, DOC.7, DOC.8));
     let seconds_of = |w: &Work| {
-        let step_us = w.calls_per_step as f64 * 1.3
+        let step_us = w.calls_per_step as f64 * (1.3 + w.pair_facets * 0.04)
             + w.bodies as f64 * 0.05
             + w.substeps as f64
                 * (0.08

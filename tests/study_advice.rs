@@ -7,7 +7,7 @@ use rigidlab::level::{self, Scene};
 use rigidlab::report::Advice;
 use rigidlab::runner;
 use rigidlab::sim::Options;
-use rigidlab::study::advice::{advise, engine_failed, MAX_COST_RATIO, SEARCH_SECONDS};
+use rigidlab::study::advice::{advise, engine_failed, MAX_COST_RATIO, SEARCH_COST_S};
 use std::collections::HashMap;
 use std::path::Path;
 use std::process::Command;
@@ -41,7 +41,7 @@ fn a_level_that_more_accuracy_fixes_gets_settings_that_pass() {
     let s = scene("tests/newuser/pendulum_period_120deg.ron");
     let own = run(&s, &Options::default());
     assert!(engine_failed(&own), "fails at its own settings");
-    let a = advise(&s, &Options::default(), own.wall_ms);
+    let a = advise(&s, &Options::default(), Some(&own));
     let Advice::Settings {
         settings,
         cost_ratio,
@@ -69,16 +69,16 @@ fn an_engine_limit_gets_none_within_and_why() {
     let s = scene("tests/newuser/n4_12_ball_pinned_bar_gap.ron");
     let own = run(&s, &Options::default());
     assert!(engine_failed(&own));
-    match advise(&s, &Options::default(), own.wall_ms) {
+    match advise(&s, &Options::default(), Some(&own)) {
         Advice::NoneWithin {
             none_within,
             why,
-            within_seconds,
+            within_estimated_seconds,
         } => {
             assert!(none_within >= 4.0, "searched to {none_within}x");
             assert!(why.contains("known-gaps"), "{why}");
-            // A run of 0.6 ms: the whole 32x is searched in well under the time bound.
-            assert_eq!(within_seconds, None, "{why}");
+            // A run of 0.6 ms: the whole 32x is searched well within the bound.
+            assert_eq!(within_estimated_seconds, None, "{why}");
         }
         a => panic!("the engine's e does not converge, yet: {a:?}"),
     }
@@ -90,17 +90,14 @@ fn an_engine_limit_gets_none_within_and_why() {
 fn check_prints_the_advice_and_no_advice_turns_it_off() {
     let bin = env!("CARGO_BIN_EXE_rigidlab");
     let failing = "tests/newuser/pendulum_period_120deg.ron";
-    // A generous search time: under a loaded test run the 2 s default may run out before the
-    // 4x candidate that passes (the time bound has its own test below).
-    let out = Command::new(bin)
-        .args(["check", failing, "--advice-seconds", "120"])
-        .output()
-        .unwrap();
+    // The default bound: in estimated seconds, so a loaded test run searches as far as an idle
+    // one (the bound has its own test below).
+    let out = Command::new(bin).args(["check", failing]).output().unwrap();
     assert_eq!(out.status.code(), Some(1));
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(table.contains("advice: passes with --dt"), "{table}");
     let out = Command::new(bin)
-        .args(["check", failing, "--json", "--advice-seconds", "120"])
+        .args(["check", failing, "--json"])
         .output()
         .unwrap();
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -173,20 +170,12 @@ fn every_failing_newuser_level_gets_advice_that_holds() {
                 if !engine_failed(&r) {
                     continue;
                 }
-                // The search is bounded by SEARCH_SECONDS of wall time (a run of a second, the
-                // seventh user's loop at 1/4800 s, used to be searched for minutes). Its
-                // predictions come from the failing run's time, and the last candidate may run
-                // past them (these runs share 2 cores with the other levels' here): at most 3x
-                // the bound plus the failing run's own time.
-                let t0 = std::time::Instant::now();
+                // The search is bounded by SEARCH_COST_S of estimated runs (a run of a second,
+                // the seventh user's loop at 1/4800 s, used to be searched for minutes): its
+                // wall time here, where the levels share 2 cores, is not asserted (the bound's
+                // own test is below; docs/cli.md measures its wall time).
                 failing += 1;
-                let a = advise(&s, twin, r.wall_ms);
-                let took = t0.elapsed().as_secs_f64();
-                assert!(
-                    took < 3.0 * SEARCH_SECONDS + r.wall_ms / 1000.0,
-                    "{}: advice took {took:.1} s at {twin:?}",
-                    f.display()
-                );
+                let a = advise(&s, twin, Some(&r));
                 match advised(&a) {
                     Some(opts) => {
                         settings += 1;
@@ -210,14 +199,14 @@ fn every_failing_newuser_level_gets_advice_that_holds() {
     assert!(failing > 0 && settings > 0);
 }
 
-/// The search's wall-time bound: the seventh user's loop at 1/4800 s and puck in a ring take
-/// about 2 s a run, and their own settings are already fine, so even the cheapest finer
-/// candidate (1.25x) does not fit in SEARCH_SECONDS. They used to be searched for minutes
+/// The search's bound: the seventh user's loop at 1/4800 s and puck in a ring take about 2 s a
+/// run, and their own settings are already fine, so even the cheapest finer candidate (1.25x)
+/// does not fit in SEARCH_COST_S of estimated runs. They used to be searched for minutes
 /// (`rigidlab check tests/newuser/*.ron` took 4 min 59 s on 2 cores, 2026-11-26); now the
-/// advice says the time ran out, names the next setting to try by hand, and the JSON carries
-/// the bound as `within_seconds`.
+/// advice says the bound ran out, names the next setting to try by hand, and the JSON carries
+/// the bound as `within_estimated_seconds`.
 #[test]
-fn a_slow_level_is_searched_within_the_time_bound_and_says_so() {
+fn a_slow_level_is_searched_within_the_bound_and_says_so() {
     let bin = env!("CARGO_BIN_EXE_rigidlab");
     let files = [
         "tests/newuser/n7_01_loop_min_height.ron",
@@ -245,21 +234,21 @@ fn a_slow_level_is_searched_within_the_time_bound_and_says_so() {
         // Either settings found within the bound, or the bound named as what stopped it.
         if advice.get("settings").is_none() {
             assert_eq!(
-                advice["within_seconds"].as_f64(),
-                Some(SEARCH_SECONDS),
+                advice["within_estimated_seconds"].as_f64(),
+                Some(SEARCH_COST_S),
                 "{advice}"
             );
             let why = advice["why"].as_str().unwrap();
             assert!(
-                why.contains("within the search's") && why.contains("--substeps"),
+                why.contains("within the search's bound") && why.contains("--substeps"),
                 "{why}"
             );
         }
     }
-    // Each level's search stays within its bound; the last candidate tried may overrun its
-    // prediction (made from the failing run's time) on a loaded machine: 3x per level.
+    // Each level's search stays within its bound; the estimates are within 3x of the runs
+    // (docs/cli.md), and a loaded machine stretches them: 3x again, per level.
     assert!(
-        with - bare < 2.0 * 3.0 * SEARCH_SECONDS,
+        with - bare < 2.0 * 9.0 * SEARCH_COST_S,
         "advice added {:.1} s to {bare:.1} s",
         with - bare
     );

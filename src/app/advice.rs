@@ -7,7 +7,7 @@ use super::physics::{LiveChecks, PhysicsCommand};
 use super::run::Run;
 use crate::level::Precision;
 use crate::report::{Advice, AdvisedSettings, LevelReport};
-use crate::study::advice::{self, SEARCH_SECONDS};
+use crate::study::advice::{self, SEARCH_COST_S};
 use bevy::prelude::*;
 
 /// Where the advice for the run on screen is.
@@ -40,7 +40,7 @@ impl WindowAdvice {
         match &self.state {
             AdviceState::None => None,
             AdviceState::Searching => Some(format!(
-                "advice: searching finer settings (at most {SEARCH_SECONDS:.0} s, the window goes on)…"
+                "advice: searching finer settings (at most {SEARCH_COST_S:.0} s of estimated runs, the window goes on)…"
             )),
             AdviceState::Ready(Advice::Settings {
                 settings: s,
@@ -158,8 +158,9 @@ fn advise_failed_run(phys: Res<Run>, live: NonSend<LiveChecks>, mut adv: ResMut<
         );
         return;
     }
-    // The search bounds itself (`study::advice`: SEARCH_SECONDS of runs at most, no candidate
-    // started that would end past it) and runs on a thread of its own: the frames go on.
+    // The search bounds itself (`study::advice`: SEARCH_COST_S of estimated runs at most, no
+    // candidate started whose estimate would pass it) and runs on a thread of its own: the
+    // frames go on.
     #[cfg(target_arch = "wasm32")]
     {
         adv.state = AdviceState::NotHere(
@@ -171,10 +172,13 @@ fn advise_failed_run(phys: Res<Run>, live: NonSend<LiveChecks>, mut adv: ResMut<
     {
         let (tx, rx) = std::sync::mpsc::channel();
         let (scene, options) = (phys.scene.clone(), phys.options.clone());
+        // The window's run is the level's at these options: its verdicts are the report the
+        // search starts from (a failure no setting can change is said without a search).
+        let own = report;
         let spawned = std::thread::Builder::new()
             .name("rigidlab advice".into())
             .spawn(move || {
-                let _ = tx.send(advice::advise(&scene, &options, 0.0));
+                let _ = tx.send(advice::advise(&scene, &options, Some(&own)));
             });
         adv.state = match spawned {
             Ok(_) => {

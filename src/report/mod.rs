@@ -51,18 +51,20 @@ pub enum Advice {
         /// Estimated cost against the level's own run: steps x substeps, f64 at 1.25x f32.
         cost_ratio: f64,
         /// The advised run's wall time against the failing run's, measured in this check (None
-        /// when the failing run stopped early).
-        #[serde(default, skip_serializing_if = "Option::is_none")]
+        /// when the failing run stopped early): the table shows it, the JSON does not, so that
+        /// the JSON's advice is the same on every machine (a busy machine changes wall times).
+        #[serde(skip)]
         wall_ratio: Option<f64>,
     },
     /// No candidate up to `none_within` times the level's own cost passes; `why` says what
-    /// that means. `within_seconds` is set when the search's wall time (`SEARCH_SECONDS`)
-    /// ran out before its cost bound: the costlier candidates were not tried.
+    /// that means. `within_estimated_seconds` is set when the search's bound, in the run
+    /// budget's estimated seconds (`study::advice::SEARCH_COST_S`), ran out before the cost
+    /// ratios did: the costlier candidates were not tried.
     NoneWithin {
         none_within: f64,
         why: String,
         #[serde(default, skip_serializing_if = "Option::is_none")]
-        within_seconds: Option<f64>,
+        within_estimated_seconds: Option<f64>,
     },
 }
 

@@ -57,6 +57,14 @@
 //!   one point 1282 MB, 300 at one point 124 MB (2.1 to 2.5 KB a pair); 10^4 questions 66.5 MB
 //!   (3.4 KB each); 1000 free bodies 32.6 MB; the `impulse_momentum` check over 1e6 steps
 //!   77.1 MB (48 bytes a step, as `ImpulseMomentumLedger` stores them).
+//! - [`FACET_CALL_US`]: with impact cuts on (sim/impacts.rs), each rapier call plans its
+//!   impacts against every nearby pair, and a curved track's pair against each of its facets.
+//!   Measured 2026-12-06 (CPU time, `rigidlab check --no-advice` with and without
+//!   `--no-impact-cuts`): tests/newuser/n7_05 (a puck in a full ring of 7025 facets, 3840 steps
+//!   of one call) 1.20 s against 0.11 s, 0.040 us a facet-call; n7_03 (a block on a quarter
+//!   ring of 1979 facets, 3840 steps) 0.34 s against 0.08 s, 0.034 us; n7_02 (a ball rolling
+//!   in a bowl of 2236 facets, 624 steps split into 4 calls by its spin) 0.33 s against 0.10 s,
+//!   0.041 us. Before, these were priced at 1/20 to 1/100 of their run.
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
 use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError, Shape};
@@ -89,6 +97,9 @@ pub const PAIR_STEP_US: f64 = 0.1;
 /// Making one contact pair, per pair its two bodies already have, ns (paid once, when the pairs
 /// of bodies that overlap at the start are made).
 pub const PAIR_MADE_NS: f64 = 17.0;
+/// With impact cuts on, one facet of a curved track (an `Arc`'s facets, a `Polyline`'s
+/// points) in a potential contact pair, planned against in one rapier call, us.
+pub const FACET_CALL_US: f64 = 0.04;
 /// One question watching one step, us.
 pub const QUESTION_STEP_US: f64 = 0.15;
 /// One check observing one step, us.
@@ -139,6 +150,9 @@ pub struct Work {
     pub pairs: f64,
     /// Sum over those pairs of the pairs their two bodies are in (what making them costs).
     pub pair_degrees: f64,
+    /// Sum over those pairs of their curved tracks' facets, where impact cuts plan each call
+    /// against them (0 without impact cuts).
+    pub pair_facets: f64,
     pub questions: usize,
     pub checks: usize,
     /// Bytes the checks keep per step (their histories).
@@ -168,10 +182,10 @@ impl Work {
                 .round()
                 .max(1.0)
         });
-        let (pairs, pair_degrees) = if set.effects.has(Effect::Contacts) {
+        let (pairs, pair_degrees, pair_facets) = if set.effects.has(Effect::Contacts) {
             contact_pairs(level)
         } else {
-            (0.0, 0.0)
+            (0.0, 0.0, 0.0)
         };
         let history_bytes_per_step = level
             .checks
@@ -203,6 +217,7 @@ impl Work {
             joints: level.joints.len(),
             pairs,
             pair_degrees,
+            pair_facets: if set.impact_cuts { pair_facets } else { 0.0 },
             questions: level.questions.len(),
             checks: level.checks.len(),
             history_bytes_per_step,
@@ -215,7 +230,7 @@ impl Work {
         let rows = self.joints as f64 + self.pairs;
         let engine = if self.f64 { F64_COST } else { 1.0 };
         engine
-            * (self.calls_per_step as f64 * CALL_US
+            * (self.calls_per_step as f64 * (CALL_US + self.pair_facets * FACET_CALL_US)
                 + self.bodies as f64 * BODY_STEP_US
                 + self.substeps as f64
                     * (SUBSTEP_US
@@ -358,12 +373,34 @@ fn shape_box(shape: &Shape, at: (f64, f64), angle: f64) -> Aabb {
     }
 }
 
+/// The facets a curved track is built of (an `Arc`'s from its chord error, a `Polyline`'s
+/// segments), 0 for any other shape.
+fn facets(shape: &Shape) -> f64 {
+    match shape {
+        Shape::Arc {
+            radius,
+            start,
+            end,
+            chord_error,
+            ..
+        } => {
+            let e = crate::level::curves::chord_error(*radius, *chord_error);
+            crate::level::curves::arc_facets(*radius, (end - start).abs(), e)
+                .min(crate::level::curves::MAX_ARC_FACETS) as f64
+        }
+        Shape::Polyline { points, .. } => points.len() as f64,
+        Shape::Compound { parts } => parts.iter().map(|p| facets(&p.shape)).sum(),
+        _ => 0.0,
+    }
+}
+
 /// The potential contact pairs at the start: pairs of bodies with shapes, not both fixed, whose
-/// boxes overlap within 1 cm; and the sum over them of the pairs each pair's bodies are in.
-/// A sweep along x; counting stops past [`PAIRS_COUNTED`].
-fn contact_pairs(level: &Level) -> (f64, f64) {
+/// boxes overlap within 1 cm; the sum over them of the pairs each pair's bodies are in; and the
+/// sum over them of their curved tracks' facets. A sweep along x; counting stops past
+/// [`PAIRS_COUNTED`].
+fn contact_pairs(level: &Level) -> (f64, f64, f64) {
     const MARGIN: f64 = 0.01;
-    let mut boxes: Vec<(Aabb, bool)> = level
+    let mut boxes: Vec<(Aabb, bool, f64)> = level
         .bodies
         .iter()
         .filter_map(|b| {
@@ -372,16 +409,17 @@ fn contact_pairs(level: &Level) -> (f64, f64) {
             let finite = [bb.0 .0, bb.0 .1, bb.1 .0, bb.1 .1]
                 .iter()
                 .all(|v| v.is_finite());
-            finite.then_some((bb, b.kind == BodyKind::Fixed))
+            finite.then_some((bb, b.kind == BodyKind::Fixed, facets(shape)))
         })
         .collect();
     boxes.sort_by(|a, b| a.0 .0 .0.total_cmp(&b.0 .0 .0));
     let mut degree = vec![0usize; boxes.len()];
     let mut pairs = 0.0;
+    let mut pair_facets = 0.0;
     'sweep: for i in 0..boxes.len() {
-        let (a, fixed_a) = boxes[i];
+        let (a, fixed_a, facets_a) = boxes[i];
         for j in i + 1..boxes.len() {
-            let (b, fixed_b) = boxes[j];
+            let (b, fixed_b, facets_b) = boxes[j];
             if b.0 .0 > a.1 .0 + MARGIN {
                 break;
             }
@@ -391,6 +429,7 @@ fn contact_pairs(level: &Level) -> (f64, f64) {
             degree[i] += 1;
             degree[j] += 1;
             pairs += 1.0;
+            pair_facets += facets_a + facets_b;
             if pairs >= PAIRS_COUNTED {
                 break 'sweep;
             }
@@ -398,5 +437,5 @@ fn contact_pairs(level: &Level) -> (f64, f64) {
     }
     // Sum over the pairs of their bodies' pairs: sum over the bodies of d^2.
     let pair_degrees = degree.iter().map(|&d| (d as f64).powi(2)).sum();
-    (pairs, pair_degrees)
+    (pairs, pair_degrees, pair_facets)
 }

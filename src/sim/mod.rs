@@ -31,5 +31,5 @@ pub use crate::snapshot::Precision;
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
 pub use profiles::{scalar_profile_at, vector_profile_at};
-pub use settings::{Settings, Substepping};
+pub use settings::{Settings, StepCalls, Substepping};
 pub use world::Simulation;

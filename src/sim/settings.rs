@@ -29,6 +29,24 @@ pub enum Substepping {
     /// blow through a pin, whose reaction falls in the first substep, would be lost), with each
     /// substep's joint rows rebuilt from the poses rapier built them from.
     Split,
+    /// In a report only: some steps split, the others one call (`StepCalls` counts them). As
+    /// an override it is `Internal`, whose steps are split where a spinning ball touches.
+    Mixed,
+}
+
+/// How a run's steps were really called, counted as it ran: the plan (`Settings::substepping`)
+/// is one call a step of `substeps` internal substeps where nothing needs to see inside a step,
+/// but a step in which a ball spinning in contact is split all the same
+/// (sim/contact_points.rs), and an impact cut divides a call in two (sim/impacts.rs).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct StepCalls {
+    /// Steps taken.
+    pub steps: u64,
+    /// Steps split into one-substep calls for a spinning ball in contact, where the plan was
+    /// one call.
+    pub split_for_spin: u64,
+    /// Steps whose calls an impact cut divided.
+    pub cut: u64,
 }
 
 /// Every solver setting of a run, resolved from the level and the overrides.
@@ -43,6 +61,17 @@ pub struct Settings {
     pub solver_iterations: usize,
     pub precision: Precision,
     pub substepping: Substepping,
+    /// Why the steps are called as `substepping` says; in a report, with how many of the run's
+    /// steps were called so (`Settings::as_run`).
+    #[serde(default)]
+    pub substepping_why: String,
+    /// In a report: how many of the run's steps were split into `substeps` rapier calls of one
+    /// substep each (0 before a run).
+    #[serde(default)]
+    pub split_steps: u64,
+    /// In a report: how many of the run's steps had a call divided at an impact (impact cuts).
+    #[serde(default)]
+    pub cut_steps: u64,
     /// The effects the world was built with (the level's, or all with `--all-effects`).
     pub effects: Effects,
     /// Contact stiffness, Hz (None: rapier's default).
@@ -78,6 +107,10 @@ impl Settings {
         let impact_cuts = effects.has(Effect::Contacts)
             && opts.impact_cuts.unwrap_or(moving <= IMPACT_CUT_BODIES);
         let substeps = opts.substeps.unwrap_or(level.world.substeps).max(1);
+        let (substepping, substepping_why) = match opts.substepping {
+            Some(s) => (s, "asked for by the run's options".to_string()),
+            None => Self::substepping_for(level, &effects, substeps),
+        };
         Settings {
             dt: opts.dt.unwrap_or(level.world.dt),
             substeps,
@@ -86,9 +119,10 @@ impl Settings {
                 .unwrap_or(level.world.solver_iterations)
                 .max(1),
             precision,
-            substepping: opts
-                .substepping
-                .unwrap_or_else(|| Self::substepping_for(level, &effects, substeps)),
+            substepping,
+            substepping_why,
+            split_steps: 0,
+            cut_steps: 0,
             effects,
             contact_hz: level.world.contact_hz,
             allow_fast_rotation: level.world.allow_fast_rotation,
@@ -100,7 +134,8 @@ impl Settings {
     /// Split substeps where rigidlab must see inside the step: springs (forces refreshed before
     /// every substep) and joints or welds whose impulses a check or question reads (summed over
     /// every substep). Other scenes keep rapier's internal substeps, which cost less.
-    fn substepping_for(level: &Level, effects: &Effects, substeps: usize) -> Substepping {
+    /// With the reason, as the report says it.
+    fn substepping_for(level: &Level, effects: &Effects, substeps: usize) -> (Substepping, String) {
         let springs = effects.has(Effect::Springs)
             && !(level.springs.is_empty() && level.torsion_springs.is_empty());
         let welds = level
@@ -113,11 +148,71 @@ impl Settings {
         // It costs 2.3x to 3.7x rapier's internal substeps (one pipeline call per substep:
         // tests/sim_substepping_cost.rs, medians of 2026-11-25 in docs/reading-rapier.md), so a joint
         // scene pays it only when it reads joint impulses.
-        if (substeps > 1 && springs) || (joints && reads_joint_impulses(level)) {
-            Substepping::Split
+        if substeps > 1 && springs {
+            (
+                Substepping::Split,
+                "one rapier call per substep: the springs' forces are evaluated before each \
+                 substep (held over several they gain energy)"
+                    .into(),
+            )
+        } else if joints && reads_joint_impulses(level) {
+            (
+                Substepping::Split,
+                "one rapier call per substep: a check or question reads joint impulses, summed \
+                 over every substep (rapier keeps a call's last substep's only)"
+                    .into(),
+            )
         } else {
-            Substepping::Internal
+            (
+                Substepping::Internal,
+                "one rapier call a step with its substeps inside: nothing reads inside a step (no \
+                 springs over several substeps, no joint impulses read)"
+                    .into(),
+            )
         }
+    }
+
+    /// These settings as a report states them after a run: `substepping` as the steps were
+    /// really called (`Split` when every step was split, `Mixed` when some were), and why.
+    pub fn as_run(&self, calls: &StepCalls) -> Settings {
+        let n = self.substeps;
+        let mut s = self.clone();
+        let planned_split = self.substepping == Substepping::Split;
+        s.split_steps = if planned_split {
+            calls.steps
+        } else {
+            calls.split_for_spin
+        };
+        s.cut_steps = calls.cut;
+        let spin = "a ball spinning with r w^2 >= 1e-3 g touched something (its contact is \
+                    followed exactly only over one-substep calls, sim/contact_points.rs)";
+        if !planned_split && calls.split_for_spin > 0 {
+            if calls.split_for_spin == calls.steps {
+                s.substepping = Substepping::Split;
+                s.substepping_why = format!("one rapier call per substep in every step: {spin}");
+            } else {
+                s.substepping = Substepping::Mixed;
+                s.substepping_why = format!(
+                    "{} of {} steps in one rapier call per substep, where {spin}; the others in \
+                     one call with {n} substeps inside ({})",
+                    calls.split_for_spin, calls.steps, self.substepping_why
+                );
+            }
+        }
+        if n == 1 {
+            s.substepping_why = format!(
+                "one substep: every step is one rapier call of one substep ({})",
+                s.substepping_why
+            );
+        }
+        if calls.cut > 0 {
+            s.substepping_why += &format!(
+                "; in {} of {} steps an impact cut divided a call at the instant the bodies \
+                 touch (sim/impacts.rs)",
+                calls.cut, calls.steps
+            );
+        }
+        s
     }
 
     /// The substep, s.

@@ -7,7 +7,7 @@ use super::readings::{merge_contacts, merge_joints, place_at_step_end};
 use crate::level::*;
 use crate::sim::explosion_guard::{motion_energy, EnergyGuard, FACTOR, SUSTAIN};
 use crate::sim::options::{Options, SimError};
-use crate::sim::settings::{Settings, Substepping};
+use crate::sim::settings::{Settings, StepCalls, Substepping};
 use crate::snapshot::*;
 use glam::DVec2;
 use std::collections::HashMap;
@@ -53,6 +53,8 @@ pub struct Simulation {
     /// How many times the impact planner cut the last step's calls (sim/impacts.rs): what the
     /// tests read to see that a pair rapier never collides is not planned as an impact.
     pub last_step_cuts: usize,
+    /// How the run's steps have been called so far (`Settings::as_run` reports them).
+    pub calls: StepCalls,
 }
 
 impl Simulation {
@@ -129,6 +131,7 @@ impl Simulation {
             prediction_distance,
             after_impact: false,
             last_step_cuts: 0,
+            calls: StepCalls::default(),
             has_kinematic: scene
                 .level
                 .bodies
@@ -484,6 +487,13 @@ impl Simulation {
             }
         }
         self.last_step_cuts = cuts;
+        self.calls.steps += 1;
+        if split && n > 1 && self.settings.substepping != Substepping::Split {
+            self.calls.split_for_spin += 1;
+        }
+        if cuts > 0 {
+            self.calls.cut += 1;
+        }
         {
             let p = &mut self.world.integration_parameters;
             p.dt = dt as Real;

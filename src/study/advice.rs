@@ -6,18 +6,20 @@
 //! candidate's cost is estimated against the level's own run (steps x substeps, f64 at
 //! [`F64_COST`] times f32) and candidates are tried cheapest first, up to [`MAX_COST_RATIO`] times
 //! the level's own cost and [`SEARCH_BUDGET`] times it over the whole search, and within
-//! [`SEARCH_SECONDS`] of wall time over the whole search: a candidate is not started when the
-//! time spent plus its predicted time (the failing run's measured wall time times its cost
-//! ratio, or `runner::budget`'s estimate when the failing run was not timed) would pass it. So
-//! a level of a second or more (a loop at 1/4800 s) is searched only as far as a second allows,
-//! and the advice says that the time ran out, not that no setting passes. The first that
-//! passes is the advice; it is a real run's verdict, so rerunning the level with the advised
-//! settings passes (tests/study_advice.rs). When none within 32x passes, the failure does not
-//! go away with accuracy within the bound: an engine limit (docs/known-gaps.md) or a wrong
-//! expected answer.
+//! [`SEARCH_COST_S`] over the whole search, counted in the run budget's estimated seconds
+//! (`runner::budget`'s price model of a run, the same on every machine), not in wall time: a
+//! candidate is not started when the estimates of the runs tried plus its own would pass it.
+//! So the same level gets the same advice on an idle machine and on a busy one (before
+//! 2026-12-06 the bound was 2 s of wall time, and a busy machine turned settings into "none
+//! within"), and a level of a second or more (a loop at 1/4800 s) is searched only as far as
+//! the bound allows: the advice then says that the bound ran out, not that no setting passes.
+//! The first that passes is the advice; it is a real run's verdict, so rerunning the level with
+//! the advised settings passes (tests/study_advice.rs). When none within 32x passes, the failure
+//! does not go away with accuracy within the bound: an engine limit (docs/known-gaps.md) or a
+//! wrong expected answer.
 
-use crate::clock::Instant;
 use crate::level::{Precision, Scene};
+use crate::questions::QuestionResult;
 use crate::report::{Advice, AdvisedSettings, LevelReport};
 use crate::runner::{self, Estimate, Mode};
 use crate::sim::{Options, Settings};
@@ -31,13 +33,13 @@ pub const MAX_COST_RATIO: f64 = 32.0;
 /// costs 424x (256x in f32, 168x in f64), so a level none passes is searched through.
 pub const SEARCH_BUDGET: f64 = 512.0;
 
-/// The whole search's wall time, s: no candidate is started that would end past it (predicted
-/// from the failing run's wall time times the candidate's cost ratio). Measured 2026-11-26 on
-/// 2 cores: `rigidlab check tests/newuser/*.ron` (113 levels, 29 failing) took 4 min 59 s with
-/// the search bounded only by cost ratios and the 600 s run budget (n7_01's loop at 1/4800 s,
-/// 2.2 s a run, and n7_05's puck in a ring, 1.9 s, searched for minutes each); see
-/// docs/teacher.md for the time with this bound.
-pub const SEARCH_SECONDS: f64 = 2.0;
+/// The whole search's cost, in the run budget's estimated seconds (`runner::budget::Estimate`:
+/// each candidate priced as `rigidlab check` would price its run): no candidate is started whose
+/// estimate, added to those of the candidates tried, would pass it. An estimate is not a
+/// measurement, so the search's verdict depends on the level alone, not on how busy the machine
+/// is. Chosen so that a search the bound stops takes about what the 2 s wall-time bound it
+/// replaced allowed, on an idle 2-core machine: docs/cli.md has the measurement.
+pub const SEARCH_COST_S: f64 = 2.0;
 
 /// The wall time of an f64 run against the same run in f32 (rapier2d-f64 against rapier2d:
 /// 1.2x to 1.3x over the library, docs/accuracy.md).
@@ -121,47 +123,208 @@ pub fn beyond_settings(r: &LevelReport) -> Option<String> {
     })
 }
 
-/// The advice for a level whose run failed at the options `opts` (the command line's
-/// overrides of the level's settings) in `failed_wall_ms` (0 when it stopped early or was not
-/// timed: candidates' times are then `runner::budget`'s estimates).
-pub fn advise(scene: &Scene, opts: &Options, failed_wall_ms: f64) -> Advice {
-    advise_within(scene, opts, failed_wall_ms, SEARCH_SECONDS)
+/// The advice for a level whose run at the options `opts` (the command line's overrides of
+/// the level's settings) gave the report `own` (None when the run stopped early): a level whose
+/// every failure no setting can change ([`beyond_settings`]) gets that said, any other the
+/// search within [`SEARCH_COST_S`].
+pub fn advise(scene: &Scene, opts: &Options, own: Option<&LevelReport>) -> Advice {
+    advise_within(scene, opts, own, SEARCH_COST_S)
 }
 
-/// [`advise`] with the search's wall time `seconds` instead of [`SEARCH_SECONDS`]
-/// (`rigidlab check --advice-seconds S`).
-pub fn advise_within(scene: &Scene, opts: &Options, failed_wall_ms: f64, seconds: f64) -> Advice {
-    let started = Instant::now();
+/// [`advise`] with the search's bound `cost_s` (estimated seconds) instead of
+/// [`SEARCH_COST_S`] (`rigidlab check --advice-cost S`).
+pub fn advise_within(
+    scene: &Scene,
+    opts: &Options,
+    own: Option<&LevelReport>,
+    cost_s: f64,
+) -> Advice {
+    if let Some(why) = own.and_then(beyond_settings) {
+        return Advice::NoneWithin {
+            none_within: 0.0,
+            why,
+            within_estimated_seconds: None,
+        };
+    }
     let precision = opts.precision.unwrap_or(scene.level.world.precision);
-    let own = Settings::resolve(&scene.level, opts, precision);
+    let own_settings = Settings::resolve(&scene.level, opts, precision);
+    let failed_wall_ms = own.map_or(0.0, |r| r.wall_ms);
+    // A level failed by its questions' analysis alone: the first finer setting tells whether
+    // the analysis comes to the answer with accuracy; if not, no setting helps.
+    let mut tried = None;
+    if let Some(alone) = own.and_then(failed_by_analysis_alone) {
+        let c = first_finer(own_settings.precision);
+        let options = candidate_options(&own_settings, opts, &c);
+        let estimate = Estimate::of(&scene.level, &options, Mode::Check, None);
+        if estimate.fits() && estimate.seconds <= cost_s {
+            let finer = runner::run_graded(scene, &options, &HashMap::new(), |_| {}).ok();
+            if let Some(why) = finer
+                .as_ref()
+                .and_then(|f| analysis_does_not_fit(&alone, f, &own_settings, &options))
+            {
+                return Advice::NoneWithin {
+                    none_within: 0.0,
+                    why,
+                    within_estimated_seconds: None,
+                };
+            }
+            tried = Some(Tried {
+                candidate: c,
+                report: finer,
+                seconds: estimate.seconds,
+            });
+        }
+    }
+    search(scene, opts, &own_settings, failed_wall_ms, cost_s, tried)
+}
+
+/// A candidate already run before the search (the first finer setting, for the analysis):
+/// its verdict, and its estimated seconds, already spent.
+struct Tried {
+    candidate: Candidate,
+    report: Option<LevelReport>,
+    seconds: f64,
+}
+
+/// The first finer setting, against which an analysis that fails is judged: the step halved
+/// (dt / 2, the level's substeps and precision), which halves both the engine's substep and the
+/// sampling the questions' finite differences and windows read.
+fn first_finer(precision: Precision) -> Candidate {
+    Candidate {
+        dt_div: 2,
+        sub_mul: 1,
+        precision,
+        cost_ratio: 2.0,
+    }
+}
+
+/// How much an analysis's error must shrink when the step is halved for accuracy to count as
+/// helping it: an error first order in the step halves (ratio 0.5), a second-order one
+/// quarters; an error that keeps more than 3/4 of itself does not converge with the step at
+/// any useful rate, so it is not the step's (a formula whose assumption the scene breaks).
+pub const ANALYSIS_SHRINK: f64 = 0.75;
+
+/// The questions of a report that fail on their analysis alone, when they are all its failures:
+/// each reads the engine within its tolerance of the stated answer and the analysis (the
+/// textbook formula on the engine's state) outside it; the run did not stop, and any check that
+/// fails cannot judge the scene ([`beyond_settings`]). None otherwise. An analysis whose
+/// assumptions the scene breaks, as its quantity checks them, is "not applicable" and the
+/// question is graded on the engine alone (docs/levels.md), so it never fails a question here:
+/// what fails here is an analysis whose assumptions were not caught.
+pub fn failed_by_analysis_alone(r: &LevelReport) -> Option<Vec<&QuestionResult>> {
+    if r.error.is_some()
+        || r.checks
+            .iter()
+            .any(|c| !c.passed && !(c.samples == 0 && c.note.starts_with("cannot judge")))
+    {
+        return None;
+    }
+    let failing: Vec<&QuestionResult> = r.questions.iter().filter(|q| !q.passed).collect();
+    let alone = |q: &&QuestionResult| {
+        q.rel_error <= q.tolerance && q.analysis_rel_error.is_some_and(|a| a > q.tolerance)
+    };
+    (!failing.is_empty() && failing.iter().all(alone)).then_some(failing)
+}
+
+/// Why no setting helps, when the same questions fail on their analysis alone at the first
+/// finer setting (`finer`, run at `finer_opts`) as at the level's (`alone`), and none's analysis
+/// error shrank by more than [`ANALYSIS_SHRINK`]: the engine agrees with the answer at both, the
+/// analysis disagrees at both by as much. None when accuracy may still help.
+fn analysis_does_not_fit(
+    alone: &[&QuestionResult],
+    finer: &LevelReport,
+    own: &Settings,
+    finer_opts: &Options,
+) -> Option<String> {
+    let finer_alone = failed_by_analysis_alone(finer)?;
+    if finer_alone.len() != alone.len() {
+        return None;
+    }
+    let mut reasons = Vec::new();
+    for q in alone {
+        let f = finer_alone.iter().find(|f| f.id == q.id)?;
+        let (e0, e1) = (q.analysis_rel_error?, f.analysis_rel_error?);
+        if e1 < ANALYSIS_SHRINK * e0 {
+            return None;
+        }
+        let note = if q.note.is_empty() {
+            String::new()
+        } else {
+            format!("; its note: {}", q.note)
+        };
+        reasons.push(format!(
+            "question `{}`: the analysis reads {} {u} against the stated answer {} {u} (error \
+             {:.2e}, tolerance {:.1e}) at dt {} s and {} {u} ({:.2e}) at dt {} s, while the engine \
+             reads {} {u} ({:.2e}) and {} {u} ({:.2e}){note}",
+            q.id,
+            q.analysis.map_or(f64::NAN, |a| a),
+            q.expected,
+            e0,
+            q.tolerance,
+            own.dt,
+            f.analysis.map_or(f64::NAN, |a| a),
+            e1,
+            finer_opts.dt.unwrap_or(own.dt),
+            q.engine,
+            q.rel_error,
+            f.engine,
+            f.rel_error,
+            u = q.unit,
+        ));
+    }
+    Some(format!(
+        "the analysis does not fit this scene; no setting helps: {}. The engine agrees with the \
+         answer and the analysis (the textbook formula on the engine's state) does not, by as \
+         much with the step halved, so the formula assumes what this scene does not hold: check \
+         the quantity's assumptions (docs/levels.md), or ask for a quantity whose formula fits",
+        reasons.join("; ")
+    ))
+}
+
+/// The search itself: candidates cheapest first, each run and graded, until one passes or a
+/// bound is reached.
+fn search(
+    scene: &Scene,
+    opts: &Options,
+    own: &Settings,
+    failed_wall_ms: f64,
+    cost_s: f64,
+    mut tried: Option<Tried>,
+) -> Advice {
     let mut spent = 0.0;
+    // The estimated seconds of the candidates run so far (the one tried before, if any).
+    let mut spent_s = tried.as_ref().map_or(0.0, |t| t.seconds);
     let mut searched_to = 0.0;
-    // The first candidate the time bound left untried, with its predicted seconds.
+    // The first candidate the cost bound left untried, with its estimated seconds.
     let mut cut: Option<(Candidate, f64)> = None;
     let none = HashMap::new();
     for c in candidates(own.precision) {
         if spent + c.cost_ratio > SEARCH_BUDGET {
             break;
         }
-        let options = candidate_options(&own, opts, &c);
+        let options = candidate_options(own, opts, &c);
         // A candidate past the run budget is not tried (runner::budget).
         let estimate = Estimate::of(&scene.level, &options, Mode::Check, None);
         if !estimate.fits() {
             break;
         }
-        // Nor one that would end past the search's wall time: the candidates come cheapest
-        // first, so none after it would fit either.
-        let predicted = if failed_wall_ms > 0.0 {
-            failed_wall_ms / 1000.0 * c.cost_ratio
-        } else {
-            estimate.seconds
-        };
-        if started.elapsed().as_secs_f64() + predicted > seconds {
-            cut = Some((c, predicted));
+        // Nor one whose estimate would take the search past its bound: the candidates come
+        // cheapest first, so none after it would fit either.
+        let run_before = tried.as_ref().is_some_and(|t| t.candidate == c);
+        if !run_before && spent_s + estimate.seconds > cost_s {
+            cut = Some((c, estimate.seconds));
             break;
         }
+        // The candidate run before the search is not run (nor paid for) again.
+        let ran = match tried.take_if(|t| t.candidate == c) {
+            Some(t) => t.report,
+            None => {
+                spent_s += estimate.seconds;
+                runner::run_graded(scene, &options, &none, |_| {}).ok()
+            }
+        };
         spent += c.cost_ratio;
-        let Ok(r) = runner::run_graded(scene, &options, &none, |_| {}) else {
+        let Some(r) = ran else {
             searched_to = c.cost_ratio;
             continue;
         };
@@ -184,14 +347,14 @@ pub fn advise_within(scene: &Scene, opts: &Options, failed_wall_ms: f64, seconds
         ""
     };
     match cut {
-        // The time ran out before the cost bound: say so, and what to try by hand.
+        // The bound ran out before the cost ratios did: say so, and what to try by hand.
         Some((c, predicted)) => Advice::NoneWithin {
             none_within: searched_to,
             why: format!(
-                "none passes within the search's {seconds} s ({}): the next, \
-                 --dt {} --substeps {} --precision {} ({}x the level's cost), would take about \
-                 {predicted:.1} s; run it yourself (or give `--advice-seconds`), the search \
-                 stopped on time, not on a limit",
+                "none passes within the search's bound of {cost_s} s of estimated runs ({}): \
+                 the next, --dt {} --substeps {} --precision {} ({}x the level's cost), is \
+                 estimated at {predicted:.2} s; run it yourself (or give `--advice-cost`), the \
+                 search stopped at its bound, not on a limit",
                 if searched_to > 0.0 {
                     format!("tried up to {searched_to}x the level's cost")
                 } else {
@@ -205,7 +368,7 @@ pub fn advise_within(scene: &Scene, opts: &Options, failed_wall_ms: f64, seconds
                 },
                 c.cost_ratio,
             ),
-            within_seconds: Some(seconds),
+            within_estimated_seconds: Some(cost_s),
         },
         None => Advice::NoneWithin {
             none_within: searched_to,
@@ -214,7 +377,7 @@ pub fn advise_within(scene: &Scene, opts: &Options, failed_wall_ms: f64, seconds
                  passes: the failure does not shrink with accuracy, an engine limit \
                  (docs/known-gaps.md) or an expected answer to recheck"
             ),
-            within_seconds: None,
+            within_estimated_seconds: None,
         },
     }
 }
