@@ -117,6 +117,10 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         Quantity::PointY { body: b, point } => {
             (body(b)?.1.world_point(DVec2::new(point.0, point.1)).y, None)
         }
+        Quantity::PolarAngle { body: b, about } => {
+            let r = body(b)?.1.com - DVec2::new(about.0, about.1);
+            (r.y.atan2(r.x), None)
+        }
         Quantity::PointSpeed { body: b, point } => {
             let (i, x) = body(b)?;
             let local = DVec2::new(point.0, point.1);

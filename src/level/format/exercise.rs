@@ -312,6 +312,10 @@ pub enum Quantity {
     /// velocity of `body`'s contact point relative to `other`'s, m/s (zero while it rolls or
     /// sticks, RK-8). NaN while they do not touch. No analysis.
     SlipSpeed { body: String, other: String },
+    /// The polar angle of the mass center about the world point `about`: atan2(y_G - y_O,
+    /// x_G - x_O), rad, counter-clockwise from +x, in (-pi, pi]. Where a body leaves a cylinder
+    /// centered at O. No analysis.
+    PolarAngle { body: String, about: (f64, f64) },
     /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered, or
     /// averaged over `window` s). Analysis: the one-degree-of-freedom power balance (RE-11):
     /// M omega_rel = sum (m a_G . v_G + I_G alpha omega) - power of gravity, loads and springs,
@@ -390,7 +394,7 @@ impl Quantity {
                     "m"
                 }
             }
-            Q::Angle(_) | Q::Direction(_) | Q::RelativeAngle(..) => "rad",
+            Q::Angle(_) | Q::Direction(_) | Q::RelativeAngle(..) | Q::PolarAngle { .. } => "rad",
             Q::Vx(_)
             | Q::Vy(_)
             | Q::Speed(_)
@@ -512,6 +516,7 @@ impl Quantity {
             | Q::RelativeAccel(..)
             | Q::AngularMomentumAbout { .. }
             | Q::RelativePointSpeed { .. }
+            | Q::PolarAngle { .. }
             | Q::SlipSpeed { .. } => F::Motion,
             Q::JointForce(_)
             | Q::ContactForce(_)

@@ -329,6 +329,7 @@ pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
         | Q::PointX { body: b, .. }
         | Q::PointY { body: b, .. }
         | Q::PointSpeed { body: b, .. }
+        | Q::PolarAngle { body: b, .. }
         | Q::PointAccel { body: b, .. } => vec![("body", b)],
         Q::CouplingForce(c) => vec![("coupling", c)],
         Q::RelativeDistance(a, b)
