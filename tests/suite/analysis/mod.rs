@@ -1,0 +1,8 @@
+//! The textbook formulas and the frame, window and linkage analyses (src/analysis).
+
+mod formulas;
+mod frame;
+mod links;
+mod small_oscillations;
+mod textbook;
+mod windows;

@@ -1,0 +1,5 @@
+//! The studies: accuracy, stability and the advice for a failing level (src/study).
+
+mod accuracy;
+mod advice;
+mod stability;
