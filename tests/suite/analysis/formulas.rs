@@ -1,7 +1,7 @@
-//! The analysis functions tests/analysis_textbook.rs did not reach, each against a value derived by hand
+//! The analysis functions tests/suite/analysis/textbook.rs did not reach, each against a value derived by hand
 //! (the derivation is in the comment; concepts.md ids and MK equation numbers name the formula).
 
-mod common;
+use crate::common;
 
 use common::assert_close;
 use glam::DVec2;

@@ -1,7 +1,7 @@
 //! The analysis layer against hand-derived values (concepts.md equation numbers in each test)
 //! and, with proptest, the identities that must hold on any state.
 
-mod common;
+use crate::common;
 
 use common::assert_close;
 use glam::DVec2;

@@ -2,7 +2,7 @@
 //! earlier tests reached only at zero (a_G = 0, omega = 0, dt = 0): each against a value derived
 //! by hand in the comment (concepts.md ids and MK equation numbers name the formula).
 
-mod common;
+use crate::common;
 
 use common::assert_close;
 use glam::DVec2;

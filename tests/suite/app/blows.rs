@@ -3,7 +3,6 @@
 //! (MK art. 6/4, 6/10): angular impulse about the pin, P h = I_O w' with I_O = m L^2 / 3, and
 //! linear impulse, P + R = m w' L / 2, give the pin's impulse on the bar R = P (3 h / (2 L) - 1):
 //! zero at the center of percussion h = 2L/3, P/2 along the blow at the tip h = L.
-#![cfg(feature = "app")]
 
 use rigidlab::app::Physics;
 use rigidlab::level;

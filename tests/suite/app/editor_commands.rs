@@ -1,9 +1,8 @@
 //! The editor in the app, headless (MinimalPlugins): a pendulum built from nothing with the
 //! editor's commands (ground, bar, pin), a property edited, undone and redone, the scene saved,
 //! and `rigidlab check` run on the saved level; the run restarts from each edit.
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use bevy::prelude::*;
 use common::app::{editor_app as app, phys, send};

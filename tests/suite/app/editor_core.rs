@@ -2,7 +2,7 @@
 //! redo, refusals that leave the scene as it was, and a saved level that `rigidlab check` runs
 //! and passes against the closed form.
 
-mod common;
+use crate::common;
 
 use rigidlab::editor::{self, Edit, History, NewShape, Property};
 use rigidlab::level::{self, Effect, JointKind, Quantity, QuestionDef, Scene, When};

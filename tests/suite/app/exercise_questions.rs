@@ -3,9 +3,8 @@
 //! questions: one answer computed from the analysis, one typed from the textbook), previews a
 //! question, rewrites and removes one, meets the validator's refusal, saves, and
 //! `rigidlab check` passes the saved level.
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use bevy::prelude::*;
 use common::app::{editor_app as app, level, send};
@@ -135,7 +134,7 @@ fn a_rolling_disc_exercise_written_in_the_window_passes_check() {
     // Both readings against the closed form: the analysis reads theta from the engine's
     // contact normal (the wedge's face is at 30 degrees exactly), the engine's value is a
     // central difference of v (f32 rounding of v over 2 dt). Measured 2026-11-27: analysis
-    // 1.76e-4, engine 8.0e-6 (questions_rolling_applies.rs reads the same 1.9e-4, 1.1e-5);
+    // 1.76e-4, engine 8.0e-6 (tests/suite/questions/rolling_applies.rs reads the same 1.9e-4, 1.1e-5);
     // bounds 5e-4 and 5e-5, a 2.8x and a 6x margin.
     assert!(
         (r.analysis.unwrap() - a_theory).abs() / a_theory < 5e-4,

@@ -1,6 +1,5 @@
 //! The help names every tool and panel, natively and in the page (where it names no folder and
 //! no command line); the tour's ticks stay once earned, and all seven can be earned in order.
-#![cfg(feature = "app")]
 
 use rigidlab::app::panels::help::{keys, sections};
 use rigidlab::app::panels::tour::Tour;

@@ -3,7 +3,6 @@
 //! half-typed number is never applied and a refused one says why. Issue 33: typing 1.5 into a
 //! pinned bar's x gave "0.5.433013", 45 into its angle applied 4 degrees first, -1 into a mass
 //! became 1e-6 kg. Tested on the field's buffer, then on the widget in a bare egui context.
-#![cfg(feature = "app")]
 
 use bevy_egui::egui;
 use rigidlab::app::panels::number_field::{number_field, show, Accepts, NumberField};

@@ -2,9 +2,8 @@
 //! Ctrl+Z and Ctrl+Y pressed and released within one frame undo and redo (they did nothing:
 //! the frame's key state had no Ctrl down at its end), and Ctrl+A reaches egui as "select all",
 //! not as the letter a. Headless: MinimalPlugins, Bevy's input plugin, the editor.
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use bevy::input::keyboard::Key;
 use bevy::input::InputPlugin;

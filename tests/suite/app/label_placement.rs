@@ -2,7 +2,6 @@
 //! never cover each other and stay inside the view; how many still touch a body is counted and
 //! held low. Text sizes are estimated (7.2 px a character, 16 px a line: egui's 13 px
 //! proportional font measures 5.5 to 7.5 px a character), so the test needs no window.
-#![cfg(feature = "app")]
 
 use bevy::math::{Rect, Vec2};
 use rigidlab::app::draw::Drawing;

@@ -1,9 +1,8 @@
 //! The window's measuring tools against theory: the period timer on the physical pendulum
 //! (levels/kinetics/physical_pendulum.ron) against the exact large-amplitude period, and the
 //! selected body's recorded series against the snapshot it came from.
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use rigidlab::analysis::closed_forms::pendulum_period;
 use rigidlab::app::panels::measure::period_of;

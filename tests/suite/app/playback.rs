@@ -1,7 +1,6 @@
 //! Play, pause and reset as the keys and the playback panel do them (src/app/playback.rs).
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use glam::DVec2;
 use rigidlab::app::playback::{restart, toggle_play};

@@ -2,7 +2,6 @@
 //! drawn range, which has an 8% margin each side: omega read 4.40 / -4.43 rad/s for a 3.84 rad/s
 //! peak (issue 33). On a known series, omega(t) = 3.84 sin(2 pi t / 1 s) sampled every 1/240 s:
 //! the sample at t = 0.25 s is the peak, 3.84 up to rounding (sin(pi/2) = 1 in f64 exactly).
-#![cfg(feature = "app")]
 
 use bevy_egui::egui;
 use rigidlab::app::panels::plots::{drawn_range, extreme_labels, extremes, nearest_sample};

@@ -1,5 +1,4 @@
 //! The sandbox's plugins against the headless core (feature `app`).
-#![cfg(feature = "app")]
 
 use bevy::app::ScheduleRunnerPlugin;
 use bevy::prelude::*;

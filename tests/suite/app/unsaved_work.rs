@@ -3,9 +3,8 @@
 //! at once when there is nothing to lose and asks otherwise, and the question's answers do what
 //! they say. Headless: MinimalPlugins, the physics, the editor and the question's plugin, and a
 //! bare window entity for the close request.
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use bevy::input::InputPlugin;
 use bevy::prelude::*;

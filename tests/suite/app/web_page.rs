@@ -6,7 +6,6 @@
 //!
 //! Without records the tests say they are skipped; CI sets RIGIDLAB_REQUIRE_WEB after running the
 //! browser, and there a missing record is a failure.
-#![cfg(feature = "app")]
 
 use bevy::prelude::*;
 use rigidlab::app::view::{palette, View};

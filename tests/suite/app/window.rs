@@ -2,7 +2,6 @@
 //! under Xvfb with Mesa's software Vulkan) it draws 150 frames of a library level without one
 //! rendering error and closes cleanly. A window whose cameras disagreed on multisampling drew
 //! nothing but validation errors while every other test passed: this is the test that sees it.
-#![cfg(feature = "app")]
 
 use std::process::Command;
 

@@ -2,9 +2,8 @@
 //! check or question failed gets the cheapest settings that pass (or "none within" with the
 //! known gap), searched on a thread while the frames go on, and its button reruns at them.
 //! Headless: MinimalPlugins, the physics and the advice's plugin.
-#![cfg(feature = "app")]
 
-mod common;
+use crate::common;
 
 use bevy::app::ScheduleRunnerPlugin;
 use bevy::prelude::*;
@@ -75,7 +74,7 @@ fn wait_for_advice(app: &mut App) -> (AdviceState, Duration) {
 
 /// tests/newuser/pendulum_period_120deg.ron fails its period question at its own settings
 /// (1.08e-2 against 5e-3: rapier's soft pin, docs/known-gaps.md) and passes finer
-/// (tests/study_advice.rs). The window advises settings, says so beside the checks, the frames
+/// (tests/suite/study/advice.rs). The window advises settings, says so beside the checks, the frames
 /// go on meanwhile, and the button's rerun passes.
 #[test]
 fn a_failing_level_gets_settings_that_pass_beside_its_checks_without_freezing() {

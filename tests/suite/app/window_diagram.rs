@@ -7,8 +7,6 @@
 //! while the check's largest moment residual was 8.05e-6 N m; around the blow the forces were
 //! averaged over N steps and m a_G over N - 1 (180 N against 240 N).
 
-#![cfg(feature = "app")]
-
 use rigidlab::analysis::frame::diagram_balance;
 use rigidlab::app::quantities::{free_body_arrows_mean, with_previous};
 use rigidlab::level;

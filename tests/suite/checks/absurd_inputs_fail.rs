@@ -14,7 +14,7 @@
 //!   rapier's 400 m/s cap; 2e25 m/s at 1e30, whose square overflows f32 (rapier then scales the
 //!   velocity by 400 / inf = 0 and the block never moves).
 
-mod common;
+use crate::common;
 
 use common::{parse, rigidlab, run};
 use rigidlab::checks::CheckResult;

@@ -4,7 +4,7 @@
 //! why (it neither passes nor grades the wrong formula); its twin, where it holds, passes against
 //! the theory.
 
-mod common;
+use crate::common;
 
 use common::parse;
 use rigidlab::checks::CheckResult;

@@ -2,7 +2,7 @@
 //! rolling on a moving one is the center of the motion relative to it, not the world's
 //! instantaneous center, so the check compares the kinetic energy of that relative motion.
 
-mod common;
+use crate::common;
 
 use common::{parse, rel, run};
 use rigidlab::sim::Options;

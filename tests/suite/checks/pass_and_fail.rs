@@ -2,7 +2,7 @@
 //! input (a tampered snapshot stream, or a level that states the wrong givens): a check that
 //! cannot fail checks nothing.
 
-mod common;
+use crate::common;
 
 use common::load as scene;
 use glam::DVec2;

@@ -17,7 +17,7 @@
 //! Also: the settings a run reports are the resolved ones (`--substeps 8` is what the checks,
 //! the snapshot and the report see).
 
-mod common;
+use crate::common;
 
 use common::run;
 use rayon::prelude::*;

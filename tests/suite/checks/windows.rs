@@ -5,7 +5,7 @@
 //! ground; a bar held by two loads about its pin has sum M_O = 0 and the pin's reaction equal
 //! and opposite to the loads' sum.
 
-mod common;
+use crate::common;
 
 use common::parse as scene;
 use rigidlab::checks::CheckResult;

@@ -1,4 +1,4 @@
-//! Helpers shared by the integration tests (`mod common;` in a test file): finding and loading
+//! Helpers shared by the integration tests (`use crate::common;` in a test module): finding and loading
 //! levels, running them, summarising what failed, comparing numbers and calling the command
 //! line. Each was copied between test files before; a test file uses the ones it needs.
 #![allow(dead_code, unused_imports, unused_macros)]

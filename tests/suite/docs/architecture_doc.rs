@@ -121,7 +121,7 @@ fn every_source_path_named_in_architecture_md_exists() {
 #[test]
 fn the_path_reader_reads_whole_paths() {
     let named = named_source_paths(
-        "`src/sim/world.rs`, sim/readings.rs. [x](src/lib.rs) tests/cli_io.rs benches/core.rs \
+        "`src/sim/world.rs`, sim/readings.rs. [x](src/lib.rs) tests/suite/runner/cli_io.rs benches/core.rs \
          ../shared/a.rs analysis::frame and main.rs",
     );
     let expected: BTreeSet<String> = ["sim/world.rs", "sim/readings.rs", "lib.rs", "main.rs"]

@@ -4,7 +4,7 @@
 //! back as messages and leave the scene as it was; track edits undo, redo and round-trip as RON.
 //! The same loop is built in the window's editor headless (MinimalPlugins) and saved there.
 
-mod common;
+use crate::common;
 
 use rigidlab::editor::{self, parse_points, Edit, History, NewShape, Property};
 use rigidlab::level::{self, ArcSide, Quantity, QuestionDef, Scene, Shape, TrackSide, When};

@@ -1,7 +1,5 @@
 //! Every kind of bad input gets a located error (file:line:col) that says how to fix it.
 
-mod common;
-
 use rigidlab::level::parse;
 use std::path::Path;
 
@@ -491,7 +489,7 @@ mod cli {
 
 #[test]
 fn the_library_is_well_within_the_run_budget() {
-    // The budget itself: tests/run_budget.rs.
+    // The budget itself: tests/suite/runner/budget.rs.
     use rigidlab::runner::{Estimate, Mode, MEMORY_BUDGET_MB, TIME_BUDGET_S};
     let mut worst = (0.0, String::new());
     for f in rigidlab::level::collect_files(&["levels".into()]).unwrap() {

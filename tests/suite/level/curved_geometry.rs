@@ -7,7 +7,7 @@
 //! force along the radius, N = m v^2 / rho + m g cos(theta) (6/1 with a_n = v^2 / rho), with the
 //! engine's own speed and angle; energy along a smooth loop, v^2 = 2 g (h - y).
 
-mod common;
+use crate::common;
 
 use common::parse;
 use glam::DVec2;

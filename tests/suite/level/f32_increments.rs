@@ -4,7 +4,7 @@
 //! settings (dt 1/60 s, 4 substeps) and at dt 1/3840 s with 16 substeps, the settings of the
 //! accuracy study's reference run.
 
-mod common;
+use crate::common;
 
 use common::{repo_path, ron_files, run};
 use rigidlab::level::{load_with_warnings, parse, Precision};
@@ -86,7 +86,7 @@ fn the_free_fall_at_its_own_settings_is_not_warned() {
 }
 
 /// No level of the library or of the new users' set is warned at its own settings: they pass
-/// in f32 there (tests/questions_library.rs), so a warning would be a false alarm.
+/// in f32 there (tests/suite/questions/library.rs), so a warning would be a false alarm.
 #[test]
 fn no_library_level_is_warned_at_its_own_settings() {
     let mut warned = Vec::new();

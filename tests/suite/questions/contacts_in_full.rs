@@ -4,7 +4,7 @@
 //! library's (levels/kinetics/classic_bowling_ball_slide_to_roll.ron,
 //! classic_block_starts_to_slide.ron, levels/kinematics/projectile.ron) that start differently.
 
-mod common;
+use crate::common;
 
 use common::{parse, rel, run};
 use rigidlab::analysis::closed_forms::{slide_to_roll_time, speed_when_rolling};

@@ -3,7 +3,7 @@
 //! Before, a pinion driving a gear read -16 N for a 16 N tooth force: the coupling's multiplier
 //! lambda, whose sign follows the terms' ratios.
 
-mod common;
+use crate::common;
 
 use common::{parse, run};
 use rigidlab::sim::Options;
@@ -38,7 +38,7 @@ fn tooth_force(m: f64) -> rigidlab::questions::QuestionResult {
 }
 
 /// The tooth force is its magnitude in N, 6.667 N either way the pinion is driven (the
-/// coupling holds r1 w1 + r2 w2 = 0 exactly, so 1e-3 is ample: `tests/sim_couplings.rs` holds
+/// coupling holds r1 w1 + r2 w2 = 0 exactly, so 1e-3 is ample: `tests/suite/sim/couplings.rs` holds
 /// the same pair's axle loads to it).
 #[test]
 fn a_gear_mesh_reads_its_tooth_force_in_newtons() {

@@ -6,7 +6,7 @@
 //! Every expected value is derived below from energy (v^2 from the start's, RE-7) and PN-2 by
 //! hand; the engine's reading and the analysis are each held to it.
 
-mod common;
+use crate::common;
 
 use common::{parse, run};
 use rigidlab::questions::QuestionResult;

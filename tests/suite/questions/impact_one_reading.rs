@@ -5,7 +5,7 @@
 //! the check: the question carried the state after back at g over a step in which the floor
 //! still held the body.
 
-mod common;
+use crate::common;
 
 use common::{parse, run};
 use rigidlab::sim::Options;

@@ -6,10 +6,10 @@
 //! - a student's right answer (the expected one, and one just inside the student tolerance) is
 //!   graded as right, and a wrong one (just outside it) as wrong, without changing the engine's grade.
 //!
-//! `cargo test --test questions_library -- --nocapture` prints every question's expected, engine and
+//! `cargo test --test suite -- questions::library:: --nocapture` prints every question's expected, engine and
 //! analysis values.
 
-mod common;
+use crate::common;
 
 use common::rel;
 use rigidlab::level::{self, Scene};

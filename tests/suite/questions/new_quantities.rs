@@ -5,7 +5,7 @@
 //! rubbing_discs_friction_work.ron, damped_spring_works.ron, friction_drive_efficiency.ron,
 //! levels/momentum/bar_angular_momentum_about_points.ron) with other numbers.
 
-mod common;
+use crate::common;
 
 use common::{parse, rel, run};
 use rigidlab::questions::QuestionResult;

@@ -4,20 +4,20 @@
 //! (src/level/format/exercise.rs) as text, so a variant added there is seen here without
 //! anyone updating a list. A variant is covered when some question with an `expected` answer
 //! asks for it (`quantity: Variant`):
-//! - in a level of the library (levels/, every folder: tests/questions_library.rs runs the exercises,
-//!   tests/checks_settings_twins.rs every level at finer settings);
+//! - in a level of the library (levels/, every folder: tests/suite/questions/library.rs runs the exercises,
+//!   tests/suite/checks/settings_twins.rs every level at finer settings);
 //! - in a level file under tests/ whose folder a test names (tests/newuser/ and
-//!   tests/hard_readings/ are run by tests/questions_untuned_levels.rs);
+//!   tests/hard_readings/ are run by tests/suite/questions/untuned_levels.rs);
 //! - or in a level a test writes inline (RON text in a tests/*.rs file, the question's
 //!   parentheses holding an `expected:`), or a `QuestionDef` it builds (`quantity:
 //!   Quantity::Variant` beside an `expected:`).
 //!
 //! That the expected answers come from theory (a closed form or a derivation worked in the
 //! level's comments) and not from the engine is the reviewers' part: this test only finds the
-//! quantities nobody asks for. `cargo test --release --test questions_quantity_coverage -- --nocapture`
+//! quantities nobody asks for. `cargo test --release --test suite -- questions::quantity_coverage:: --nocapture`
 //! prints where each is asked.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -163,23 +163,26 @@ fn inline_questions(places: &mut Places, sources: &[(PathBuf, String)]) {
     }
 }
 
-/// The test sources (tests/*.rs and tests/*/mod.rs), this file left out: its own text names
-/// quantities without asking for them.
+/// The test sources (every `.rs` file under tests/, the suite's modules in their stage
+/// folders), this file left out: its own text names quantities without asking for them.
 fn test_sources() -> Vec<(PathBuf, String)> {
-    let root = common::repo_path("");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("tests"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .flat_map(|p| {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let p = entry.unwrap().path();
             if p.is_dir() {
-                vec![p.join("mod.rs")]
-            } else {
-                vec![p]
+                walk(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
             }
-        })
-        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "rs"))
-        .filter(|p| p.file_name() != Path::new(file!()).file_name())
-        .collect();
+        }
+    }
+    let root = common::repo_path("");
+    let mut files = Vec::new();
+    walk(&root.join("tests"), &mut files);
+    // file!() is this file's path from the package's root (tests/suite/questions/...).
+    let count = files.len();
+    files.retain(|p| !p.ends_with(file!()));
+    assert_eq!(files.len(), count - 1, "{} not found under tests/", file!());
     files.sort();
     files
         .into_iter()

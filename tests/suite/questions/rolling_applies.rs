@@ -3,7 +3,7 @@
 //! assumptions, instead of grading the engine against the wrong formula (issue 34: a cylinder
 //! on a wedge that slides read the fixed-incline acceleration).
 
-mod common;
+use crate::common;
 
 use common::{parse, run};
 use rigidlab::sim::Options;

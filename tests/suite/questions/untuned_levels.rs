@@ -3,7 +3,7 @@
 //! written from docs/levels.md alone by someone who had not read the code) pass at their own
 //! settings and at 1, 4 and 8 substeps. Their answers are derived by hand in their comments.
 
-mod common;
+use crate::common;
 
 use common::levels_in;
 use rigidlab::level::Scene;
@@ -148,7 +148,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     ("n2_03b_wheel_curb_from_8mm.ron", "question vGx_after"),
     ("n2_03b_wheel_curb_from_8mm.ron", "question lost"),
     // rapier's soft wall at 16 substeps: the wall force at 55 degrees reads 2.6e-2 low (the
-    // ladder's known gap, tests/questions_ladder_release.rs).
+    // ladder's known gap, tests/suite/questions/ladder_release.rs).
     ("n2_11_ladder_omega_at_55.ron", "question N_wall"),
     // The tenth new user (tests/newuser/n10_*, 2026-11-27). (Settled the same day: a block
     // lying on a floor struck down obliquely (n10_05b) had the user's friction loss, -4 J, on a
@@ -158,7 +158,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     // A bar resting on a peg, struck down (n10_11b), declares `center_of_percussion`, whose
     // pin must take the blow alone: the check says it cannot judge (the peg pushes in the
     // strike step) and fails the level at every setting, as it should; the questions pass and
-    // the advice says no setting changes it (tests/study_advice.rs).
+    // the advice says no setting changes it (tests/suite/study/advice.rs).
     (
         "n10_11b_pinned_bar_on_stop_struck_down.ron",
         "check center_of_percussion",
@@ -231,7 +231,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n5_03_cue_ball_draw.ron", "question w0"),
     // A rod landing on a rough floor at 45 degrees with e = 0.5 and a box tipping over a rough
     // curb. (The plastic rod, n5_06, rebounded with e = 0.207 until an impact's call solved its
-    // friction to convergence, 2026-11-27: tests/sim_eccentric_friction.rs.) rapier's
+    // friction to convergence, 2026-11-27: tests/suite/sim/eccentric_friction.rs.) rapier's
     // end-of-step restitution pass bounces the normal row alone after the sticking impulse, so
     // the rod's end slips after: omega' -5.661 for -4.672, vx' 33% off, while the analysis from
     // the engine's state is within 2e-5 of the hand answer. The box: w 5 ms after 1.1% high, and
@@ -281,7 +281,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n4_12_ball_pinned_bar_gap.ron", "question dT"),
     ("n4_12_ball_pinned_bar_gap.ron", "question e"),
     // rapier's soft wall contact stops pushing early and in bursts: 2.9e-2 high at dt = 1e-4 s,
-    // 2.7e-3 at 5e-5 s, 1e-4 at 16 substeps (tests/questions_ladder_release.rs has the series).
+    // 2.7e-3 at 5e-5 s, 1e-4 at 16 substeps (tests/suite/questions/ladder_release.rs has the series).
     // The top's height fails at 16 substeps only (1.07e-2 for 1e-2, 2026-11-27); the time it
     // leaves no longer fails anywhere (its entry removed as stale).
     ("ladder_leaves_wall_70deg.ron", "question top_height"),
@@ -417,7 +417,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // the contact, IM-12: 8.3e-5.) A pinned bar striking a fixed peg off its center of
     // percussion rebounds with e = 0.399 for 0.5 (w' 20% low) at every setting; at b = 0.3 m
     // and dt = 0.5 ms it stops dead. rapier's restitution pass bounces the bar as a free body
-    // (docs/known-gaps.md, tests/sim_pinned_bar_peg.rs: e (d^2/I_O)/(1/m + (d - L/2)^2/I_G),
+    // (docs/known-gaps.md, tests/suite/sim/pinned_bar_peg.rs: e (d^2/I_O)/(1/m + (d - L/2)^2/I_G),
     // 0.375 here at 16 iterations).
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "check restitution"),
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question w_after"),

@@ -6,7 +6,7 @@
 //! The adversarial levels are in tests/budget/ (`python3 tools/budget_levels.py` writes them),
 //! except 10^4 questions (1.4 MB), which is generated here.
 
-mod common;
+use crate::common;
 
 use common::{load, parse, rigidlab};
 use rigidlab::runner::budget::{self, Estimate, Mode, Work};
@@ -257,7 +257,7 @@ const DOC: (
 /// in it and their sum), with RIGIDLAB_ESTIMATE_DT as --dt and RIGIDLAB_ESTIMATE_TIME as render's
 /// --time. For the table in docs/cli.md:
 ///   RIGIDLAB_ESTIMATE="levels tests/budget/discs_1000_one_point.ron" \
-///     cargo test --release --test run_budget -- --ignored --nocapture print_estimates
+///     cargo test --release --test suite -- runner::budget::print_estimates --ignored --nocapture
 #[test]
 #[ignore]
 fn print_estimates() {

@@ -1,7 +1,7 @@
 //! The command line's input and output: closed pipes and full disks, files that are not level
 //! files (FIFOs, devices, link loops, huge or non-UTF-8 files), an --out that cannot take files.
 
-mod common;
+use crate::common;
 
 use common::rigidlab;
 use rigidlab::level::{self, MAX_LEVEL_BYTES};

@@ -4,7 +4,7 @@
 //! by `cargo test`: it runs for minutes. Its command (the counts go to docs/testing.md):
 //!
 //!   RIGIDLAB_FUZZ_SEED=1 RIGIDLAB_FUZZ_LEVELS=60000 RIGIDLAB_FUZZ_RUN_S=300 \
-//!     cargo test --release --test fuzz_campaign -- --ignored --nocapture
+//!     cargo test --release --test suite -- runner::fuzz_campaign:: --ignored --nocapture
 //!
 //! In-process against the library for speed (the parser and validator, `runner::run_graded`
 //! for the mutants that load and are estimated to run within 0.2 s, clap's parser of the real
@@ -12,7 +12,7 @@
 //! of the release binary itself with random flags, each killed after 20 s. The generator is a
 //! seeded xorshift: a seed gives the same mutants.
 
-mod common;
+use crate::common;
 
 use clap::Parser;
 use rigidlab::level::{self, LevelError};

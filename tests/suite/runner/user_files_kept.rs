@@ -5,7 +5,7 @@
 //! never replace a file (a numbered name instead); a wrong preferences file is reported at
 //! path:line:col and kept as `prefs.ron.bad`, never read without limits nor silently replaced.
 
-mod common;
+use crate::common;
 
 use common::{repo_path, rigidlab};
 use std::fs;

@@ -1,7 +1,7 @@
 //! The core levels' trajectories against closed forms, effects that are not declared
 //! never run, and every level survives a save/load round trip.
 
-mod common;
+use crate::common;
 
 use rigidlab::level::{self, collect_files, parse, to_ron};
 use rigidlab::sim::{Options, Simulation};

@@ -1,6 +1,6 @@
 //! The ratio constraint (pulleys, cables, gears) and welds created at first contact.
 
-mod common;
+use crate::common;
 
 use common::parse as scene;
 use rigidlab::level::parse;

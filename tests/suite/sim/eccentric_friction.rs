@@ -260,7 +260,7 @@ fn a_converged_unbiased_pass_keeps_the_impact_plastic() {
 }
 
 /// Prints the engine's rebound factor against the model's over settings (cargo test --release
-/// --test sim_eccentric_friction -- --ignored --nocapture).
+/// --test suite -- sim::eccentric_friction:: --ignored --nocapture).
 #[test]
 #[ignore]
 fn print_the_rebound_over_settings() {

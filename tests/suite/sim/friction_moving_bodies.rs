@@ -8,7 +8,7 @@
 //! 1/240 s, 0.33 mm = p/2 at every setting; the friction force 0.25% high). rigidlab now puts a
 //! ball's solver point on its rim (src/sim/contact_points.rs); this file holds that.
 
-mod common;
+use crate::common;
 
 use rigidlab::level::{parse, Precision};
 use rigidlab::runner;

@@ -28,7 +28,7 @@
 //! every case within 0.1% (the bound), and rapier's own speculative contact
 //! (`impact_cuts: Some(false)`) outside it, so the cut is what the pass rests on.
 
-mod common;
+use crate::common;
 
 use rigidlab::level;
 use rigidlab::sim::{Options, Simulation};

@@ -6,7 +6,7 @@
 //! calls cut as its links closed at the pins, each cut's call at 32 friction sweeps, and cost 5x
 //! its declared run for the same motion.
 
-mod common;
+use crate::common;
 
 use rigidlab::level;
 use rigidlab::sim::{Options, Simulation};

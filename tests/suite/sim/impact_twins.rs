@@ -13,7 +13,7 @@
 //! Without the cuts (`impact_cuts: Some(false)`, rapier's speculative contact) the twins are
 //! printed for comparison: 5 of the 7 failed, by up to 1.7e-2.
 
-mod common;
+use crate::common;
 
 use common::run;
 use rigidlab::level::{BodyKind, Effect, EventDef, Scene, When};

@@ -4,7 +4,7 @@
 //! impulse, along Gram-Schmidt-orthogonalized rows (see `sim::joints`). These tests pin the
 //! conversion down with textbook closed forms.
 
-mod common;
+use crate::common;
 
 use rigidlab::sim::{Options, Simulation};
 

@@ -1,7 +1,7 @@
 //! The engine's known deviations from the textbook, measured and shown (issue 3): not hidden
 //! behind a tolerance, but pinned by what theory says about their sign and their order in h.
 //!
-//! Run with `cargo test --test sim_known_gaps -- --nocapture` to see the figures docs/ quotes.
+//! Run with `cargo test --test suite -- sim::known_gaps:: --nocapture` to see the figures docs/ quotes.
 
 use rigidlab::analysis::energy::{gravity_potential, kinetic_energy};
 use rigidlab::level::{self, Scene};

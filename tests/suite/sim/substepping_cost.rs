@@ -1,6 +1,6 @@
 //! What split substeps cost against rapier's internal ones (issue 13: pay for reading every
 //! substep's joint impulse only where a level has joints). A timing, not a test of a target:
-//! run with `cargo test --release --test sim_substepping_cost -- --ignored --nocapture`; it prints
+//! run with `cargo test --release --test suite -- sim::substepping_cost:: --ignored --nocapture`; it prints
 //! per-step medians of interleaved rounds and their ratio, and asserts nothing.
 
 use rigidlab::sim::{Options, Simulation, Substepping};

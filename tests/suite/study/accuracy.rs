@@ -9,7 +9,7 @@
 //! - f32 carries about 7 significant digits: a body 10 km from the origin has a position ulp of
 //!   about 1 mm, so steps that move it less than that are lost, whereas f64 (16 digits) keeps them.
 
-mod common;
+use crate::common;
 
 use common::parse as scene;
 use rigidlab::study::accuracy::measure::{

@@ -112,7 +112,7 @@ fn every_stress_level_has_criteria_and_a_test() {
         assert!(level_path(s).exists(), "spec {s} has no level file");
         assert!(
             CASES.contains(s),
-            "spec {s} has no test in tests/study_stability.rs"
+            "spec {s} has no test in tests/suite/study/stability.rs"
         );
     }
 }
