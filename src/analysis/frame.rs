@@ -418,7 +418,7 @@ enum Slot {
 /// One step's free-body diagrams of every body, summed as they are read.
 ///
 /// The same impulses, points and lever arms as `kinetics::for_each_body_impulse` (which stays the
-/// reference: tests/analysis_frame.rs holds the two equal), read source by source without building a
+/// reference: tests/suite/analysis/frame.rs holds the two equal), read source by source without building a
 /// `StepImpulse` per impulse, so that the pass costs a few percent of the physics step.
 struct Pass<'a> {
     snap: &'a Snapshot,

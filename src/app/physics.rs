@@ -1,7 +1,7 @@
 //! The physics plugin: the core simulation ([`AnySimulation`], f32 or f64 as the level asks) stepped in `FixedUpdate` at the level's dt.
 //!
 //! One `FixedUpdate` = one `Simulation::step`, with `Time<Fixed>` set to the level's dt, so the
-//! window computes exactly the numbers `rigidlab check` computes (tests/app_plugins.rs asserts it bit for
+//! window computes exactly the numbers `rigidlab check` computes (tests/suite/app/plugins.rs asserts it bit for
 //! bit). Time scale acts on `Time<Virtual>`, never on dt. Everything the overlays and plots need
 //! per step (previous velocities, trails, energy series) is recorded here, step by step, so it does
 //! not depend on the frame rate.
