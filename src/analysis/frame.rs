@@ -635,7 +635,7 @@ impl Pass<'_> {
             // block struck down into it, a support under a body struck from above): that
             // impulse changes the velocities within the step, and the mean velocity books it
             // exactly, where the displacement books the soft contact's sink. The tenth new
-            // user's block struck down by (4, -6) N s (tests/newuser/n10_05b): the floor's
+            // user's block struck down by (4, -6) N s (tests/newuser/impacts/n10_05b): the floor's
             // 6 N s against the 0.041 N s of resting, booked at the block's 0.35 mm sink, gave
             // the work-energy ledger 1.0 J of 1.6 J too much.
             let resting = self.with_work && {

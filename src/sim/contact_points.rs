@@ -122,7 +122,7 @@ fn spin_offset_rate(
 /// r w^2 T^2 / 8 between, an apparent overlap the contact's bias pushes out. Measured on a disc
 /// (r = 0.2 m) spun on a floor in one call of 4 or 16 substeps (2026-11-27): its first normal
 /// impulse was 2% to 8% short at a residual of 0.17 mm, 25% at 1.1 mm, and at 2.8 mm the disc
-/// rose 0.44 mm; and a disc rolling off a cylinder (`tests/newuser/n7_04`) left it 1.3e-2
+/// rose 0.44 mm; and a disc rolling off a cylinder (`tests/newuser/curved/n7_04`) left it 1.3e-2
 /// early at a residual of 14 um, where it leaves within 1.6e-3 split. Calls of one substep see
 /// the separation only at their start and end, so the step is split wherever a dynamic ball
 /// touching something (a contact pair with solver contacts from the last step, or any ball in

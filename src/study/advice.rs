@@ -33,7 +33,7 @@ pub const SEARCH_BUDGET: f64 = 512.0;
 
 /// The whole search's wall time, s: no candidate is started that would end past it (predicted
 /// from the failing run's wall time times the candidate's cost ratio). Measured 2026-11-26 on
-/// 2 cores: `rigidlab check tests/newuser/*.ron` (113 levels, 29 failing) took 4 min 59 s with
+/// 2 cores: `rigidlab check tests/newuser/*/*.ron` (113 levels, 29 failing) took 4 min 59 s with
 /// the search bounded only by cost ratios and the 600 s run budget (n7_01's loop at 1/4800 s,
 /// 2.2 s a run, and n7_05's puck in a ring, 1.9 s, searched for minutes each); see
 /// docs/teacher.md for the time with this bound.
@@ -94,7 +94,7 @@ pub fn engine_failed(r: &LevelReport) -> bool {
 /// Why no setting can make the level pass, when every failure of its report is a check that
 /// cannot judge the scene (its formula's assumption broken: `checks::kinds::cannot_judge`,
 /// whose note starts "cannot judge"): finer settings cannot change that, so there is nothing to
-/// search. Found by the tenth new user (tests/newuser/n10_11b: a `center_of_percussion` check
+/// search. Found by the tenth new user (tests/newuser/impacts/n10_11b: a `center_of_percussion` check
 /// on a bar that rests on a peg was searched through to 32x and then blamed on the engine).
 pub fn beyond_settings(r: &LevelReport) -> Option<String> {
     if r.error.is_some() || r.questions.iter().any(|q| !q.passed) {

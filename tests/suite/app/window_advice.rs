@@ -72,13 +72,13 @@ fn wait_for_advice(app: &mut App) -> (AdviceState, Duration) {
     }
 }
 
-/// tests/newuser/pendulum_period_120deg.ron fails its period question at its own settings
+/// tests/newuser/oscillations/pendulum_period_120deg.ron fails its period question at its own settings
 /// (1.08e-2 against 5e-3: rapier's soft pin, docs/known-gaps.md) and passes finer
 /// (tests/suite/study/advice.rs). The window advises settings, says so beside the checks, the frames
 /// go on meanwhile, and the button's rerun passes.
 #[test]
 fn a_failing_level_gets_settings_that_pass_beside_its_checks_without_freezing() {
-    let scene = common::load("tests/newuser/pendulum_period_120deg.ron");
+    let scene = common::load("tests/newuser/oscillations/pendulum_period_120deg.ron");
     let mut app = app(scene);
     assert_eq!(
         state(&app),
@@ -158,11 +158,13 @@ fn a_failing_level_gets_settings_that_pass_beside_its_checks_without_freezing() 
     assert_eq!(state(&app), AdviceState::None);
 }
 
-/// tests/newuser/n4_12_ball_pinned_bar_gap.ron: rapier's restitution into a pinned bar is 0.754
+/// tests/newuser/impacts/n4_12_ball_pinned_bar_gap.ron: rapier's restitution into a pinned bar is 0.754
 /// for 0.8 at every setting (docs/known-gaps.md): the window says none within, naming the gap.
 #[test]
 fn an_engine_limit_says_none_within_and_names_the_known_gap() {
-    let mut app = app(common::load("tests/newuser/n4_12_ball_pinned_bar_gap.ron"));
+    let mut app = app(common::load(
+        "tests/newuser/impacts/n4_12_ball_pinned_bar_gap.ron",
+    ));
     play_to_end(&mut app);
     app.update();
     let (s, _) = wait_for_advice(&mut app);

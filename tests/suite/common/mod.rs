@@ -56,18 +56,10 @@ pub fn ron_files(dir: impl AsRef<Path>, skip: &[&str]) -> Vec<PathBuf> {
     out
 }
 
-/// The `.ron` files directly in `dir` (not in its subfolders), loaded, in file-name order.
+/// The `.ron` files under `dir` and its subfolders (tests/newuser/ files its levels by topic),
+/// loaded, in path order.
 pub fn levels_in(dir: impl AsRef<Path>) -> Vec<Scene> {
-    let dir = repo_path(dir);
-    let mut files: Vec<PathBuf> = match std::fs::read_dir(&dir) {
-        Ok(d) => d
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "ron"))
-            .collect(),
-        Err(_) => Vec::new(),
-    };
-    files.sort();
-    files
+    ron_files(dir, &[])
         .iter()
         .map(|f| level::load(f).unwrap_or_else(|e| panic!("{e}")))
         .collect()

@@ -6,9 +6,10 @@
 //! asks for it (`quantity: Variant`):
 //! - in a level of the library (levels/, every folder: tests/suite/questions/library.rs runs the exercises,
 //!   tests/suite/checks/settings_twins.rs every level at finer settings);
-//! - in a level file under tests/ whose folder a test names (tests/newuser/ and
-//!   tests/hard_readings/ are run by tests/suite/questions/untuned_levels.rs);
-//! - or in a level a test writes inline (RON text in a tests/*.rs file, the question's
+//! - in a level file under tests/ whose folder, or a folder above it, a test names (tests/newuser/
+//!   with its topic folders and tests/hard_readings/ are run by
+//!   tests/suite/questions/untuned_levels.rs);
+//! - or in a level a test writes inline (RON text in a .rs file under tests/, the question's
 //!   parentheses holding an `expected:`), or a `QuestionDef` it builds (`quantity:
 //!   Quantity::Variant` beside an `expected:`).
 //!
@@ -81,9 +82,16 @@ fn level_questions(places: &mut Places, test_sources: &str) {
             .to_string_lossy()
             .to_string();
         let file = rel.to_string_lossy().to_string();
+        // A folder a test names is walked with its subfolders (tests/newuser/ files its levels
+        // in topic folders, and the tests that run them name tests/newuser).
+        let ancestor_named = rel.ancestors().skip(2).any(|a| {
+            let a = a.to_string_lossy();
+            a.contains('/') && test_sources.contains(&format!("\"{a}\""))
+        });
         if test_sources.contains(&format!("\"{folder}\""))
             || test_sources.contains(&format!("\"{folder}/"))
             || test_sources.contains(&file)
+            || ancestor_named
         {
             files.push(f);
         } else {

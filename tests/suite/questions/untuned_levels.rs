@@ -121,7 +121,7 @@ fn levels_written_from_the_docs_alone_pass_untuned() {
     all_pass("tests/newuser", finer, &known);
 }
 
-/// What a second new user's levels (tests/newuser/n2_*, 2026-11-25, written from README.md and
+/// What a second new user's levels (tests/newuser/*/n2_*, 2026-11-25, written from README.md and
 /// docs/levels.md alone) found that is rigidlab's reading or the engine's start-up, not yet
 /// fixed: each measured here and listed in docs/known-gaps.md. (Fixed the same day: H_O's
 /// scale on a bar spinning freely on its pin, read 1.00; a wheel rolling into a curb carried
@@ -130,7 +130,7 @@ fn levels_written_from_the_docs_alone_pass_untuned() {
 /// 4 to 16 substeps and the second bounce 0.586 to 0.610; at the touch it reads 0.60016 and
 /// 0.60026 at every substep count.)
 const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
-    // A fifth new user (tests/newuser/n5_*, 2026-11-26). (Fixed the same day: a ball with
+    // A fifth new user (tests/newuser/*/n5_*, 2026-11-26). (Fixed the same day: a ball with
     // topspin on a rough floor read `FrictionWork` -0.5640 J for -0.5714, 1.3e-2, with the
     // contact point at the end-of-step G; at the solver's lever arms it reads -0.56821 J,
     // 5.6e-3, inside the user's 1e-2. The work_energy check's -0.57173 J books the normal
@@ -150,7 +150,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     // rapier's soft wall at 16 substeps: the wall force at 55 degrees reads 2.6e-2 low (the
     // ladder's known gap, tests/suite/questions/ladder_release.rs).
     ("n2_11_ladder_omega_at_55.ron", "question N_wall"),
-    // The tenth new user (tests/newuser/n10_*, 2026-11-27). (Settled the same day: a block
+    // The tenth new user (tests/newuser/*/n10_*, 2026-11-27). (Settled the same day: a block
     // lying on a floor struck down obliquely (n10_05b) had the user's friction loss, -4 J, on a
     // sequential model: the blow first, then the floor's plastic impact. A floor cannot let a
     // block lying on it move into it, so its impulse grows with the blow's and friction takes
@@ -163,7 +163,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
         "n10_11b_pinned_bar_on_stop_struck_down.ron",
         "check center_of_percussion",
     ),
-    // An eleventh new user (tests/newuser/n11_*, 2026-11-27, n11_REPORT.md; fixed the same day:
+    // An eleventh new user (tests/newuser/*/n11_*, 2026-11-27, docs/newuser-trials/n11_REPORT.md; fixed the same day:
     // SpringPeriod and PendulumPeriod took the one-body closed form for a body a coupling joins
     // to others, 22.5% short for a rack meshing with a pinion; they take the linearized period;
     // and FrictionLoss booked a blow's step at the slip before the blow, 1.43e-2 short for a
@@ -200,7 +200,7 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
 /// Engine gaps the new user's levels run into, measured (docs/known-gaps.md), each a file and
 /// the start of the failure's line.
 const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
-    // The tenth new user (tests/newuser/n10_*, 2026-11-27): a ball (0.5 kg, e = 0.6) dropped
+    // The tenth new user (tests/newuser/*/n10_*, 2026-11-27): a ball (0.5 kg, e = 0.6) dropped
     // on a 2 kg block lying on a floor rebounds with e M/(m + M) = 0.480 at every setting:
     // rapier's restitution pass leaves the resting contact out, as it leaves joints out
     // (docs/known-gaps.md); the analyses say "not applicable" (the floor acts in the step).
@@ -220,7 +220,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
         "n10_13a_ball_dropped_on_block_resting_on_floor.ron",
         "question E_lost",
     ),
-    // A fifth new user (tests/newuser/n5_*, 2026-11-26), docs/known-gaps.md. (Fixed
+    // A fifth new user (tests/newuser/*/n5_*, 2026-11-26), docs/known-gaps.md. (Fixed
     // 2026-11-27: a ball placed on a rough floor with topspin got too little normal impulse in
     // its first step, the spinning contact, and reached -30 rad/s 2.2 ms late, 1.08e-2.)
     // A cue ball drawn back at 60 rad/s turns 0.93 rad a step. Until 2026-11-26 the contact
@@ -249,7 +249,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n5_16_swing_hit_slide.ron", "question v_block"),
     ("n5_16_swing_hit_slide.ron", "question w2"),
     ("n5_16_swing_hit_slide.ron", "question slide"),
-    // A fourth new user (tests/newuser/n4_*, 2026-11-26). (Fixed 2026-11-27: a disc rolling
+    // A fourth new user (tests/newuser/*/n4_*, 2026-11-26). (Fixed 2026-11-27: a disc rolling
     // down a 25-degree incline drifted off its contact as it spun, the normal impulse dipping
     // 2% to 6% in bursts, N 1.9e-2 low; now within its tolerances at every setting here.)
     // A velocity motor driving a slider-crank against a 50 N gas load does not hold its rate:
@@ -301,7 +301,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // and converging their friction: two discs meeting obliquely from 10 cm, whose v_A'x read
     // 2.6% low at 1/60 s, and the wheel's plastic impact on a curb's corner, whose `restitution`
     // check read e = -0.008 to +0.005 and now grades H about the corner within 3e-6.)
-    // A third new user's levels (tests/newuser/n3_*, 2026-11-25, written from the docs alone).
+    // A third new user's levels (tests/newuser/*/n3_*, 2026-11-25, written from the docs alone).
     // rapier's soft contact under a 100:1 mass ratio: a 10 kg box on a 0.1 kg plate sinks 46 mm
     // (box height 0.2543 m for 0.3, at every setting) and is still settling at 2 s: the normal
     // forces read 3.2% high at 4 substeps, 2.2% at 32 (Newton-Euler holds on both to 1e-7).
@@ -359,7 +359,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
         "n3_12_bar_released_horizontal_pin_reaction.ron",
         "question Rt_30",
     ),
-    // A sixth new user (tests/newuser/n6_*, 2026-11-26), docs/known-gaps.md. (A box landing on
+    // A sixth new user (tests/newuser/*/n6_*, 2026-11-26), docs/known-gaps.md. (A box landing on
     // a corner of a rough floor with e = 0, n6_05, got 1.093 times the plastic normal impulse
     // until 2026-11-27, as n5_06 above.) A rod landing with e = 0.5 and sliding through the impact (mu = 0.2) gets a friction
     // impulse of 0.431 N s where Coulomb gives mu J_n = 0.604: vx' 5.1% off, T lost 13%; the
@@ -369,7 +369,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n6_06_rod_lands_sliding_e05.ron", "question Jn"),
     ("n6_06_rod_lands_sliding_e05.ron", "question Jt"),
     ("n6_06_rod_lands_sliding_e05.ron", "question T_lost"),
-    // A seventh new user on curved tracks (tests/newuser/n7_*, 2026-11-26). The normal force at
+    // A seventh new user on curved tracks (tests/newuser/*/n7_*, 2026-11-26). The normal force at
     // one step of a faceted curve comes in per-vertex bursts (28% either way; within 1e-4 over
     // 48 steps): N past the loop's bottom, at the ring's side, before a ramp's flat, asked
     // without a `window` (which the docs did not offer until the user's report).
@@ -401,8 +401,8 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
         "question x_slip",
     ),
     ("n7_05_puck_leaves_vertical_ring.ron", "question v_leave"),
-    // An eighth new user on analyses past their assumptions (tests/newuser/n8_*, 2026-11-26;
-    // n8_REPORT.md; fixed the same day: a pendulum on a kinematic trolley, moving or not, got
+    // An eighth new user on analyses past their assumptions (tests/newuser/*/n8_*, 2026-11-26;
+    // docs/newuser-trials/n8_REPORT.md; fixed the same day: a pendulum on a kinematic trolley, moving or not, got
     // the linearized period, 3.9e-3 short at 0.25 rad, while claiming to apply; a pivot that
     // translates uniformly now gets the exact period in its frame; MotorTorque's analysis of a
     // winch hauling a block on a rough floor read r Q = 2.0 N m, without the floor's friction,
@@ -431,7 +431,7 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // (Fixed the same day: the period reader counted the decayed motion's rounding noise,
     // 1.8e-2 off at 4x substeps; crossings now stop under 1 % of the largest half swing.)
     ("n8_16_two_blocks_spring_damper_pair.ron", "question W_c:"),
-    // A ninth new user on curved tracks (tests/newuser/n9_*, 2026-11-27). A light puck (0.2 kg)
+    // A ninth new user on curved tracks (tests/newuser/curved/n9_*, 2026-11-27). A light puck (0.2 kg)
     // nudged at 0.2 m/s over a smooth 0.5 m cylinder (it leaves at 48 degrees): N at 25 degrees
     // over a 0.01 s window reads 1.41209 for 1.39598 N (1.15e-2) at 1/4800 s, 1.37734 (1.34e-2)
     // at 8 substeps, 7.2e-3 at 16, 9.1e-3 at dt/2, while PN-2 from the engine's state holds

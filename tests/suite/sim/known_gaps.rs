@@ -326,14 +326,17 @@ fn the_restitution_check_reads_e_at_the_touch_at_any_dt_and_substeps() {
     }
 }
 
-/// The pin's impulse on the struck bar of tests/newuser/n3_07 (a ball striking a pinned bar on a
+/// The pin's impulse on the struck bar of tests/newuser/impacts/n3_07 (a ball striking a pinned bar on a
 /// table, no gravity) step by step at `dt`, and per step the angular impulse about the center of
 /// percussion Q of every force on the bar (CP-2: zero in fixed-axis rotation). Returns
 /// (pin impulse x per step, M_Q per step, the ball's blow's moment about Q), from the step the
 /// ball first pushes on.
 fn struck_bar_steps(dt: f64) -> (Vec<f64>, Vec<f64>, f64) {
     use rigidlab::analysis::frame::FrameAnalysis;
-    let scene = level::load(Path::new("tests/newuser/n3_07_ball_strikes_pinned_bar.ron")).unwrap();
+    let scene = level::load(Path::new(
+        "tests/newuser/impacts/n3_07_ball_strikes_pinned_bar.ron",
+    ))
+    .unwrap();
     let opts = Options {
         dt: Some(dt),
         ..Options::default()

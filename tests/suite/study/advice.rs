@@ -38,7 +38,7 @@ fn advised(a: &Advice) -> Option<Options> {
 /// or 16 substeps, docs/known-gaps.md). More accuracy passes: the advice names it, and it does.
 #[test]
 fn a_level_that_more_accuracy_fixes_gets_settings_that_pass() {
-    let s = scene("tests/newuser/pendulum_period_120deg.ron");
+    let s = scene("tests/newuser/oscillations/pendulum_period_120deg.ron");
     let own = run(&s, &Options::default());
     assert!(engine_failed(&own), "fails at its own settings");
     let a = advise(&s, &Options::default(), own.wall_ms);
@@ -66,7 +66,7 @@ fn a_level_that_more_accuracy_fixes_gets_settings_that_pass() {
 /// (docs/known-gaps.md), so no setting within the bound passes, and the advice says so.
 #[test]
 fn an_engine_limit_gets_none_within_and_why() {
-    let s = scene("tests/newuser/n4_12_ball_pinned_bar_gap.ron");
+    let s = scene("tests/newuser/impacts/n4_12_ball_pinned_bar_gap.ron");
     let own = run(&s, &Options::default());
     assert!(engine_failed(&own));
     match advise(&s, &Options::default(), own.wall_ms) {
@@ -89,7 +89,7 @@ fn an_engine_limit_gets_none_within_and_why() {
 #[test]
 fn check_prints_the_advice_and_no_advice_turns_it_off() {
     let bin = env!("CARGO_BIN_EXE_rigidlab");
-    let failing = "tests/newuser/pendulum_period_120deg.ron";
+    let failing = "tests/newuser/oscillations/pendulum_period_120deg.ron";
     // A generous search time: under a loaded test run the 2 s default may run out before the
     // 4x candidate that passes (the time bound has its own test below).
     let out = Command::new(bin)
@@ -138,13 +138,13 @@ fn check_prints_the_advice_and_no_advice_turns_it_off() {
 /// settings, the level passes at them.
 #[test]
 fn every_failing_newuser_level_gets_advice_that_holds() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/newuser");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    files.sort();
+    // Every topic folder (tests/newuser/impacts/, rolling/, ...).
+    let files = crate::common::ron_files("tests/newuser", &[]);
+    assert!(
+        files.len() > 100,
+        "{} levels under tests/newuser",
+        files.len()
+    );
     // The levels in parallel (each level's twins and advice in turn): serially this took 15 min
     // on 2 cores once the sixth and seventh users' levels came.
     let counts: Vec<(usize, usize, usize)> = files
@@ -213,15 +213,15 @@ fn every_failing_newuser_level_gets_advice_that_holds() {
 /// The search's wall-time bound: the seventh user's loop at 1/4800 s and puck in a ring take
 /// about 2 s a run, and their own settings are already fine, so even the cheapest finer
 /// candidate (1.25x) does not fit in SEARCH_SECONDS. They used to be searched for minutes
-/// (`rigidlab check tests/newuser/*.ron` took 4 min 59 s on 2 cores, 2026-11-26); now the
+/// (`rigidlab check tests/newuser/*/*.ron` took 4 min 59 s on 2 cores, 2026-11-26); now the
 /// advice says the time ran out, names the next setting to try by hand, and the JSON carries
 /// the bound as `within_seconds`.
 #[test]
 fn a_slow_level_is_searched_within_the_time_bound_and_says_so() {
     let bin = env!("CARGO_BIN_EXE_rigidlab");
     let files = [
-        "tests/newuser/n7_01_loop_min_height.ron",
-        "tests/newuser/n7_05_puck_leaves_vertical_ring.ron",
+        "tests/newuser/curved/n7_01_loop_min_height.ron",
+        "tests/newuser/curved/n7_05_puck_leaves_vertical_ring.ron",
     ];
     let timed = |extra: &[&str]| {
         let t0 = std::time::Instant::now();
@@ -267,7 +267,7 @@ fn a_slow_level_is_searched_within_the_time_bound_and_says_so() {
 
 /// A level whose only failure is a check that cannot judge its scene gets no search: finer
 /// settings cannot change an assumption the scene breaks. The tenth new user's bar resting on
-/// a peg and struck down (tests/newuser/n10_11b) declares `center_of_percussion`, whose pin
+/// a peg and struck down (tests/newuser/impacts/n10_11b) declares `center_of_percussion`, whose pin
 /// must take the blow alone; the peg shares it. Its questions pass; the check says it cannot
 /// judge, and the advice says why without a search (`none_within` 0).
 #[test]
@@ -277,7 +277,7 @@ fn a_check_that_cannot_judge_its_scene_gets_no_search() {
         .args([
             "check",
             "--json",
-            "tests/newuser/n10_11b_pinned_bar_on_stop_struck_down.ron",
+            "tests/newuser/impacts/n10_11b_pinned_bar_on_stop_struck_down.ron",
         ])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
