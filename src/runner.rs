@@ -43,7 +43,7 @@ pub fn run_file(
 /// The checks and questions of one run, fed every snapshot in order (the initial one first).
 ///
 /// The questions share one copy of each snapshot (an `Arc`) and one copy of the level's facts:
-/// a run's memory grows with its questions, not with questions x bodies (tests/cli_memory.rs: 1,000
+/// a run's memory grows with its questions, not with questions x bodies (tests/suite/runner/cli_memory.rs: 1,000
 /// questions on 1,000 bodies).
 pub struct Observers {
     checks: CheckSet,

@@ -4,7 +4,7 @@
     python3 tools/budget_levels.py            # the adversarial levels, into tests/budget/
     python3 tools/budget_levels.py --calib D  # also the calibration levels, into D
 
-The adversarial levels are test inputs of tests/run_budget.rs and rows of the table in
+The adversarial levels are test inputs of tests/suite/runner/budget.rs and rows of the table in
 docs/cli.md: 1000 discs at one point, 1000 split substeps, and an impulse_momentum check over
 1e8 steps (refused: never run); 10^4 questions (1.4 MB) is written with --calib only. The calibration levels are what
 the unit costs in src/runner/budget.rs were measured on (tools/budget_calibrate.sh).
@@ -91,7 +91,7 @@ def main():
     write(OUT, "impulse_momentum_1e8.ron", impulse_momentum(100_000))
     if len(sys.argv) == 3 and sys.argv[1] == "--calib":
         d = sys.argv[2]
-        # 1.4 MB: tests/run_budget.rs generates its own copy.
+        # 1.4 MB: tests/suite/runner/budget.rs generates its own copy.
         write(d, "questions_10k.ron",
               level("10^4 questions", ["gravity"], "(dt: 0.016666666666666666, substeps: 1, duration: 10.0)",
                     [ball()], questions(10_000, 10.0)))

@@ -418,7 +418,7 @@ enum Slot {
 /// One step's free-body diagrams of every body, summed as they are read.
 ///
 /// The same impulses, points and lever arms as `kinetics::for_each_body_impulse` (which stays the
-/// reference: tests/analysis_frame.rs holds the two equal), read source by source without building a
+/// reference: tests/suite/analysis/frame.rs holds the two equal), read source by source without building a
 /// `StepImpulse` per impulse, so that the pass costs a few percent of the physics step.
 struct Pass<'a> {
     snap: &'a Snapshot,
@@ -635,7 +635,7 @@ impl Pass<'_> {
             // block struck down into it, a support under a body struck from above): that
             // impulse changes the velocities within the step, and the mean velocity books it
             // exactly, where the displacement books the soft contact's sink. The tenth new
-            // user's block struck down by (4, -6) N s (tests/newuser/n10_05b): the floor's
+            // user's block struck down by (4, -6) N s (tests/newuser/impacts/n10_05b): the floor's
             // 6 N s against the 0.041 N s of resting, booked at the block's 0.35 mm sink, gave
             // the work-energy ledger 1.0 J of 1.6 J too much.
             let resting = self.with_work && {

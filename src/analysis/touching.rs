@@ -28,7 +28,7 @@ pub fn flies_free(s: &Snapshot, i: usize) -> bool {
 /// The acceleration body i flies at over the step `s` ends: gravity and the forces the engine
 /// held on it during that step (its springs' and dampers', its loads'; the snapshot's mean
 /// forces, N), over its mass. A body on a spring is carried to its impact at g alone
-/// otherwise: a ball held by a spring (the tenth new user's tests/newuser/n10_01b) read its
+/// otherwise: a ball held by a spring (the tenth new user's tests/newuser/impacts/n10_01b) read its
 /// approach speed 3.108 for 3.102 m/s and the energy lost up to 4.75e-3 high. A torsion
 /// spring's couple and a force's moment about G are left out: the carry is G's.
 pub fn free_acceleration(s: &Snapshot, i: usize) -> DVec2 {

@@ -2,7 +2,7 @@
 //! [`Playback`] says, and the one system that changes the run on request ([`PhysicsCommand`]).
 //!
 //! One `FixedUpdate` = one `Simulation::step`, with `Time<Fixed>` set to the level's dt, so the
-//! window computes exactly the numbers `rigidlab check` computes (tests/app_plugins.rs asserts it bit for
+//! window computes exactly the numbers `rigidlab check` computes (tests/suite/app/plugins.rs asserts it bit for
 //! bit). Time scale acts on `Time<Virtual>`, never on dt.
 //!
 //! Panels, keys, mouse tools and the editor never change the run themselves: they write a

@@ -28,7 +28,7 @@
 //!
 //! Adding a quantity: its variant in `level/format/exercise.rs` (with its [`QuantityFamily`]),
 //! its references in `level/validate/exercise.rs`, its reading in its family's file, and a
-//! question with a known answer that asks it (tests/questions_quantity_coverage.rs looks for one).
+//! question with a known answer that asks it (tests/suite/questions/quantity_coverage.rs looks for one).
 //!
 //! [`QuantityFamily`]: crate::level::QuantityFamily
 

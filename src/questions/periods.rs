@@ -480,7 +480,7 @@ fn pendulum_breaks(m: &Meter, s: &Snapshot, i: usize, joint: &str) -> Option<Str
 
 /// A coupling (a gear mesh, a rack and pinion, a cable) on body i moves other bodies with it, and
 /// their inertia with it, which a one-body period `formula` leaves out: a rack on a spring meshing
-/// with a pinion of inertia I vibrates with m + I / r^2, not m (tests/newuser/n11_11: 22.5%
+/// with a pinion of inertia I vibrates with m + I / r^2, not m (tests/newuser/oscillations/n11_11: 22.5%
 /// short). The linearized period holds couplings as constraints.
 fn coupled(s: &Snapshot, i: usize, formula: &str) -> Option<String> {
     let c = s

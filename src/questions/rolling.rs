@@ -74,7 +74,7 @@ const SLIDES: &str = "the body slides on the ground";
 
 /// A turn of the contact normal in one step that means the ground curves, rad. rapier's normal
 /// on a straight slope wobbles by up to 2.4e-6 rad from step to step in f32 (a disc on a 25
-/// degree incline, tests/newuser/n4_02); a turn of 1e-4 rad per step is a curve of radius
+/// degree incline, tests/newuser/rolling/n4_02); a turn of 1e-4 rad per step is a curve of radius
 /// v dt / 1e-4, whose m v^2 / rho is v 1e-4 / dt: 0.5% of g at 2 m/s and 1/240 s.
 pub(super) const CURVED: f64 = 1e-4;
 

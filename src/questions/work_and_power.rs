@@ -121,7 +121,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                 let other_fixed = s.bodies[o].kind == BodyKind::Fixed;
                 // A blow in this step acts at its start, before friction slips over the step:
                 // friction then slips at the velocities after the blow, not from those before (a
-                // ball struck through its centre, tests/newuser/n11_07b, booked its blow's step
+                // ball struck through its centre, tests/newuser/impacts/n11_07b, booked its blow's step
                 // at half its slip: 8.2e-3 J of 0.5714 short). Unless the contact itself pushes
                 // impulsively (`pushes_impulsively`): then its slip grows with the blow, from the
                 // velocities before (a block struck down into its floor, n10_05b).

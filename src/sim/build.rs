@@ -83,7 +83,7 @@ pub use crate::level::DEFAULT_DENSITY;
 /// half disc by the 3D hemisphere's centroid offset 3r/8 where the half disc's is 4r/(3 pi)
 /// (MP-9): its extra term is A_disc (l^2/4 + l 3r/8) instead of A_disc (l^2/4 + l 4r/(3 pi)). The
 /// shortfall, A_disc l r (4/(3 pi) - 3/8) = pi r^3 l (4/(3 pi) - 3/8), is -1.2% of I_G for a
-/// capsule 0.6 m long with r = 0.1 m (tests/sim_impulse_conversions.rs measures it on parry's own value).
+/// capsule 0.6 m long with r = 0.1 m (tests/suite/sim/impulse_conversions.rs measures it on parry's own value).
 /// A pure centroidal term: it changes neither the mass nor the mass center, of the capsule or of
 /// a compound holding it, and adds the same to the compound's I_G.
 pub fn capsule_inertia_shortfall(s: &LevelShape) -> f64 {

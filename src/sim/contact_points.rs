@@ -6,7 +6,7 @@
 //! `solver_dp1`/`solver_dp2`). While two bodies overlap by a depth p, a disc's friction row then
 //! makes the disc roll without slip about a point p/2 inside its rim: its rolling radius is
 //! r - p/2, and its rim creeps on the other body at omega p/2. Measured on a disc rolling on a
-//! pulled plank (r = 0.15 m, 19 rad/s after 1 s; tests/sim_friction_moving_bodies.rs): the two
+//! pulled plank (r = 0.15 m, 19 rad/s after 1 s; tests/suite/sim/friction_moving_bodies.rs): the two
 //! soft dynamic bodies overlap 0.7 mm at 1/240 s, the rim crept 6.4 mm/s and the slip over omega
 //! was 0.33 mm, half the overlap, at every setting tried; the friction force came out 0.25%
 //! above the textbook's, as a rolling radius 0.33 mm short predicts.
@@ -86,7 +86,7 @@ impl PhysicsHooks for RoundContactPoints {
 /// along the normal, away from the contact: the solver sees the floor fall away at the rim's
 /// centripetal acceleration r w^2 and pushes only m (g - r w^2) against it. A disc (r = 0.2 m)
 /// spun at 5 rad/s on a floor got 0.49 to 0.55 of m g dt in its first step, at 20 rad/s none,
-/// and sank 3.3 mm at 1/60 s (2026-11-26; tests/sim_spinning_contact.rs holds the fix). The ball's true surface point
+/// and sank 3.3 mm at 1/60 s (2026-11-26; tests/suite/sim/spinning_contact.rs holds the fix). The ball's true surface point
 /// keeps its arm: it moves with the center only.
 ///
 /// rapier adds `tangent_velocity * t` to p1 in that update (its tangential part is the
@@ -122,7 +122,7 @@ fn spin_offset_rate(
 /// r w^2 T^2 / 8 between, an apparent overlap the contact's bias pushes out. Measured on a disc
 /// (r = 0.2 m) spun on a floor in one call of 4 or 16 substeps (2026-11-27): its first normal
 /// impulse was 2% to 8% short at a residual of 0.17 mm, 25% at 1.1 mm, and at 2.8 mm the disc
-/// rose 0.44 mm; and a disc rolling off a cylinder (`tests/newuser/n7_04`) left it 1.3e-2
+/// rose 0.44 mm; and a disc rolling off a cylinder (`tests/newuser/curved/n7_04`) left it 1.3e-2
 /// early at a residual of 14 um, where it leaves within 1.6e-3 split. Calls of one substep see
 /// the separation only at their start and end, so the step is split wherever a dynamic ball
 /// touching something (a contact pair with solver contacts from the last step, or any ball in

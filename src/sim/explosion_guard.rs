@@ -3,7 +3,7 @@
 //!
 //! Its energies and works are the guard's own engine-side sums over the snapshot, not the
 //! analysis stage's readings: `sim` runs before `analysis` in the data flow and does not import it
-//! (tests/stage_layers.rs), and a test against 1e3 times a reference needs no textbook reading.
+//! (tests/suite/docs/stage_layers.rs), and a test against 1e3 times a reference needs no textbook reading.
 //!
 //! E = T + V_g + V_s (eqs. 6/9, 3/21, 3/23 of MK over all bodies and springs). A closed,
 //! conservative system keeps E = E0; rapier's solvers only lose energy (contact and joint

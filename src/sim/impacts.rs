@@ -57,7 +57,7 @@ pub const MAX_CUTS: usize = 4;
 /// substep warm-starts with the impact's impulse when the impact call has a single substep. A
 /// blow (an impulse event) driving a resting body into its floor is met the same way: the first
 /// call of its step and the next (a block struck obliquely down rose at 0.83 m/s; converged, 0).
-/// tests/sim_eccentric_friction.rs measures both.
+/// tests/suite/sim/eccentric_friction.rs measures both.
 pub const IMPACT_ITERATIONS: usize = 32;
 
 /// How far ahead, in calls, an approaching pair is looked for (its closing speed is its gap over
@@ -149,7 +149,7 @@ impl Simulation {
         // same way), so such a pair is never an impact. Planned as one, a four-bar's links
         // touching at their pins once their colliders are on (all effects) were cut for as they
         // closed, each cut's call at IMPACT_ITERATIONS: 5x the run's cost for the same motion
-        // (tests/sim_impact_planner_joints.rs).
+        // (tests/suite/sim/impact_planner_joints.rs).
         let jointed = |a: &Collider, b: &Collider| match (a.parent(), b.parent()) {
             (Some(p), Some(q)) => w
                 .impulse_joints

@@ -15,7 +15,7 @@
 //! `impulse_i * row_i`. That is the impulse the solver actually applied in the
 //! last substep. Joint rows restart from zero each substep (`warmstart_joints`
 //! is false), so the whole step's impulse is `substeps * last` to first order in
-//! the substep (exact for a steady load). Tests: `tests/sim_impulse_conversions.rs`.
+//! the substep (exact for a steady load). Tests: `tests/suite/sim/impulse_conversions.rs`.
 //!
 //! Rows are rebuilt from the poses at the end of the step, whereas rapier built
 //! them at the start of the last substep: the difference is one substep of

@@ -146,7 +146,7 @@ impl Settings {
         // With one substep a joint scene still takes this path: its rows are then rebuilt from the
         // poses the step began with (from the poses at its end they are a step of motion off).
         // It costs 2.3x to 3.7x rapier's internal substeps (one pipeline call per substep:
-        // tests/sim_substepping_cost.rs, medians of 2026-11-25 in docs/reading-rapier.md), so a joint
+        // tests/suite/sim/substepping_cost.rs, medians of 2026-11-25 in docs/reading-rapier.md), so a joint
         // scene pays it only when it reads joint impulses.
         if substeps > 1 && springs {
             (

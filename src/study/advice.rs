@@ -14,7 +14,7 @@
 //! within"), and a level of a second or more (a loop at 1/4800 s) is searched only as far as
 //! the bound allows: the advice then says that the bound ran out, not that no setting passes.
 //! The first that passes is the advice; it is a real run's verdict, so rerunning the level with
-//! the advised settings passes (tests/study_advice.rs). When none within 32x passes, the failure
+//! the advised settings passes (tests/suite/study/advice.rs). When none within 32x passes, the failure
 //! does not go away with accuracy within the bound: an engine limit (docs/known-gaps.md) or a
 //! wrong expected answer.
 

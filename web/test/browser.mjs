@@ -1,6 +1,6 @@
 // The browser test's driver: serves web/dist, opens it in headless Chromium (Debian's, through
 // playwright-core) as a student would, and records what it saw into OUT (default
-// target/web-test) for tests/app_web_page.rs to judge against the core:
+// target/web-test) for tests/suite/app/web_page.rs to judge against the core:
 //   check.json      the page's own `?check=1` report of the levels in CHECK_LEVELS;
 //   pendulum.png    the simple pendulum played to its end (t = 0.8 s), as the page drew it;
 //   status.json     the page's status at that moment (time, view mapping, frame rate);
@@ -21,7 +21,7 @@ const root = resolve(dirname(fileURLToPath(import.meta.url)), "../..");
 const dist = join(root, "web/dist");
 const out = resolve(process.argv[2] ?? join(root, "target/web-test"));
 const chromiumPath = process.env.CHROMIUM ?? "/usr/bin/chromium";
-// Levels whose numbers the page must reproduce (tests/app_web_page.rs compares them with the core).
+// Levels whose numbers the page must reproduce (tests/suite/app/web_page.rs compares them with the core).
 const CHECK_LEVELS = [
   "kinetics/simple_pendulum.ron",
   "kinetics/physical_pendulum.ron",

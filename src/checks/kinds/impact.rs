@@ -33,7 +33,7 @@ use glam::DVec2;
 /// of its first step carried forward to the touch and those at the end of its last carried
 /// back, each body at gravity while it flies free (not jointed, not pushed by a contact the step
 /// before; after the touch, not resting on its partner). Read at the bracket's ends instead, e
-/// was off by up to g dt / v (0.446 and 0.518 against 0.5 at 1/60 s, `tests/sim_known_gaps.rs`).
+/// was off by up to g dt / v (0.446 and 0.518 against 0.5 at 1/60 s, `tests/suite/sim/known_gaps.rs`).
 /// A bracket whose pair was not approaching faster than gravity closes a gap in two steps (a
 /// last, slow bounce settling) is listed in the note and not graded, unless no impact approached.
 ///

@@ -1,0 +1,19 @@
+//! The Bevy sandbox (src/app), headless: the window, editor, inspector, playback and the web page.
+
+mod blows;
+mod editor_commands;
+mod editor_core;
+mod exercise_questions;
+mod help_tour;
+mod inspector_fields;
+mod key_chords;
+mod label_placement;
+mod measure;
+mod playback;
+mod plot_labels;
+mod plugins;
+mod unsaved_work;
+mod web_page;
+mod window;
+mod window_advice;
+mod window_diagram;

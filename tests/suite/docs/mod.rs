@@ -1,0 +1,7 @@
+//! The docs and the architecture agree with the tree: ARCHITECTURE.md's file list, the equation
+//! key, the data flow between stage folders.
+
+mod app_import_rule;
+mod architecture_doc;
+mod equation_key;
+mod stage_layers;

@@ -1,0 +1,8 @@
+//! Level files: parsing, validation and its errors, geometry, fuzzing of the parser (src/level).
+
+mod bad_input;
+mod curved_geometry;
+mod f32_increments;
+mod fuzz;
+mod joint_anchors;
+mod validation_scale;

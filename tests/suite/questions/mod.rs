@@ -1,0 +1,20 @@
+//! Questions: what each quantity reads, when an analysis applies, the level library and the
+//! levels written from the docs alone (src/questions).
+
+mod analysis_applies;
+mod contact_sag;
+mod contacts_in_full;
+mod coupling_force;
+mod crossing_at_touch;
+mod curved_normal_force;
+mod formula_holds;
+mod impact_lasting;
+mod impact_one_reading;
+mod ladder_release;
+mod library;
+mod new_quantities;
+mod polar_angle;
+mod quantity_coverage;
+mod rolling_applies;
+mod untuned_levels;
+mod virtual_work;

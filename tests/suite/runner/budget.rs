@@ -1,0 +1,303 @@
+//! The run budget (src/runner/budget.rs): runs estimated past the time or the memory budget are
+//! refused with the estimate in seconds and MB (exit 2, at the level file) by `check`, `run`,
+//! `study stability` and `render --time`; `--allow-long` lifts it; and the estimate is the
+//! formula docs/cli.md states. No timing here: the measured times are in docs/cli.md, dated.
+//!
+//! The adversarial levels are in tests/budget/ (`python3 tools/budget_levels.py` writes them),
+//! except 10^4 questions (1.4 MB), which is generated here.
+
+use crate::common;
+
+use common::{load, parse, rigidlab};
+use rigidlab::runner::budget::{self, Estimate, Mode, Work};
+use rigidlab::sim::Options;
+
+/// Runs the binary; (exit code, stderr).
+fn cli(args: &[&str]) -> (i32, String) {
+    let out = rigidlab().args(args).output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A refusal: exit 2, located at the level file, with the estimate in s and MB.
+fn assert_refused(args: &[&str], file: &str) -> String {
+    let (code, err) = cli(args);
+    assert_eq!(code, 2, "{args:?}: {err}");
+    assert!(
+        err.contains(&format!("{file}: error: this run is estimated to take ")),
+        "{err}"
+    );
+    assert!(err.contains(" s and ") && err.contains(" MB ("), "{err}");
+    assert!(
+        err.contains("past the budget of 600 s and 4096 MB"),
+        "{err}"
+    );
+    assert!(err.contains("--allow-long"), "{err}");
+    err
+}
+
+const IM: &str = "tests/budget/impulse_momentum_1e8.ron";
+
+#[test]
+fn an_impulse_momentum_check_over_1e8_steps_is_refused_for_its_memory() {
+    // 1e8 steps x 48 bytes of the ledger: 4578 MB of history, past 4096 MB; 216 s is within time.
+    let e = Estimate::of(
+        &load(IM).level,
+        &Options {
+            dt: Some(1e-5),
+            ..Default::default()
+        },
+        Mode::Check,
+        None,
+    );
+    assert_eq!(e.work.steps, 1e8);
+    assert_eq!(e.work.history_bytes_per_step, 48.0);
+    assert!(
+        e.megabytes > budget::MEMORY_BUDGET_MB && e.seconds < budget::TIME_BUDGET_S,
+        "{e:?}"
+    );
+    let err = assert_refused(&["check", IM, "--dt", "1e-5"], IM);
+    assert!(err.contains("checks keeping 48 bytes a step"), "{err}");
+    assert_refused(&["run", IM, "--dt", "1e-5"], IM);
+}
+
+#[test]
+fn a_long_run_is_refused_for_its_time() {
+    let ff = "levels/kinematics/free_fall.ron";
+    let err = assert_refused(&["check", ff, "--dt", "1e-9"], ff);
+    assert!(err.contains("1.000e9 steps x 4 substeps"), "{err}");
+    assert_refused(&["run", ff, "--substeps", "1000", "--dt", "1e-7"], ff);
+    // A step of 1e-300 s gives a number, not an overflow.
+    assert_refused(&["check", ff, "--dt", "1e-300"], ff);
+}
+
+#[cfg(feature = "app")]
+#[test]
+fn render_at_1e12_s_is_refused() {
+    let ff = "levels/kinematics/free_fall.ron";
+    let out = std::env::temp_dir().join("rigidlab_run_budget.png");
+    let out = out.to_str().unwrap();
+    let err = assert_refused(&["render", ff, "--time", "1e12", "--out", out], ff);
+    assert!(err.contains("6.000e13 steps"), "{err}");
+    assert!(!std::path::Path::new(out).exists());
+}
+
+#[test]
+fn study_stability_refuses_a_case_past_the_budget() {
+    let err = assert_refused(
+        &[
+            "study",
+            "stability",
+            "--dt",
+            "1e-8",
+            "--quick",
+            "spinning_disc",
+        ],
+        "levels/stress/spinning_disc.ron",
+    );
+    assert!(err.contains("steps x"), "{err}");
+}
+
+#[test]
+fn allow_long_lifts_the_budget() {
+    let scene = load("levels/kinematics/free_fall.ron");
+    let mut args = rigidlab::cli::SolverArgs {
+        dt: Some(1e-9),
+        ..Default::default()
+    };
+    let opts = args.options().unwrap();
+    let e = args.budget(&scene, &opts).unwrap_err();
+    assert!(e.to_string().contains("past the budget of 600 s"), "{e}");
+    args.allow_long = true;
+    args.budget(&scene, &opts).unwrap();
+}
+
+/// 10^4 questions on one ball, as tools/budget_levels.py writes them.
+fn ten_thousand_questions() -> String {
+    let mut t = String::from(
+        "Level(title: \"10^4 questions\", effects: [gravity],\n world: (dt: 0.016666666666666666, substeps: 1, duration: 10.0),\n bodies: [(name: \"ball\", shape: Circle(radius: 0.1), mass: 0.5, position: (0.0, 10.0))],\n questions: [\n",
+    );
+    for i in 0..10_000 {
+        t += &format!(
+            "  (id: \"q{i}\", ask: \"Height at the end\", unit: \"m\", expected: 10.0, tolerance: 1e9, quantity: Y(\"ball\"), at: Time(10.0), why: \"budget test\"),\n"
+        );
+    }
+    t + " ],\n)\n"
+}
+
+#[test]
+fn the_adversarial_levels_that_fit_are_priced_by_what_they_hold() {
+    // 10^4 questions: 600 steps x 10^4 x 0.15 us = 0.9 s; 10^4 x 3.4 KB = 33 MB.
+    let q = Estimate::of(
+        &parse(&ten_thousand_questions()).level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
+    assert_eq!(q.work.questions, 10_000);
+    assert!(q.fits() && q.seconds > 0.9 && q.megabytes > 60.0, "{q:?}");
+    // 1000 discs at one point, 1 m above the ground: every pair of discs overlaps, 499,500 of
+    // them, each disc in 999: making them dominates.
+    let d = Estimate::of(
+        &load("tests/budget/discs_1000_one_point.ron").level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
+    assert_eq!(d.work.pairs, 499_500.0);
+    assert_eq!(d.work.pair_degrees, 1000.0 * 999.0 * 999.0);
+    assert!(
+        d.fits() && d.seconds > 10.0 && d.megabytes > 1000.0,
+        "{d:?}"
+    );
+    // 1000 substeps of a spring are split: 1000 rapier calls a step.
+    let s = Estimate::of(
+        &load("tests/budget/spring_1000_substeps.ron").level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
+    assert_eq!((s.work.substeps, s.work.calls_per_step), (1000, 1000));
+}
+
+#[test]
+fn the_estimate_is_the_formula_docs_cli_md_states() {
+    // docs/cli.md, "The cost budget": levels/energy/block_friction_work.ron.
+    let e = Estimate::of(
+        &load("levels/energy/block_friction_work.ron").level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
+    let w: Work = e.work;
+    assert_eq!(
+        (
+            w.steps,
+            w.substeps,
+            w.iterations,
+            w.calls_per_step,
+            w.bodies,
+            w.joints
+        ),
+        (DOC.0, DOC.1, DOC.2, DOC.3, DOC.4, DOC.5)
+    );
+    assert_eq!((w.pairs, w.questions, w.checks), (DOC.6, DOC.7, DOC.8));
+    let seconds_of = |w: &Work| {
+        let step_us = w.calls_per_step as f64 * (1.3 + w.pair_facets * 0.04)
+            + w.bodies as f64 * 0.05
+            + w.substeps as f64
+                * (0.08
+                    + w.bodies as f64 * 0.008
+                    + (w.joints as f64 + w.pairs) * (0.048 + w.iterations as f64 * 0.02))
+            + w.pairs * 0.1
+            + w.questions as f64 * 0.15
+            + w.checks as f64 * 0.8;
+        0.01 + w.steps * step_us * 1e-6 + w.pair_degrees * 17e-9
+    };
+    let seconds = seconds_of(&w);
+    assert!(
+        (e.seconds - seconds).abs() < 1e-12,
+        "{} vs {seconds}",
+        e.seconds
+    );
+    // At 8 iterations the rows' iteration term counts (each iteration a biased and an unbiased
+    // sweep since 2026-11-27): the same formula with I = 8, dearer than at 1.
+    let e8 = Estimate::of(
+        &load("levels/energy/block_friction_work.ron").level,
+        &Options {
+            solver_iterations: Some(8),
+            ..Options::default()
+        },
+        Mode::Check,
+        None,
+    );
+    assert_eq!(e8.work.iterations, 8);
+    assert!(
+        (e8.seconds - seconds_of(&e8.work)).abs() < 1e-12 && e8.seconds > e.seconds,
+        "{} vs {} (1 iteration {})",
+        e8.seconds,
+        seconds_of(&e8.work),
+        e.seconds
+    );
+    assert!((e.seconds - DOC.9).abs() < 1e-9, "{}", e.seconds);
+    assert_eq!((w.pair_degrees, w.history_bytes_per_step), (2.0, 64.0));
+    let mb = 32.0
+        + (w.bodies as f64 * 1.5
+            + w.joints as f64 * 4.0
+            + w.pairs * 2.5
+            + w.questions as f64 * 3.4)
+            / 1024.0
+        + w.steps * w.history_bytes_per_step / 1048576.0;
+    assert!(
+        (e.megabytes - mb).abs() < 1e-9 && (e.megabytes - DOC.10).abs() < 5e-3,
+        "{}",
+        e.megabytes
+    );
+}
+
+/// docs/cli.md's example: steps, substeps, iterations, calls a step, bodies, joints, pairs,
+/// questions, checks, seconds, MB.
+const DOC: (
+    f64,
+    usize,
+    usize,
+    usize,
+    usize,
+    usize,
+    f64,
+    usize,
+    usize,
+    f64,
+    f64,
+) = (480.0, 4, 1, 1, 2, 0, 1.0, 1, 3, 0.012258914, 32.038);
+
+/// Prints the estimate of each file in RIGIDLAB_ESTIMATE (space-separated; a folder: each level
+/// in it and their sum), with RIGIDLAB_ESTIMATE_DT as --dt and RIGIDLAB_ESTIMATE_TIME as render's
+/// --time. For the table in docs/cli.md:
+///   RIGIDLAB_ESTIMATE="levels tests/budget/discs_1000_one_point.ron" \
+///     cargo test --release --test suite -- runner::budget::print_estimates --ignored --nocapture
+#[test]
+#[ignore]
+fn print_estimates() {
+    let dt = std::env::var("RIGIDLAB_ESTIMATE_DT")
+        .ok()
+        .and_then(|v| v.parse().ok());
+    let time: Option<f64> = std::env::var("RIGIDLAB_ESTIMATE_TIME")
+        .ok()
+        .and_then(|v| v.parse().ok());
+    let opts = Options {
+        dt,
+        ..Default::default()
+    };
+    for arg in std::env::var("RIGIDLAB_ESTIMATE")
+        .unwrap_or_default()
+        .split_whitespace()
+    {
+        let files = rigidlab::level::collect_files(&[arg.into()]).unwrap();
+        let (mut s, mut mb) = (0.0f64, 0.0f64);
+        for f in &files {
+            let scene = rigidlab::level::load(f).unwrap();
+            let e = match time {
+                Some(t) => Estimate::of(
+                    &scene.level,
+                    &opts,
+                    Mode::Render,
+                    Some((t / scene.level.world.dt).round()),
+                ),
+                None => Estimate::of(&scene.level, &opts, Mode::Check, None),
+            };
+            println!(
+                "{:.3} s {:.1} MB {} {:?}",
+                e.seconds,
+                e.megabytes,
+                f.display(),
+                e.work
+            );
+            s += e.seconds;
+            mb = mb.max(e.megabytes);
+        }
+        println!("TOTAL {s:.3} s {mb:.1} MB (peak) {arg}");
+    }
+}

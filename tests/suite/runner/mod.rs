@@ -1,0 +1,9 @@
+//! The runner and the command line: the run budget, input and output, memory, files kept, the
+//! fuzz campaign (src/runner, src/cli.rs).
+
+mod budget;
+mod cli_io;
+mod cli_memory;
+mod fuzz_campaign;
+mod report_step_calls;
+mod user_files_kept;

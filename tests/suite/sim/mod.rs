@@ -1,0 +1,26 @@
+//! The simulation against closed forms: contacts, impacts, joints, springs, motors, determinism,
+//! and the engine's known gaps with their sizes (src/sim).
+
+mod closed_forms;
+mod contact_readings;
+mod couplings;
+mod determinism;
+mod eccentric_friction;
+mod energy_guard;
+mod friction_moving_bodies;
+mod impact_approach;
+mod impact_planner_joints;
+mod impact_twins;
+mod impulse_conversions;
+mod joint_reaction_particle;
+mod known_gaps;
+mod load_tables;
+mod motor_units;
+mod pinned_bar_peg;
+mod precision;
+mod prescribed_motion;
+mod small_oscillations;
+mod spinning_contact;
+mod springs;
+mod substepping_cost;
+mod world_fields;

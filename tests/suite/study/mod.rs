@@ -1,0 +1,6 @@
+//! The studies: accuracy, stability and the advice for a failing level (src/study).
+
+mod accuracy;
+mod advice;
+mod advice_reproducible;
+mod stability;
