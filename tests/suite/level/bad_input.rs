@@ -1,5 +1,6 @@
 //! Every kind of bad input gets a located error (file:line:col) that says how to fix it.
 
+use crate::common;
 use rigidlab::level::parse;
 use std::path::Path;
 
