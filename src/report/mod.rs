@@ -120,8 +120,15 @@ impl LevelReport {
     }
 }
 
-/// The terminal table: one line per level, then one per failing or noted check/question.
+/// The terminal table: one line per level, then one per failing or noted check/question. Names
+/// and other text from the level or the command line are escaped for the terminal
+/// (`crate::terminal`): each field whole, newlines included, and the rest but its line breaks.
 pub fn table(report: &Report) -> String {
+    crate::terminal::text(&table_text(report)).into_owned()
+}
+
+fn table_text(report: &Report) -> String {
+    use crate::terminal::field;
     let mut out = String::new();
     let w = report
         .levels
@@ -139,7 +146,7 @@ pub fn table(report: &Report) -> String {
         let qp = l.questions.iter().filter(|q| q.passed).count();
         out += &format!(
             "{:<w$}  {:>6}  {:>7.3}  {:>8.1}  {:>6}  {:>9}  {}\n",
-            l.file,
+            field(&l.file),
             l.steps,
             l.sim_time,
             l.wall_ms,
@@ -158,7 +165,7 @@ pub fn table(report: &Report) -> String {
                 "    {} check {:<28} {:<32} max rel err {:.2e} (tol {:.1e}){}\n",
                 if c.passed { " " } else { "!" },
                 c.kind,
-                c.subject,
+                field(&c.subject),
                 c.max_rel_error,
                 c.tolerance,
                 if c.note.is_empty() {
@@ -172,9 +179,9 @@ pub fn table(report: &Report) -> String {
             out += &format!(
                 "    {} question {:<14} expected {:>11.5} {:<6} engine {:>11.5}{} rel err {:.2e} (tol {:.1e})\n",
                 if q.passed { " " } else { "!" },
-                q.id,
+                field(&q.id),
                 q.expected,
-                q.unit,
+                field(&q.unit),
                 q.engine,
                 q.analysis.map_or(String::new(), |a| format!("  analysis {a:>11.5}")),
                 q.rel_error,
