@@ -510,6 +510,17 @@ fn csv_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), String>
             out.join("run.csv").display()
         ));
     }
+    // Only a CSV an earlier run wrote is replaced or removed (its first line is rigidlab's
+    // header); a user's file under one of the names is refused before the run.
+    for (kind, f) in report::csv_files(out).iter().enumerate() {
+        if let Err(why) = report::csv_ours(f, kind) {
+            return Err(format!(
+                "error: --csv {}: {why}; the run would replace or remove it\n  help: give another name for the CSV, or move or delete {} yourself if you no longer need it",
+                out.display(),
+                f.display()
+            ));
+        }
+    }
     Ok(())
 }
 

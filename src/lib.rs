@@ -13,7 +13,12 @@
 macro_rules! stderr {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stderr(), $($arg)*);
+        // Escaped for the terminal: a level's names are part of many messages.
+        let _ = writeln!(
+            std::io::stderr(),
+            "{}",
+            $crate::terminal::text(&format!($($arg)*))
+        );
     }};
 }
 
@@ -31,6 +36,7 @@ pub mod sim;
 pub mod simulation;
 pub mod snapshot;
 pub mod study;
+pub mod terminal;
 
 /// The simulation stage compiled against rapier2d-f64 (same source as `sim`).
 // Loading `sim`'s files a second time is the point (duplicate_mod). The shared source converts

@@ -122,8 +122,15 @@ impl LevelReport {
     }
 }
 
-/// The terminal table: one line per level, then one per failing or noted check/question.
+/// The terminal table: one line per level, then one per failing or noted check/question. Names
+/// and other text from the level or the command line are escaped for the terminal
+/// (`crate::terminal`): each field whole, newlines included, and the rest but its line breaks.
 pub fn table(report: &Report) -> String {
+    crate::terminal::text(&table_text(report)).into_owned()
+}
+
+fn table_text(report: &Report) -> String {
+    use crate::terminal::field;
     let mut out = String::new();
     let w = report
         .levels
@@ -141,7 +148,7 @@ pub fn table(report: &Report) -> String {
         let qp = l.questions.iter().filter(|q| q.passed).count();
         out += &format!(
             "{:<w$}  {:>6}  {:>7.3}  {:>8.1}  {:>6}  {:>9}  {}\n",
-            l.file,
+            field(&l.file),
             l.steps,
             l.sim_time,
             l.wall_ms,
@@ -160,7 +167,7 @@ pub fn table(report: &Report) -> String {
                 "    {} check {:<28} {:<32} max rel err {:.2e} (tol {:.1e}){}\n",
                 if c.passed { " " } else { "!" },
                 c.kind,
-                c.subject,
+                field(&c.subject),
                 c.max_rel_error,
                 c.tolerance,
                 if c.note.is_empty() {
@@ -174,9 +181,9 @@ pub fn table(report: &Report) -> String {
             out += &format!(
                 "    {} question {:<14} expected {:>11.5} {:<6} engine {:>11.5}{} rel err {:.2e} (tol {:.1e})\n",
                 if q.passed { " " } else { "!" },
-                q.id,
+                field(&q.id),
                 q.expected,
-                q.unit,
+                field(&q.unit),
                 q.engine,
                 q.analysis.map_or(String::new(), |a| format!("  analysis {a:>11.5}")),
                 q.rel_error,
@@ -220,6 +227,98 @@ pub struct CsvWriter {
 /// The kinds of row written beside the bodies' CSV, in [`csv_files`]'s order after it.
 const SIBLINGS: [&str; 3] = ["joints", "contacts", "springs"];
 
+/// The header line of each of a run's CSV files, in [`csv_files`]'s order: bodies, joints,
+/// contacts, springs. A file whose first line is its kind's header is one rigidlab wrote, and
+/// the only kind of file a run replaces or removes ([`csv_ours`]).
+const HEADERS: [&[&str]; 4] = [
+    &[
+        "step", "time", "body", "x", "y", "angle", "com_x", "com_y", "vx", "vy", "omega", "mass",
+        "inertia",
+    ],
+    &[
+        "step",
+        "time",
+        "joint",
+        "anchor_x",
+        "anchor_y",
+        "impulse_x",
+        "impulse_y",
+        "angular_impulse",
+        "motor_impulse",
+        "limit_impulse",
+        "force_x",
+        "force_y",
+        "coordinate",
+    ],
+    &[
+        "step",
+        "time",
+        "body1",
+        "body2",
+        "point_x",
+        "point_y",
+        "normal_x",
+        "normal_y",
+        "distance",
+        "normal_impulse",
+        "tangent_impulse",
+    ],
+    &[
+        "step",
+        "time",
+        "spring",
+        "length",
+        "extension",
+        "tension",
+        "energy",
+    ],
+];
+
+/// Whether a run may write or remove `path`, the `kind`-th of [`csv_files`]: it does not exist,
+/// or it is a device or FIFO the user named (written directly, nothing kept there), or a regular
+/// file whose first line is that kind's header (a CSV an earlier run wrote). Anything else is
+/// the user's and is refused with what it is: a file of other content (notes, a level, an
+/// empty file), a link (replacing it would lose the link), a folder.
+pub fn csv_ours(path: &Path, kind: usize) -> Result<(), String> {
+    let meta = match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(format!("{}: {e}", path.display())),
+        Ok(m) => m,
+    };
+    let followed = std::fs::metadata(path).ok();
+    let special = |m: &std::fs::Metadata| !m.is_file() && !m.is_dir();
+    if followed.as_ref().is_some_and(special) {
+        return Ok(());
+    }
+    if meta.file_type().is_symlink() {
+        return Err(format!(
+            "{} is a link, which the run would replace",
+            path.display()
+        ));
+    }
+    if meta.is_dir() {
+        return Err(format!("{} is a folder", path.display()));
+    }
+    let mut first = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| {
+            use std::io::Read;
+            f.take(4096).read_to_end(&mut first)
+        })
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let first = first.split(|b| *b == b'\n').next().unwrap_or_default();
+    let first = first.strip_suffix(b"\r").unwrap_or(first);
+    if first == HEADERS[kind].join(",").as_bytes() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{} exists and is not a CSV rigidlab wrote (its first line is not rigidlab's {} header)",
+            path.display(),
+            ["bodies", "joints", "contacts", "springs"][kind]
+        ))
+    }
+}
+
 fn sibling(path: &Path, suffix: &str) -> PathBuf {
     let stem = path
         .file_stem()
@@ -238,10 +337,7 @@ pub fn csv_files(path: &Path) -> Vec<PathBuf> {
 impl CsvWriter {
     pub fn create(path: &Path) -> std::io::Result<Self> {
         let mut bodies = csv::Writer::from_writer(Pending::create(path)?);
-        bodies.write_record([
-            "step", "time", "body", "x", "y", "angle", "com_x", "com_y", "vx", "vy", "omega",
-            "mass", "inertia",
-        ])?;
+        bodies.write_record(HEADERS[0])?;
         Ok(CsvWriter {
             bodies,
             joints: None,
@@ -284,25 +380,7 @@ impl CsvWriter {
             ])?;
         }
         if !s.joints.is_empty() {
-            Self::side(
-                &mut self.joints,
-                sibling(&self.path, "joints"),
-                &[
-                    "step",
-                    "time",
-                    "joint",
-                    "anchor_x",
-                    "anchor_y",
-                    "impulse_x",
-                    "impulse_y",
-                    "angular_impulse",
-                    "motor_impulse",
-                    "limit_impulse",
-                    "force_x",
-                    "force_y",
-                    "coordinate",
-                ],
-            )?;
+            Self::side(&mut self.joints, sibling(&self.path, "joints"), HEADERS[1])?;
             let w = self.joints.as_mut().expect("created above");
             for j in &s.joints {
                 let force = if !s.is_initial() {
@@ -331,19 +409,7 @@ impl CsvWriter {
             Self::side(
                 &mut self.contacts,
                 sibling(&self.path, "contacts"),
-                &[
-                    "step",
-                    "time",
-                    "body1",
-                    "body2",
-                    "point_x",
-                    "point_y",
-                    "normal_x",
-                    "normal_y",
-                    "distance",
-                    "normal_impulse",
-                    "tangent_impulse",
-                ],
+                HEADERS[2],
             )?;
             let w = self.contacts.as_mut().expect("created above");
             for c in &s.contacts {
@@ -368,15 +434,7 @@ impl CsvWriter {
             Self::side(
                 &mut self.springs,
                 sibling(&self.path, "springs"),
-                &[
-                    "step",
-                    "time",
-                    "spring",
-                    "length",
-                    "extension",
-                    "tension",
-                    "energy",
-                ],
+                HEADERS[3],
             )?;
             let w = self.springs.as_mut().expect("created above");
             for sp in &s.springs {
@@ -395,21 +453,28 @@ impl CsvWriter {
     }
 
     /// Puts the run's files in place: each written file renamed over its name, and a sibling
-    /// an earlier run left that this run did not write removed.
+    /// an earlier run left that this run did not write removed. Each name is checked again
+    /// first ([`csv_ours`]: the command checked them before the run, but a file may have taken a
+    /// name since): a file that is not rigidlab's is neither replaced nor removed, and the run's
+    /// files are not put in place (an error that names it).
     pub fn finish(self) -> std::io::Result<()> {
         let done = |w: csv::Writer<Pending>| -> std::io::Result<Pending> {
             w.into_inner()
                 .map_err(|e| std::io::Error::other(e.error().to_string()))
         };
-        let bodies = done(self.bodies)?;
-        let mut sides = Vec::new();
+        let mut all = vec![(self.path.clone(), Some(done(self.bodies)?))];
         for (suffix, w) in SIBLINGS
             .iter()
             .zip([self.joints, self.contacts, self.springs])
         {
-            sides.push((sibling(&self.path, suffix), w.map(done).transpose()?));
+            all.push((sibling(&self.path, suffix), w.map(done).transpose()?));
         }
-        for (path, w) in sides {
+        for (kind, (path, _)) in all.iter().enumerate() {
+            csv_ours(path, kind).map_err(std::io::Error::other)?;
+        }
+        let mut all = all.into_iter();
+        let (_, bodies) = all.next().expect("the bodies' file is first");
+        for (path, w) in all {
             match w {
                 Some(file) => file.commit()?,
                 None => match std::fs::symlink_metadata(&path) {
@@ -418,7 +483,7 @@ impl CsvWriter {
                 },
             }
         }
-        bodies.commit()
+        bodies.expect("written").commit()
     }
 }
 

@@ -348,3 +348,61 @@ fn study_accuracy_writes_its_files_whatever_stdout_and_stderr_are() {
         );
     }
 }
+
+#[test]
+fn escape_sequences_in_a_levels_names_never_reach_the_terminal_raw() {
+    // Before (issue 41): a question id "sp\u{1b}]0;pwned\u{7}\u{1b}[2J" retitled and cleared the
+    // terminal from `check`'s table; a body's name did the same from an error on stderr. Now
+    // every control character is written as `\u{..}`; the JSON keeps the names exact.
+    let dir = temp_dir("escapes");
+    let free_fall = std::fs::read_to_string(common::repo_path(FREE_FALL)).unwrap();
+    let hostile = "sp\\u{1b}]0;pwned\\u{7}\\u{1b}[2J\\u{9b}31m\\r";
+    let ok = dir.join("ok.ron");
+    std::fs::write(
+        &ok,
+        free_fall.replace("id: \"speed\"", &format!("id: \"{hostile}\"")),
+    )
+    .unwrap();
+    let out = rigidlab()
+        .args(["check", ok.to_str().unwrap(), "--no-advice"])
+        .output()
+        .unwrap();
+    let table = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(0), "{table}");
+    for raw in ['\u{1b}', '\u{7}', '\u{9b}', '\r'] {
+        assert!(!table.contains(raw), "{raw:?} in {table:?}");
+    }
+    assert!(
+        table.contains("sp\\u{1b}]0;pwned\\u{7}\\u{1b}[2J"),
+        "{table}"
+    );
+    // The JSON report holds the id as it is (serde escapes what JSON must).
+    let out = rigidlab()
+        .args(["check", ok.to_str().unwrap(), "--no-advice", "--json"])
+        .output()
+        .unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let ids: Vec<&str> = json["levels"][0]["questions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| q["id"].as_str().unwrap())
+        .collect();
+    assert!(
+        ids.contains(&"sp\u{1b}]0;pwned\u{7}\u{1b}[2J\u{9b}31m\r"),
+        "{ids:?}"
+    );
+    // An error naming a body: on stderr, escaped too (a body named twice).
+    let bad = dir.join("bad.ron");
+    let twice = "    (name: \"b\\u{1b}[31m\", shape: Circle(radius: 0.1), mass: 0.5),\n";
+    std::fs::write(
+        &bad,
+        free_fall.replace("  bodies: [\n", &format!("  bodies: [\n{twice}{twice}")),
+    )
+    .unwrap();
+    let (code, err) = run_to(&["check", bad.to_str().unwrap()], Stdio::null());
+    assert_eq!(code, 2, "{err}");
+    assert!(!err.contains('\u{1b}'), "{err:?}");
+    assert!(err.contains("b\\u{1b}[31m"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

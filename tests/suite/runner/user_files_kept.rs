@@ -141,13 +141,8 @@ fn a_runs_csv_files_are_replaced_together() {
     // files: each rewritten or, where this run has no such rows, removed. Before: the earlier
     // run's out_contacts.csv and out_springs.csv stayed beside the new out.csv.
     let dir = temp_dir("csv-stale");
-    for f in [
-        "out.csv",
-        "out_joints.csv",
-        "out_contacts.csv",
-        "out_springs.csv",
-    ] {
-        fs::write(dir.join(f), "an earlier run\n").unwrap();
+    for (f, header) in EARLIER_RUN {
+        fs::write(dir.join(f), format!("{header}\nan earlier run's rows\n")).unwrap();
     }
     fs::write(dir.join("notes.txt"), "the user's\n").unwrap();
     let (code, err) = run_in(&dir, &["run", level.to_str().unwrap(), "--csv", "out.csv"]);
@@ -164,6 +159,85 @@ fn a_runs_csv_files_are_replaced_together() {
         );
     }
     let _ = fs::remove_dir_all(&fresh);
+    let _ = fs::remove_dir_all(&dir);
+}
+
+/// An earlier run's files, by the header line rigidlab writes first in each.
+const EARLIER_RUN: [(&str, &str); 4] = [
+    (
+        "out.csv",
+        "step,time,body,x,y,angle,com_x,com_y,vx,vy,omega,mass,inertia",
+    ),
+    (
+        "out_joints.csv",
+        "step,time,joint,anchor_x,anchor_y,impulse_x,impulse_y,angular_impulse,motor_impulse,limit_impulse,force_x,force_y,coordinate",
+    ),
+    (
+        "out_contacts.csv",
+        "step,time,body1,body2,point_x,point_y,normal_x,normal_y,distance,normal_impulse,tangent_impulse",
+    ),
+    (
+        "out_springs.csv",
+        "step,time,spring,length,extension,tension,energy",
+    ),
+];
+
+#[test]
+fn run_never_replaces_or_removes_a_file_it_did_not_write() {
+    // Before (issue 41): `run L --csv out.csv` removed out_contacts.csv and out_springs.csv
+    // whatever they held (the free fall writes neither), and replaced out.csv and
+    // out_joints.csv: a user's notes, a level. Now each of the four names must be free, a
+    // device, or a CSV rigidlab wrote (its first line its kind's header); else exit 2 before the
+    // run, naming the file, and nothing is touched.
+    let level = repo_path(FREE_FALL);
+    for (i, (name, _)) in EARLIER_RUN.iter().enumerate() {
+        for mine in ["my notes\n", "", "step,time,body\n"] {
+            let dir = temp_dir(&format!("csv-mine-{i}"));
+            fs::write(dir.join(name), mine).unwrap();
+            let (code, err) = run_in(&dir, &["run", level.to_str().unwrap(), "--csv", "out.csv"]);
+            assert_eq!(code, 2, "{name} holding {mine:?}: {err}");
+            assert!(
+                err.contains(name) && err.contains("not a CSV rigidlab wrote"),
+                "{name}: {err}"
+            );
+            assert!(err.contains("help: give another name"), "{err}");
+            assert_eq!(
+                fs::read_to_string(dir.join(name)).unwrap(),
+                mine,
+                "{name} kept"
+            );
+            assert_eq!(names(&dir), [name.to_string()], "nothing written");
+            let _ = fs::remove_dir_all(&dir);
+        }
+    }
+    // A link is the user's too (replacing it loses the link), even to an earlier run's CSV.
+    #[cfg(unix)]
+    {
+        let dir = temp_dir("csv-link");
+        fs::write(dir.join("real.csv"), format!("{}\n", EARLIER_RUN[0].1)).unwrap();
+        std::os::unix::fs::symlink(dir.join("real.csv"), dir.join("out.csv")).unwrap();
+        let (code, err) = run_in(&dir, &["run", level.to_str().unwrap(), "--csv", "out.csv"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("is a link"), "{err}");
+        let _ = fs::remove_dir_all(&dir);
+    }
+    // Twin: an earlier run's CSV with a Windows line end is replaced; a device is written.
+    let dir = temp_dir("csv-crlf");
+    fs::write(
+        dir.join("out.csv"),
+        format!("{}\r\nrows\r\n", EARLIER_RUN[0].1),
+    )
+    .unwrap();
+    let (code, err) = run_in(&dir, &["run", level.to_str().unwrap(), "--csv", "out.csv"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(fs::read_to_string(dir.join("out.csv"))
+        .unwrap()
+        .starts_with(EARLIER_RUN[0].1));
+    let (code, err) = run_in(
+        &dir,
+        &["run", level.to_str().unwrap(), "--csv", "/dev/null"],
+    );
+    assert_eq!(code, 0, "{err}");
     let _ = fs::remove_dir_all(&dir);
 }
 
