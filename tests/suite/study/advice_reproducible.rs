@@ -145,42 +145,43 @@ fn search_time_at_the_bound() {
     );
 }
 
-/// A 2 kg block, 0.4 m by 0.2 m, with its rotation locked (`lock_rotation`), slides on a rough
-/// floor (mu = 0.3) from 2 m/s: it stops at v0 / (mu g) = 0.68 s, so at t = 0.2 s it slides.
-/// Its angular acceleration is 0, since it cannot turn: the stated answer, hand-derived, and
-/// the engine's (w stays 0). The analysis of `Alpha` is sum M_G / I_G from the free-body
-/// diagram (6/1), which holds the friction mu m g = 5.886 N at h/2 = 0.1 m below G but not the
-/// couple that locks the rotation: about 0.59 N m over I_G = m (w^2 + h^2) / 12 = 0.0333
-/// kg m^2, some 17.7 rad/s^2 (less as far as the normal forces' moment offsets it), and as much
-/// at any step. The level's answer is right and its analysis cannot fit: the advice says so at
-/// once, naming the question, instead of searching (on 088f4b7 it searched through 32x and
-/// blamed the engine or the answer).
-const LOCKED_BLOCK: &str = r#"Level(
-  title: "A block that cannot turn slides to rest",
-  statement: "A 2 kg block whose rotation is locked slides on a rough floor (mu = 0.3) from 2 m/s. Find its angular acceleration while it slides.",
-  effects: [gravity, contacts, friction],
-  world: (dt: 0.004166666666666667, substeps: 4, duration: 0.3),
+/// A ball (m = 0.6 kg, r = 0.1 m, e = 0.8 on a fixed floor, no friction) dropped from rest 1 m
+/// above the floor (to its lowest point), asked for its kinetic energy when it has travelled
+/// 1.1 m: down 1 m, then 0.1 m up after the bounce. By hand: it strikes at v1^2 = 2 g h and
+/// leaves at e v1, so at d = 0.1 m up T = m g (e^2 h - d) = 0.6 x 9.81 x (0.64 - 0.1) = 3.17844
+/// J. The engine reads low by what its bounce loses beyond e (its rebound falls short first
+/// order in dt, docs/known-gaps.md): measured 0.0213 J at d = 0.3 m (1.06e-2 of the 2.00 J
+/// there, 2026-12-06), so about 0.67e-2 of T here, within the tolerance 1e-2. The analysis of
+/// `KineticEnergy` at a configuration
+/// event is work-energy, T0 plus the work of gravity, springs, loads and events (RE-7), and it
+/// counts a normal contact with a fixed body as workless (docs/levels.md says so): m g (h - d)
+/// = 5.2974 J, 67 % off (measured 105 % at d = 0.3 m), at any step. The level's answer is right and its analysis cannot fit
+/// (an impact's loss): the advice says so at once, naming the question, instead of searching.
+const BOUNCED_BALL: &str = r#"Level(
+  title: "A ball's kinetic energy after its bounce",
+  statement: "A 0.6 kg ball is dropped from rest 1 m above a rigid floor (to its lowest point); e = 0.8. Find its kinetic energy 0.1 m above the floor on the way up.",
+  effects: [gravity, contacts, restitution],
+  world: (dt: 0.0010416666666666667, substeps: 4, duration: 0.7),
   bodies: [
-    (name: "floor", kind: fixed, shape: Box(width: 10.0, height: 0.1), position: (0.0, -0.05), friction: 0.3),
-    (name: "block", shape: Box(width: 0.4, height: 0.2), mass: 2.0, position: (0.0, 0.1), velocity: (2.0, 0.0), lock_rotation: true, friction: 0.3),
+    (name: "floor", kind: fixed, shape: Segment(a: (-5.0, 0.0), b: (5.0, 0.0))),
+    (name: "ball", shape: Circle(radius: 0.1), mass: 0.6, position: (0.0, 1.1), restitution: 0.8, lock_rotation: true),
   ],
   questions: [
-    (id: "alpha", ask: "Angular acceleration of the block while it slides", unit: "rad/s^2", expected: 0.0, tolerance: 0.01,
-     quantity: Alpha("block"), at: Time(0.2), why: "its rotation is locked: w = 0 throughout"),
+    (id: "T_up", ask: "Kinetic energy 0.1 m above the floor after the bounce", unit: "J", expected: 3.17844, tolerance: 1e-2,
+     quantity: KineticEnergy("ball"), at: Crossing(of: Distance("ball"), value: 1.1), why: "m g (e^2 h - d); the bounce loses 0.02 J beyond e at this dt (first order)"),
   ],
 )"#;
 
 #[test]
 fn an_analysis_that_cannot_fit_is_said_at_once_without_a_search() {
-    let scene = common::parse(LOCKED_BLOCK);
+    let scene = common::parse(BOUNCED_BALL);
     let own = run(&scene);
     let q = &own.questions[0];
-    // The premise: the engine agrees with the answer (absolute, as the answer is 0), the
-    // analysis does not, by far (over 100x the tolerance: the derivation above gives ~17.7).
+    // The premise: the engine agrees with the answer, the analysis does not, by far (over 50x
+    // the tolerance: the derivation above gives 67 %).
     assert!(q.rel_error <= q.tolerance, "{q:?}");
     assert!(
-        q.analysis_rel_error
-            .is_some_and(|a| a > 100.0 * q.tolerance),
+        q.analysis_rel_error.is_some_and(|a| a > 50.0 * q.tolerance),
         "{q:?}"
     );
     let a = advise(&scene, &Options::default(), Some(&own));
@@ -194,7 +195,7 @@ fn an_analysis_that_cannot_fit_is_said_at_once_without_a_search() {
     };
     assert!(
         why.starts_with("the analysis does not fit this scene; no setting helps")
-            && why.contains("`alpha`"),
+            && why.contains("`T_up`"),
         "{why}"
     );
     // Not a search: nothing past the first finer setting was tried.
