@@ -246,3 +246,32 @@ fn a_ring_pushes_a_rolling_disc_with_pn2s_force_and_no_resistance() {
         );
     }
 }
+
+#[test]
+fn a_ball_crosses_from_a_ramp_arc_into_a_loop_arc_without_a_loss() {
+    // The library's loop (levels/energy/curve_loop_the_loop.ron): a quarter-circle ramp (R = 3
+    // m) and a loop (R = 1 m) as two fixed `Arc`s tangent at the origin, no vertex placed by
+    // hand. From h = 3 rho above G's lowest point, v^2 = 6 g rho there: 7.2783 m/s. Measured
+    // 2026-12-06 at the level's 1/4800 s: 1.2e-5 low, and 1.8e-3 at the side (the first-order
+    // loss of known-gaps.md); on the facets 3.7e-4 and 2.6e-3; with each arc's end point
+    // pushing along its own normal (a corner), the ball lost 2% of its energy crossing. Allowed
+    // at the bottom: 1e-4, at the side (v^2 = 4 g rho) 3e-3.
+    let scene = common::load("levels/energy/curve_loop_the_loop.ron");
+    let steps = run_steps(&scene, &Options::default(), "ball");
+    let rho = 0.9;
+    let bottom = steps
+        .iter()
+        .filter(|s| s.t > 0.5)
+        .min_by(|a, b| a.g.y.total_cmp(&b.g.y))
+        .unwrap();
+    let side = steps
+        .iter()
+        .filter(|s| s.t > 1.0)
+        .min_by(|a, b| (a.g.y - 1.0).abs().total_cmp(&(b.g.y - 1.0).abs()))
+        .unwrap();
+    let e_bottom = bottom.v.length() / (6.0 * G * rho).sqrt() - 1.0;
+    let e_side = side.v.length() / (4.0 * G * rho).sqrt() - 1.0;
+    println!("loop level: bottom {e_bottom:+.2e}, side {e_side:+.2e}");
+    assert!(e_bottom.abs() < 1e-4, "bottom {e_bottom:+.2e}");
+    assert!(e_side.abs() < 3e-3, "side {e_side:+.2e}");
+}

