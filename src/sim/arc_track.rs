@@ -6,8 +6,9 @@
 //! any dt in f64, and the normal force came in one impulse per vertex (docs/known-gaps.md). An
 //! [`ArcTrack`] keeps that polyline (the broad phase's box, ray casts, point queries, and the
 //! contacts of shapes other than a ball, through `sim/arc_contacts.rs`) and the circle it
-//! approximates, from which [`ArcTrack::touch`] gives a ball's contact exactly: along the radius,
-//! at the depth |d - R| - r, or at the nearer end point past the arc's end angles.
+//! approximates, from which [`ArcTrack::touch`] gives a ball's contact exactly within the arc's
+//! angles: along the radius, at the depth |d - R| - r ([`ArcTrack::spans_point`]; past the ends
+//! the dispatcher uses the facets).
 
 use super::rapier::parry::bounding_volume::{Aabb, BoundingSphere};
 use super::rapier::parry::mass_properties::MassProperties;
