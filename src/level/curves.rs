@@ -1,14 +1,16 @@
 //! Curved static tracks: the facets of a circular arc (their count from the radius and a
 //! chord-error bound) and the self-intersection test of a polyline. The engine builds both as a
-//! polyline, the window draws the same points, and validation tests them.
+//! polyline (an arc's circle too, which a ball touches: `sim/arc_track.rs`), the window draws
+//! the same points, and validation tests them.
 
 use super::format::{ArcSide, Shape, TrackSide, V2};
 use std::f64::consts::TAU;
 
 /// The default chord-error bound of an arc, relative to its radius: 1e-7 R gives facets of
-/// 2 acos(1 - 1e-7) = 8.9e-4 rad, 7025 to a full turn. A body riding on the inside of a faceted
-/// arc meets a kink of that angle at every vertex and loses the normal part of its velocity
-/// there, a fraction (8.9e-4)^2 of its kinetic energy, 0.56% over a whole turn (docs/levels.md).
+/// 2 acos(1 - 1e-7) = 8.9e-4 rad, 7025 to a full turn. A body other than a ball riding on the
+/// inside of a faceted arc meets a kink of that angle at every vertex and loses the normal part
+/// of its velocity there, a fraction (8.9e-4)^2 of its kinetic energy, 0.56% over a whole turn
+/// (docs/levels.md); a ball touches the circle itself (`sim/arc_track.rs`).
 pub const DEFAULT_CHORD_ERROR: f64 = 1e-7;
 
 /// The most facets one arc may have (a finer chord error is refused with the count it gives).

@@ -332,7 +332,8 @@ pub enum Shape {
     },
     /// A circular arc track about `center`, radius m, counter-clockwise from `start` to `end`
     /// (rad), built as a polyline whose chords stay within `chord_error` (m, default 1e-7
-    /// radius) of the circle; `side` is where bodies ride. No mass; never on a dynamic body.
+    /// radius) of the circle, and as the circle itself for a ball's contact; `side` is where
+    /// bodies ride. No mass; never on a dynamic body.
     Arc {
         #[serde(default)]
         center: V2,

@@ -1,10 +1,12 @@
 //! Building the rapier world from a validated scene, with only the declared effects.
 
+use super::arc_track::ArcTrack;
 use super::rapier::parry::shape::{Polyline, PolylineFlags};
 use super::rapier::prelude::*;
 use crate::level::curves;
 use crate::level::{
-    BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part, Shape as LevelShape, V2,
+    ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part,
+    Shape as LevelShape, V2,
 };
 use crate::sim::options::Effects;
 use crate::sim::settings::Settings;
@@ -48,7 +50,25 @@ pub fn shared_shape(s: &LevelShape) -> SharedShape {
                 pts.reverse();
             }
             let indices = closing(pts.len(), closed);
-            SharedShape::new(Polyline::with_flags(pts, indices, PolylineFlags::ORIENTED))
+            let facets = Polyline::with_flags(pts, indices, PolylineFlags::ORIENTED);
+            match s {
+                // A ball touches the circle itself (sim/arc_track.rs, sim/arc_contacts.rs).
+                LevelShape::Arc {
+                    center,
+                    radius,
+                    start,
+                    end,
+                    side,
+                    ..
+                } => SharedShape::new(ArcTrack::new(
+                    facets,
+                    v(*center),
+                    *radius as Real,
+                    (*start, *end),
+                    *side == ArcSide::Inside,
+                )),
+                _ => SharedShape::new(facets),
+            }
         }
         LevelShape::Compound { parts } => {
             let mut flat = Vec::new();

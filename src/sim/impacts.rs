@@ -22,7 +22,7 @@
 //! which only `ccd` prevents (a bullet that crosses a wall within a step tunnels unless the
 //! level declares it).
 
-use super::rapier::parry::query::{self, NonlinearRigidMotion};
+use super::rapier::parry::query::NonlinearRigidMotion;
 use super::rapier::prelude::*;
 use super::world::Simulation;
 
@@ -173,7 +173,10 @@ impl Simulation {
                 let reach = (box1.maxs - box1.mins)
                     .length()
                     .max((box2.maxs - box2.mins).length());
-                let Ok(Some(c)) = query::contact(
+                // Through the world's dispatcher: parry's free functions know no arc track.
+                let dispatcher = w.narrow_phase.query_dispatcher();
+                let Some(c) = super::arc_contacts::contact(
+                    dispatcher,
                     co1.position(),
                     co1.shape(),
                     co2.position(),
@@ -211,7 +214,7 @@ impl Simulation {
                     }
                     continue;
                 }
-                let Ok(Some(hit)) = query::cast_shapes_nonlinear(
+                let Ok(Some(hit)) = dispatcher.cast_shapes_nonlinear(
                     m1,
                     co1.shape(),
                     m2,

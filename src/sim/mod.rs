@@ -12,6 +12,8 @@ pub(crate) use rapier2d as rapier;
 /// The precision this copy of the stage is compiled for.
 pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precision::F32;
 
+mod arc_contacts;
+mod arc_track;
 mod build;
 mod contact_points;
 mod couplings;

@@ -1,13 +1,12 @@
 //! Measurements of the engine's own state that the snapshot does not carry, and study-only
 //! settings applied to a built world (so the studies never name a rapier type).
 
-use super::rapier::parry;
 use super::rapier::prelude::*;
 use super::world::Simulation;
 
 impl Simulation {
     /// Deepest overlap among the collider pairs in contact, m, measured on the current poses with
-    /// parry's exact contact query.
+    /// parry's exact contact query (through the world's dispatcher, which knows arc tracks).
     ///
     /// Why not the manifolds' `dist`: rapier 0.36 recycles a pair's contacts while its relative
     /// pose drifts less than `contact_recycle_distance` (5 cm), and a recycled manifold keeps the
@@ -26,9 +25,14 @@ impl Simulation {
             ) else {
                 continue;
             };
-            if let Ok(Some(c)) =
-                parry::query::contact(c1.position(), c1.shape(), c2.position(), c2.shape(), 0.0)
-            {
+            if let Some(c) = super::arc_contacts::contact(
+                world.narrow_phase.query_dispatcher(),
+                c1.position(),
+                c1.shape(),
+                c2.position(),
+                c2.shape(),
+                0.0,
+            ) {
                 worst = worst.max(-(c.dist as f64));
             }
         }

@@ -63,6 +63,10 @@ impl Simulation {
         let settings = Settings::resolve(&level, opts, super::PRECISION);
         let effects = &settings.effects;
         let mut world = PhysicsWorld::new();
+        // A ball on an arc track touches the circle, not its facets (sim/arc_contacts.rs).
+        world
+            .narrow_phase
+            .set_query_dispatcher(super::arc_contacts::dispatcher());
         world.gravity = build::gravity(&level);
         world.integration_parameters = build::integration_parameters(&settings);
         let prediction_distance = world.integration_parameters.normalized_prediction_distance;

@@ -24,3 +24,4 @@ mod spinning_contact;
 mod springs;
 mod substepping_cost;
 mod world_fields;
+mod curved_contact_exact;
