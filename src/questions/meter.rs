@@ -62,6 +62,9 @@ pub(super) struct Meter {
     /// that the scene breaks), set by the family: then the analysis is None and the question is
     /// graded on the engine alone, saying so.
     pub inapplicable: Option<String>,
+    /// The first contact that pushed in the run (which bodies, when): the reference trajectory
+    /// (`analysis::reference`) models no contact, so it does not apply from then on.
+    pub contact_seen: Option<String>,
 }
 
 impl Meter {
@@ -98,6 +101,7 @@ impl Meter {
             configuration_event: true,
             impact_instant: false,
             inapplicable: None,
+            contact_seen: None,
         }
     }
 
