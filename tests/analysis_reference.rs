@@ -92,7 +92,10 @@ fn simple_pendulum_from_90_degrees() {
     }
     let end = tr.instants[2].bodies[1];
     let period_error = end.omega.abs() / p / period;
-    eprintln!("simple pendulum: period error {period_error:.2e}, {} evaluations", tr.evaluations);
+    eprintln!(
+        "simple pendulum: period error {period_error:.2e}, {} evaluations",
+        tr.evaluations
+    );
     assert!(period_error < 1e-9, "period error {period_error:.3e}");
     close(phi_of(end.com), PI / 2.0, 1e-8, "phi(T)");
     // The constraint held: the bob stays 1 m from the pivot.
@@ -137,9 +140,7 @@ fn physical_pendulum_at_large_amplitude() {
                    (name: "bar", shape: Box(width: {l}, height: {h}), mass: {m},
                     position: ({}, {}), angle: {angle})],
           joints: [(name: "pin", kind: revolute, body1: "ground", body2: "bar", anchor2: ({}, 0.0))])"#,
-        g0.x,
-        g0.y,
-        -d
+        g0.x, g0.y, -d
     );
     let period = pendulum_period(i_o, m, G, d, phi0);
     let mut times: Vec<f64> = (1..=40).map(|k| 0.15 * k as f64).collect();
@@ -170,7 +171,12 @@ fn physical_pendulum_at_large_amplitude() {
     assert!(period_error < 1e-9, "period error {period_error:.3e}");
     // An independent check of the elliptic form itself: K(sin 75 deg) = 2.7680631453
     // (Abramowitz & Stegun 17.1, modular angle 75 degrees).
-    close(elliptic_k(75f64.to_radians().sin()), 2.768_063_145_3, 1e-10, "K");
+    close(
+        elliptic_k(75f64.to_radians().sin()),
+        2.768_063_145_3,
+        1e-10,
+        "K",
+    );
 }
 
 /// A double pendulum of two point-like bobs (1 kg each, I_G = 1e-3 kg m^2) on 1 m links,
@@ -197,9 +203,7 @@ fn double_pendulum_energy_and_drift() {
     let energy = |x: &rigidlab::analysis::reference::Instant| -> f64 {
         x.bodies[1..]
             .iter()
-            .map(|b| {
-                0.5 * b.velocity.length_squared() + 0.5e-3 * b.omega * b.omega + G * b.com.y
-            })
+            .map(|b| 0.5 * b.velocity.length_squared() + 0.5e-3 * b.omega * b.omega + G * b.com.y)
             .sum()
     };
     let e0 = G * -s45;
@@ -221,7 +225,12 @@ fn double_pendulum_energy_and_drift() {
         );
         // The links keep their length.
         close(x.bodies[1].com.length(), 1.0, 1e-12, "link 1");
-        close((x.bodies[2].com - x.bodies[1].com).length(), 1.0, 1e-12, "link 2");
+        close(
+            (x.bodies[2].com - x.bodies[1].com).length(),
+            1.0,
+            1e-12,
+            "link 2",
+        );
     }
     assert!(tr.drift < 1e-9, "drift {:.3e} m", tr.drift);
     // It did move far from the start (a swing, not a stuck integration).

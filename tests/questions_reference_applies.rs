@@ -88,3 +88,22 @@ fn a_blow_makes_the_reference_not_applicable() {
     assert_eq!(q.analysis, None, "{q:?}");
     assert!(q.note.contains("\"kick\""), "{}", q.note);
 }
+
+/// A reading before the first contact still has the reference: the ball of the drop above, at
+/// 0.2 s, before it lands at about 0.40 s, is at y = 1 - g t^2 / 2 = 0.8038 m (exact for the
+/// reference's polynomial motion, held to 1e-9 m). The meter sees the later bounce too; it must
+/// not refuse a reading taken before it.
+#[test]
+fn a_reading_before_the_first_contact_keeps_the_reference() {
+    let want = 1.0 - 0.5 * 9.81 * 0.2 * 0.2;
+    let q = question(&format!(
+        r#"Level(title: "drop", effects: [gravity, contacts, restitution], world: (duration: 0.8),
+          bodies: [(name: "floor", kind: fixed, shape: Box(width: 4.0, height: 0.2), position: (0.0, -0.1)),
+                   (name: "ball", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, 1.0), restitution: 0.5)],
+          questions: [(id: "y", ask: "height at 0.2 s", unit: "m", expected: {want},
+                       tolerance: 1e-2, quantity: Y("ball"), at: Time(0.2), why: "t")])"#
+    ));
+    let a = q.analysis.expect("no contact before 0.2 s");
+    assert!((a - want).abs() < 1e-9, "analysis {a} vs {want}: {q:?}");
+    assert_eq!(q.analysis_source, LABEL);
+}
