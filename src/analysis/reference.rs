@@ -8,7 +8,8 @@
 //! - maximal coordinates q = (x_G, y_G, theta) and their rates per dynamic body; fixed and
 //!   kinematic bodies follow their prescribed motion (`level::motion`), which enters the
 //!   constraints as known positions, velocities and accelerations;
-//! - pins, sliders, welds, pins in a slot, couplings and ideal velocity motors are constraints
+//! - pins, sliders, welds, pins in a slot, couplings (with the load on the pulley a cable runs
+//!   over, or on meshing gears' axles, as the engine applies it) and ideal velocity motors are constraints
 //!   C(q, t) = 0 written at the acceleration level, J a + b = 0; each right-hand-side evaluation
 //!   solves M a + J^T mu = F, J a = -b through the Schur complement (J M^-1 J^T) mu =
 //!   J M^-1 F + b (Cholesky, or the SVD's pseudo-inverse when constraints are redundant), and
@@ -30,7 +31,7 @@
 //!
 //! Refused, with the reason ("not applicable: ..."): events (a blow or a weld on contact is an
 //! impact), joint limits (one-sided stops), joints that start apart, position motors, motors with
-//! a force limit, a coupling carried by a moving pulley, bodies without mass, more than
+//! a force limit, bodies without mass, more than
 //! [`MAX_MOVING_BODIES`] dynamic bodies. Contacts are not modelled: the caller must make sure
 //! none happens (the questions check that the engine's run had none before the reading).
 
@@ -110,12 +111,28 @@ enum Rule {
     Angle { c0: f64 },
     /// The rate of the joint coordinate is `target` (an ideal velocity motor): theta2 - theta1
     /// for a pin, the slide along the axis for a slider. No position-level form.
-    Rate { axis_local: Option<DVec2>, target: f64 },
-    /// sum ratio_i q_i = c0 (a coupling).
+    Rate {
+        axis_local: Option<DVec2>,
+        target: f64,
+    },
+    /// sum ratio_i q_i = c0 (a coupling), with the bodies that bear its cable's or its teeth's
+    /// reaction.
     Ratio {
         terms: Vec<(usize, Coordinate, f64)>,
         c0: f64,
+        carrier: Carrier,
     },
+}
+
+/// Who bears a coupling's reaction besides its terms' bodies (as the engine applies it,
+/// `sim::couplings`): the pulley a cable runs over takes the opposite of the cable's pull on
+/// the x and y terms at its G; meshing gears take the tooth force lambda sign(r_1) perp(u) (u
+/// from gear 1's G to gear 2's) on gear 1 and its opposite on gear 2.
+#[derive(Debug, Clone, Copy)]
+enum Carrier {
+    None,
+    Over(usize),
+    Gears(usize, usize, f64),
 }
 
 #[derive(Debug, Clone)]
@@ -130,12 +147,14 @@ struct Constraint {
 }
 
 /// One row's value, rate, Jacobian row (over the 3n dynamic coordinates) and bias b
-/// (C'' = J a + b).
+/// (C'' = J a + b), and the generalized force its multiplier puts on a carrier beyond J^T
+/// (a coupling's pulley or gears; None for every other row).
 struct Row {
     value: Option<f64>,
     rate: f64,
     j: Vec<f64>,
     bias: f64,
+    carried: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Clone)]
@@ -253,10 +272,16 @@ impl Reference {
         };
         if has(Effect::Joints) {
             for (k, j) in level.joints.iter().enumerate() {
-                r.add_joint(k, j, index(&j.body1)?, index(&j.body2)?, has(Effect::Motors))?;
+                r.add_joint(
+                    k,
+                    j,
+                    index(&j.body1)?,
+                    index(&j.body2)?,
+                    has(Effect::Motors),
+                )?;
             }
             for c in &level.couplings {
-                r.add_coupling(level, c, &index)?;
+                r.add_coupling(c, &index)?;
             }
         }
         let damping = has(Effect::Damping);
@@ -378,8 +403,8 @@ impl Reference {
                 }
                 Motor::Position { .. } => {
                     return Err(format!(
-                        "joint \"{name}\" has a position motor (a servo the reference does not model)"
-                    ))
+                    "joint \"{name}\" has a position motor (a servo the reference does not model)"
+                ))
                 }
             }
         }
@@ -388,27 +413,28 @@ impl Reference {
 
     fn add_coupling(
         &mut self,
-        level: &Level,
         c: &crate::level::CouplingDef,
         index: &dyn Fn(&str) -> Result<usize, String>,
     ) -> Result<(), String> {
-        if let Some(over) = &c.over {
-            let k = index(over)?;
-            if level.bodies[k].kind == BodyKind::Dynamic {
-                return Err(format!(
-                    "coupling \"{}\" runs over the moving pulley \"{over}\" (its cable's pull on the pulley is not modelled)",
-                    c.name
-                ));
-            }
-        }
         let terms: Vec<(usize, Coordinate, f64)> = c
             .terms
             .iter()
             .map(|t| Ok((index(&t.body)?, t.coordinate, t.ratio)))
             .collect::<Result<_, String>>()?;
-        let mut rule = Rule::Ratio { terms, c0: 0.0 };
+        let carrier = match (&c.over, c.gears) {
+            (Some(over), _) => Carrier::Over(index(over)?),
+            (None, true) if terms.len() == 2 => {
+                Carrier::Gears(terms[0].0, terms[1].0, terms[0].2.signum())
+            }
+            _ => Carrier::None,
+        };
+        let mut rule = Rule::Ratio {
+            terms,
+            c0: 0.0,
+            carrier,
+        };
         let now: Vec<Now> = self.state_now(0.0, &self.initial_state());
-        if let Rule::Ratio { terms, c0 } = &mut rule {
+        if let Rule::Ratio { terms, c0, .. } = &mut rule {
             *c0 = terms
                 .iter()
                 .map(|&(k, c, r)| r * coordinate(&now[k], c))
@@ -498,6 +524,7 @@ impl Reference {
             add(n1.slot, 2, -w.dot(d1.perp()));
             w.dot(known)
         };
+        let mut carried = None;
         let (value, rate, bias) = match &c.rule {
             Rule::Points { w } => {
                 let b = point_terms(*w, &mut add);
@@ -534,7 +561,8 @@ impl Reference {
                     (None, rate - target, bias + b)
                 }
             },
-            Rule::Ratio { terms, c0 } => {
+            Rule::Ratio { terms, c0, carrier } => {
+                carried = carried_force(*carrier, terms, now, n);
                 let mut value = -c0;
                 let (mut rate, mut bias) = (0.0, 0.0);
                 for &(k, c, r) in terms {
@@ -557,6 +585,7 @@ impl Reference {
             rate,
             j,
             bias,
+            carried,
         }
     }
 
@@ -575,7 +604,12 @@ impl Reference {
                 let x = &now[k];
                 let damping = -b.mass * b.linear_damping * x.v;
                 push(k, b.mass * self.gravity + damping, DVec2::ZERO, 0.0);
-                push(k, DVec2::ZERO, DVec2::ZERO, -b.inertia * b.angular_damping * x.omega);
+                push(
+                    k,
+                    DVec2::ZERO,
+                    DVec2::ZERO,
+                    -b.inertia * b.angular_damping * x.omega,
+                );
             }
         }
         for s in &self.springs {
@@ -593,7 +627,11 @@ impl Reference {
             };
             let r = p2 - p1;
             let length = r.length();
-            let u = if length > 0.0 { r / length } else { DVec2::ZERO };
+            let u = if length > 0.0 {
+                r / length
+            } else {
+                DVec2::ZERO
+            };
             let pull = s.stiffness * (length - s.rest_length) + s.damping * u.dot(v2_ - v1);
             push(s.body1, pull * u, d1, 0.0);
             if let Some(k) = s.body2 {
@@ -612,7 +650,10 @@ impl Reference {
         for l in &self.loads {
             let x = &now[l.body];
             let d = x.offset(self.bodies[l.body].com, l.point);
-            let mut force = l.force.as_ref().map_or(DVec2::ZERO, |p| v2(vector_profile_at(p, t)));
+            let mut force = l
+                .force
+                .as_ref()
+                .map_or(DVec2::ZERO, |p| v2(vector_profile_at(p, t)));
             if l.follow {
                 force = DVec2::from_angle(x.angle).rotate(force);
             }
@@ -650,10 +691,33 @@ impl Reference {
         }
         let jac = jacobian(&rows, self.n());
         let jw = scale_columns(&jac, &w);
-        let a_mat = &jw * jac.transpose();
         let rhs = &jac * &free + DVector::from_iterator(rows.len(), rows.iter().map(|r| r.bias));
-        let mu = solve_spd(a_mat, rhs);
-        let acc = free - jw.transpose() * &mu;
+        if rows.iter().all(|r| r.carried.is_none()) {
+            let mu = solve_spd(&jw * jac.transpose(), rhs);
+            let acc = free - jw.transpose() * &mu;
+            return (acc, rows, mu);
+        }
+        // A carrier's load makes the generalized reaction P^T lambda with P = J + K (K the
+        // carried columns): M a + P^T mu = F, J a = -b gives (J W P^T) mu = J W F + b, no
+        // longer symmetric: LU, or the SVD's least-squares solution if it is singular.
+        let p = DMatrix::from_fn(rows.len(), self.n(), |i, k| {
+            rows[i].j[k] + rows[i].carried.as_ref().map_or(0.0, |c| c[k])
+        });
+        let pw = scale_columns(&p, &w);
+        let a_mat = &jac * pw.transpose();
+        let mu = a_mat
+            .clone()
+            .lu()
+            .solve(&rhs)
+            .filter(|x| x.iter().all(|v| v.is_finite()))
+            .unwrap_or_else(|| {
+                let scale = a_mat.amax().max(f64::MIN_POSITIVE);
+                a_mat
+                    .svd(true, true)
+                    .solve(&rhs, 1e-12 * scale)
+                    .unwrap_or_else(|_| DVector::zeros(rhs.len()))
+            });
+        let acc = free - pw.transpose() * &mu;
         (acc, rows, mu)
     }
 
@@ -776,7 +840,14 @@ impl Reference {
     /// The generalized force lambda J_row on body k: (force, moment about G). For a prescribed
     /// body (no slot) it is the row's coefficients computed as if it moved: the same rows
     /// written with the bodies' roles only (a pin's force on body2 is lambda w).
-    fn row_on(&self, c: &Constraint, row: &Row, k: usize, now: &[Now], lambda: f64) -> (DVec2, f64) {
+    fn row_on(
+        &self,
+        c: &Constraint,
+        row: &Row,
+        k: usize,
+        now: &[Now],
+        lambda: f64,
+    ) -> (DVec2, f64) {
         if let Some(s) = now[k].slot {
             return (
                 lambda * DVec2::new(row.j[3 * s], row.j[3 * s + 1]),
@@ -811,9 +882,47 @@ fn line_row(n1: &Now, n_local: DVec2, delta: DVec2, delta_rate: DVec2) -> (f64, 
     let n_rate = k_cross(n1.omega, n);
     let value = n.dot(delta);
     let rate = n_rate.dot(delta) + n.dot(delta_rate);
-    let known = (k_cross(n1.alpha, n) - n1.omega * n1.omega * n).dot(delta)
-        + 2.0 * n_rate.dot(delta_rate);
+    let known =
+        (k_cross(n1.alpha, n) - n1.omega * n1.omega * n).dot(delta) + 2.0 * n_rate.dot(delta_rate);
     (value, rate, known)
+}
+
+/// The generalized force per unit multiplier a coupling puts on its carriers ([`Carrier`]):
+/// None when it has none, or none of them is a coordinate.
+fn carried_force(
+    carrier: Carrier,
+    terms: &[(usize, Coordinate, f64)],
+    now: &[Now],
+    n: usize,
+) -> Option<Vec<f64>> {
+    let mut k = vec![0.0; n];
+    let mut put = |body: usize, f: DVec2| {
+        if let Some(s) = now[body].slot {
+            k[3 * s] += f.x;
+            k[3 * s + 1] += f.y;
+        }
+    };
+    match carrier {
+        Carrier::None => return None,
+        Carrier::Over(c) => {
+            // The opposite of the cable's pull r_i lambda on the x and y terms.
+            let pull: DVec2 = terms
+                .iter()
+                .map(|&(_, coord, r)| match coord {
+                    Coordinate::X => DVec2::new(r, 0.0),
+                    Coordinate::Y => DVec2::new(0.0, r),
+                    Coordinate::Angle => DVec2::ZERO,
+                })
+                .sum();
+            put(c, -pull);
+        }
+        Carrier::Gears(g1, g2, sign) => {
+            let u = (now[g2].g - now[g1].g).normalize_or(DVec2::X);
+            put(g1, sign * u.perp());
+            put(g2, -sign * u.perp());
+        }
+    }
+    k.iter().any(|x| *x != 0.0).then_some(k)
 }
 
 fn coordinate(b: &Now, c: Coordinate) -> f64 {
@@ -860,9 +969,9 @@ fn refuse_events(level: &Level) -> Result<(), String> {
         Some(EventDef::Impulse { name, at, .. }) => Err(format!(
             "the blow \"{name}\" at t = {at} s is an impulsive event"
         )),
-        Some(EventDef::WeldOnContact { name, .. }) => Err(format!(
-            "the weld on contact \"{name}\" needs a contact"
-        )),
+        Some(EventDef::WeldOnContact { name, .. }) => {
+            Err(format!("the weld on contact \"{name}\" needs a contact"))
+        }
     }
 }
 
