@@ -24,6 +24,7 @@
 //! - [`frame`]: all of the above for every body and the scene in one pass per step;
 //! - [`links`]: which contacts and joints touch each body, for readings about one body or a pair.
 //! - [`small_oscillations`]: the modes and periods of any mechanism linearized about its equilibrium (PL-14).
+//! - [`reference`]: the reference trajectory, the equations of motion integrated in f64 (Dop853), with the joints' reactions.
 
 pub mod closed_forms;
 pub mod curved_path;
@@ -38,6 +39,7 @@ pub mod mass;
 pub mod momentum;
 pub mod oscillation;
 pub mod percussion;
+pub mod reference;
 pub mod resting_contacts;
 pub mod small_oscillations;
 pub mod touching;

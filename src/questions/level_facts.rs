@@ -4,7 +4,8 @@
 //! them; the engine's state comes from the snapshots.
 
 use crate::analysis::curved_path::PathSide;
-use crate::level::{Effect, JointKind, Level};
+use crate::analysis::reference::Reference;
+use crate::level::{Effect, JointKind, Level, When};
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 use std::collections::HashMap;
@@ -131,6 +132,9 @@ pub struct LevelFacts {
     /// The level itself, kept when a period question may need the whole mechanism
     /// (the linearized period, `analysis::small_oscillations`).
     pub(super) level: Option<std::sync::Arc<Level>>,
+    /// The level's equations of motion for the reference trajectory (`analysis::reference`),
+    /// built when a question reads a motion quantity at a time, or why the scene is outside them.
+    pub(super) reference: Option<std::sync::Arc<Result<Reference, String>>>,
 }
 
 impl LevelFacts {
@@ -218,7 +222,20 @@ impl LevelFacts {
                 .iter()
                 .any(|q| q.quantity.family() == crate::level::QuantityFamily::Periods)
                 .then(|| std::sync::Arc::new(level.clone())),
+            reference: level
+                .questions
+                .iter()
+                .any(|q| {
+                    super::motion::served_by_reference(&q.quantity)
+                        && matches!(q.at, When::Time(_) | When::End)
+                })
+                .then(|| std::sync::Arc::new(Reference::of_level(level))),
         }
+    }
+
+    /// Body `name`'s index in the level.
+    pub fn level_index(&self, name: &str) -> Option<usize> {
+        self.names.get(name).copied()
     }
 
     /// Body `name`'s index in `s`, as `Snapshot::body_index` finds it: the level's index when

@@ -69,6 +69,10 @@ pub(super) struct Meter {
     /// that the scene breaks), set by the family: then the analysis is None and the question is
     /// graded on the engine alone, saying so.
     pub inapplicable: Option<String>,
+    /// The first contact that pushed in the run: the start of the step it pushed in, and which
+    /// bodies, said for a note. The reference trajectory (`analysis::reference`) models no
+    /// contact, so it does not apply to a reading after that.
+    pub contact_seen: Option<(f64, String)>,
 }
 
 impl Meter {
@@ -108,6 +112,7 @@ impl Meter {
             configuration_event: true,
             impact_instant: false,
             inapplicable: None,
+            contact_seen: None,
         }
     }
 

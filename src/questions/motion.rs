@@ -17,6 +17,9 @@ use glam::DVec2;
 
 /// Accumulates the distance travelled over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+    if m.contact_seen.is_none() {
+        m.contact_seen = first_contact(s).map(|why| (prev.time, why));
+    }
     if m.inapplicable.is_none() {
         m.inapplicable = damped_free_body(m, s);
     }
@@ -197,5 +200,101 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             (contact_slip(s, o, i).map_or(f64::NAN, f64::abs), None)
         }
         q => unreachable!("{q:?} is not a motion quantity"),
+    })
+}
+
+/// The motion quantities the reference trajectory (`analysis::reference`) gives an analysis
+/// value for, read at a time (positions, angles and velocities of bodies and body points).
+pub(super) fn served_by_reference(q: &Quantity) -> bool {
+    matches!(
+        q,
+        Quantity::X(_)
+            | Quantity::Y(_)
+            | Quantity::Angle(_)
+            | Quantity::Vx(_)
+            | Quantity::Vy(_)
+            | Quantity::Speed(_)
+            | Quantity::Omega(_)
+            | Quantity::Direction(_)
+            | Quantity::PointX { .. }
+            | Quantity::PointY { .. }
+            | Quantity::PointSpeed { .. }
+            | Quantity::RelativeDistance(..)
+            | Quantity::RelativeSpeed(..)
+            | Quantity::RelativeAngle(..)
+            | Quantity::RelativePointSpeed { .. }
+    )
+}
+
+/// The first contact of `s` that pushed, said for a note.
+fn first_contact(s: &Snapshot) -> Option<String> {
+    let c = s.contacts.iter().find(|c| c.pushes())?;
+    let name = |i: usize| s.bodies.get(i).map_or("?", |b| b.name.as_str());
+    Some(format!(
+        "\"{}\" and \"{}\" touched at t = {:.4} s (the reference trajectory models no contact)",
+        name(c.body1),
+        name(c.body2),
+        s.time
+    ))
+}
+
+/// The quantity at time t on the reference trajectory (the level's equations of motion
+/// integrated independently of the engine), or why the scene is outside it.
+pub(super) fn reference_value(m: &Meter, t: f64) -> Result<f64, String> {
+    let model = match m.facts.reference.as_deref() {
+        Some(Ok(model)) => model,
+        Some(Err(why)) => return Err(why.clone()),
+        None => return Err("no reference trajectory was prepared".into()),
+    };
+    // A contact that pushed in a step that began before the reading (the meter follows the
+    // whole run, so a later one is seen too, and does not matter).
+    if let Some((_, why)) = m.contact_seen.as_ref().filter(|(t0, _)| *t0 < t) {
+        return Err(why.clone());
+    }
+    let tr = model.integrate(&[t])?;
+    let x = &tr.instants[0];
+    let index = |name: &str| {
+        m.facts
+            .level_index(name)
+            .filter(|&i| i < x.bodies.len())
+            .ok_or_else(|| format!("no body \"{name}\""))
+    };
+    let body = |name: &str| index(name).map(|i| (i, x.bodies[i]));
+    // A body-frame point (from the body origin) in the world, and its velocity.
+    let point = |i: usize, local: (f64, f64)| {
+        let b = x.bodies[i];
+        let com = m
+            .facts
+            .bodies
+            .get(i)
+            .map_or(DVec2::ZERO, |f| f.textbook.com);
+        let d = DVec2::from_angle(b.angle).rotate(DVec2::new(local.0, local.1) - com);
+        (b.com + d, b.velocity + k_cross(b.omega, d))
+    };
+    Ok(match &m.q {
+        Quantity::X(b) => body(b)?.1.com.x,
+        Quantity::Y(b) => body(b)?.1.com.y,
+        Quantity::Angle(b) => body(b)?.1.angle,
+        Quantity::Vx(b) => body(b)?.1.velocity.x,
+        Quantity::Vy(b) => body(b)?.1.velocity.y,
+        Quantity::Speed(b) => body(b)?.1.velocity.length(),
+        Quantity::Omega(b) => body(b)?.1.omega,
+        Quantity::Direction(b) => {
+            let v = body(b)?.1.velocity;
+            v.y.atan2(v.x)
+        }
+        Quantity::PointX { body: b, point: p } => point(index(b)?, *p).0.x,
+        Quantity::PointY { body: b, point: p } => point(index(b)?, *p).0.y,
+        Quantity::PointSpeed { body: b, point: p } => point(index(b)?, *p).1.length(),
+        Quantity::RelativeDistance(a, b) => (body(b)?.1.com - body(a)?.1.com).length(),
+        Quantity::RelativeSpeed(a, b) => (body(b)?.1.velocity - body(a)?.1.velocity).length(),
+        Quantity::RelativeAngle(a, b) => body(b)?.1.angle - body(a)?.1.angle,
+        Quantity::RelativePointSpeed {
+            body: b,
+            point: p,
+            of,
+            of_point,
+        } => (point(index(b)?, *p).1 - point(index(of)?, *of_point).1).length(),
+        q => return Err(format!("{q:?} is not read on the reference trajectory")),
     })
 }

@@ -539,7 +539,7 @@ impl QuestionProbe {
                 w => format!("the event {w:?} did not happen in the run"),
             };
         }
-        let r = self.value.unwrap_or(Reading::MISSING);
+        let mut r = self.value.unwrap_or(Reading::MISSING);
         if r.engine.is_nan() && self.note.is_empty() {
             self.note = match (self.meter.why_missing(), &self.def.at) {
                 (Some(why), _) => why,
@@ -557,7 +557,40 @@ impl QuestionProbe {
                 format!("{}; {said}", self.note)
             };
         }
-        QuestionResult::new(&self.def, r, self.note, student)
+        let source = self.reference_analysis(&mut r);
+        let mut result = QuestionResult::new(&self.def, r, self.note, student);
+        result.analysis_source = source;
+        result
+    }
+
+    /// A motion quantity read at a time that has no textbook formula gets the reference
+    /// trajectory's value as its analysis (`analysis::reference`); where the scene is outside the
+    /// reference, the note says why. Returns the analysis's source label ("" when not used).
+    fn reference_analysis(&mut self, r: &mut Reading) -> String {
+        let m = &self.meter;
+        if r.analysis.is_some()
+            || m.inapplicable.is_some()
+            || m.configuration_event
+            || !super::motion::served_by_reference(&m.q)
+            || !r.engine.is_finite()
+        {
+            return String::new();
+        }
+        match super::motion::reference_value(m, r.t) {
+            Ok(v) => {
+                r.analysis = Some(v);
+                crate::analysis::reference::LABEL.to_string()
+            }
+            Err(why) => {
+                let said = format!("reference trajectory not applicable: {why}");
+                self.note = if self.note.is_empty() {
+                    said
+                } else {
+                    format!("{}; {said}", self.note)
+                };
+                String::new()
+            }
+        }
     }
 }
 

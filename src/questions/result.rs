@@ -25,6 +25,10 @@ pub struct QuestionResult {
     /// |analysis - expected| / |expected| (absolute when expected is 0), when there is an analysis.
     #[serde(default)]
     pub analysis_rel_error: Option<f64>,
+    /// Where the analysis value came from when it is not the quantity's textbook formula: the
+    /// reference trajectory's label (`analysis::reference::LABEL`); empty otherwise.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub analysis_source: String,
     pub tolerance: f64,
     pub passed: bool,
     /// Time at which the value was read, s.
@@ -126,6 +130,7 @@ impl QuestionResult {
             engine: r.engine,
             rel_error,
             analysis_rel_error,
+            analysis_source: String::new(),
             tolerance: def.tolerance,
             passed,
             time: r.t,

@@ -189,6 +189,9 @@ fn table_text(report: &Report) -> String {
                 q.rel_error,
                 q.tolerance
             );
+            if !q.analysis_source.is_empty() && q.analysis.is_some() {
+                out += &format!("      analysis from the {}\n", q.analysis_source);
+            }
             if !q.note.is_empty() {
                 out += &format!("      note: {}\n", q.note);
             }

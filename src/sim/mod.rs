@@ -23,7 +23,7 @@ mod interventions;
 pub mod joints;
 pub mod options;
 mod probes;
-mod profiles;
+pub mod profiles;
 mod readings;
 pub mod settings;
 mod welds;

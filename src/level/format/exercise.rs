@@ -106,14 +106,16 @@ fn default_student_tolerance() -> f64 {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Quantity {
-    /// x of the mass center, m.
+    /// x of the mass center, m. Analysis: at `Time` or `End`, the reference trajectory
+    /// (`analysis::reference`), when the scene fits it.
     X(String),
-    /// y of the mass center, m.
+    /// y of the mass center, m. Analysis as `X`.
     Y(String),
-    /// Body angle, rad, continuous (turns add up) from the initial angle.
+    /// Body angle, rad, continuous (turns add up) from the initial angle. Analysis as `X`.
     Angle(String),
     /// x velocity of the mass center, m/s. Analysis: at an impact or impulse event (`FirstContact`,
-    /// `ContactEnds`, `AfterEvent`), the impulse-momentum solution (IM-9/IM-11/IM-12, RM-10).
+    /// `ContactEnds`, `AfterEvent`), the impulse-momentum solution (IM-9/IM-11/IM-12, RM-10);
+    /// at `Time` or `End`, the reference trajectory as for `X`.
     Vx(String),
     /// y velocity of the mass center, m/s. Analysis as `Vx`.
     Vy(String),

@@ -7,3 +7,4 @@ mod links;
 mod small_oscillations;
 mod textbook;
 mod windows;
+mod reference;

@@ -229,6 +229,7 @@ fn a_failed_question_shows_the_failing_reading() {
         engine: 1.00503,
         rel_error: 5.03e-3,
         analysis_rel_error: Some(1.6e-2),
+        analysis_source: String::new(),
         tolerance: 1e-2,
         passed: false,
         time: 1.0,

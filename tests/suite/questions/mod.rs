@@ -18,3 +18,4 @@ mod quantity_coverage;
 mod rolling_applies;
 mod untuned_levels;
 mod virtual_work;
+mod reference_applies;
