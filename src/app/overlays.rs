@@ -173,303 +173,366 @@ fn force_color(k: ForceKind) -> Color {
     }
 }
 
-/// Builds every enabled overlay into `d`.
+/// What every overlay of a frame reads: the switches, the run, the shapes and scales, and which
+/// bodies get arrows and labels.
+struct Frame<'a> {
+    ov: &'a Overlays,
+    run: &'a Run,
+    s: &'a Snapshot,
+    outlines: &'a [Outline],
+    scales: &'a Scales,
+    /// The bodies the per-body overlays are drawn for ([`subjects`]).
+    few: Vec<usize>,
+    labels: bool,
+    /// Every moving body is a subject: each gets its labels.
+    label_all: bool,
+    /// Meters per pixel.
+    px: f64,
+}
+
+/// Builds every enabled overlay into `d`, in drawing order: trails, velocities, accelerations,
+/// instantaneous centers, centers of percussion, free-body and kinetic diagrams, blows, H_O.
 pub fn build(ov: &Overlays, phys: &Run, outlines: &[Outline], scales: &Scales, d: &mut Drawing) {
     let s = phys.snapshot();
-    let px = d.m_per_px;
     let few = subjects(ov, s);
-    let labels = ov.labels;
     let label_all = ov.labels
         && few.len()
             == s.bodies
                 .iter()
                 .filter(|b| b.kind == BodyKind::Dynamic)
                 .count();
-
+    let f = Frame {
+        ov,
+        run: phys,
+        s,
+        outlines,
+        scales,
+        few,
+        labels: ov.labels,
+        label_all,
+        px: d.m_per_px,
+    };
     if ov.trails {
-        for (trail, b) in phys.trails.iter().zip(&s.bodies) {
-            if b.kind != BodyKind::Fixed && trail.len() > 1 {
-                d.prims.push(Prim::Poly(
-                    trail.iter().copied().collect(),
-                    false,
-                    palette::TRAIL,
-                ));
-            }
-        }
+        trails(&f, d);
     }
-
     if ov.velocity {
-        for (i, b) in s.bodies.iter().enumerate() {
-            if b.kind == BodyKind::Fixed {
-                continue;
-            }
-            let tip = scales.arrow(b.com, b.velocity, scales.speed);
-            d.prims.push(Prim::Arrow(b.com, tip, palette::VELOCITY));
-            if labels && (label_all || few.contains(&i)) && b.velocity.length() > 1e-9 {
-                d.tip_label(
-                    tip,
-                    b.velocity,
-                    format!("v_G = {}", si(b.velocity.length(), "m/s")),
-                    palette::VELOCITY,
-                );
-            }
-        }
-        if let Some((i, local)) = ov.point.filter(|(i, _)| *i < s.bodies.len()) {
-            let b = &s.bodies[i];
-            let p = b.world_point(local);
-            let v = body_point_velocity(b, p);
-            let tip = scales.arrow(p, v, scales.speed);
-            d.prims.push(Prim::Dot(p, 3.0, palette::VELOCITY));
-            d.prims.push(Prim::Arrow(p, tip, palette::VELOCITY));
-            if labels {
-                d.tip_label(
-                    tip,
-                    v,
-                    format!("v_P = {}", si(v.length(), "m/s")),
-                    palette::VELOCITY,
-                );
-            }
+        velocities(&f, d);
+    }
+    if ov.acceleration {
+        accelerations(&f, d);
+    }
+    if ov.instant_center {
+        instant_centers(&f, d);
+        centers_of_percussion(&f, d);
+    }
+    if ov.free_body || ov.kinetic {
+        diagrams(&f, d);
+    }
+    blows(phys, scales, ov.labels, d);
+    if ov.momentum {
+        momentum(&f, d);
+    }
+}
+
+/// The trail of each moving body's mass center.
+fn trails(f: &Frame, d: &mut Drawing) {
+    for (trail, b) in f.run.trails.iter().zip(&f.s.bodies) {
+        if b.kind != BodyKind::Fixed && trail.len() > 1 {
+            d.prims.push(Prim::Poly(
+                trail.iter().copied().collect(),
+                false,
+                palette::TRAIL,
+            ));
         }
     }
+}
 
-    let acc = phys
+/// v_G of each moving body, and v_P of the point the user picked.
+fn velocities(f: &Frame, d: &mut Drawing) {
+    for (i, b) in f.s.bodies.iter().enumerate() {
+        if b.kind == BodyKind::Fixed {
+            continue;
+        }
+        let tip = f.scales.arrow(b.com, b.velocity, f.scales.speed);
+        d.prims.push(Prim::Arrow(b.com, tip, palette::VELOCITY));
+        if f.labels && (f.label_all || f.few.contains(&i)) && b.velocity.length() > 1e-9 {
+            d.tip_label(
+                tip,
+                b.velocity,
+                format!("v_G = {}", si(b.velocity.length(), "m/s")),
+                palette::VELOCITY,
+            );
+        }
+    }
+    if let Some((i, local)) = f.ov.point.filter(|(i, _)| *i < f.s.bodies.len()) {
+        let b = &f.s.bodies[i];
+        let p = b.world_point(local);
+        let v = body_point_velocity(b, p);
+        let tip = f.scales.arrow(p, v, f.scales.speed);
+        d.prims.push(Prim::Dot(p, 3.0, palette::VELOCITY));
+        d.prims.push(Prim::Arrow(p, tip, palette::VELOCITY));
+        if f.labels {
+            d.tip_label(
+                tip,
+                v,
+                format!("v_P = {}", si(v.length(), "m/s")),
+                palette::VELOCITY,
+            );
+        }
+    }
+}
+
+/// a_G of each moving body, from the velocities before the last step.
+fn accelerations(f: &Frame, d: &mut Drawing) {
+    let s = f.s;
+    let acc = f
+        .run
         .prev_velocities
         .as_ref()
         .map(|(prev, dt)| quantities::accelerations(s, prev, *dt));
+    if let Some(acc) = &acc {
+        for (i, (b, (a, _))) in f.s.bodies.iter().zip(acc).enumerate() {
+            if b.kind == BodyKind::Fixed {
+                continue;
+            }
+            let tip = f.scales.arrow(b.com, *a, f.scales.accel);
+            d.prims.push(Prim::Arrow(b.com, tip, palette::ACCEL));
+            if f.labels && (f.label_all || f.few.contains(&i)) && a.length() > 1e-9 {
+                d.tip_label(
+                    tip,
+                    *a,
+                    format!("a_G = {}", si(a.length(), "m/s²")),
+                    palette::ACCEL,
+                );
+            }
+        }
+    }
+}
 
-    if ov.acceleration {
-        if let Some(acc) = &acc {
-            for (i, (b, (a, _))) in s.bodies.iter().zip(acc).enumerate() {
-                if b.kind == BodyKind::Fixed {
-                    continue;
+/// The instantaneous center of each subject, with its lines to G and to the picked point.
+fn instant_centers(f: &Frame, d: &mut Drawing) {
+    for &i in &f.few {
+        let b = &f.s.bodies[i];
+        let size = f
+            .outlines
+            .get(i)
+            .map_or(0.0, |o| extent(o, b.local_com))
+            .max(0.01);
+        match quantities::instant_center(b, size) {
+            Some(c) if (c - b.com).length() < 50.0 * f.scales.size => {
+                d.prims.push(Prim::Dot(c, 4.0, palette::CENTER));
+                d.prims.push(Prim::Dashed(c, b.com, palette::CENTER));
+                if let Some((_, local)) = f.ov.point.filter(|(j, _)| *j == i) {
+                    d.prims
+                        .push(Prim::Dashed(c, b.world_point(local), palette::CENTER));
                 }
-                let tip = scales.arrow(b.com, *a, scales.accel);
-                d.prims.push(Prim::Arrow(b.com, tip, palette::ACCEL));
-                if labels && (label_all || few.contains(&i)) && a.length() > 1e-9 {
-                    d.tip_label(
-                        tip,
-                        *a,
-                        format!("a_G = {}", si(a.length(), "m/s²")),
-                        palette::ACCEL,
+                if f.labels {
+                    let r = (b.com - c).length();
+                    d.label(
+                        c,
+                        Vec2::new(0.0, 14.0),
+                        format!(
+                            "IC  (r_G/IC = {}, ω = {})",
+                            si(r, "m"),
+                            si(b.omega, "rad/s")
+                        ),
+                        palette::CENTER,
                     );
                 }
             }
-        }
-    }
-
-    if ov.instant_center {
-        for &i in &few {
-            let b = &s.bodies[i];
-            let size = outlines
-                .get(i)
-                .map_or(0.0, |o| extent(o, b.local_com))
-                .max(0.01);
-            match quantities::instant_center(b, size) {
-                Some(c) if (c - b.com).length() < 50.0 * scales.size => {
-                    d.prims.push(Prim::Dot(c, 4.0, palette::CENTER));
-                    d.prims.push(Prim::Dashed(c, b.com, palette::CENTER));
-                    if let Some((_, local)) = ov.point.filter(|(j, _)| *j == i) {
-                        d.prims
-                            .push(Prim::Dashed(c, b.world_point(local), palette::CENTER));
-                    }
-                    if labels {
-                        let r = (b.com - c).length();
-                        d.label(
-                            c,
-                            Vec2::new(0.0, 14.0),
-                            format!(
-                                "IC  (r_G/IC = {}, ω = {})",
-                                si(r, "m"),
-                                si(b.omega, "rad/s")
-                            ),
-                            palette::CENTER,
-                        );
-                    }
-                }
-                _ => {
-                    if labels && b.velocity.length() > 1e-3 * scales.speed {
-                        // Beside the body, across from the velocity arrow.
-                        let r = outlines.get(i).map_or(0.0, |o| extent(o, b.local_com));
-                        let away = -b.velocity.perp().normalize_or(DVec2::Y);
-                        d.tip_label(
-                            b.com + away * r,
-                            away,
-                            "IC at infinity (translation)",
-                            palette::CENTER,
-                        );
-                    }
-                }
-            }
-        }
-    }
-
-    if ov.instant_center {
-        for &i in &few {
-            if let Some((o, p, q)) = center_of_percussion(phys, i) {
-                d.prims.push(Prim::Dashed(o, p, palette::CENTER));
-                d.prims.push(Prim::Circle(p, 5.0 * px, palette::CENTER));
-                d.prims.push(Prim::Line(
-                    p - DVec2::new(5.0, 5.0) * px,
-                    p + DVec2::new(5.0, 5.0) * px,
-                    palette::CENTER,
-                ));
-                d.prims.push(Prim::Line(
-                    p - DVec2::new(5.0, -5.0) * px,
-                    p + DVec2::new(5.0, -5.0) * px,
-                    palette::CENTER,
-                ));
-                if labels {
+            _ => {
+                if f.labels && b.velocity.length() > 1e-3 * f.scales.speed {
+                    // Beside the body, across from the velocity arrow.
+                    let r = f.outlines.get(i).map_or(0.0, |o| extent(o, b.local_com));
+                    let away = -b.velocity.perp().normalize_or(DVec2::Y);
                     d.tip_label(
-                        p,
-                        p - o,
-                        format!("center of percussion, q = {}", si(q, "m")),
+                        b.com + away * r,
+                        away,
+                        "IC at infinity (translation)",
                         palette::CENTER,
                     );
                 }
             }
         }
     }
+}
 
-    if ov.free_body || ov.kinetic {
-        // Kinetic diagrams already placed this frame: the next one keeps off them too.
-        let mut copies: Vec<geometry::Bounds> = Vec::new();
-        for &i in &few {
-            let b = &s.bodies[i];
-            if b.kind != BodyKind::Dynamic {
-                continue;
-            }
-            // Mean forces over the last frame's steps when the step is short
-            // (see free_body_arrows_mean): the steps between the snapshots kept, the same
-            // steps the kinetic diagram's balance is taken over.
-            let (forces, couple) = if phys.recent.len() > 1 {
-                quantities::free_body_arrows_mean(
-                    quantities::with_previous(&phys.recent).skip(1),
-                    i,
-                )
-            } else {
-                quantities::free_body_arrows(None, s, i)
-            };
-            if ov.free_body {
-                for f in forces
-                    .iter()
-                    .filter(|f| !ov.hidden_forces.contains(&f.kind))
-                {
-                    let color = force_color(f.kind);
-                    let len = scales.len(f.force.length(), scales.force);
-                    let u = f.force.normalize_or_zero();
-                    // Textbook convention: a push (contact, or any force toward G) is drawn ending at
-                    // its point, from outside; a pull (tension) starts at its point.
-                    // A force at the end of a light link (off the body's shape) is drawn along the
-                    // link, ending at its point, so it stays beside the body it acts on.
-                    let local = DVec2::from_angle(-b.angle).rotate(f.point - b.position);
-                    let off_shape = outlines
-                        .get(i)
-                        .is_some_and(|o| !o.filled.is_empty() && !o.contains(local, 2.0 * px));
-                    // Reactions (contacts, pins, cables) are drawn ending at their point.
-                    let pushes = matches!(
-                        f.kind,
-                        ForceKind::ContactNormal
-                            | ForceKind::Friction
-                            | ForceKind::Joint
-                            | ForceKind::Coupling
-                    ) || (f.kind != ForceKind::Gravity
-                        && (off_shape || f.force.dot(b.com - f.point) > 0.0));
-                    let (mut a, mut z) = if pushes {
-                        (f.point - u * len, f.point)
-                    } else {
-                        (f.point, f.point + u * len)
-                    };
-                    if f.kind == ForceKind::Friction {
-                        // Friction lies along the contact surface, right on the other body's
-                        // outline, which hid it: drawn a few pixels off the surface, on the
-                        // body's side.
-                        let to_g = b.com - f.point;
-                        let side = (to_g - u * to_g.dot(u)).normalize_or_zero();
-                        a += side * 5.0 * px;
-                        z += side * 5.0 * px;
-                    }
-                    if len < 2.0 * px {
-                        continue;
-                    }
-                    d.prims.push(Prim::Arrow(a, z, color));
-                    if ov.components {
-                        // x and y components from the arrow's tail, dashed, each with its value.
-                        let v = z - a;
-                        for (c, axis, value) in [
-                            (DVec2::new(v.x, 0.0), "x", f.force.x),
-                            (DVec2::new(0.0, v.y), "y", f.force.y),
-                        ] {
-                            if c.length() > 4.0 * px {
-                                d.prims.push(Prim::Dashed(a, a + c, color));
-                                if labels {
-                                    d.tip_label(
-                                        a + c,
-                                        c,
-                                        format!("{}_{axis} = {}", f.kind.symbol(), si(value, "N")),
-                                        color,
-                                    );
-                                }
-                            }
-                        }
-                    }
-                    if labels {
-                        // At the free end of the arrow: the tail for pushes, the head for pulls.
-                        let (at, dir) = if pushes { (a, -u) } else { (z, u) };
-                        d.tip_label(
-                            at,
-                            dir,
-                            format!("{} = {}", f.kind.symbol(), si(f.force.length(), "N")),
-                            color,
-                        );
-                    }
-                }
-                if couple.abs() > 1e-9 {
-                    d.prims.push(Prim::Curl(b.com, 16.0, couple, palette::LOAD));
-                    if labels {
-                        d.label(
-                            b.com,
-                            Vec2::new(24.0, 20.0),
-                            format!("M = {}", si(couple, "N m")),
-                            palette::LOAD,
-                        );
-                    }
-                }
-            }
-            if ov.kinetic {
-                // sum F, sum M_G, m a_G and I_G alpha as the newton_euler check sums them, over
-                // the same steps as the arrows (analysis::frame::diagram_balance).
-                let balance = if phys.recent.len() > 1 {
-                    diagram_balance(&phys.recent, i)
-                } else {
-                    None
-                };
-                if let Some(balance) = balance {
-                    kinetic_diagram(i, s, outlines, &balance, scales, labels, &mut copies, d);
-                }
+/// The center of percussion of each subject turning about a fixed pivot.
+fn centers_of_percussion(f: &Frame, d: &mut Drawing) {
+    for &i in &f.few {
+        if let Some((o, p, q)) = center_of_percussion(f.run, i) {
+            d.prims.push(Prim::Dashed(o, p, palette::CENTER));
+            d.prims.push(Prim::Circle(p, 5.0 * f.px, palette::CENTER));
+            d.prims.push(Prim::Line(
+                p - DVec2::new(5.0, 5.0) * f.px,
+                p + DVec2::new(5.0, 5.0) * f.px,
+                palette::CENTER,
+            ));
+            d.prims.push(Prim::Line(
+                p - DVec2::new(5.0, -5.0) * f.px,
+                p + DVec2::new(5.0, -5.0) * f.px,
+                palette::CENTER,
+            ));
+            if f.labels {
+                d.tip_label(
+                    p,
+                    p - o,
+                    format!("center of percussion, q = {}", si(q, "m")),
+                    palette::CENTER,
+                );
             }
         }
     }
+}
 
-    blows(phys, scales, labels, d);
-
-    if ov.momentum {
-        let o = ov.origin;
-        let h = scene_angular_momentum_about(s, o);
-        d.prims.push(Prim::Dot(o, 3.0, palette::MOMENTUM));
-        d.prims.push(Prim::Curl(
-            o,
-            22.0,
-            if h == 0.0 { 1.0 } else { h },
-            palette::MOMENTUM,
-        ));
-        if labels {
-            d.label(
-                o,
-                Vec2::new(0.0, 34.0),
-                format!("H_O = {}", si(h, "N m s")),
-                palette::MOMENTUM,
-            );
+/// The free-body diagram and the kinetic diagram beside it, of each moving subject.
+fn diagrams(fr: &Frame, d: &mut Drawing) {
+    let s = fr.s;
+    // Kinetic diagrams already placed this frame: the next one keeps off them too.
+    let mut copies: Vec<geometry::Bounds> = Vec::new();
+    for &i in &fr.few {
+        let b = &fr.s.bodies[i];
+        if b.kind != BodyKind::Dynamic {
+            continue;
         }
+        // Mean forces over the last frame's steps when the step is short
+        // (see free_body_arrows_mean): the steps between the snapshots kept, the same
+        // steps the kinetic diagram's balance is taken over.
+        let (forces, couple) = if fr.run.recent.len() > 1 {
+            quantities::free_body_arrows_mean(quantities::with_previous(&fr.run.recent).skip(1), i)
+        } else {
+            quantities::free_body_arrows(None, s, i)
+        };
+        if fr.ov.free_body {
+            for f in forces
+                .iter()
+                .filter(|f| !fr.ov.hidden_forces.contains(&f.kind))
+            {
+                let color = force_color(f.kind);
+                let len = fr.scales.len(f.force.length(), fr.scales.force);
+                let u = f.force.normalize_or_zero();
+                // Textbook convention: a push (contact, or any force toward G) is drawn ending at
+                // its point, from outside; a pull (tension) starts at its point.
+                // A force at the end of a light link (off the body's shape) is drawn along the
+                // link, ending at its point, so it stays beside the body it acts on.
+                let local = DVec2::from_angle(-b.angle).rotate(f.point - b.position);
+                let off_shape = fr
+                    .outlines
+                    .get(i)
+                    .is_some_and(|o| !o.filled.is_empty() && !o.contains(local, 2.0 * fr.px));
+                // Reactions (contacts, pins, cables) are drawn ending at their point.
+                let pushes = matches!(
+                    f.kind,
+                    ForceKind::ContactNormal
+                        | ForceKind::Friction
+                        | ForceKind::Joint
+                        | ForceKind::Coupling
+                ) || (f.kind != ForceKind::Gravity
+                    && (off_shape || f.force.dot(b.com - f.point) > 0.0));
+                let (mut a, mut z) = if pushes {
+                    (f.point - u * len, f.point)
+                } else {
+                    (f.point, f.point + u * len)
+                };
+                if f.kind == ForceKind::Friction {
+                    // Friction lies along the contact surface, right on the other body's
+                    // outline, which hid it: drawn a few pixels off the surface, on the
+                    // body's side.
+                    let to_g = b.com - f.point;
+                    let side = (to_g - u * to_g.dot(u)).normalize_or_zero();
+                    a += side * 5.0 * fr.px;
+                    z += side * 5.0 * fr.px;
+                }
+                if len < 2.0 * fr.px {
+                    continue;
+                }
+                d.prims.push(Prim::Arrow(a, z, color));
+                if fr.ov.components {
+                    // x and y components from the arrow's tail, dashed, each with its value.
+                    let v = z - a;
+                    for (c, axis, value) in [
+                        (DVec2::new(v.x, 0.0), "x", f.force.x),
+                        (DVec2::new(0.0, v.y), "y", f.force.y),
+                    ] {
+                        if c.length() > 4.0 * fr.px {
+                            d.prims.push(Prim::Dashed(a, a + c, color));
+                            if fr.labels {
+                                d.tip_label(
+                                    a + c,
+                                    c,
+                                    format!("{}_{axis} = {}", f.kind.symbol(), si(value, "N")),
+                                    color,
+                                );
+                            }
+                        }
+                    }
+                }
+                if fr.labels {
+                    // At the free end of the arrow: the tail for pushes, the head for pulls.
+                    let (at, dir) = if pushes { (a, -u) } else { (z, u) };
+                    d.tip_label(
+                        at,
+                        dir,
+                        format!("{} = {}", f.kind.symbol(), si(f.force.length(), "N")),
+                        color,
+                    );
+                }
+            }
+            if couple.abs() > 1e-9 {
+                d.prims.push(Prim::Curl(b.com, 16.0, couple, palette::LOAD));
+                if fr.labels {
+                    d.label(
+                        b.com,
+                        Vec2::new(24.0, 20.0),
+                        format!("M = {}", si(couple, "N m")),
+                        palette::LOAD,
+                    );
+                }
+            }
+        }
+        if fr.ov.kinetic {
+            // sum F, sum M_G, m a_G and I_G alpha as the newton_euler check sums them, over
+            // the same steps as the arrows (analysis::frame::diagram_balance).
+            let balance = if fr.run.recent.len() > 1 {
+                diagram_balance(&fr.run.recent, i)
+            } else {
+                None
+            };
+            if let Some(balance) = balance {
+                kinetic_diagram(
+                    i,
+                    s,
+                    fr.outlines,
+                    &balance,
+                    fr.scales,
+                    fr.labels,
+                    &mut copies,
+                    d,
+                );
+            }
+        }
+    }
+}
+
+/// H about the point O.
+fn momentum(f: &Frame, d: &mut Drawing) {
+    let s = f.s;
+    let o = f.ov.origin;
+    let h = scene_angular_momentum_about(s, o);
+    d.prims.push(Prim::Dot(o, 3.0, palette::MOMENTUM));
+    d.prims.push(Prim::Curl(
+        o,
+        22.0,
+        if h == 0.0 { 1.0 } else { h },
+        palette::MOMENTUM,
+    ));
+    if f.labels {
+        d.label(
+            o,
+            Vec2::new(0.0, 34.0),
+            format!("H_O = {}", si(h, "N m s")),
+            palette::MOMENTUM,
+        );
     }
 }
 
