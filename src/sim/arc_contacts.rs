@@ -95,6 +95,10 @@ fn ball_contact(
     }
 }
 
+/// The subshape ids of a ball's manifold with an arc's circle: no facet's index, so the facets'
+/// branch knows to start afresh.
+const CIRCLE: u32 = u32::MAX;
+
 /// The one-point manifold of a ball on an arc, kept in `manifolds[0]` so that its contact's
 /// impulses carry over to the next call (parry's ball-ball manifold does the same).
 fn ball_manifold<M, C>(
@@ -108,9 +112,9 @@ fn ball_manifold<M, C>(
     M: Default,
     C: Default + Copy,
 {
-    if manifolds.len() != 1 {
+    if manifolds.len() != 1 || manifolds[0].subshape1 != CIRCLE {
         manifolds.clear();
-        manifolds.push(ContactManifold::new());
+        manifolds.push(ContactManifold::with_data(CIRCLE, CIRCLE, M::default()));
     }
     let m = &mut manifolds[0];
     let (p1, p2, n1, n2, dist) = ball_contact(pos12, arc, ball, arc_first);
@@ -238,14 +242,19 @@ where
             .as_ball()
             .filter(|_| within(pos12, pair.arc, pair.arc_first))
         {
-            // The facets' workspace no longer describes these manifolds.
-            *workspace = None;
+            // A workspace left by the facets stays: rapier takes a pair's manifold count as
+            // stable unless it holds one, and a count changed without one panics its solver
+            // graph ("stale ContactRef", manifold_store.rs). The facets' branch drops it.
             ball_manifold(pos12, pair.arc, ball, pair.arc_first, prediction, manifolds);
             return Ok(());
         }
-        if workspace.is_none() {
+        if manifolds
+            .iter()
+            .any(|m| m.subshape1 == CIRCLE || m.subshape2 == CIRCLE)
+        {
             // The circle's manifold is none of the facets': they start afresh.
             manifolds.clear();
+            *workspace = None;
         }
         DefaultQueryDispatcher.contact_manifolds(
             pos12,

@@ -373,16 +373,6 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // one step of a faceted curve comes in per-vertex bursts (28% either way; within 1e-4 over
     // 48 steps): N past the loop's bottom, at the ring's side, before a ramp's flat, asked
     // without a `window` (which the docs did not offer until the user's report).
-    ("n7_01_loop_min_height.ron", "question N_past_bottom"),
-    ("n7_05_puck_leaves_vertical_ring.ron", "question N_side"),
-    (
-        "n7_03_block_down_circular_ramp.ron",
-        "question N_before_flat",
-    ),
-    (
-        "n7_03_block_down_circular_ramp.ron",
-        "question F_before_flat",
-    ),
     // Where the ramp's Arc meets the floor's Segment the block, riding 0.24 mm into the soft
     // ramp, strikes the floor's end point: one step of 758 N, 2.6% of its speed lost and a
     // 3.7 mm hop (1.5% at dt/2).
@@ -391,16 +381,19 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // faceted track, docs/known-gaps.md), 1.4e-2 of the energy that flows against the user's
     // 5e-3, which they took from the ring's kinetic_energy_ic figure.
     ("n7_02_ball_rolling_in_bowl.ron", "check work_energy"),
+    // Since the exact arc (2026-12-06, sim/arc_track.rs) the disc leaves the cylinder's circle
+    // a little early: y_leave 1.16e-2 low at its own settings and 16 substeps (1e-2 allowed);
+    // on the facets it passed. The tangent-plane contact of docs/known-gaps.md ("A body riding a
+    // curved track fast") now falls away from a true convex circle within each step.
+    (
+        "n7_04_disc_over_cylinder_slips_leaves.ron",
+        "question y_leave",
+    ),
     // Leaving a convex or concave curve: the bursts move the instant the push stops by a step
     // or two: the disc over the cylinder 1.5-1.6% low at 8 and 16 substeps and dt/2 (its
     // slip's start 1.2e-2 at 8 substeps), the puck in the ring 1.4% early at its own settings,
     // its speed then 2.1% high (1.3% low at 16 substeps). On 2026-11-27 only the disc's slip
     // start at dt/2 (1.9e-2) and the puck's speed at 16 substeps (1.34e-2) still fail.
-    (
-        "n7_04_disc_over_cylinder_slips_leaves.ron",
-        "question x_slip",
-    ),
-    ("n7_05_puck_leaves_vertical_ring.ron", "question v_leave"),
     // An eighth new user on analyses past their assumptions (tests/newuser/*/n8_*, 2026-11-26;
     // docs/newuser-trials/n8_REPORT.md; fixed the same day: a pendulum on a kinematic trolley, moving or not, got
     // the linearized period, 3.9e-3 short at 0.25 rad, while claiming to apply; a pivot that
@@ -438,7 +431,6 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // 5e-5. Off-level copies: 2.8e-3 at 10 degrees, 5.8e-3 at 20, 8.5e-3 at 30 (1.0e-2 at 8
     // substeps), 1.9e-2 at 35 (8 substeps): up to 0.9% of m g, farther from the leaving point
     // than known-gaps.md's "at 30 degrees within 1.6e-3" suggests.
-    ("n9_02_puck_off_smooth_cylinder.ron", "question N_25deg"),
     // A velocity motor winding a cable (n11_09, the eleventh new user): the drum settles at
     // 8.345 rad/s for its motor's 10, short by F h r^2 / I to 4 digits (h a substep's time; as
     // if the cable pulled the drum back after the motor reached its rate within each call, not
