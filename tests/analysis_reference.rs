@@ -285,7 +285,7 @@ fn slider_with_a_spring_closed_form() {
     );
     let times = [0.2, 0.55, 1.3];
     let tr = reference(&ron, &times);
-    let w = (k / m as f64).sqrt();
+    let w = (k / m).sqrt();
     let s_eq = 1.0 - m * G * beta.sin() / k;
     for (x, t) in tr.instants.iter().zip(times) {
         let b = x.bodies[1];
