@@ -985,7 +985,8 @@ fn collect_bodies(level: &Level, damping: bool) -> Result<Vec<Body>, String> {
             if !(mp.mass.is_finite() && mp.mass > 0.0) {
                 return Err(format!("body \"{}\" has no mass", b.name));
             }
-            if !b.lock_rotation && !(mp.inertia.is_finite() && mp.inertia > 0.0) {
+            let has_inertia = mp.inertia.is_finite() && mp.inertia > 0.0;
+            if !b.lock_rotation && !has_inertia {
                 return Err(format!("body \"{}\" has no moment of inertia", b.name));
             }
         }

@@ -268,7 +268,7 @@ fn damped_spring_mass_closed_form() {
 /// gravity's component: N = m g cos 30 on the block, along the axis's normal (-sin 30, cos 30).
 #[test]
 fn slider_with_a_spring_closed_form() {
-    let (m, k, beta) = (2.0, 80.0, PI / 6.0);
+    let (m, k, beta): (f64, f64, f64) = (2.0, 80.0, PI / 6.0);
     let u = DVec2::new(beta.cos(), beta.sin());
     let s0 = 1.2;
     let p0 = u * s0;
@@ -285,7 +285,7 @@ fn slider_with_a_spring_closed_form() {
     );
     let times = [0.2, 0.55, 1.3];
     let tr = reference(&ron, &times);
-    let w = (k / m as f64).sqrt();
+    let w = (k / m).sqrt();
     let s_eq = 1.0 - m * G * beta.sin() / k;
     for (x, t) in tr.instants.iter().zip(times) {
         let b = x.bodies[1];
