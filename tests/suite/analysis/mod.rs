@@ -4,7 +4,7 @@ mod formulas;
 mod frame;
 mod general_periods;
 mod links;
+mod reference;
 mod small_oscillations;
 mod textbook;
 mod windows;
-mod reference;

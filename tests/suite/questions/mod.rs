@@ -15,7 +15,7 @@ mod library;
 mod new_quantities;
 mod polar_angle;
 mod quantity_coverage;
+mod reference_applies;
 mod rolling_applies;
 mod untuned_levels;
 mod virtual_work;
-mod reference_applies;

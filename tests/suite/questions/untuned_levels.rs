@@ -389,6 +389,16 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
         "n7_04_disc_over_cylinder_slips_leaves.ron",
         "question y_leave",
     ),
+    // The twelfth new user (tests/newuser/*/n12_*, 2026-12-06, docs/newuser-trials/n12_REPORT.md):
+    // a ball released too low into a loop leaves it; its speed where it leaves (`ContactEnds`)
+    // reads 2.6957 for 2.6577 m/s at dt/2 (1.43e-2 > 1e-2), within 1e-2 at its own settings and
+    // at 2x and 4x substeps. Where the push stops moves by a step or two with the setting (the
+    // tangent-plane contact of docs/known-gaps.md, "A body riding a curved track fast"), and the
+    // speed changes fast there.
+    (
+        "n12_01b_loop_released_too_low_leaves.ron",
+        "question v_leave",
+    ),
     // Leaving a convex or concave curve: the bursts move the instant the push stops by a step
     // or two: the disc over the cylinder 1.5-1.6% low at 8 and 16 substeps and dt/2 (its
     // slip's start 1.2e-2 at 8 substeps), the puck in the ring 1.4% early at its own settings,

@@ -4,6 +4,7 @@
 mod closed_forms;
 mod contact_readings;
 mod couplings;
+mod curved_contact_exact;
 mod determinism;
 mod eccentric_friction;
 mod energy_guard;
@@ -24,4 +25,3 @@ mod spinning_contact;
 mod springs;
 mod substepping_cost;
 mod world_fields;
-mod curved_contact_exact;

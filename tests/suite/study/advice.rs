@@ -135,13 +135,9 @@ fn check_prints_the_advice_and_no_advice_turns_it_off() {
 /// settings, the level passes at them.
 #[test]
 fn every_failing_newuser_level_gets_advice_that_holds() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/newuser");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
-        .collect();
-    files.sort();
+    // Every topic folder's levels (tests/newuser/<topic>/*.ron), sorted.
+    let files = crate::common::ron_files("tests/newuser", &[]);
+    assert!(files.len() > 100, "the new users' levels are found");
     // The levels in parallel (each level's twins and advice in turn): serially this took 15 min
     // on 2 cores once the sixth and seventh users' levels came.
     let counts: Vec<(usize, usize, usize)> = files
