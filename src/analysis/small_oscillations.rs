@@ -208,6 +208,8 @@ impl Mechanism {
     /// dynamic bodies joined to it by joints, couplings and springs, and what holds them, with
     /// only the level's declared effects. Err when the scene is outside the model (a motor, a
     /// load that changes or turns, a support that rotates or supports that move apart).
+    // Not yet split into named steps (issue 44): builds the mechanism's coordinates, constraints and forces from a level in one pass.
+    #[allow(clippy::too_many_lines)]
     pub fn of_level(level: &Level, around: usize) -> Result<Mechanism, String> {
         let has = |e: Effect| level.effects.contains(&e);
         let v = |p: (f64, f64)| DVec2::new(p.0, p.1);
@@ -895,6 +897,8 @@ impl<'a> Model<'a> {
         Ok(2.0 * t)
     }
 
+    // Not yet split into named steps (issue 44): the linearization, eigenproblem and amplitude period of one mechanism.
+    #[allow(clippy::too_many_lines)]
     fn solve(&self) -> Result<SmallOscillations, String> {
         let q = self.equilibrium()?;
         let nb = self.null_space(&q)?;

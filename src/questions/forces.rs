@@ -83,6 +83,8 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
 }
 
 /// The quantity at the sample.
+// A match over every force quantity's reading, one arm per quantity.
+#[allow(clippy::too_many_lines)]
 pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     Some(match &m.q {

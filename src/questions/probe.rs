@@ -208,6 +208,8 @@ impl QuestionProbe {
 
     /// Reads the quantity when the sample is the moment the question's `at` names (`all[k]` is
     /// the sample, `event` what the question's pair did at it).
+    // A match over every quantity family's reading at its instant, one arm per family.
+    #[allow(clippy::too_many_lines)]
     fn read_if_due(
         &mut self,
         sample: &Sample,

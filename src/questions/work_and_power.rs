@@ -22,6 +22,8 @@ use crate::snapshot::{BodyKind, BodyState, Snapshot, SpringState};
 use glam::DVec2;
 
 /// Accumulates the works over the step from `prev` to `s`.
+// A match over every work and power quantity's step, one arm per quantity.
+#[allow(clippy::too_many_lines)]
 pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     let dt = s.time - prev.time;
     match &m.q {

@@ -11,6 +11,8 @@ use bevy_egui::egui;
 
 /// Draws the panel; what it asks of the run goes to `out`. True when it asked for the run to
 /// start over (Reset, or Play at the level's end).
+// Not yet split into named steps (issue 44): one egui panel's rows sharing the frame's resources.
+#[allow(clippy::too_many_lines)]
 pub(super) fn playback(
     ui: &mut egui::Ui,
     (phys, play): (&Run, &Playback),

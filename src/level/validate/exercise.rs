@@ -66,6 +66,8 @@ pub(super) fn check(v: &V, i: usize, c: &CheckDef) -> R {
     Ok(())
 }
 
+// A match over every quantity's references to validate, one arm per quantity family.
+#[allow(clippy::too_many_lines)]
 pub(super) fn question(v: &V, q: &QuestionDef) -> R {
     let at = |f: &str| v.loc.field_pos("questions", &q.id, f);
     v.finite(

@@ -88,6 +88,8 @@ const GAP_MR100: &str = "only in --long: no setting tried holds the 200:1 top bo
 /// criterion with at least 10 % margin, both over the level's 10 s and over `--long`'s 1e5
 /// steps; cost counted as steps x substeps x iterations. `settings_why` gives what fails at
 /// rapier's defaults and what was tried.
+// A data table: one entry per hard case of the stability suite, each with its scene and settings.
+#[allow(clippy::too_many_lines)]
 pub fn all() -> Vec<Spec> {
     vec![
         Spec {
