@@ -583,8 +583,8 @@ impl Simulation {
             };
             let turn = pose_at(b, t1).angular - pose_at(b, t0).angular;
             let (v, omega) = ((com(t1) - com(t0)) / h, turn / h);
-            let fast = !(v.length() <= cap * (1.0 + 1e-6));
-            let spins = turn_cap.is_some_and(|m| !(omega.abs() <= m * (1.0 + 1e-6)));
+            let fast = v.length().is_nan() || v.length() > cap * (1.0 + 1e-6);
+            let spins = turn_cap.is_some_and(|m| omega.is_nan() || omega.abs() > m * (1.0 + 1e-6));
             if fast || spins {
                 let what = if fast {
                     format!(

@@ -257,7 +257,7 @@ fn track_in_range(v: &V, points: &[V2], what: &str, pos: (usize, usize)) -> R {
     let limit = track_limit(precision);
     for p in points {
         let size = p.0.abs().max(p.1.abs());
-        if !(size < limit) {
+        if size.is_nan() || size >= limit {
             let ulp = |x: f64| match precision {
                 Precision::F32 => (x as f32).abs() * f32::EPSILON,
                 Precision::F64 => (x * f64::EPSILON) as f32,
@@ -524,7 +524,7 @@ fn motion(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
 fn motion_within_caps(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R {
     let w = &v.level.world;
     let speed = motion::largest_speed(b, m, w.duration);
-    if !(speed <= motion::SPEED_CAP) {
+    if speed.is_nan() || speed > motion::SPEED_CAP {
         return Err(v.err(
             pos,
             format!(
@@ -543,7 +543,7 @@ fn motion_within_caps(v: &V, b: &BodyDef, m: &Motion, pos: (usize, usize)) -> R 
     }
     let rate = motion::largest_rate(b, m, w.duration);
     let cap = std::f64::consts::FRAC_PI_4 / w.dt;
-    if !(rate <= cap) {
+    if rate.is_nan() || rate > cap {
         return Err(v.err(
             pos,
             format!(
