@@ -24,7 +24,7 @@
 //! - [`frame`]: all of the above for every body and the scene in one pass per step;
 //! - [`links`]: which contacts and joints touch each body, for readings about one body or a pair.
 //! - [`small_oscillations`]: the modes and periods of any mechanism linearized about its equilibrium (PL-14).
-//! - [`reference`]: the reference trajectory, the equations of motion integrated in f64 (Dop853), with the joints' reactions.
+//! - [`reference`](mod@reference): the reference trajectory, the equations of motion integrated in f64 (Dop853), with the joints' reactions.
 
 pub mod closed_forms;
 pub mod curved_path;

@@ -516,7 +516,7 @@ fn set_motor(level: &mut Level, joint: &str, target: &Option<f64>) -> Result<Str
     let j = level
         .joints
         .iter_mut()
-        .find(|j| &j.name == joint)
+        .find(|j| j.name == joint)
         .ok_or_else(|| format!("there is no joint named \"{joint}\""))?;
     j.motor = target.map(|t| Motor::Velocity {
         target: t,

@@ -4,6 +4,7 @@
 //! back as messages and leave the scene as it was; track edits undo, redo and round-trip as RON.
 //! The same loop is built in the window's editor headless (MinimalPlugins) and saved there.
 
+#[cfg(feature = "app")]
 use crate::common;
 
 use rigidlab::editor::{self, parse_points, Edit, History, NewShape, Property};
