@@ -4,4 +4,5 @@
 mod app_import_rule;
 mod architecture_doc;
 mod equation_key;
+mod source_scan;
 mod stage_layers;
