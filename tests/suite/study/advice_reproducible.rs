@@ -103,7 +103,7 @@ fn the_same_failing_level_gets_the_same_advice_on_a_busy_machine() {
 /// The search's time at its bound (docs/cli.md): every level of tests/newuser the engine fails
 /// at its own settings, one at a time, with the search's verdict, CPU time and wall time (CPU
 /// time stands for an idle machine's wall time: a run uses one thread).
-/// `cargo test --release --test study_advice_reproducible -- --ignored --nocapture`
+/// `cargo test --release --test suite -- --ignored --nocapture study::advice_reproducible`
 #[test]
 #[ignore = "a measurement: about a minute"]
 fn search_time_at_the_bound() {
