@@ -584,7 +584,8 @@ fn render_budget(scene: &level::Scene, time: f64, allow_long: bool) -> Result<()
     .map_err(|e| e.to_string())
 }
 
-/// `render --out`: the renderer writes PNG only, and never over the level it draws. Checked
+/// `render --out`: the renderer writes PNG only, never over the level it draws, and over an
+/// existing file only when it is an image rigidlab drew (its mark, `crate::files::Mark`). Checked
 /// before anything is read or written, so a refused `--out` leaves any file there as it was.
 fn render_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), String> {
     let ext = out
@@ -602,7 +603,7 @@ fn render_out(level: &std::path::Path, out: &std::path::Path) -> Result<(), Stri
             out.display()
         ));
     }
-    Ok(())
+    crate::files::replaceable(out, crate::files::Mark::Png).map_err(|e| format!("error: --out {e}"))
 }
 
 #[cfg(feature = "app")]

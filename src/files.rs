@@ -4,6 +4,10 @@
 //! counter ([`write_new`]); an output is never one of the run's inputs ([`same_file`]). Images
 //! are encoded in memory first ([`png_bytes`]), so that a PNG is written whole as any file is.
 //!
+//! A file a command writes over from run to run (an image, a study's summary) carries rigidlab's
+//! mark ([`Mark`]), and is replaced only where the mark shows rigidlab wrote it
+//! ([`write_over_own`]): a user's photo or notes under the same name are refused and kept.
+//!
 //! Imports nothing of rigidlab: the command line, the report's CSV, the studies and the window
 //! all write through it.
 
@@ -197,6 +201,69 @@ pub fn write_new(dest: &Path, bytes: &[u8]) -> io::Result<PathBuf> {
     p.commit_new()
 }
 
+/// How a kind of file shows that rigidlab wrote it.
+#[derive(Clone, Copy, Debug)]
+pub enum Mark<'a> {
+    /// A PNG with the text chunk `Software` = `rigidlab` ([`png_bytes`] writes it).
+    Png,
+    /// A text file whose first line is this one (a CSV's header, an HTML comment).
+    FirstLine(&'a str),
+}
+
+/// The first line of the Markdown and SVG files rigidlab writes over from run to run.
+pub const TEXT_MARK: &str = "<!-- written by rigidlab -->";
+
+impl Mark<'_> {
+    /// Whether `bytes` carry the mark.
+    pub fn on(self, bytes: &[u8]) -> bool {
+        match self {
+            Mark::Png => {
+                bytes.starts_with(b"\x89PNG") && contains(bytes, b"tEXtSoftware\0rigidlab")
+            }
+            Mark::FirstLine(line) => {
+                let first = bytes.split(|&b| b == b'\n').next().unwrap_or_default();
+                first.strip_suffix(b"\r").unwrap_or(first) == line.as_bytes()
+            }
+        }
+    }
+}
+
+fn contains(hay: &[u8], needle: &[u8]) -> bool {
+    hay.windows(needle.len()).any(|w| w == needle)
+}
+
+/// Err when `dest` holds a file rigidlab cannot show it wrote (no `mark`): checked before a
+/// command does its work, so a refused output costs nothing. A missing `dest` is fine.
+pub fn replaceable(dest: &Path, mark: Mark<'_>) -> io::Result<()> {
+    match fs::metadata(dest) {
+        Ok(meta) if meta.is_file() => {
+            if mark.on(&fs::read(dest)?) {
+                Ok(())
+            } else {
+                Err(io::Error::new(
+                    io::ErrorKind::AlreadyExists,
+                    format!(
+                        "{} exists and rigidlab did not write it, so it is kept\n  help: give another name, or move that file away",
+                        dest.display()
+                    ),
+                ))
+            }
+        }
+        Ok(meta) if meta.is_dir() => Err(io::Error::new(
+            io::ErrorKind::AlreadyExists,
+            format!("{} is a folder\n  help: give a file name", dest.display()),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// [`write_replacing`], but only over a file rigidlab wrote ([`replaceable`]); anything else at
+/// `dest` is kept and the write refused.
+pub fn write_over_own(dest: &Path, bytes: &[u8], mark: Mark<'_>) -> io::Result<()> {
+    replaceable(dest, mark)?;
+    write_replacing(dest, bytes)
+}
+
 /// `path` with the counter `n` before its extension: `a/b.ron` -> `a/b-2.ron` (n = 1: `path`).
 pub fn numbered(path: &Path, n: u32) -> PathBuf {
     if n <= 1 {
@@ -270,6 +337,9 @@ pub fn png_bytes(width: u32, height: u32, alpha: bool, pixels: &[u8]) -> Result<
             png::ColorType::Rgb
         });
         enc.set_depth(png::BitDepth::Eight);
+        // The mark that lets a later run replace this image and nothing else (Mark::Png).
+        enc.add_text_chunk("Software".to_string(), "rigidlab".to_string())
+            .map_err(|e| e.to_string())?;
         let mut w = enc.write_header().map_err(|e| e.to_string())?;
         w.write_image_data(pixels).map_err(|e| e.to_string())?;
         w.finish().map_err(|e| e.to_string())?;
@@ -286,6 +356,29 @@ mod tests {
         let _ = fs::remove_dir_all(&d);
         fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    #[test]
+    fn only_a_file_rigidlab_marked_is_written_over() {
+        let d = dir("own");
+        let photo = d.join("photo.png");
+        fs::write(&photo, b"\x89PNG a user's photo").unwrap();
+        let ours = png_bytes(1, 1, false, &[0, 0, 0]).unwrap();
+        assert!(Mark::Png.on(&ours), "png_bytes marks its images");
+        let err = write_over_own(&photo, &ours, Mark::Png).unwrap_err();
+        assert_eq!(err.kind(), io::ErrorKind::AlreadyExists);
+        assert_eq!(fs::read(&photo).unwrap(), b"\x89PNG a user's photo", "kept");
+        let fresh = d.join("fresh.png");
+        write_over_own(&fresh, &ours, Mark::Png).unwrap();
+        write_over_own(&fresh, &ours, Mark::Png).expect("its own image is replaced");
+        let notes = d.join("summary.md");
+        fs::write(&notes, "my notes\n").unwrap();
+        let md = format!("{TEXT_MARK}\n# summary\n");
+        assert!(write_over_own(&notes, md.as_bytes(), Mark::FirstLine(TEXT_MARK)).is_err());
+        assert_eq!(fs::read_to_string(&notes).unwrap(), "my notes\n");
+        fs::remove_file(&notes).unwrap();
+        write_over_own(&notes, md.as_bytes(), Mark::FirstLine(TEXT_MARK)).unwrap();
+        write_over_own(&notes, md.as_bytes(), Mark::FirstLine(TEXT_MARK)).unwrap();
     }
 
     #[test]

@@ -342,7 +342,8 @@ fn frame_of(image: &Image, out: Option<&Path>) -> Result<Frame, String> {
         let write = |e: String| format!("rigidlab render: cannot write {}: {e}", path.display());
         let bytes = crate::files::png_bytes(rgb.width(), rgb.height(), false, rgb.as_raw())
             .map_err(write)?;
-        crate::files::write_replacing(path, &bytes).map_err(|e| write(e.to_string()))?;
+        crate::files::write_over_own(path, &bytes, crate::files::Mark::Png)
+            .map_err(|e| write(e.to_string()))?;
     }
     Ok(Frame {
         width: rgba.width(),

@@ -7,8 +7,9 @@ fn plot_file(name: &str, format: &str) -> String {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    // Before the sweep, which takes minutes: an --out that cannot take the files.
-    if let Err(e) = writable_folder(&args.out) {
+    // Before the sweep, which takes minutes: an --out that cannot take the files, or holds
+    // a summary or table rigidlab did not write (kept, and the study refused).
+    if let Err(e) = writable_folder(&args.out).and_then(|()| own_outputs(&args.out)) {
         stderr!("{e}");
         return ExitCode::from(2);
     }
@@ -63,7 +64,8 @@ pub fn main(args: Args) -> ExitCode {
     }
     let md = summary::markdown(&studies, &skipped, &plan, &plots);
     let md_path = args.out.join("summary.md");
-    if let Err(e) = crate::files::write_replacing(&md_path, md.as_bytes()) {
+    let md = format!("{}\n{md}", crate::files::TEXT_MARK);
+    if let Err(e) = crate::files::write_over_own(&md_path, md.as_bytes(), SUMMARY_MARK) {
         stderr!("cannot write {}: {e}", md_path.display());
         return ExitCode::from(2);
     }
@@ -92,6 +94,27 @@ pub fn main(args: Args) -> ExitCode {
 }
 
 /// Creates `dir` if missing and checks that a file can be written in it.
+/// How summary.md shows rigidlab wrote it: its first line.
+const SUMMARY_MARK: crate::files::Mark<'static> =
+    crate::files::Mark::FirstLine(crate::files::TEXT_MARK);
+
+/// accuracy.csv's header line, its mark.
+fn csv_header() -> String {
+    CSV_COLUMNS.join(",")
+}
+
+/// Err when accuracy.csv or summary.md in `dir` is a file rigidlab did not write: a user's
+/// notes under either name are kept, and the study refused before it runs.
+fn own_outputs(dir: &Path) -> Result<(), String> {
+    let header = csv_header();
+    crate::files::replaceable(
+        &dir.join("accuracy.csv"),
+        crate::files::Mark::FirstLine(&header),
+    )
+    .and_then(|()| crate::files::replaceable(&dir.join("summary.md"), SUMMARY_MARK))
+    .map_err(|e| format!("error: --out {e}"))
+}
+
 pub fn writable_folder(dir: &Path) -> Result<(), String> {
     let d = dir.display();
     if dir.exists() && !dir.is_dir() {
@@ -102,9 +125,14 @@ pub fn writable_folder(dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| {
         format!("error: cannot create the folder {d}: {e}\n  help: give a folder you can write to")
     })?;
-    let probe = dir.join(".rigidlab-write-test");
-    std::fs::write(&probe, b"")
-        .and_then(|()| std::fs::remove_file(&probe))
+    // A probe of a name of its own, created new: a file of that name is never written over or
+    // removed.
+    let probe = dir.join(format!(".rigidlab-write-test-{}", std::process::id()));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .and_then(|_| std::fs::remove_file(&probe))
         .map_err(|e| {
             format!("error: cannot write in {d}: {e}\n  help: give a folder you can write to")
         })
@@ -112,6 +140,9 @@ pub fn writable_folder(dir: &Path) -> Result<(), String> {
 
 /// accuracy.csv, written whole (crate::files): a failure leaves an earlier one as it was.
 fn write_csv(path: &Path, studies: &[LevelStudy]) -> Result<(), String> {
+    let header = csv_header();
+    crate::files::replaceable(path, crate::files::Mark::FirstLine(&header))
+        .map_err(|e| e.to_string())?;
     let file = crate::files::Pending::create(path).map_err(|e| e.to_string())?;
     let mut w = csv::Writer::from_writer(file);
     // A study with no level still gets its header.

@@ -79,7 +79,8 @@ pub fn draw(path: &Path, caption: &str, panels: &[Panel]) -> Result<(), String> 
     // Drawn in memory, then written whole (crate::files): a plot that cannot be written is an
     // error the study reports, and an earlier plot stays as it was.
     let write = |bytes: &[u8]| {
-        crate::files::write_replacing(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+        crate::files::write_over_own(path, bytes, plot_mark(svg))
+            .map_err(|e| format!("{}: {e}", path.display()))
     };
     if svg {
         let mut text = String::new();
@@ -87,7 +88,7 @@ pub fn draw(path: &Path, caption: &str, panels: &[Panel]) -> Result<(), String> 
             let root = SVGBackend::with_string(&mut text, (w, h)).into_drawing_area();
             draw_on(root, caption, panels)?;
         }
-        write(text.as_bytes())
+        write(format!("{}\n{text}", crate::files::TEXT_MARK).as_bytes())
     } else {
         let mut rgb = vec![0u8; (w * h * 3) as usize];
         {
@@ -95,6 +96,15 @@ pub fn draw(path: &Path, caption: &str, panels: &[Panel]) -> Result<(), String> 
             draw_on(root, caption, panels)?;
         }
         write(&palette_png(w, h, &rgb)?)
+    }
+}
+
+/// How a plot shows that rigidlab wrote it: a PNG's text chunk, an SVG's first line.
+pub fn plot_mark(svg: bool) -> crate::files::Mark<'static> {
+    if svg {
+        crate::files::Mark::FirstLine(crate::files::TEXT_MARK)
+    } else {
+        crate::files::Mark::Png
     }
 }
 
@@ -122,6 +132,9 @@ fn palette_png(w: u32, h: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
         enc.set_depth(png::BitDepth::Eight);
         enc.set_palette(palette);
         enc.set_compression(png::Compression::Best);
+        // rigidlab's mark (crate::files::Mark::Png): a later study replaces this plot only.
+        enc.add_text_chunk("Software".to_string(), "rigidlab".to_string())
+            .map_err(|e| e.to_string())?;
         let mut writer = enc.write_header().map_err(|e| e.to_string())?;
         writer
             .write_image_data(&indices)

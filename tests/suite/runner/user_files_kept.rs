@@ -1,7 +1,8 @@
 //! Nothing the user made is lost (issue 32): every file rigidlab writes is checked against what it
 //! reads and against what is already there. A refused `render --out` touches no file; `run --csv`
 //! never writes over its level and replaces an earlier run's CSVs all together; `study accuracy`
-//! says when a plot cannot be written (exit 2); the window's saves, CSV exports and screenshots
+//! says when a plot cannot be written (exit 2); `render` and `study accuracy` write over an
+//! image, table or summary only when its mark shows rigidlab wrote it; the window's saves, CSV exports and screenshots
 //! never replace a file (a numbered name instead); a wrong preferences file is reported at
 //! path:line:col and kept as `prefs.ron.bad`, never read without limits nor silently replaced.
 
@@ -283,6 +284,73 @@ fn study_accuracy_exits_2_when_a_plot_cannot_be_written() {
         names(&out),
         ["accuracy.csv", "kinematics_free_fall.png", "summary.md"],
         "no temporary file left"
+    );
+    let _ = fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn render_and_study_write_over_only_their_own_files() {
+    // Before: `render --out photo.png` replaced any PNG there, and `study accuracy --out DIR`
+    // replaced DIR/summary.md and DIR/<level>.png whatever they held (issue 41's attack, and
+    // the standard: no output overwrites a file rigidlab cannot show it wrote).
+    let dir = temp_dir("own");
+    let level = repo_path(FREE_FALL);
+    let photo = dir.join("photo.png");
+    let photo_bytes = b"\x89PNG\r\n\x1a\n the user's photo".to_vec();
+    fs::write(&photo, &photo_bytes).unwrap();
+    let (code, err) = run_in(
+        &dir,
+        &["render", level.to_str().unwrap(), "--out", "photo.png"],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("rigidlab did not write it"), "{err}");
+    assert_eq!(fs::read(&photo).unwrap(), photo_bytes, "the photo is kept");
+
+    let out = dir.join("out");
+    fs::create_dir_all(&out).unwrap();
+    let study = |out: &Path| {
+        run_in(
+            &dir,
+            &[
+                "study",
+                "accuracy",
+                level.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--quick",
+            ],
+        )
+    };
+    // The user's notes under the summary's name: refused before the sweep, kept.
+    fs::write(out.join("summary.md"), "my notes\n").unwrap();
+    let (code, err) = study(&out);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("summary.md exists and rigidlab did not write it"),
+        "{err}"
+    );
+    assert_eq!(
+        fs::read_to_string(out.join("summary.md")).unwrap(),
+        "my notes\n"
+    );
+    assert_eq!(names(&out), ["summary.md"], "nothing written");
+    fs::remove_file(out.join("summary.md")).unwrap();
+    // A user's image under a plot's name: that plot is refused (exit 2), the image kept.
+    let plot = out.join("kinematics_free_fall.png");
+    fs::write(&plot, &photo_bytes).unwrap();
+    let (code, err) = study(&out);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("rigidlab did not write it"), "{err}");
+    assert_eq!(fs::read(&plot).unwrap(), photo_bytes, "the image is kept");
+    // With the image moved away, the study writes its files, and a rerun replaces them.
+    fs::remove_file(&plot).unwrap();
+    for run in 0..2 {
+        let (code, err) = study(&out);
+        assert_eq!(code, 0, "run {run}: {err}");
+    }
+    assert_eq!(
+        names(&out),
+        ["accuracy.csv", "kinematics_free_fall.png", "summary.md"]
     );
     let _ = fs::remove_dir_all(&dir);
 }
