@@ -128,7 +128,8 @@ fn main() {
         sink += scene_angular_momentum_about(s, glam::DVec2::ZERO);
         sink += quantities::free_body_arrows(None, s, ov.selected.unwrap()).1;
         let t3 = Instant::now();
-        // As app::build_drawing draws a frame.
+        // As the window draws a frame: app::scene::build_drawing, one system per overlay
+        // (app/overlay_systems.rs, the order of overlays::build), the scale bar.
         drawing.clear(view.m_per_px);
         scene_lines::scene_lines(
             &phys.sim.level,

@@ -44,6 +44,16 @@ pub struct Label {
     pub size: f32,
 }
 
+/// The steps of a frame's drawing, in order: the scene's lines, the overlays (one system each,
+/// `overlay_systems.rs`), the tools' marks, then the scale bar and the gizmos.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DrawStep {
+    Scene,
+    Overlays,
+    Marks,
+    Finish,
+}
+
 /// What a frame draws besides the filled meshes.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct Drawing {

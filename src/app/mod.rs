@@ -3,7 +3,8 @@
 //! - [`run`] and [`physics`]: the core `Simulation` stepped in `FixedUpdate` at the level's dt, so the window
 //!   computes the numbers `rigidlab check` computes;
 //! - [`view`], [`draw`], [`geometry`]: camera, filled bodies, outlines, joints, springs, ground;
-//! - [`overlays`]: the textbook's vectors and diagrams, from the snapshot ([`quantities`]);
+//! - [`overlays`]: the textbook's vectors and diagrams, from the snapshot ([`quantities`]), drawn
+//!   one system each ([`overlay_systems`]);
 //! - [`panels`] and [`tools`]: the egui panels and the mouse tools of the sandbox window;
 //! - [`render`](mod@render): the same scene drawn into a PNG without a window.
 //!
@@ -20,6 +21,7 @@ pub mod frame_cost;
 pub mod frame_rate;
 pub mod geometry;
 pub mod labels;
+pub mod overlay_systems;
 pub mod overlays;
 #[cfg(target_arch = "wasm32")]
 pub mod page_files;
@@ -46,7 +48,7 @@ pub use physics::{LiveChecks, PhysicsCommand, PhysicsPlugin, PhysicsStep};
 pub use playback::Playback;
 pub use run::Run;
 pub use sandbox::{add_sandbox, sandbox, FIRST_LEVEL};
-pub use scene::{label_want, screen_bodies, SceneDraw, ScenePlugin};
+pub use scene::{label_want, screen_bodies, SceneDraw, ScenePlugin, ScenePlugins};
 
 use crate::level::Scene;
 use std::path::Path;

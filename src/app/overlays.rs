@@ -76,7 +76,8 @@ const FEW: usize = 4;
 const MAX_ARROW: f64 = 0.45;
 
 /// Reference magnitudes that set the arrow scales: a reference maps to `REF_ARROW` of the scene.
-#[derive(Debug, Clone, Copy)]
+/// As a resource, this frame's (set by the scene's drawing before the overlays draw).
+#[derive(Resource, Debug, Clone, Copy, Default)]
 pub struct Scales {
     /// m/s, m/s^2, N.
     pub speed: f64,
@@ -190,47 +191,108 @@ struct Frame<'a> {
     px: f64,
 }
 
-/// Builds every enabled overlay into `d`, in drawing order: trails, velocities, accelerations,
-/// instantaneous centers, centers of percussion, free-body and kinetic diagrams, blows, H_O.
+impl<'a> Frame<'a> {
+    /// The frame of `phys` drawn at `px` meters per pixel.
+    fn new(
+        ov: &'a Overlays,
+        phys: &'a Run,
+        outlines: &'a [Outline],
+        scales: &'a Scales,
+        px: f64,
+    ) -> Frame<'a> {
+        let s = phys.snapshot();
+        let few = subjects(ov, s);
+        let label_all = ov.labels
+            && few.len()
+                == s.bodies
+                    .iter()
+                    .filter(|b| b.kind == BodyKind::Dynamic)
+                    .count();
+        Frame {
+            ov,
+            run: phys,
+            s,
+            outlines,
+            scales,
+            few,
+            labels: ov.labels,
+            label_all,
+            px,
+        }
+    }
+}
+
+/// One overlay: what draws it and the switch that turns it on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Overlay {
+    Trails,
+    Velocity,
+    Acceleration,
+    InstantCenters,
+    CentersOfPercussion,
+    Diagrams,
+    Blows,
+    Momentum,
+}
+
+impl Overlay {
+    /// Every overlay in drawing order (later ones over earlier ones, their labels placed after).
+    pub const ALL: [Overlay; 8] = [
+        Overlay::Trails,
+        Overlay::Velocity,
+        Overlay::Acceleration,
+        Overlay::InstantCenters,
+        Overlay::CentersOfPercussion,
+        Overlay::Diagrams,
+        Overlay::Blows,
+        Overlay::Momentum,
+    ];
+
+    /// Whether `ov` turns it on (the blows of the last step are always drawn).
+    pub fn is_on(self, ov: &Overlays) -> bool {
+        match self {
+            Overlay::Trails => ov.trails,
+            Overlay::Velocity => ov.velocity,
+            Overlay::Acceleration => ov.acceleration,
+            Overlay::InstantCenters | Overlay::CentersOfPercussion => ov.instant_center,
+            Overlay::Diagrams => ov.free_body || ov.kinetic,
+            Overlay::Blows => true,
+            Overlay::Momentum => ov.momentum,
+        }
+    }
+
+    /// Draws it into `d` (whether or not it is on).
+    pub fn draw(
+        self,
+        ov: &Overlays,
+        phys: &Run,
+        outlines: &[Outline],
+        scales: &Scales,
+        d: &mut Drawing,
+    ) {
+        let f = Frame::new(ov, phys, outlines, scales, d.m_per_px);
+        match self {
+            Overlay::Trails => trails(&f, d),
+            Overlay::Velocity => velocities(&f, d),
+            Overlay::Acceleration => accelerations(&f, d),
+            Overlay::InstantCenters => instant_centers(&f, d),
+            Overlay::CentersOfPercussion => centers_of_percussion(&f, d),
+            Overlay::Diagrams => diagrams(&f, d),
+            Overlay::Blows => blows(phys, scales, ov.labels, d),
+            Overlay::Momentum => momentum(&f, d),
+        }
+    }
+}
+
+/// Builds every enabled overlay into `d`, in drawing order ([`Overlay::ALL`]): trails,
+/// velocities, accelerations, instantaneous centers, centers of percussion, free-body and
+/// kinetic diagrams, blows, H_O. The window draws them with one system each
+/// (`overlay_systems.rs`), in the same order.
 pub fn build(ov: &Overlays, phys: &Run, outlines: &[Outline], scales: &Scales, d: &mut Drawing) {
-    let s = phys.snapshot();
-    let few = subjects(ov, s);
-    let label_all = ov.labels
-        && few.len()
-            == s.bodies
-                .iter()
-                .filter(|b| b.kind == BodyKind::Dynamic)
-                .count();
-    let f = Frame {
-        ov,
-        run: phys,
-        s,
-        outlines,
-        scales,
-        few,
-        labels: ov.labels,
-        label_all,
-        px: d.m_per_px,
-    };
-    if ov.trails {
-        trails(&f, d);
-    }
-    if ov.velocity {
-        velocities(&f, d);
-    }
-    if ov.acceleration {
-        accelerations(&f, d);
-    }
-    if ov.instant_center {
-        instant_centers(&f, d);
-        centers_of_percussion(&f, d);
-    }
-    if ov.free_body || ov.kinetic {
-        diagrams(&f, d);
-    }
-    blows(phys, scales, ov.labels, d);
-    if ov.momentum {
-        momentum(&f, d);
+    for o in Overlay::ALL {
+        if o.is_on(ov) {
+            o.draw(ov, phys, outlines, scales, d);
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use super::overlays::Overlays;
 use super::physics::LiveChecks;
 use super::playback::Playback;
 use super::run::Run;
-use super::scene::ScenePlugin;
+use super::scene::ScenePlugins;
 use super::view::{palette, View, WorldCamera};
 use crate::level::Scene;
 use crate::sim::Options;
@@ -252,7 +252,7 @@ fn run_renderer(
         viewport: Rect::new(0.0, 0.0, opts.width as f32, opts.height as f32),
         ..default()
     });
-    app.add_plugins(ScenePlugin { legend: true });
+    app.add_plugins(ScenePlugins { legend: true });
     app.finish();
     app.cleanup();
     let mut apps: SubApps = std::mem::take(app.sub_apps_mut());

@@ -2,7 +2,7 @@
 //! the plugins over an app that has its window ([`add_sandbox`]).
 
 use super::physics::PhysicsPlugin;
-use super::scene::ScenePlugin;
+use super::scene::ScenePlugins;
 use super::view::palette;
 use super::{advice, editor, frame_cost, frame_rate, panels, power, prefs, render, tools, unsaved};
 use crate::level::{Level, Scene};
@@ -113,7 +113,7 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
         options: Options::default(),
         paused,
     });
-    app.add_plugins(ScenePlugin { legend: false });
+    app.add_plugins(ScenePlugins { legend: false });
     app.insert_resource(browser);
     // A preferences file that is wrong is reported (stderr now, the status line at the first
     // frame) and moved aside, never fatal (prefs.rs).

@@ -2,19 +2,38 @@
 //! the title, time and color key; no panels, no camera of its own. The native window, the page
 //! and `rigidlab render` all draw with this plugin.
 
-use super::draw::{self, Drawing};
+use super::draw::{self, DrawStep, Drawing};
 use super::labels;
+use super::overlay_systems::OverlaysPlugin;
 use super::overlays::{self, Overlays, Scales};
 use super::physics::PhysicsStep;
 use super::run::Run;
 use super::scene_lines;
-use super::tools;
 use super::ui::color32;
 use super::view::{self, palette, Outlines, View};
+use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
 use bevy_egui::{egui, EguiContexts, EguiPrimaryContextPass};
 
-/// Drawing of the running scene: meshes, lines, overlays, labels (no panels, no camera).
+/// The running scene drawn: [`ScenePlugin`] (meshes, lines, labels) and [`OverlaysPlugin`] (one
+/// system per overlay); the sandbox's `ToolsPlugin` adds the tools' marks between them and the
+/// scale bar.
+pub struct ScenePlugins {
+    /// Paint the title/time/legend box (renders; the sandbox shows these in its panels).
+    pub legend: bool,
+}
+
+impl PluginGroup for ScenePlugins {
+    fn build(self) -> PluginGroupBuilder {
+        PluginGroupBuilder::start::<Self>()
+            .add(ScenePlugin {
+                legend: self.legend,
+            })
+            .add(OverlaysPlugin)
+    }
+}
+
+/// Drawing of the running scene: meshes, lines, labels (no overlays, no panels, no camera).
 pub struct ScenePlugin {
     /// Paint the title/time/legend box (renders; the sandbox shows these in its panels).
     pub legend: bool,
@@ -30,6 +49,19 @@ impl Plugin for ScenePlugin {
             .init_resource::<Outlines>()
             .init_resource::<Drawing>()
             .init_resource::<Overlays>()
+            .init_resource::<Scales>()
+            .configure_sets(
+                Update,
+                (
+                    DrawStep::Scene,
+                    DrawStep::Overlays,
+                    DrawStep::Marks,
+                    DrawStep::Finish,
+                )
+                    .chain()
+                    .in_set(SceneDraw)
+                    .after(PhysicsStep),
+            )
             .add_systems(
                 Update,
                 (
@@ -37,11 +69,15 @@ impl Plugin for ScenePlugin {
                     view::sync_camera,
                     view::sync_meshes,
                     build_drawing,
-                    draw::emit_gizmos,
                 )
                     .chain()
-                    .in_set(SceneDraw)
-                    .after(PhysicsStep),
+                    .in_set(DrawStep::Scene),
+            )
+            .add_systems(
+                Update,
+                (scale_bar, draw::emit_gizmos)
+                    .chain()
+                    .in_set(DrawStep::Finish),
             )
             .add_systems(EguiPrimaryContextPass, paint_labels);
         if self.legend {
@@ -50,13 +86,14 @@ impl Plugin for ScenePlugin {
     }
 }
 
-/// Body lines, overlays and scale bar of this frame.
+/// The frame's drawing started: the body lines and the selection, and the arrow scales the
+/// overlays and tools draw with ([`Scales`]).
 pub fn build_drawing(
     phys: Res<Run>,
     mut view: ResMut<View>,
     outlines: Res<Outlines>,
     ov: Res<Overlays>,
-    tool: Option<Res<tools::ToolState>>,
+    mut scales: ResMut<Scales>,
     mut d: ResMut<Drawing>,
 ) {
     let s = phys.snapshot();
@@ -84,7 +121,7 @@ pub fn build_drawing(
     if let Some(i) = ov.selected {
         scene_lines::highlight(&outlines.bodies, s, i, &mut d);
     }
-    let mut scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
+    *scales = Scales::of(s, view.scene_size(), view.max_speed, view.m_per_px);
     scales.gain = ov.arrow_scale;
     let vp = view.viewport;
     let (a, b) = (
@@ -92,10 +129,10 @@ pub fn build_drawing(
         view.to_world(Vec2::new(vp.max.x, vp.min.y)),
     );
     scales.visible = Some((a.min(b), a.max(b)));
-    overlays::build(&ov, &phys, &outlines.bodies, &scales, &mut d);
-    if let Some(tool) = tool {
-        tools::preview(&tool, &phys, &scales, &mut d);
-    }
+}
+
+/// The scale bar, last, over the overlays and the tools' marks.
+fn scale_bar(view: Res<View>, mut d: ResMut<Drawing>) {
     scene_lines::scale_bar(&view, &mut d);
 }
 

@@ -3,7 +3,7 @@
 //! for H_O; and the build tools, which send edits to the editor: place a body, join two bodies,
 //! hang a spring.
 
-use super::draw::{si, Drawing, Prim};
+use super::draw::{si, DrawStep, Drawing, Prim};
 use super::editor::{EditorCommand, Placeable};
 use super::overlays::{Overlays, Scales};
 use super::physics::{PhysicsCommand, PhysicsStep};
@@ -13,6 +13,7 @@ use super::view::{self, palette, Outlines, View};
 use crate::editor::{Edit, NewShape, Property};
 use crate::level::JointKind;
 use crate::snapshot::BodyKind;
+use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use glam::DVec2;
 
@@ -83,7 +84,6 @@ pub struct ToolState {
     /// The vertices of a polygon or the points of a track being drawn, world (rounded like a
     /// placed body).
     pub polygon: Vec<DVec2>,
-    press: Option<Vec2>,
 }
 
 /// A protractor: a vertex, one arm's end, and the other arm's end once clicked (until then the
@@ -108,20 +108,85 @@ impl Protractor {
 /// Aiming time: a drag of D meters gives the body a velocity change of about D / AIM_TIME.
 pub const AIM_TIME: f64 = 0.5;
 
+/// The pointer as every mouse tool reads it this frame, read once by [`read_pointer`].
+#[derive(Resource, Debug, Clone, Default)]
+pub struct Pointer {
+    /// The mouse over the scene's viewport, window pixels.
+    pub screen: Option<Vec2>,
+    /// The same point, world.
+    pub world: Option<DVec2>,
+    /// How near a click must be to what it picks: 4 px, in meters.
+    pub tol: f64,
+    /// The left button went down this frame over the scene (not over a panel), here (world).
+    pub clicked: Option<DVec2>,
+    /// The left button is held, the mouse here (world).
+    pub held: Option<DVec2>,
+    /// The mouse moved more than 3 px since the press.
+    pub moved: bool,
+    /// The left button came up this frame.
+    pub released: bool,
+    /// Enter went down this frame, not into a text field.
+    pub enter: bool,
+    /// Where the left button went down, window pixels.
+    press: Option<Vec2>,
+}
+
+/// What a mouse tool reads and writes: the pointer, the tools' state, the run it picks bodies
+/// from, and the editor it sends edits to.
+#[derive(SystemParam)]
+struct ToolInput<'w> {
+    pointer: Res<'w, Pointer>,
+    state: ResMut<'w, ToolState>,
+    run: Res<'w, Run>,
+    outlines: Res<'w, Outlines>,
+    view: Res<'w, View>,
+    edits: MessageWriter<'w, EditorCommand>,
+}
+
+/// The mouse tools' systems, in the order they run each frame.
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub struct MouseTools;
+
 pub struct ToolsPlugin;
 
 impl Plugin for ToolsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<ToolState>()
-            .add_systems(Update, forget_marks.before(mouse_tools))
+            .init_resource::<Pointer>()
+            .configure_sets(
+                Update,
+                MouseTools
+                    .run_if(super::unsaved::not_asking)
+                    .run_if(|windows: Query<&Window>| !windows.is_empty()),
+            )
+            .add_systems(Update, forget_marks.before(MouseTools))
             .add_systems(
                 Update,
-                (mouse_tools.run_if(super::unsaved::not_asking), hold_grabbed)
+                (
+                    (
+                        read_pointer,
+                        select_tool,
+                        impulse_tool,
+                        origin_tool,
+                        place_tool,
+                        join_tool,
+                        ruler_tool,
+                        protractor_tool,
+                        torsion_tool,
+                        polygon_tool,
+                        track_tool,
+                        spring_tool,
+                    )
+                        .chain()
+                        .in_set(MouseTools),
+                    hold_grabbed,
+                )
                     .chain()
                     // Before the step, so what they ask is applied this frame (and so before the
                     // scene is drawn, which comes after the step).
                     .before(PhysicsStep),
-            );
+            )
+            .add_systems(Update, draw_marks.in_set(DrawStep::Marks));
     }
 }
 
@@ -152,227 +217,291 @@ pub fn impulse_of_drag(m: f64, d: DVec2) -> DVec2 {
     d * m / AIM_TIME
 }
 
-// Not yet split into one system per tool (issue 44): every tool reads the same pointer state in one system.
-#[allow(clippy::too_many_lines)]
-#[allow(clippy::too_many_arguments)]
-fn mouse_tools(
+/// Reads the mouse and the keys the tools answer into [`Pointer`]; drops a half-drawn outline
+/// when its tool is left or Escape is pressed.
+fn read_pointer(
+    mut pointer: ResMut<Pointer>,
     mut state: ResMut<ToolState>,
-    phys: Res<Run>,
-    playback: Res<Playback>,
-    mut run_commands: MessageWriter<PhysicsCommand>,
-    mut ov: ResMut<Overlays>,
     view: Res<View>,
-    outlines: Res<Outlines>,
     buttons: Res<ButtonInput<MouseButton>>,
+    keys: Res<ButtonInput<KeyCode>>,
     windows: Query<&Window>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
-    keys: Res<ButtonInput<KeyCode>>,
-    mut edits: MessageWriter<EditorCommand>,
 ) {
     let Some(window) = windows.iter().next() else {
         return;
     };
+    let p = &mut *pointer;
     if !matches!(state.tool, Tool::Polygon | Tool::Track) || keys.just_pressed(KeyCode::Escape) {
         state.polygon.clear();
     }
     let typing = egui_input
         .as_ref()
         .is_some_and(|e| e.wants_any_keyboard_input());
-    if keys.just_pressed(KeyCode::Enter) && !typing && state.polygon.len() >= 3 {
-        let points = std::mem::take(&mut state.polygon);
-        edits.write(EditorCommand::Apply(polygon_body(&points)));
-    }
-    if keys.just_pressed(KeyCode::Enter)
-        && !typing
-        && state.tool == Tool::Track
-        && state.polygon.len() >= 2
-    {
-        let points = std::mem::take(&mut state.polygon);
-        edits.write(EditorCommand::Apply(track_edit(&points)));
-    }
+    p.enter = keys.just_pressed(KeyCode::Enter) && !typing;
     let over_ui = egui_input.is_some_and(|e| e.wants_any_pointer_input());
-    let cursor = view::scene_cursor(&view, window);
-    let world = cursor.map(|c| view.to_world(c));
-    let tol = 4.0 * view.m_per_px;
-    state.cursor = world;
-
+    p.screen = view::scene_cursor(&view, window);
+    p.world = p.screen.map(|c| view.to_world(c));
+    p.tol = 4.0 * view.m_per_px;
+    state.cursor = p.world;
+    p.clicked = None;
     if buttons.just_pressed(MouseButton::Left) && !over_ui {
-        if let (Some(c), Some(p)) = (cursor, world) {
-            state.press = Some(c);
-            let s = phys.snapshot();
-            match state.tool {
-                Tool::Select => match view::body_at(&outlines.bodies, s, p, tol, false) {
-                    Some(i) => {
-                        let b = &s.bodies[i];
-                        let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
-                        ov.selected = Some(i);
-                        ov.point = Some((i, local));
-                        if b.kind == BodyKind::Dynamic {
-                            state.grab = Some(Grab {
-                                body: i,
-                                local,
-                                target: p,
-                                pulling: false,
-                            });
-                        }
-                    }
-                    None => {
-                        ov.selected = None;
-                        ov.point = None;
-                    }
-                },
-                Tool::Impulse => {
-                    if let Some(i) = view::body_at(&outlines.bodies, s, p, tol, true) {
-                        let b = &s.bodies[i];
-                        let local = DVec2::from_angle(-b.angle).rotate(p - b.position);
-                        state.aim = Some(Aim {
-                            body: i,
-                            local,
-                            end: p,
-                        });
-                    }
+        if let (Some(c), Some(w)) = (p.screen, p.world) {
+            p.press = Some(c);
+            p.clicked = Some(w);
+        }
+    }
+    p.held = p.world.filter(|_| buttons.pressed(MouseButton::Left));
+    p.moved = match (p.press, p.screen) {
+        (Some(a), Some(b)) => a.distance(b) > 3.0,
+        _ => false,
+    };
+    p.released = buttons.just_released(MouseButton::Left);
+    if p.released {
+        p.press = None;
+    }
+}
+
+/// Select: a click selects the body there and the point on it and grabs a moving body; a drag
+/// pulls it with the mouse spring, or, paused at t = 0 where the scene is being set up, moves it
+/// (an edit, undoable).
+fn select_tool(mut t: ToolInput, mut ov: ResMut<Overlays>, playback: Res<Playback>) {
+    let (p, tol) = (&*t.pointer, t.pointer.tol);
+    if let (Tool::Select, Some(at)) = (t.state.tool, p.clicked) {
+        let s = t.run.snapshot();
+        match view::body_at(&t.outlines.bodies, s, at, tol, false) {
+            Some(i) => {
+                let b = &s.bodies[i];
+                let local = DVec2::from_angle(-b.angle).rotate(at - b.position);
+                ov.selected = Some(i);
+                ov.point = Some((i, local));
+                if b.kind == BodyKind::Dynamic {
+                    t.state.grab = Some(Grab {
+                        body: i,
+                        local,
+                        target: at,
+                        pulling: false,
+                    });
                 }
-                Tool::SetOrigin => ov.origin = p,
-                Tool::Place(what) => {
-                    edits.write(EditorCommand::Apply(what.edit_at(p, view.scene_size())));
-                }
-                Tool::Join(kind) => {
-                    let at = super::editor::round_point(p, view.scene_size());
-                    if let Some(e) = join_at(&phys, &outlines, at, tol, kind) {
-                        edits.write(EditorCommand::Apply(e));
-                    }
-                }
-                Tool::Ruler => state.ruler = Some((p, p)),
-                Tool::Protractor => {
-                    state.protractor = match state.protractor {
-                        // The second click ends the second arm.
-                        Some(pr) if !pr.dragging && pr.arm2.is_none() => Some(Protractor {
-                            arm2: Some(p),
-                            ..pr
-                        }),
-                        _ => Some(Protractor {
-                            vertex: p,
-                            arm1: p,
-                            arm2: None,
-                            dragging: true,
-                        }),
-                    }
-                }
-                Tool::Torsion => {
-                    if let Some(e) = torsion_at(&phys, &outlines, p, tol) {
-                        edits.write(EditorCommand::Apply(e));
-                    }
-                }
-                Tool::Polygon => {
-                    let closes =
-                        state.polygon.len() >= 3 && state.polygon[0].distance(p) < 2.0 * tol;
-                    if closes {
-                        let points = std::mem::take(&mut state.polygon);
-                        edits.write(EditorCommand::Apply(polygon_body(&points)));
-                    } else {
-                        let at = super::editor::round_point(p, view.scene_size());
-                        if state.polygon.last() != Some(&at) {
-                            state.polygon.push(at);
-                        }
-                    }
-                }
-                Tool::Track => {
-                    let ends = state.polygon.len() >= 2
-                        && state
-                            .polygon
-                            .last()
-                            .is_some_and(|l| l.distance(p) < 2.0 * tol);
-                    if ends {
-                        let points = std::mem::take(&mut state.polygon);
-                        edits.write(EditorCommand::Apply(track_edit(&points)));
-                    } else {
-                        let at = super::editor::round_point(p, view.scene_size());
-                        if state.polygon.last() != Some(&at) {
-                            state.polygon.push(at);
-                        }
-                    }
-                }
-                Tool::Spring => {
-                    state.spring_from =
-                        view::body_at(&outlines.bodies, s, p, tol, true).map(|i| (i, p));
-                }
+            }
+            None => {
+                ov.selected = None;
+                ov.point = None;
             }
         }
     }
-    if buttons.pressed(MouseButton::Left) {
-        if let Some(p) = world {
-            let moved = match (state.press, cursor) {
-                (Some(a), Some(b)) => a.distance(b) > 3.0,
-                _ => false,
-            };
-            if let Some(g) = state.grab.as_mut() {
-                g.target = p;
-                g.pulling |= moved;
-            }
-            if let Some(a) = state.aim.as_mut() {
-                a.end = p;
-            }
-            if state.tool == Tool::Ruler {
-                if let Some((_, to)) = state.ruler.as_mut() {
-                    *to = p;
-                }
-            }
-            if let Some(pr) = state.protractor.as_mut().filter(|pr| pr.dragging) {
-                pr.arm1 = p;
-            }
-        }
+    let (held, moved, released, world) = (p.held, p.moved, p.released, p.world);
+    if let (Some(g), Some(at)) = (t.state.grab.as_mut(), held) {
+        g.target = at;
+        g.pulling |= moved;
     }
-    if buttons.just_released(MouseButton::Left) {
-        let grab = state.grab.take();
-        state.press = None;
-        if let Some(pr) = state.protractor.as_mut() {
-            pr.dragging = false;
-        }
-        // Paused at t = 0 the scene is being set up: a drag moves the body (an edit, undoable).
-        if let (Some(g), Some(p)) = (grab.filter(|g| g.pulling), world) {
-            if playback.paused && phys.snapshot().is_initial() {
-                if let Some(def) = phys.scene.level.bodies.get(g.body) {
-                    let b = &phys.snapshot().bodies[g.body];
-                    let d = p - b.world_point(g.local);
-                    edits.write(EditorCommand::Apply(Edit::Set {
-                        body: def.name.clone(),
-                        property: Property::Position((def.position.0 + d.x, def.position.1 + d.y)),
-                    }));
-                }
-            }
-        }
-        if let (Some((i, from)), Some(to)) = (state.spring_from.take(), world) {
-            let s = phys.snapshot();
-            let level = &phys.scene.level;
-            let other = view::bodies_under(&outlines.bodies, s, to, tol)
-                .into_iter()
-                .find(|&k| k != i);
-            if from.distance(to) > tol {
-                let m = s.bodies[i].mass;
-                edits.write(EditorCommand::Apply(Edit::AddSpring {
-                    body1: level.bodies[i].name.clone(),
-                    at1: (from.x, from.y),
-                    body2: other.map(|k| level.bodies[k].name.clone()),
-                    at2: (to.x, to.y),
-                    stiffness: spring_stiffness(m),
+    if !released {
+        return;
+    }
+    let grab = t.state.grab.take();
+    if let (Some(g), Some(to)) = (grab.filter(|g| g.pulling), world) {
+        if playback.paused && t.run.snapshot().is_initial() {
+            if let Some(def) = t.run.scene.level.bodies.get(g.body) {
+                let b = &t.run.snapshot().bodies[g.body];
+                let d = to - b.world_point(g.local);
+                t.edits.write(EditorCommand::Apply(Edit::Set {
+                    body: def.name.clone(),
+                    property: Property::Position((def.position.0 + d.x, def.position.1 + d.y)),
                 }));
             }
         }
-        if let Some(a) = state.aim.take() {
-            let s = phys.snapshot();
-            if let Some(b) = s.bodies.get(a.body) {
-                let at = b.world_point(a.local);
-                let j = impulse_of_drag(b.mass, a.end - at);
-                let time = s.time;
-                if j.length() > 0.0 {
-                    run_commands.write(PhysicsCommand::Impulse {
-                        body: a.body,
-                        at,
-                        impulse: j,
-                    });
-                    state.last_impulse = Some((at, j, time));
-                }
+    }
+}
+
+/// Impulse: a click on a moving body aims from the point clicked, a drag sets the impulse, the
+/// release strikes.
+fn impulse_tool(mut t: ToolInput, mut run_commands: MessageWriter<PhysicsCommand>) {
+    if let (Tool::Impulse, Some(at)) = (t.state.tool, t.pointer.clicked) {
+        let s = t.run.snapshot();
+        if let Some(i) = view::body_at(&t.outlines.bodies, s, at, t.pointer.tol, true) {
+            let b = &s.bodies[i];
+            let local = DVec2::from_angle(-b.angle).rotate(at - b.position);
+            t.state.aim = Some(Aim {
+                body: i,
+                local,
+                end: at,
+            });
+        }
+    }
+    if let (Some(a), Some(at)) = (t.state.aim.as_mut(), t.pointer.held) {
+        a.end = at;
+    }
+    if !t.pointer.released {
+        return;
+    }
+    if let Some(a) = t.state.aim.take() {
+        let s = t.run.snapshot();
+        if let Some(b) = s.bodies.get(a.body) {
+            let at = b.world_point(a.local);
+            let j = impulse_of_drag(b.mass, a.end - at);
+            let time = s.time;
+            if j.length() > 0.0 {
+                run_commands.write(PhysicsCommand::Impulse {
+                    body: a.body,
+                    at,
+                    impulse: j,
+                });
+                t.state.last_impulse = Some((at, j, time));
             }
+        }
+    }
+}
+
+/// Set O: a click puts the point O of H_O there.
+fn origin_tool(pointer: Res<Pointer>, state: Res<ToolState>, mut ov: ResMut<Overlays>) {
+    if let (Tool::SetOrigin, Some(at)) = (state.tool, pointer.clicked) {
+        ov.origin = at;
+    }
+}
+
+/// Place: a click adds the chosen body there.
+fn place_tool(mut t: ToolInput) {
+    if let (Tool::Place(what), Some(at)) = (t.state.tool, t.pointer.clicked) {
+        let edit = what.edit_at(at, t.view.scene_size());
+        t.edits.write(EditorCommand::Apply(edit));
+    }
+}
+
+/// Join: a click adds the chosen joint there ([`join_at`]).
+fn join_tool(mut t: ToolInput) {
+    if let (Tool::Join(kind), Some(p)) = (t.state.tool, t.pointer.clicked) {
+        let at = super::editor::round_point(p, t.view.scene_size());
+        if let Some(e) = join_at(&t.run, &t.outlines, at, t.pointer.tol, kind) {
+            t.edits.write(EditorCommand::Apply(e));
+        }
+    }
+}
+
+/// Ruler: a drag measures from the press to the mouse.
+fn ruler_tool(pointer: Res<Pointer>, mut state: ResMut<ToolState>) {
+    if let (Tool::Ruler, Some(at)) = (state.tool, pointer.clicked) {
+        state.ruler = Some((at, at));
+    }
+    if let (Tool::Ruler, Some(at)) = (state.tool, pointer.held) {
+        if let Some((_, to)) = state.ruler.as_mut() {
+            *to = at;
+        }
+    }
+}
+
+/// Protractor: a drag from the vertex lays the first arm, the next click ends the second.
+fn protractor_tool(pointer: Res<Pointer>, mut state: ResMut<ToolState>) {
+    if let (Tool::Protractor, Some(p)) = (state.tool, pointer.clicked) {
+        state.protractor = match state.protractor {
+            // The second click ends the second arm.
+            Some(pr) if !pr.dragging && pr.arm2.is_none() => Some(Protractor {
+                arm2: Some(p),
+                ..pr
+            }),
+            _ => Some(Protractor {
+                vertex: p,
+                arm1: p,
+                arm2: None,
+                dragging: true,
+            }),
+        }
+    }
+    if let Some(at) = pointer.held {
+        if let Some(pr) = state.protractor.as_mut().filter(|pr| pr.dragging) {
+            pr.arm1 = at;
+        }
+    }
+    if pointer.released {
+        if let Some(pr) = state.protractor.as_mut() {
+            pr.dragging = false;
+        }
+    }
+}
+
+/// Torsion: a click adds a torsion spring on the body there ([`torsion_at`]).
+fn torsion_tool(mut t: ToolInput) {
+    if let (Tool::Torsion, Some(at)) = (t.state.tool, t.pointer.clicked) {
+        if let Some(e) = torsion_at(&t.run, &t.outlines, at, t.pointer.tol) {
+            t.edits.write(EditorCommand::Apply(e));
+        }
+    }
+}
+
+/// Polygon: clicks add vertices; a click on the first one, or Enter, makes the body.
+fn polygon_tool(mut t: ToolInput) {
+    // The outline is kept only while the polygon or the track tool is chosen (read_pointer):
+    // Enter makes a body of any outline of three points or more.
+    if t.pointer.enter && t.state.polygon.len() >= 3 {
+        let points = std::mem::take(&mut t.state.polygon);
+        t.edits.write(EditorCommand::Apply(polygon_body(&points)));
+    }
+    let (Tool::Polygon, Some(p)) = (t.state.tool, t.pointer.clicked) else {
+        return;
+    };
+    let closes = t.state.polygon.len() >= 3 && t.state.polygon[0].distance(p) < 2.0 * t.pointer.tol;
+    if closes {
+        let points = std::mem::take(&mut t.state.polygon);
+        t.edits.write(EditorCommand::Apply(polygon_body(&points)));
+    } else {
+        let at = super::editor::round_point(p, t.view.scene_size());
+        if t.state.polygon.last() != Some(&at) {
+            t.state.polygon.push(at);
+        }
+    }
+}
+
+/// Track: clicks add points; a click on the last one again, or Enter, makes the track.
+fn track_tool(mut t: ToolInput) {
+    if t.pointer.enter && t.state.tool == Tool::Track && t.state.polygon.len() >= 2 {
+        let points = std::mem::take(&mut t.state.polygon);
+        t.edits.write(EditorCommand::Apply(track_edit(&points)));
+    }
+    let (Tool::Track, Some(p)) = (t.state.tool, t.pointer.clicked) else {
+        return;
+    };
+    let ends = t.state.polygon.len() >= 2
+        && t.state
+            .polygon
+            .last()
+            .is_some_and(|l| l.distance(p) < 2.0 * t.pointer.tol);
+    if ends {
+        let points = std::mem::take(&mut t.state.polygon);
+        t.edits.write(EditorCommand::Apply(track_edit(&points)));
+    } else {
+        let at = super::editor::round_point(p, t.view.scene_size());
+        if t.state.polygon.last() != Some(&at) {
+            t.state.polygon.push(at);
+        }
+    }
+}
+
+/// Spring: a drag from a point on a moving body to a point on another body, or on the ground,
+/// hangs a spring between them.
+fn spring_tool(mut t: ToolInput) {
+    let tol = t.pointer.tol;
+    if let (Tool::Spring, Some(p)) = (t.state.tool, t.pointer.clicked) {
+        t.state.spring_from =
+            view::body_at(&t.outlines.bodies, t.run.snapshot(), p, tol, true).map(|i| (i, p));
+    }
+    if !t.pointer.released {
+        return;
+    }
+    if let (Some((i, from)), Some(to)) = (t.state.spring_from.take(), t.pointer.world) {
+        let s = t.run.snapshot();
+        let level = &t.run.scene.level;
+        let other = view::bodies_under(&t.outlines.bodies, s, to, tol)
+            .into_iter()
+            .find(|&k| k != i);
+        if from.distance(to) > tol {
+            let m = s.bodies[i].mass;
+            let edit = Edit::AddSpring {
+                body1: level.bodies[i].name.clone(),
+                at1: (from.x, from.y),
+                body2: other.map(|k| level.bodies[k].name.clone()),
+                at2: (to.x, to.y),
+                stiffness: spring_stiffness(m),
+            };
+            t.edits.write(EditorCommand::Apply(edit));
         }
     }
 }
@@ -474,6 +603,11 @@ fn hold_grabbed(
     if hold != run.held {
         run_commands.write(PhysicsCommand::Hold(hold));
     }
+}
+
+/// The tools' marks on this frame's drawing, over the overlays ([`preview`]).
+fn draw_marks(state: Res<ToolState>, run: Res<Run>, scales: Res<Scales>, mut d: ResMut<Drawing>) {
+    preview(&state, &run, &scales, &mut d);
 }
 
 /// What the tools draw: the mouse spring, the aimed impulse, the last impulse.

@@ -2,7 +2,7 @@
 //! graded questions on the left; playback, overlays, tools, solver settings, energy and momentum
 //! plots and the checks on the right; the status bar with the keyboard shortcuts at the bottom.
 //!
-//! This file lays the panels out (the [`PanelsPlugin`]'s one egui system); the state they share
+//! This file lays the panels out (the [`PanelsPlugin`]'s one egui system, a function per step); the state they share
 //! is [`UiState`] (state.rs) and the exercise's [`Exercise`]; each panel's file says what it
 //! shows. Panels read the run and ask for changes to it with [`PhysicsCommand`]s, which this
 //! system writes; they import from beside and below them, never from this file.
@@ -46,6 +46,7 @@ use super::view::{palette, View, WorldCamera};
 use crate::level::{BodyKind, Level, Scene};
 use bevy::camera::visibility::RenderLayers;
 use bevy::camera::CameraOutputMode;
+use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
 use bevy::render::render_resource::BlendState;
 use bevy_egui::{
@@ -120,50 +121,89 @@ pub fn spawn_cameras(
     ));
 }
 
+/// What the panels read and change: the run and the asks to it, and the window's state.
+#[derive(SystemParam)]
+struct PanelInput<'w, 's> {
+    contexts: EguiContexts<'w, 's>,
+    phys: Res<'w, Run>,
+    play: Res<'w, Playback>,
+    run_commands: MessageWriter<'w, PhysicsCommand>,
+    live: NonSend<'w, LiveChecks>,
+    exercise: ResMut<'w, Exercise>,
+    view: ResMut<'w, View>,
+    ov: ResMut<'w, Overlays>,
+    tools: ResMut<'w, ToolState>,
+    st: ResMut<'w, UiState>,
+    browser: ResMut<'w, Browser>,
+    time: ResMut<'w, Time<Virtual>>,
+    rate: Option<Res<'w, FrameRate>>,
+    files: FileInput<'w, 's>,
+}
+
+/// The editor, the preferences, the unsaved-work question and the advice the panels show.
+#[derive(SystemParam)]
+struct FileInput<'w, 's> {
+    editor: ResMut<'w, Editor>,
+    edits: MessageWriter<'w, EditorCommand>,
+    prefs: Option<ResMut<'w, Prefs>>,
+    prefs_file: Option<Res<'w, PrefsFile>>,
+    unsaved: Option<ResMut<'w, Unsaved>>,
+    commands: Commands<'w, 's>,
+    advice: Option<Res<'w, WindowAdvice>>,
+}
+
 /// The egui system: lays out the side panels and the status bar, and leaves the rest of the
 /// window to the scene; opens the level the browser asked for.
-// A Bevy system takes what it reads as parameters, at most 16 (hence the tuple's).
-// Not yet split into named steps (issue 44): the side panel's layout, one egui closure per section sharing the frame's resources.
-#[allow(clippy::too_many_lines)]
-#[allow(clippy::too_many_arguments, clippy::type_complexity)]
-fn panels(
-    mut contexts: EguiContexts,
-    (phys, play_state, mut run_commands): (Res<Run>, Res<Playback>, MessageWriter<PhysicsCommand>),
-    (live, mut exercise_state): (NonSend<LiveChecks>, ResMut<Exercise>),
-    mut view: ResMut<View>,
-    mut ov: ResMut<Overlays>,
-    mut tools: ResMut<ToolState>,
-    mut ui_state: ResMut<UiState>,
-    mut browser: ResMut<Browser>,
-    mut time: ResMut<Time<Virtual>>,
-    windows: Query<&Window>,
-    rate: Option<Res<FrameRate>>,
-    (mut editor, mut edits, mut prefs, prefs_file): (
-        ResMut<Editor>,
-        MessageWriter<EditorCommand>,
-        Option<ResMut<Prefs>>,
-        Option<Res<PrefsFile>>,
-    ),
-    (mut unsaved, mut commands, advice): (
-        Option<ResMut<Unsaved>>,
-        Commands,
-        Option<Res<WindowAdvice>>,
-    ),
-) -> Result {
-    let rate = rate.map(|r| r.clone()).unwrap_or_default();
-    let ctx = contexts.ctx_mut()?.clone();
-    let st = &mut *ui_state;
+fn panels(mut p: PanelInput) -> Result {
+    let ctx = p.contexts.ctx_mut()?.clone();
+    follow_the_run(&ctx, &mut p);
+    let mut root = egui::Ui::new(
+        ctx.clone(),
+        "rigidlab-root".into(),
+        egui::UiBuilder::new()
+            .layer_id(egui::LayerId::background())
+            .max_rect(ctx.viewport_rect()),
+    );
+    let mut load = left_panel(&mut root, &mut p);
+    // What the panels ask of the run, written in the order asked.
+    for c in right_panel(&mut root, &mut p) {
+        p.run_commands.write(c);
+    }
+    status_bar(&mut root, &mut p);
+    // What is left is the scene's viewport.
+    let free = root.available_rect_before_wrap();
+    p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
+    help_and_tour(&ctx, &mut p);
+    tidy_after_frame(&ctx, &mut p);
+    if load.is_none() {
+        load = p.st.pending_open.take();
+    }
+    if let Some(scene) = settle_leaving(&ctx, &mut p, load) {
+        open_level(&mut p, scene);
+    }
+    Ok(())
+}
+
+/// The first frame's look and preferences, a new level's save name and answers, the time scale.
+fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
+    let st = &mut *p.st;
+    let phys = &*p.phys;
     if st.generation.is_none() {
         // The textbook look: dark ink on paper.
         ctx.set_visuals(egui::Visuals::light());
-        if let Some(p) = prefs.as_deref() {
-            st.tour.open = !p.tour_done;
-            st.time_scale = p.time_scale;
-            ov.arrow_scale = p.arrow_scale;
-            ov.labels = p.labels;
-            ov.trails = p.trails;
+        if let Some(prefs) = p.files.prefs.as_deref() {
+            st.tour.open = !prefs.tour_done;
+            st.time_scale = prefs.time_scale;
+            p.ov.arrow_scale = prefs.arrow_scale;
+            p.ov.labels = prefs.labels;
+            p.ov.trails = prefs.trails;
         }
-        if let Some(problem) = prefs_file.as_deref().and_then(|f| f.problem.clone()) {
+        if let Some(problem) = p
+            .files
+            .prefs_file
+            .as_deref()
+            .and_then(|f| f.problem.clone())
+        {
             st.message = Some((problem, false));
         }
     }
@@ -174,113 +214,135 @@ fn panels(
     }
     if st.generation != Some(phys.generation) {
         st.generation = Some(phys.generation);
-        exercise_state.start(phys.sim.level.questions.len());
+        p.exercise.start(phys.sim.level.questions.len());
         st.edit_title = None;
         if st.save_path.is_empty() {
             st.save_path = default_save_path(&phys.scene);
         }
     }
-    if (time.relative_speed_f64() - st.time_scale).abs() > 1e-12 {
-        time.set_relative_speed_f64(st.time_scale);
+    if (p.time.relative_speed_f64() - st.time_scale).abs() > 1e-12 {
+        p.time.set_relative_speed_f64(st.time_scale);
     }
+}
 
-    let mut root = egui::Ui::new(
-        ctx.clone(),
-        "rigidlab-root".into(),
-        egui::UiBuilder::new()
-            .layer_id(egui::LayerId::background())
-            .max_rect(ctx.viewport_rect()),
-    );
-
+/// The left panel: the level browser over the exercise. The level the browser asked for, if any.
+fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
     let mut load: Option<Scene> = None;
     egui::Panel::left("levels")
         .resizable(true)
         .default_size(300.0)
         .size_range(200.0..=520.0)
-        .show(&mut root, |ui| {
+        .show(root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                level_browser(ui, &mut browser, &phys, &mut load);
+                level_browser(ui, &mut p.browser, &p.phys, &mut load);
                 ui.separator();
-                exercise(ui, &phys, &live, &mut exercise_state);
+                exercise(ui, &p.phys, &p.live, &mut p.exercise);
             });
         });
+    load
+}
 
-    // What the panels ask of the run, written in the order asked.
+/// The right panel, top to bottom: playback, overlays, tools, the Build panel, solver, measure,
+/// plots, checks and advice. What its panels ask of the run, in the order asked.
+fn right_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Vec<PhysicsCommand> {
     let mut asked: Vec<PhysicsCommand> = Vec::new();
     egui::Panel::right("controls")
         .resizable(true)
         .default_size(330.0)
         .size_range(260.0..=520.0)
-        .show(&mut root, |ui| {
+        .show(root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
                 let restarts = playback(
                     ui,
-                    (&phys, &play_state),
-                    &mut st.time_scale,
-                    &mut view,
-                    ov.selected,
+                    (&p.phys, &p.play),
+                    &mut p.st.time_scale,
+                    &mut p.view,
+                    p.ov.selected,
                     &mut asked,
                 );
                 if restarts {
                     // The impulse tool's arrow goes with the run it struck.
-                    tools.last_impulse = None;
+                    p.tools.last_impulse = None;
                 }
                 ui.separator();
-                overlay_controls(ui, &mut ov, &phys);
+                overlay_controls(ui, &mut p.ov, &p.phys);
                 ui.separator();
-                tool_controls(ui, &mut tools, &phys, st);
+                tool_controls(ui, &mut p.tools, &p.phys, &mut p.st);
                 ui.separator();
-                let mut out = Vec::new();
-                scene_editor(ui, &phys, &editor, &mut tools, ov.selected, st, &mut out);
-                for c in out {
-                    if c == EditorCommand::New {
-                        // Unsaved edits: ask first (app/unsaved.rs).
-                        if let Some(u) = unsaved.as_deref_mut() {
-                            if u.request(editor.unsaved(&phys), Leaving::New).is_none() {
-                                continue;
-                            }
-                        }
-                    }
-                    if matches!(c, EditorCommand::Apply(crate::editor::Edit::Delete { .. })) {
-                        ov.selected = None;
-                        ov.point = None;
-                    }
-                    edits.write(c);
-                }
+                build_panel(ui, p);
                 ui.separator();
-                solver(ui, &phys, &live, &mut asked);
+                solver(ui, &p.phys, &p.live, &mut asked);
                 ui.separator();
-                measure::measure(
-                    ui,
-                    &phys,
-                    &mut tools,
-                    &mut st.stopwatch,
-                    ov.selected,
-                    ov.point,
-                );
+                measure_and_plots(ui, p);
                 ui.separator();
-                plots(ui, &phys, ov.origin, &mut st.message);
-                ui.add_space(4.0);
-                plots::body_plot(
-                    ui,
-                    &phys,
-                    ov.selected,
-                    (&mut st.body_plot, &mut st.body_plot_against),
-                    &mut st.message,
-                );
-                ui.separator();
-                checks(ui, &phys, &live);
-                if let Some(a) = advice.as_deref() {
-                    super::advice::panel(ui, a, &phys, &mut asked);
+                checks(ui, &p.phys, &p.live);
+                if let Some(a) = p.files.advice.as_deref() {
+                    super::advice::panel(ui, a, &p.phys, &mut asked);
                 }
             });
         });
+    asked
+}
 
-    for c in asked {
-        run_commands.write(c);
+/// The Build panel; its edits go to the editor (a new scene over unsaved edits asks first).
+fn build_panel(ui: &mut egui::Ui, p: &mut PanelInput) {
+    let phys = &*p.phys;
+    let f = &mut p.files;
+    let mut out = Vec::new();
+    scene_editor(
+        ui,
+        phys,
+        &f.editor,
+        &mut p.tools,
+        p.ov.selected,
+        &mut p.st,
+        &mut out,
+    );
+    for c in out {
+        if c == EditorCommand::New {
+            // Unsaved edits: ask first (app/unsaved.rs).
+            if let Some(u) = f.unsaved.as_deref_mut() {
+                if u.request(f.editor.unsaved(phys), Leaving::New).is_none() {
+                    continue;
+                }
+            }
+        }
+        if matches!(c, EditorCommand::Apply(crate::editor::Edit::Delete { .. })) {
+            p.ov.selected = None;
+            p.ov.point = None;
+        }
+        f.edits.write(c);
     }
+}
 
-    egui::Panel::bottom("status").show(&mut root, |ui| {
+/// The Measure panel and the plots under it.
+fn measure_and_plots(ui: &mut egui::Ui, p: &mut PanelInput) {
+    let (phys, st, ov) = (&*p.phys, &mut *p.st, &*p.ov);
+    measure::measure(
+        ui,
+        phys,
+        &mut p.tools,
+        &mut st.stopwatch,
+        ov.selected,
+        ov.point,
+    );
+    ui.separator();
+    plots(ui, phys, ov.origin, &mut st.message);
+    ui.add_space(4.0);
+    plots::body_plot(
+        ui,
+        phys,
+        ov.selected,
+        (&mut st.body_plot, &mut st.body_plot_against),
+        &mut st.message,
+    );
+}
+
+/// The status bar: the last message, help, the frame rate and the keys.
+fn status_bar(root: &mut egui::Ui, p: &mut PanelInput) {
+    let rate = p.rate.as_deref().cloned().unwrap_or_default();
+    let st = &mut *p.st;
+    egui::Panel::bottom("status").show(root, |ui| {
         ui.horizontal_wrapped(|ui| {
             if let Some((m, ok)) = &st.message {
                 ui.label(rich(m.clone(), if *ok { palette::GRAVITY } else { palette::NORMAL }));
@@ -300,40 +362,52 @@ fn panels(
             );
         });
     });
+}
 
-    // What is left is the scene's viewport.
-    let free = root.available_rect_before_wrap();
-    let _ = windows;
-    view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
-
-    help::help(&ctx, &mut st.help);
+/// The help window and the tour over the scene; the preferences saved when they changed.
+fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput) {
+    let st = &mut *p.st;
+    help::help(ctx, &mut st.help);
     let mut t = std::mem::take(&mut st.tour);
-    let answered = exercise_state.grades.iter().any(|g| g.is_some());
-    let finished = tour::tour(&ctx, &mut t, &phys, &ov, (answered, st.help), &editor);
+    let answered = p.exercise.grades.iter().any(|g| g.is_some());
+    let finished = tour::tour(
+        ctx,
+        &mut t,
+        &p.phys,
+        &p.ov,
+        (answered, st.help),
+        &p.files.editor,
+    );
     st.tour = t;
-    if let Some(p) = prefs.as_deref_mut() {
+    if let Some(prefs) = p.files.prefs.as_deref_mut() {
         let now = Prefs {
-            tour_done: p.tour_done || finished,
-            arrow_scale: ov.arrow_scale,
+            tour_done: prefs.tour_done || finished,
+            arrow_scale: p.ov.arrow_scale,
             time_scale: st.time_scale,
-            labels: ov.labels,
-            trails: ov.trails,
+            labels: p.ov.labels,
+            trails: p.ov.trails,
         };
-        if now != *p {
-            *p = now;
-            let file = prefs_file.as_deref().cloned().unwrap_or_default();
-            if let Err(e) = p.save(&file) {
+        if now != *prefs {
+            *prefs = now;
+            let file = p.files.prefs_file.as_deref().cloned().unwrap_or_default();
+            if let Err(e) = prefs.save(&file) {
                 st.message = Some((format!("preferences not saved: {e}"), false));
             }
         }
     }
-    if ov
+}
+
+/// After the panels: a selection an undo took away, egui's keyboard focus, the body the run
+/// tracks, a just-saved level in the browser.
+fn tidy_after_frame(ctx: &egui::Context, p: &mut PanelInput) {
+    let phys = &*p.phys;
+    if p.ov
         .selected
         .is_some_and(|i| i >= phys.scene.level.bodies.len())
     {
         // An undo took the selected body away.
-        ov.selected = None;
-        ov.point = None;
+        p.ov.selected = None;
+        p.ov.point = None;
     }
     // A clicked button keeps egui's keyboard focus, and egui then reports that it wants the
     // keyboard: every shortcut went dead after any click in a panel (and Space pressed the
@@ -343,32 +417,38 @@ fn panels(
     if !ctx.text_edit_focused() && !ctx.is_pointer_over_egui() {
         ctx.memory_mut(|m| m.stop_text_input());
     }
-    if phys.tracked != ov.selected {
-        run_commands.write(PhysicsCommand::Track(ov.selected));
+    if phys.tracked != p.ov.selected {
+        p.run_commands.write(PhysicsCommand::Track(p.ov.selected));
     }
-    if editor.just_saved.take().is_some() {
+    if p.files.editor.just_saved.take().is_some() {
         // A level saved into the folder the browser lists shows there at once. The save field
         // keeps the name asked for: saving again keeps both files (the next numbered name).
-        if !browser.embedded {
-            *browser = Browser::scan(&browser.root.clone());
+        if !p.browser.embedded {
+            *p.browser = Browser::scan(&p.browser.root.clone());
         }
     }
-    if load.is_none() {
-        load = st.pending_open.take();
-    }
-    if let (Some(scene), Some(u)) = (load.take(), unsaved.as_deref_mut()) {
+}
+
+/// A level asked for (`load`) over unsaved edits waits for the user's answer; the answer
+/// settled (save, discard, cancel, and then open, start a new scene or close the window). The
+/// level to open now, if any.
+fn settle_leaving(ctx: &egui::Context, p: &mut PanelInput, load: Option<Scene>) -> Option<Scene> {
+    let (phys, st, f) = (&*p.phys, &mut *p.st, &mut p.files);
+    let mut load = load;
+    if let (Some(scene), Some(u)) = (load.take(), f.unsaved.as_deref_mut()) {
         // Unsaved edits: ask before another level replaces them.
         if let Some(Leaving::Open(s)) =
-            u.request(editor.unsaved(&phys), Leaving::Open(Box::new(scene)))
+            u.request(f.editor.unsaved(phys), Leaving::Open(Box::new(scene)))
         {
             load = Some(*s);
         }
     }
-    let answer = unsaved
+    let answer = f
+        .unsaved
         .as_deref()
-        .and_then(|u| super::unsaved::dialog(&ctx, u, &st.save_path));
-    if let (Some(answer), Some(u)) = (answer, unsaved.as_deref_mut()) {
-        match u.settle(answer, &mut editor, &phys, &PathBuf::from(&st.save_path)) {
+        .and_then(|u| super::unsaved::dialog(ctx, u, &st.save_path));
+    if let (Some(answer), Some(u)) = (answer, f.unsaved.as_deref_mut()) {
+        match u.settle(answer, &mut f.editor, phys, &PathBuf::from(&st.save_path)) {
             Ok((go, note)) => {
                 if let Some(m) = note {
                     st.message = Some((m, true));
@@ -376,10 +456,10 @@ fn panels(
                 match go {
                     Some(Leaving::Open(s)) => load = Some(*s),
                     Some(Leaving::New) => {
-                        edits.write(EditorCommand::New);
+                        f.edits.write(EditorCommand::New);
                     }
                     Some(Leaving::Close(window)) => {
-                        commands.entity(window).try_despawn();
+                        f.commands.entity(window).try_despawn();
                     }
                     None => {}
                 }
@@ -388,20 +468,22 @@ fn panels(
             Err(e) => st.message = Some((e, false)),
         }
     }
-    if editor.just_saved.take().is_some() && !browser.embedded {
+    if f.editor.just_saved.take().is_some() && !p.browser.embedded {
         // Saved from the question: the browser lists it at once.
-        *browser = Browser::scan(&browser.root.clone());
+        *p.browser = Browser::scan(&p.browser.root.clone());
     }
-    if let Some(scene) = load {
-        st.save_path = default_save_path(&scene);
-        st.message = Some((format!("opened {}", scene.file.display()), true));
-        ov.selected = None;
-        ov.point = None;
-        ov.origin = default_origin(&scene.level);
-        tools.last_impulse = None;
-        run_commands.write(PhysicsCommand::Open(Box::new(scene)));
-    }
-    Ok(())
+    load
+}
+
+/// Opens `scene`: its save name, the status line, the selection and O, and the run asked.
+fn open_level(p: &mut PanelInput, scene: Scene) {
+    p.st.save_path = default_save_path(&scene);
+    p.st.message = Some((format!("opened {}", scene.file.display()), true));
+    p.ov.selected = None;
+    p.ov.point = None;
+    p.ov.origin = default_origin(&scene.level);
+    p.tools.last_impulse = None;
+    p.run_commands.write(PhysicsCommand::Open(Box::new(scene)));
 }
 
 /// O defaults to the first fixed pivot (a point body), else the world origin.

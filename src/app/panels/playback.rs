@@ -11,8 +11,6 @@ use bevy_egui::egui;
 
 /// Draws the panel; what it asks of the run goes to `out`. True when it asked for the run to
 /// start over (Reset, or Play at the level's end).
-// Not yet split into named steps (issue 44): one egui panel's rows sharing the frame's resources.
-#[allow(clippy::too_many_lines)]
 pub(super) fn playback(
     ui: &mut egui::Ui,
     (phys, play): (&Run, &Playback),
@@ -21,7 +19,6 @@ pub(super) fn playback(
     selected: Option<usize>,
     out: &mut Vec<PhysicsCommand>,
 ) -> bool {
-    let mut restarts = false;
     let (time, step) = (phys.snapshot().time, phys.snapshot().step);
     let duration = phys.sim.level.world.duration;
     ui.heading("Playback");
@@ -29,8 +26,36 @@ pub(super) fn playback(
         "t = {:.3} s of {:.3} s   (step {})",
         time, duration, step
     ));
-    // The timeline: drag to any time of the level; going back replays the run from t = 0
-    // (deterministic, the user's pushes included), so every overlay, plot and check is the run's.
+    timeline(ui, phys, out);
+    let restarts = buttons(ui, (phys, play), view, out);
+    ui.horizontal(|ui| {
+        ui.label("time scale");
+        ui.add(
+            egui::Slider::new(time_scale, 1.0 / 64.0..=8.0)
+                .logarithmic(true)
+                .max_decimals(3),
+        );
+    });
+    let mut stop_at_end = play.stop_at_end;
+    if ui
+        .checkbox(
+            &mut stop_at_end,
+            "stop at the level's end (where `rigidlab check` stops)",
+        )
+        .changed()
+    {
+        out.push(PhysicsCommand::StopAtEnd(stop_at_end));
+    }
+    follow(ui, phys, view, selected);
+    blows(ui, phys);
+    warnings(ui, phys, play);
+    restarts
+}
+
+/// The timeline: drag to any time of the level; going back replays the run from t = 0
+/// (deterministic, the user's pushes included), so every overlay, plot and check is the run's.
+fn timeline(ui: &mut egui::Ui, phys: &Run, out: &mut Vec<PhysicsCommand>) {
+    let step = phys.snapshot().step;
     let dt = phys.sim.dt();
     let total = phys.sim.total_steps().max(step);
     let mut at = phys.seek.unwrap_or(step) as f64 * dt;
@@ -52,6 +77,17 @@ pub(super) fn playback(
             .small(),
         );
     }
+}
+
+/// Step back, play or pause, step, reset, fit. True when the run was asked to start over.
+fn buttons(
+    ui: &mut egui::Ui,
+    (phys, play): (&Run, &Playback),
+    view: &mut View,
+    out: &mut Vec<PhysicsCommand>,
+) -> bool {
+    let step = phys.snapshot().step;
+    let mut restarts = false;
     ui.horizontal(|ui| {
         if ui
             .add_enabled(step > 0, egui::Button::new("⏮"))
@@ -89,24 +125,11 @@ pub(super) fn playback(
             view.follow = None;
         }
     });
-    ui.horizontal(|ui| {
-        ui.label("time scale");
-        ui.add(
-            egui::Slider::new(time_scale, 1.0 / 64.0..=8.0)
-                .logarithmic(true)
-                .max_decimals(3),
-        );
-    });
-    let mut stop_at_end = play.stop_at_end;
-    if ui
-        .checkbox(
-            &mut stop_at_end,
-            "stop at the level's end (where `rigidlab check` stops)",
-        )
-        .changed()
-    {
-        out.push(PhysicsCommand::StopAtEnd(stop_at_end));
-    }
+    restarts
+}
+
+/// "Camera follows" the selected body (a follow of another body ends).
+fn follow(ui: &mut egui::Ui, phys: &Run, view: &mut View, selected: Option<usize>) {
     if view.follow.is_some_and(|i| Some(i) != selected) {
         view.follow = None;
     }
@@ -128,6 +151,10 @@ pub(super) fn playback(
             view.follow = follow.then_some(i);
         }
     }
+}
+
+/// The blows of the run: each one's impulse and the joints' impulsive reactions.
+fn blows(ui: &mut egui::Ui, phys: &Run) {
     for b in &phys.blows {
         ui.label(rich(
             format!(
@@ -163,6 +190,10 @@ pub(super) fn playback(
             ));
         }
     }
+}
+
+/// Why the run stopped, runs slowed, or is no longer the exercise's.
+fn warnings(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
     if let Some(e) = &phys.error {
         ui.label(rich(e.clone(), palette::NORMAL));
     }
@@ -178,5 +209,4 @@ pub(super) fn playback(
             palette::FRICTION,
         ));
     }
-    restarts
 }

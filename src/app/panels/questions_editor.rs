@@ -186,8 +186,6 @@ const PICKS: [&str; 8] = [
 ];
 
 /// Draws the questions: a line each (rewrite, remove), then the form.
-// Not yet split into named steps (issue 44): one egui form, drawn top to bottom, whose parts share the form's borrowed state.
-#[allow(clippy::too_many_lines)]
 pub(super) fn questions(
     ui: &mut egui::Ui,
     level: &Level,
@@ -198,9 +196,50 @@ pub(super) fn questions(
     let mut form: QuestionForm = ui.data(|d| d.get_temp(id)).unwrap_or_default();
     let mut error: Option<String> = ui.data(|d| d.get_temp(id.with("error"))).flatten();
     ui.label(egui::RichText::new("questions").strong());
+    level_step(ui, level, out);
+    question_list(ui, level, &mut form, out);
+    ui.label(
+        rich(
+            match form.editing {
+                Some(i) => format!("rewriting question {}", i + 1),
+                None => "a new question".into(),
+            },
+            palette::OUTLINE,
+        )
+        .small(),
+    );
+    form_fields(ui, level, &mut form);
+    // The last add or rewrite: once the editor took it, the form starts a new question.
+    let sent_id = id.with("sent");
+    if ui.data(|d| d.get_temp::<bool>(sent_id)).unwrap_or(false) {
+        ui.data_mut(|d| d.insert_temp(sent_id, false));
+        if editor.note.as_ref().is_some_and(|(_, ok)| *ok) {
+            form = QuestionForm {
+                tolerance: form.tolerance.clone(),
+                why: form.why.clone(),
+                ..QuestionForm::default()
+            };
+        }
+    }
+    form_buttons(ui, level, (&mut form, &mut error), sent_id, out);
+    let preview_text = editor.preview.as_ref().map(|(_, r)| match r {
+        Ok(r) => preview_note(r),
+        Err(e) => e.clone(),
+    });
+    form_note(ui, editor, error.as_ref(), preview_text.as_ref());
+    if let (Some((q, r)), Some(text)) = (&editor.preview, preview_text) {
+        preview(ui, level, &mut form, (q, r), &text);
+    }
+    ui.data_mut(|d| {
+        d.insert_temp(id, form);
+        d.insert_temp(id.with("error"), error);
+    });
+}
+
+/// The level's own step: what the questions are read at, in the preview and in
+/// `rigidlab check` (the solver panel changes only the window's run).
+fn level_step(ui: &mut egui::Ui, level: &Level, out: &mut Vec<EditorCommand>) {
     ui.horizontal(|ui| {
-        // The level's own step: what the questions are read at, in the preview and in
-        // `rigidlab check` (the solver panel changes only the window's run).
         ui.label("the level's step dt, s");
         let (dt, substeps) = (level.world.dt, level.world.substeps);
         let at = Accepts::above(0.0, 1.0, "s");
@@ -216,6 +255,15 @@ pub(super) fn questions(
             }));
         }
     });
+}
+
+/// A line per question: its quantity and answer, "edit" (into the form) and "remove".
+fn question_list(
+    ui: &mut egui::Ui,
+    level: &Level,
+    form: &mut QuestionForm,
+    out: &mut Vec<EditorCommand>,
+) {
     for (i, q) in level.questions.iter().enumerate() {
         ui.horizontal_wrapped(|ui| {
             // Six significant digits here (a computed answer carries all 17): the full value
@@ -229,7 +277,7 @@ pub(super) fn questions(
             ))
             .on_hover_text(format!("{}\nexpected {} {}", q.ask, q.expected, q.unit));
             if ui.small_button("edit").clicked() {
-                form = QuestionForm::from_question(i, q);
+                *form = QuestionForm::from_question(i, q);
             }
             if ui.small_button("remove").clicked() {
                 out.push(EditorCommand::Apply(Edit::RemoveQuestion {
@@ -238,18 +286,17 @@ pub(super) fn questions(
             }
         });
     }
-    ui.label(
-        rich(
-            match form.editing {
-                Some(i) => format!("rewriting question {}", i + 1),
-                None => "a new question".into(),
-            },
-            palette::OUTLINE,
-        )
-        .small(),
-    );
-    // The fields fit the panel (they ran past its edge, and a long refusal widened it).
-    let wide = |ui: &egui::Ui| (ui.available_width() - 8.0).max(80.0);
+}
+
+/// A text field as wide as the panel leaves (they ran past its edge, and a long refusal
+/// widened it).
+fn wide(ui: &egui::Ui) -> f32 {
+    (ui.available_width() - 8.0).max(80.0)
+}
+
+/// The form's fields, a row each: id, question, quantity (typed or picked), when, expected,
+/// tolerance, unit, why.
+fn form_fields(ui: &mut egui::Ui, level: &Level, form: &mut QuestionForm) {
     egui::Grid::new("question form").num_columns(2).show(ui, |ui| {
         ui.label("id");
         ui.add(egui::TextEdit::singleline(&mut form.id).desired_width(wide(ui)));
@@ -268,39 +315,7 @@ pub(super) fn questions(
                     .hint_text("Speed(\"disc1\")")
                     .desired_width(wide(ui)),
             );
-            ui.horizontal_wrapped(|ui| {
-                let bodies: Vec<&str> = level
-                    .bodies
-                    .iter()
-                    .filter(|b| b.kind == BodyKind::Dynamic)
-                    .map(|b| b.name.as_str())
-                    .collect();
-                let ground = level
-                    .bodies
-                    .iter()
-                    .find(|b| b.kind == BodyKind::Fixed && b.name != "ground")
-                    .or_else(|| level.bodies.iter().find(|b| b.kind == BodyKind::Fixed))
-                    .map(|b| b.name.as_str());
-                if !bodies.is_empty() {
-                    egui::ComboBox::from_id_salt("question pick")
-                        .selected_text("pick")
-                        .show_ui(ui, |ui| {
-                            for b in &bodies {
-                                for p in PICKS {
-                                    if ui.selectable_label(false, format!("{p}(\"{b}\")")).clicked() {
-                                        form.quantity = format!("{p}(\"{b}\")");
-                                    }
-                                }
-                                if let Some(g) = ground {
-                                    let t = format!("RollingAcceleration(body: \"{b}\", ground: \"{g}\")");
-                                    if ui.selectable_label(false, &t).clicked() {
-                                        form.quantity = t;
-                                    }
-                                }
-                            }
-                        });
-                }
-            });
+            ui.horizontal_wrapped(|ui| quantity_pick(ui, level, form));
         });
         ui.end_row();
         ui.label("when");
@@ -337,18 +352,56 @@ pub(super) fn questions(
         ui.add(egui::TextEdit::singleline(&mut form.why).desired_width(wide(ui)));
         ui.end_row();
     });
-    // The last add or rewrite: once the editor took it, the form starts a new question.
-    let sent_id = id.with("sent");
-    if ui.data(|d| d.get_temp::<bool>(sent_id)).unwrap_or(false) {
-        ui.data_mut(|d| d.insert_temp(sent_id, false));
-        if editor.note.as_ref().is_some_and(|(_, ok)| *ok) {
-            form = QuestionForm {
-                tolerance: form.tolerance.clone(),
-                why: form.why.clone(),
-                ..QuestionForm::default()
-            };
-        }
+}
+
+/// The quantity picker: [`PICKS`] of each moving body, and its rolling acceleration on the
+/// fixed body it may roll on.
+fn quantity_pick(ui: &mut egui::Ui, level: &Level, form: &mut QuestionForm) {
+    let bodies: Vec<&str> = level
+        .bodies
+        .iter()
+        .filter(|b| b.kind == BodyKind::Dynamic)
+        .map(|b| b.name.as_str())
+        .collect();
+    let ground = level
+        .bodies
+        .iter()
+        .find(|b| b.kind == BodyKind::Fixed && b.name != "ground")
+        .or_else(|| level.bodies.iter().find(|b| b.kind == BodyKind::Fixed))
+        .map(|b| b.name.as_str());
+    if !bodies.is_empty() {
+        egui::ComboBox::from_id_salt("question pick")
+            .selected_text("pick")
+            .show_ui(ui, |ui| {
+                for b in &bodies {
+                    for p in PICKS {
+                        if ui
+                            .selectable_label(false, format!("{p}(\"{b}\")"))
+                            .clicked()
+                        {
+                            form.quantity = format!("{p}(\"{b}\")");
+                        }
+                    }
+                    if let Some(g) = ground {
+                        let t = format!("RollingAcceleration(body: \"{b}\", ground: \"{g}\")");
+                        if ui.selectable_label(false, &t).clicked() {
+                            form.quantity = t;
+                        }
+                    }
+                }
+            });
     }
+}
+
+/// Preview, add (or rewrite) and, while rewriting, a new question; a form the editor cannot
+/// take leaves why in `error`.
+fn form_buttons(
+    ui: &mut egui::Ui,
+    level: &Level,
+    (form, error): (&mut QuestionForm, &mut Option<String>),
+    sent_id: egui::Id,
+    out: &mut Vec<EditorCommand>,
+) {
     ui.horizontal(|ui| {
         if ui
             .button("preview")
@@ -359,10 +412,10 @@ pub(super) fn questions(
         {
             match form.preview(level) {
                 Ok(q) => {
-                    error = None;
+                    *error = None;
                     out.push(EditorCommand::Preview(Box::new(q)));
                 }
-                Err(e) => error = Some(e),
+                Err(e) => *error = Some(e),
             }
         }
         let verb = if form.editing.is_some() {
@@ -373,30 +426,34 @@ pub(super) fn questions(
         if ui.button(verb).clicked() {
             match form.command(level) {
                 Ok(c) => {
-                    error = None;
+                    *error = None;
                     out.push(c);
                     ui.data_mut(|d| d.insert_temp(sent_id, true));
                 }
-                Err(e) => error = Some(e),
+                Err(e) => *error = Some(e),
             }
         }
         if form.editing.is_some() && ui.button("new").clicked() {
-            form = QuestionForm::default();
+            *form = QuestionForm::default();
         }
     });
-    let preview_text = editor.preview.as_ref().map(|(_, r)| match r {
-        Ok(r) => preview_note(r),
-        Err(e) => e.clone(),
-    });
-    if let Some(e) = &error {
+}
+
+/// Under the form: what is wrong with it, or else the editor's answer to the last command (the
+/// validator's refusal, in full here) unless it is the preview, shown below.
+fn form_note(
+    ui: &mut egui::Ui,
+    editor: &Editor,
+    error: Option<&String>,
+    preview_text: Option<&String>,
+) {
+    if let Some(e) = error {
         ui.label(rich(e.clone(), palette::NORMAL));
     } else if let Some((note, ok)) = editor
         .note
         .as_ref()
-        .filter(|(n, _)| Some(n) != preview_text.as_ref())
+        .filter(|(n, _)| Some(n) != preview_text)
     {
-        // The editor's answer to the last command (the validator's refusal, in full here),
-        // unless it is the preview, shown below.
         ui.label(
             rich(
                 note.clone(),
@@ -409,54 +466,66 @@ pub(super) fn questions(
             .small(),
         );
     }
-    if let (Some((q, r)), Some(text)) = (&editor.preview, preview_text) {
-        // A preview of another question than the form's (its quantity or instant since
-        // changed) is said to be one, and offers nothing to fill in.
-        let current = form
-            .preview(level)
-            .is_ok_and(|f| f.quantity == q.quantity && f.at == q.at);
-        let head = if current {
-            "preview".to_string()
-        } else {
-            format!("earlier preview, of {}", q.id)
-        };
-        ui.label(rich(format!("{head}: {text}"), palette::OUTLINE).small());
-        if let (Ok(r), true) = (r, current) {
-            match form.expected_for(r) {
-                Some(e) => {
-                    let v = r.with_expected(e);
-                    ui.label(
-                        rich(
-                            verdict(&v),
-                            if v.passed {
-                                palette::GRAVITY
-                            } else {
-                                palette::NORMAL
-                            },
-                        )
-                        .small(),
-                    );
-                }
-                None if !form.compute => {
-                    ui.label(rich("type the expected answer (or tick \"compute it\") to see whether it passes", palette::OUTLINE).small());
-                }
-                None => {}
-            }
-            if let (Some(a), false) = (r.analysis.filter(|a| a.is_finite()), form.compute) {
-                if ui
-                    .small_button("use the analysis value")
-                    .on_hover_text(format!("{a}"))
-                    .clicked()
-                {
-                    form.expected = format!("{a}");
-                }
-            }
+}
+
+/// The last preview (`text`): whether the form's expected answer passes against it, and its
+/// analysis value to fill in.
+fn preview(
+    ui: &mut egui::Ui,
+    level: &Level,
+    form: &mut QuestionForm,
+    (q, r): (&QuestionDef, &Result<QuestionResult, String>),
+    text: &str,
+) {
+    // A preview of another question than the form's (its quantity or instant since
+    // changed) is said to be one, and offers nothing to fill in.
+    let current = form
+        .preview(level)
+        .is_ok_and(|f| f.quantity == q.quantity && f.at == q.at);
+    let head = if current {
+        "preview".to_string()
+    } else {
+        format!("earlier preview, of {}", q.id)
+    };
+    ui.label(rich(format!("{head}: {text}"), palette::OUTLINE).small());
+    let (Ok(r), true) = (r, current) else {
+        return;
+    };
+    match form.expected_for(r) {
+        Some(e) => {
+            let v = r.with_expected(e);
+            ui.label(
+                rich(
+                    verdict(&v),
+                    if v.passed {
+                        palette::GRAVITY
+                    } else {
+                        palette::NORMAL
+                    },
+                )
+                .small(),
+            );
+        }
+        None if !form.compute => {
+            ui.label(
+                rich(
+                    "type the expected answer (or tick \"compute it\") to see whether it passes",
+                    palette::OUTLINE,
+                )
+                .small(),
+            );
+        }
+        None => {}
+    }
+    if let (Some(a), false) = (r.analysis.filter(|a| a.is_finite()), form.compute) {
+        if ui
+            .small_button("use the analysis value")
+            .on_hover_text(format!("{a}"))
+            .clicked()
+        {
+            form.expected = format!("{a}");
         }
     }
-    ui.data_mut(|d| {
-        d.insert_temp(id, form);
-        d.insert_temp(id.with("error"), error);
-    });
 }
 
 /// A number in six significant digits, trailing zeros dropped (3.27887, 4.905, 1.5e-7).

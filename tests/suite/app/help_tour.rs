@@ -90,14 +90,16 @@ fn tour_ticks_stay_once_earned_and_all_seven_come_in_order() {
 
 #[test]
 fn ruler_and_protractor_marks_go_with_the_level() {
-    let mut t = ToolState::default();
-    t.ruler = Some((glam::DVec2::ZERO, glam::DVec2::X));
-    t.protractor = Some(rigidlab::app::tools::Protractor {
-        vertex: glam::DVec2::ZERO,
-        arm1: glam::DVec2::X,
-        arm2: Some(glam::DVec2::Y),
-        dragging: false,
-    });
+    let mut t = ToolState {
+        ruler: Some((glam::DVec2::ZERO, glam::DVec2::X)),
+        protractor: Some(rigidlab::app::tools::Protractor {
+            vertex: glam::DVec2::ZERO,
+            arm1: glam::DVec2::X,
+            arm2: Some(glam::DVec2::Y),
+            dragging: false,
+        }),
+        ..ToolState::default()
+    };
     t.forget_marks();
     assert!(t.ruler.is_none() && t.protractor.is_none());
 }

@@ -9,6 +9,7 @@ mod inspector_fields;
 mod key_chords;
 mod label_placement;
 mod measure;
+mod mouse_tools;
 mod playback;
 mod plot_labels;
 mod plugins;
