@@ -429,9 +429,9 @@ fn torsion_tool(mut t: ToolInput) {
 
 /// Polygon: clicks add vertices; a click on the first one, or Enter, makes the body.
 fn polygon_tool(mut t: ToolInput) {
-    // The outline is kept only while the polygon or the track tool is chosen (read_pointer):
-    // Enter makes a body of any outline of three points or more.
-    if t.pointer.enter && t.state.polygon.len() >= 3 {
+    // The outline is shared with the track tool (read_pointer keeps it while either is
+    // chosen), so Enter makes a body only under this tool: under Track it makes the track.
+    if t.pointer.enter && t.state.tool == Tool::Polygon && t.state.polygon.len() >= 3 {
         let points = std::mem::take(&mut t.state.polygon);
         t.edits.write(EditorCommand::Apply(polygon_body(&points)));
     }

@@ -124,3 +124,43 @@ fn each_mouse_tool_does_what_it_says_through_its_system() {
     let (a, b) = app.world().resource::<ToolState>().ruler.unwrap();
     assert!((a.distance(b) - 0.5).abs() < 1e-9, "ruler {a} to {b}");
 }
+
+/// One frame with Enter pressed (not into a text field).
+fn press_enter(app: &mut App) {
+    app.world_mut()
+        .resource_mut::<ButtonInput<KeyCode>>()
+        .press(KeyCode::Enter);
+    app.update();
+    let mut keys = app.world_mut().resource_mut::<ButtonInput<KeyCode>>();
+    keys.release(KeyCode::Enter);
+    keys.clear();
+}
+
+#[test]
+fn enter_under_the_track_tool_makes_a_track_not_a_body() {
+    // Before: the polygon tool's Enter ran for either tool, so three track points and Enter
+    // made a polygon body (found when the tools became one system each, 2026-12-06).
+    let mut app = tools_app();
+    use_tool(&mut app, Tool::Track);
+    let level = |app: &App| app.world().resource::<Run>().scene.level.clone();
+    let before = level(&app);
+    for p in [(-2.0, 0.0), (0.0, -1.0), (2.0, 0.0)] {
+        let at = DVec2::new(p.0, p.1);
+        frame(&mut app, at, Some(true));
+        frame(&mut app, at, Some(false));
+    }
+    press_enter(&mut app);
+    app.update();
+    let after = level(&app);
+    assert_eq!(
+        after.bodies.len(),
+        before.bodies.len() + 1,
+        "one track body added"
+    );
+    let track = after.bodies.last().unwrap();
+    assert!(
+        !matches!(track.shape, Some(rigidlab::level::Shape::Polygon { .. })),
+        "Enter under the track tool made a polygon: {:?}",
+        track.shape
+    );
+}
