@@ -58,6 +58,8 @@ pub mod sim64 {
     mod probes;
     mod profiles;
     mod readings;
+    mod setup;
+    mod step;
     mod welds;
     mod world;
     pub use world::Simulation;

@@ -26,6 +26,8 @@ mod probes;
 pub mod profiles;
 mod readings;
 pub mod settings;
+mod setup;
+mod step;
 mod welds;
 mod world;
 

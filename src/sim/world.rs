@@ -1,13 +1,12 @@
 //! The running simulation of one level (compiled once per precision, see `sim/mod.rs`).
 
 use super::build;
-use super::profiles::{scalar_profile_at, vector_profile_at};
 use super::rapier::prelude::*;
-use super::readings::{merge_contacts, merge_joints, place_at_step_end};
+use super::setup;
 use crate::level::*;
 use crate::sim::explosion_guard::{motion_energy, EnergyGuard, FACTOR, SUSTAIN};
 use crate::sim::options::{Options, SimError};
-use crate::sim::settings::{Settings, StepCalls, Substepping};
+use crate::sim::settings::{Settings, StepCalls};
 use crate::snapshot::*;
 use glam::DVec2;
 use std::collections::HashMap;
@@ -58,67 +57,15 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    // Not yet split into named steps (issue 44): builds the rapier world from a scene in the order rapier needs.
-    #[allow(clippy::too_many_lines)]
+    /// Builds the rapier world of a scene, in the order rapier needs, and reads its initial state.
     pub fn new(scene: &Scene, opts: &Options) -> Self {
         let level = scene.level.clone();
         let settings = Settings::resolve(&level, opts, super::PRECISION);
-        let effects = &settings.effects;
-        let mut world = PhysicsWorld::new();
-        // A ball on an arc track touches the circle, not its facets (sim/arc_contacts.rs).
-        world
-            .narrow_phase
-            .set_query_dispatcher(super::arc_contacts::dispatcher());
-        world.gravity = build::gravity(&level);
-        world.integration_parameters = build::integration_parameters(&settings);
-        let prediction_distance = world.integration_parameters.normalized_prediction_distance;
-        let contacts = effects.has(Effect::Contacts);
-
-        let mut bodies = Vec::new();
-        let mut body_index = HashMap::new();
-        for (i, b) in level.bodies.iter().enumerate() {
-            let h = world.insert_body(build::body_builder(
-                b,
-                effects,
-                settings.allow_fast_rotation,
-            ));
-            if contacts {
-                for c in build::colliders(b, effects) {
-                    // user_data carries the body's index for reading contacts back.
-                    world.insert_collider(c.user_data(i as u128), Some(h));
-                }
-            }
-            // rapier folds mass properties into a body only inside its first step; an impulse
-            // event at t = 0 (applied before that step) would then see zero mass and do nothing.
-            let rb = &mut world.bodies[h];
-            rb.recompute_mass_properties_from_colliders(&world.colliders);
-            bodies.push(h);
-            body_index.insert(b.name.clone(), i);
-        }
-        let mut joints = Vec::new();
-        if effects.has(Effect::Joints) {
-            for j in &level.joints {
-                let (i1, i2) = (body_index[&j.body1], body_index[&j.body2]);
-                let data = build::joint(j, &level.bodies[i1], &level.bodies[i2]);
-                joints.push(world.insert_impulse_joint(bodies[i1], bodies[i2], data));
-            }
-        }
+        let (mut world, prediction_distance) = setup::empty_world(&level, &settings);
+        let (bodies, body_index) = setup::insert_bodies(&mut world, &level, &settings);
+        let joints = setup::insert_joints(&mut world, &level, &settings, &bodies, &body_index);
         let mut sim = Simulation {
-            snapshot: Snapshot {
-                step: 0,
-                time: 0.0,
-                dt: 0.0,
-                substeps: settings.substeps,
-                precision: settings.precision,
-                gravity: DVec2::new(world.gravity.x as f64, world.gravity.y as f64),
-                bodies: Vec::new(),
-                contacts: Vec::new(),
-                joints: Vec::new(),
-                springs: Vec::new(),
-                couplings: Vec::new(),
-                loads: Vec::new(),
-                impulses: Vec::new(),
-            },
+            snapshot: setup::empty_snapshot(&settings, world.gravity),
             level,
             settings,
             world,
@@ -144,82 +91,8 @@ impl Simulation {
                 .iter()
                 .any(|b| b.kind == BodyKind::Kinematic),
         };
-        sim.joint_defs = if sim.settings.effects.has(Effect::Joints) {
-            sim.level.joints.clone()
-        } else {
-            Vec::new()
-        };
-        sim.pending_welds = sim
-            .level
-            .events
-            .iter()
-            .filter_map(|e| match e {
-                EventDef::WeldOnContact { name, body1, body2 } => {
-                    Some((name.clone(), sim.body_index[body1], sim.body_index[body2]))
-                }
-                _ => None,
-            })
-            .collect();
-        let mut forced: Vec<usize> = sim
-            .level
-            .loads
-            .iter()
-            .map(|l| sim.body_index[&l.body])
-            .collect();
-        for s in &sim.level.springs {
-            forced.push(sim.body_index[&s.body1]);
-            forced.extend(s.body2.as_ref().map(|b| sim.body_index[b]));
-        }
-        for t in &sim.level.torsion_springs {
-            forced.push(sim.body_index[&t.body1]);
-            forced.extend(t.body2.as_ref().map(|b| sim.body_index[b]));
-        }
-        sim.carriers = sim
-            .level
-            .couplings
-            .iter()
-            .map(|c| {
-                let over = c.over.iter().map(|b| (sim.body_index[b], DVec2::ZERO));
-                let gears = c
-                    .terms
-                    .iter()
-                    .filter(|_| c.gears)
-                    .map(|t| (sim.body_index[&t.body], DVec2::ZERO));
-                over.chain(gears).collect()
-            })
-            .collect();
-        forced.extend(sim.carriers.iter().flatten().map(|c| c.0));
-        forced.sort_unstable();
-        forced.dedup();
-        forced.sort_unstable();
-        forced.dedup();
-        sim.forced_bodies = forced;
-        sim.read_bodies();
-        sim.prescribed_rates();
-        sim.torsion_rest = sim
-            .level
-            .torsion_springs
-            .iter()
-            .map(|t| {
-                t.rest_angle
-                    .unwrap_or_else(|| sim.relative_angle(&t.body1, t.body2.as_deref()).0)
-            })
-            .collect();
-        sim.snapshot.springs = sim.spring_states(false);
-        sim.coupling_rest = sim
-            .level
-            .couplings
-            .iter()
-            .map(|c| sim.coupling_value(c))
-            .collect();
-        let none = vec![0.0; sim.level.couplings.len()];
-        let carried: Vec<Vec<DVec2>> = sim
-            .carriers
-            .iter()
-            .map(|c| vec![DVec2::ZERO; c.len()])
-            .collect();
-        sim.snapshot.couplings = sim.coupling_states(&none, &carried);
-        sim.energy = EnergyGuard::new(&sim.snapshot);
+        sim.keep_step_bookkeeping();
+        sim.read_initial_state();
         sim
     }
 
@@ -253,7 +126,7 @@ impl Simulation {
     }
 
     /// Whether this step's contacts are read (see [`Simulation::set_contact_readings`]).
-    fn contacts_wanted(&self) -> bool {
+    pub(super) fn contacts_wanted(&self) -> bool {
         self.contact_readings || !self.pending_welds.is_empty() || self.has_kinematic
     }
 
@@ -270,288 +143,6 @@ impl Simulation {
         &self.bodies
     }
 
-    /// Advances one physics step and refreshes the snapshot.
-    // Not yet split into named steps (issue 44): one rapier call's phases (forces, impact cuts, split substeps, readings) share the world's borrows.
-    #[allow(clippy::too_many_lines)]
-    pub fn step(&mut self) -> Result<&Snapshot, SimError> {
-        let dt = self.dt();
-        let t0 = self.snapshot.time;
-        let step = self.snapshot.step + 1;
-        self.energy.record(&self.snapshot);
-
-        // Impulses whose time falls in [t0, t0 + dt) act at the start of this step.
-        self.snapshot.impulses.clear();
-        for e in &self.level.events {
-            let EventDef::Impulse {
-                name,
-                at,
-                body,
-                point,
-                impulse,
-                angular,
-            } = e
-            else {
-                continue;
-            };
-            // The event acts at the start of the step that begins nearest to its time.
-            if *at >= t0 - 0.5 * dt && *at < t0 + 0.5 * dt {
-                let i = self.body_index[body];
-                let rb = &mut self.world.bodies[self.bodies[i]];
-                let p = *rb.position() * build::v(*point);
-                rb.apply_impulse_at_point(build::v(*impulse), p, true);
-                rb.apply_torque_impulse(*angular as Real, true);
-                self.snapshot.impulses.push(ImpulseState {
-                    name: name.clone(),
-                    body: i,
-                    point: to_d(p),
-                    impulse: DVec2::new(impulse.0, impulse.1),
-                    angular_impulse: *angular,
-                });
-            }
-        }
-
-        // Loads: forces held over the step, evaluated at its middle.
-        self.snapshot.loads.clear();
-        let t_mid = t0 + 0.5 * dt;
-        let mut loads = Vec::with_capacity(self.level.loads.len());
-        for l in &self.level.loads {
-            let i = self.body_index[&l.body];
-            let rb = &self.world.bodies[self.bodies[i]];
-            let p = *rb.position() * build::v(l.point);
-            let mut f = l
-                .force
-                .as_ref()
-                .map_or((0.0, 0.0), |f| vector_profile_at(f, t_mid));
-            if l.follow_body {
-                let r =
-                    DVec2::from_angle(rb.rotation().angle() as f64).rotate(DVec2::new(f.0, f.1));
-                f = (r.x, r.y);
-            }
-            let m = l
-                .torque
-                .as_ref()
-                .map_or(0.0, |m| scalar_profile_at(m, t_mid));
-            // Held in the body frame: the point of application moves with the body.
-            loads.push((i, build::v(l.point), build::v(f), m as Real));
-            self.snapshot.loads.push(LoadState {
-                name: l.name.clone(),
-                body: i,
-                point: to_d(p),
-                force: DVec2::new(f.0, f.1),
-                torque: m,
-            });
-        }
-
-        // Split substeps (see `Substepping::Split`): rapier is advanced n times at dt/n with one
-        // substep each. Springs are then evaluated before every substep (rapier's own substeps
-        // see only the forces set before its step: a spring held over n > 1 substeps is not
-        // symplectic and gains energy, x2.5e4 in 10 s at omega dt = 0.5 with 4 substeps), and
-        // contact and joint impulses are summed over the n calls into the step's snapshot.
-        let n = self.substeps().max(1);
-        // A spinning ball's contact is followed exactly only over one-substep calls
-        // (sim/contact_points.rs).
-        let split = self.settings.substepping == Substepping::Split
-            || (n > 1
-                && super::contact_points::spinning_ball_touches(
-                    &self.world,
-                    self.snapshot.step == 0,
-                ));
-        // The rapier calls of this step, (length, rapier substeps): n calls of one substep when
-        // split, else one call of n; an impact cut (sim/impacts.rs) divides a call in two.
-        let mut calls: std::collections::VecDeque<(f64, usize)> = if split {
-            std::iter::repeat_n((dt / n as f64, 1), n).collect()
-        } else {
-            std::iter::once((dt, n)).collect()
-        };
-        let mut cuts = 0;
-        // A blow (an impulse event) this step: its first call solves friction to convergence, as
-        // an impact's does (sim/impacts.rs, IMPACT_ITERATIONS).
-        let blow = !self.snapshot.impulses.is_empty();
-        // Whether the coming call is the short one a cut planned for its contact (then no pair
-        // touching in it is cut again).
-        let mut impact_call_next = false;
-        let mut merged = split;
-        let mut lambdas = vec![0.0; self.level.couplings.len()];
-        let mut carried: Vec<Vec<DVec2>> = self
-            .carriers
-            .iter()
-            .map(|c| vec![DVec2::ZERO; c.len()])
-            .collect();
-        let mut springs: Vec<SpringState> = Vec::new();
-        let mut joint_sum: Vec<JointState> = Vec::new();
-        let mut contact_sum: Vec<ContactState> = Vec::new();
-        let mut first_call = true;
-        let contacts_wanted = self.contacts_wanted();
-        // The time into the step at which the coming call starts.
-        let mut elapsed = 0.0;
-        while let Some((mut h, sub)) = calls.pop_front() {
-            let mut prediction = None;
-            let impact_call = std::mem::take(&mut impact_call_next);
-            // Whether this call makes an impact's contact or takes a blow (sim/impacts.rs,
-            // IMPACT_ITERATIONS).
-            let mut impact_now = impact_call || (first_call && blow);
-            if self.settings.impact_cuts && cuts < super::impacts::MAX_CUTS {
-                let plan = self.plan_call(h, !impact_call);
-                prediction = Some(plan.prediction);
-                if let Some(t) = plan.cut {
-                    // The contact is made in a short call after the cut, where rapier's soft
-                    // contact acts as a nearly rigid one (its softness grows with the call's
-                    // length), then the rest of the call.
-                    let impact = (h - t).min(h * super::impacts::IMPACT_CALL);
-                    if h - t - impact > 0.0 {
-                        calls.push_front((h - t - impact, sub));
-                    }
-                    if t > 0.0 {
-                        calls.push_front((impact, sub));
-                        impact_call_next = true;
-                        h = t;
-                    } else {
-                        h = impact;
-                        impact_now = true;
-                    }
-                    cuts += 1;
-                    merged = true;
-                }
-            }
-            {
-                let p = &mut self.world.integration_parameters;
-                p.dt = h as Real;
-                p.num_solver_iterations = sub;
-                p.normalized_prediction_distance =
-                    prediction.map_or(self.prediction_distance, |x| x as Real);
-                // An impact's call and the one after it solve friction to convergence.
-                p.num_internal_stabilization_iterations = if impact_now || self.after_impact {
-                    self.settings
-                        .solver_iterations
-                        .max(super::impacts::IMPACT_ITERATIONS)
-                } else {
-                    self.settings.solver_iterations
-                };
-                self.after_impact = impact_now;
-            }
-            self.apply_forces(&loads);
-            self.load_carriers(h, &mut carried);
-            let mut now = self.spring_states(true);
-            for s in &now {
-                let rb1 = &mut self.world.bodies[self.bodies[s.body1]];
-                if s.torsion {
-                    rb1.add_torque(s.couple_on_body1 as Real, true);
-                } else {
-                    rb1.add_force_at_point(vd(s.force_on_body1), vd(s.applied_at1), true);
-                }
-                if let Some(b2) = s.body2 {
-                    let rb2 = &mut self.world.bodies[self.bodies[b2]];
-                    if s.torsion {
-                        rb2.add_torque(-s.couple_on_body1 as Real, true);
-                    } else {
-                        rb2.add_force_at_point(vd(-s.force_on_body1), vd(s.applied_at2), true);
-                    }
-                }
-            }
-            // The snapshot reports the mean force over the step (its impulse / dt).
-            let weight = h / dt;
-            for sp in now.iter_mut() {
-                sp.force_on_body1 *= weight;
-                sp.tension *= weight;
-                sp.damper_tension *= weight;
-                sp.couple_on_body1 *= weight;
-            }
-            if first_call {
-                springs = now;
-            } else {
-                for (a, b) in springs.iter_mut().zip(&now) {
-                    a.force_on_body1 += b.force_on_body1;
-                    a.tension += b.tension;
-                    a.damper_tension += b.damper_tension;
-                    a.couple_on_body1 += b.couple_on_body1;
-                }
-            }
-            first_call = false;
-            // rapier builds a substep's joint rows from the poses it starts from: keep them,
-            // so the call's impulses (all of one substep) are read along the very rows they
-            // acted on.
-            let rows_from = (split || self.settings.impact_cuts).then(|| self.joint_poses());
-            self.prescribe_velocities(t0 + elapsed, t0 + elapsed + h)?;
-            elapsed += h;
-            // Round bodies' friction acts on their rims, not halfway into an overlap
-            // (sim/contact_points.rs).
-            self.world.step_with_events(
-                &super::contact_points::RoundContactPoints { call_dt: h as Real },
-                &(),
-            );
-            let call_lambdas = self.solve_couplings();
-            self.owe_carriers(&call_lambdas);
-            for (l, x) in lambdas.iter_mut().zip(call_lambdas) {
-                *l += x;
-            }
-            // A call of several rapier substeps holds the last one's joint impulses only.
-            if let Some(poses) = rows_from.filter(|_| split || merged || !calls.is_empty()) {
-                if contacts_wanted {
-                    self.read_contacts_with(true);
-                    merge_contacts(&mut contact_sum, &self.snapshot.contacts);
-                }
-                self.read_joints_scaled(sub as f64, Some(&poses));
-                merge_joints(&mut joint_sum, &self.snapshot.joints);
-            }
-        }
-        self.last_step_cuts = cuts;
-        self.calls.steps += 1;
-        if split && n > 1 && self.settings.substepping != Substepping::Split {
-            self.calls.split_for_spin += 1;
-        }
-        if cuts > 0 {
-            self.calls.cut += 1;
-        }
-        {
-            let p = &mut self.world.integration_parameters;
-            p.dt = dt as Real;
-            p.num_solver_iterations = n;
-        }
-
-        self.snapshot.step = step;
-        self.snapshot.time = step as f64 * dt;
-        self.snapshot.dt = dt;
-        self.snapshot.substeps = n;
-        self.read_bodies();
-        self.prescribed_rates();
-        self.guard()?;
-        if !contacts_wanted {
-            self.snapshot.contacts.clear();
-        } else if merged {
-            place_at_step_end(&mut contact_sum, &self.snapshot.bodies);
-            self.snapshot.contacts = contact_sum;
-        } else {
-            self.read_contacts();
-        }
-        self.weld_on_contact();
-        // Welds created now get their first impulses next step.
-        if merged {
-            self.snapshot.joints = joint_sum;
-        } else {
-            self.read_joints();
-        }
-        self.snapshot.couplings = self.coupling_states(&lambdas, &carried);
-        // Spring state: forces held during the step, length and energy at its end.
-        let end = self.spring_states(false);
-        self.snapshot.springs = springs
-            .into_iter()
-            .zip(end)
-            .map(|(held, now)| SpringState {
-                force_on_body1: held.force_on_body1,
-                tension: held.tension,
-                damper_tension: held.damper_tension,
-                couple_on_body1: held.couple_on_body1,
-                applied_at1: held.applied_at1,
-                applied_at2: held.applied_at2,
-                ..now
-            })
-            .collect();
-        self.energy.add_work(&self.snapshot);
-        self.energy_guard()?;
-        self.speed_cap_guard()?;
-        Ok(&self.snapshot)
-    }
-
     /// Moves each kinematic body with a prescribed motion from its pose at t0 to its pose at t1
     /// over the coming rapier call: rapier moves a kinematic body's center of mass at its
     /// linvel and turns it at its angvel about that point, so these are the mean rates between
@@ -565,7 +156,7 @@ impl Simulation {
     /// is allowed): a motion past either would leave the body behind while the snapshot reads
     /// the motion's rates, so the run stops instead. Validation refuses such a motion at the
     /// level's own dt (`level/validate/bodies.rs`); this catches a `--dt` that makes it so.
-    fn prescribe_velocities(&mut self, t0: f64, t1: f64) -> Result<(), SimError> {
+    pub(super) fn prescribe_velocities(&mut self, t0: f64, t1: f64) -> Result<(), SimError> {
         use crate::level::motion::pose_at;
         let cap = self.world.integration_parameters.max_linear_velocity() as f64;
         let h = t1 - t0;
@@ -619,7 +210,7 @@ impl Simulation {
     /// end, not rapier's mean over the last call (they differ by a dt / 2 under a constant
     /// acceleration; the mean of the start and end readings is then the step's mean, which
     /// is what rapier moved it with).
-    fn prescribed_rates(&mut self) {
+    pub(super) fn prescribed_rates(&mut self) {
         let t = self.snapshot.time;
         for (b, def) in self.snapshot.bodies.iter_mut().zip(&self.level.bodies) {
             if def.motion.is_some() {
@@ -635,7 +226,7 @@ impl Simulation {
 
     /// Stops a run whose mechanical energy grew FACTOR times beyond its initial scale plus the
     /// work put in (see `sim::explosion_guard`).
-    fn energy_guard(&mut self) -> Result<(), SimError> {
+    pub(super) fn energy_guard(&mut self) -> Result<(), SimError> {
         let Some((gain, reference)) = self.energy.check(&self.snapshot) else {
             return Ok(());
         };
@@ -661,7 +252,7 @@ impl Simulation {
 
     /// Stops a run that rapier's speed cap holds rather than the scene's forces (see
     /// `sim::explosion_guard`).
-    fn speed_cap_guard(&mut self) -> Result<(), SimError> {
+    pub(super) fn speed_cap_guard(&mut self) -> Result<(), SimError> {
         let cap = self.world.integration_parameters.max_linear_velocity() as f64;
         let Some(stop) = self.energy.check_speed_cap(&self.snapshot, cap) else {
             return Ok(());
@@ -685,7 +276,7 @@ impl Simulation {
         Ok(())
     }
 
-    fn guard(&self) -> Result<(), SimError> {
+    pub(super) fn guard(&self) -> Result<(), SimError> {
         for b in &self.snapshot.bodies {
             let bad = |q: &str| SimError {
                 step: self.snapshot.step,
@@ -707,27 +298,8 @@ impl Simulation {
         Ok(())
     }
 
-    /// Clears the user forces of loaded and sprung bodies and applies the step's loads.
-    fn apply_forces(&mut self, loads: &[(usize, Vector, Vector, Real)]) {
-        for &i in &self.forced_bodies {
-            // rapier keeps forces and torques apart: both must be cleared, or every
-            // couple (and the moment of every off-center force) accumulates step after step.
-            // Only bodies that carry loads or springs: touching a body through `&mut` marks
-            // it as changed, and rapier then redoes per-body work for it in the next step.
-            let rb = &mut self.world.bodies[self.bodies[i]];
-            rb.reset_forces(false);
-            rb.reset_torques(false);
-        }
-        for &(i, local, f, m) in loads {
-            let rb = &mut self.world.bodies[self.bodies[i]];
-            let p = *rb.position() * local;
-            rb.add_force_at_point(f, p, true);
-            rb.add_torque(m, true);
-        }
-    }
-
     /// Spring states from the current body poses and velocities.
-    fn spring_states(&self, with_force: bool) -> Vec<SpringState> {
+    pub(super) fn spring_states(&self, with_force: bool) -> Vec<SpringState> {
         let mut out = Vec::with_capacity(self.level.springs.len());
         if !self.settings.effects.has(Effect::Springs) {
             return out;
@@ -817,7 +389,7 @@ impl Simulation {
 
     /// A torsion spring's relative angle theta = angle1 - angle2 (angle2 = 0 for the ground),
     /// continuous from the last snapshot's angles, and its rate, from rapier's current state.
-    fn relative_angle(&self, body1: &str, body2: Option<&str>) -> (f64, f64) {
+    pub(super) fn relative_angle(&self, body1: &str, body2: Option<&str>) -> (f64, f64) {
         let angle = |name: &str| {
             let i = self.body_index[name];
             let rb = &self.world.bodies[self.bodies[i]];
