@@ -515,3 +515,55 @@ pub fn segment_distance(a: DVec2, b: DVec2, p: DVec2) -> f64 {
 fn dvec(points: &[V2]) -> Vec<DVec2> {
     points.iter().map(|&p| DVec2::from(p)).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::level::format::Part;
+
+    /// A capsule is a rectangle 2 r x l and a disc of radius r: A = 2 r l + pi r^2.
+    #[test]
+    fn capsule_area_is_rectangle_plus_disc() {
+        let a = area(&Shape::Capsule {
+            length: 2.0,
+            radius: 0.5,
+        });
+        assert!((a - (2.0 + PI * 0.25)).abs() < 1e-12, "got {a}");
+    }
+
+    /// A polygon's area is its hull's: a 2 m square with a notch point inside has 4 m^2, where
+    /// the shoelace over the listed points gives 4 - 0.5 = 3.5 m^2.
+    #[test]
+    fn polygon_area_is_the_hulls() {
+        let points = vec![(0.0, 0.0), (1.0, 0.5), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)];
+        let listed: Vec<DVec2> = points.iter().map(|&p| DVec2::from(p)).collect();
+        assert!((polygon_area(&listed) - 3.5).abs() < 1e-12);
+        assert!((area(&Shape::Polygon { points }) - 4.0).abs() < 1e-12);
+    }
+
+    /// A 2 m x 1 m box turned a quarter turn about (1, 1) spans 1 m in x and 2 m in y; a
+    /// compound's parts are placed by their offsets, turned with the body.
+    #[test]
+    fn bounds_turn_with_the_body() {
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let b = Shape::Box {
+            width: 2.0,
+            height: 1.0,
+        };
+        let ((x0, y0), (x1, y1)) = bounds(&b, (1.0, 1.0), quarter);
+        for (got, want) in [(x0, 0.5), (x1, 1.5), (y0, 0.0), (y1, 2.0)] {
+            assert!((got - want).abs() < 1e-12, "{got} for {want}");
+        }
+        let c = Shape::Compound {
+            parts: vec![Part {
+                shape: Shape::Circle { radius: 0.5 },
+                offset: (3.0, 0.0),
+                angle: 0.0,
+            }],
+        };
+        let ((x0, y0), (x1, y1)) = bounds(&c, (0.0, 0.0), quarter);
+        for (got, want) in [(x0, -0.5), (x1, 0.5), (y0, 2.5), (y1, 3.5)] {
+            assert!((got - want).abs() < 1e-12, "{got} for {want}");
+        }
+    }
+}
