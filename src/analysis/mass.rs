@@ -129,31 +129,10 @@ pub struct AreaProps {
     pub polar: f64,
 }
 
-/// Convex hull of a point set, counter-clockwise (Andrew's monotone chain); the level format
-/// uses the hull of a polygon's points.
-pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
-    let mut p: Vec<DVec2> = points.to_vec();
-    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    p.dedup();
-    if p.len() < 3 {
-        return p;
-    }
-    let turn = |o: DVec2, a: DVec2, b: DVec2| super::cross(a - o, b - o);
-    let half = |pts: &mut dyn Iterator<Item = DVec2>| {
-        let mut h: Vec<DVec2> = Vec::new();
-        for q in pts {
-            while h.len() >= 2 && turn(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
-                h.pop();
-            }
-            h.push(q);
-        }
-        h.pop();
-        h
-    };
-    let mut hull = half(&mut p.iter().copied());
-    hull.extend(half(&mut p.iter().rev().copied()));
-    hull
-}
+/// Convex hull of a point set, counter-clockwise (Andrew's monotone chain): the level's
+/// geometry ([`crate::level::shape::convex_hull`]); the level format uses the hull of a
+/// polygon's points.
+pub use crate::level::shape::convex_hull;
 
 /// Area properties of a simple polygon by triangulation from the origin (MP-9 "polygon: by
 /// triangulation"): each edge (p_i, p_i+1) spans a triangle with the origin of signed area
@@ -202,23 +181,14 @@ pub fn polygon_area_props(points: &[DVec2]) -> AreaProps {
 /// Area properties of a level shape (in its own frame); segments have none.
 pub fn shape_area_props(shape: &Shape) -> AreaProps {
     match shape {
-        Shape::Circle { radius } => AreaProps {
-            area: PI * radius * radius,
-            centroid: DVec2::ZERO,
-            polar: disc_inertia(PI * radius * radius, *radius),
-        },
-        Shape::Box { width, height } => AreaProps {
-            area: width * height,
-            centroid: DVec2::ZERO,
-            polar: rectangle_inertia(width * height, *width, *height),
-        },
+        // The area is the level's geometry (`level::shape::area`); the second moment the
+        // textbook's formula for the shape (MP-9), at unit density.
+        Shape::Circle { radius } => centered(shape, |area| disc_inertia(area, *radius)),
+        Shape::Box { width, height } => {
+            centered(shape, |area| rectangle_inertia(area, *width, *height))
+        }
         Shape::Capsule { length, radius } => {
-            let area = 2.0 * radius * length + PI * radius * radius;
-            AreaProps {
-                area,
-                centroid: DVec2::ZERO,
-                polar: capsule_inertia(area, *length, *radius),
-            }
+            centered(shape, |area| capsule_inertia(area, *length, *radius))
         }
         Shape::Polygon { points } => {
             let pts: Vec<DVec2> = points.iter().map(|p| DVec2::new(p.0, p.1)).collect();
@@ -254,6 +224,17 @@ pub fn shape_area_props(shape: &Shape) -> AreaProps {
                 polar,
             }
         }
+    }
+}
+
+/// The area properties of a shape symmetric about its body origin: its area, its centroid at
+/// the origin, and its polar second moment from `polar(area)`.
+fn centered(shape: &Shape, polar: impl Fn(f64) -> f64) -> AreaProps {
+    let area = crate::level::shape::area(shape);
+    AreaProps {
+        area,
+        centroid: DVec2::ZERO,
+        polar: polar(area),
     }
 }
 

@@ -10,7 +10,7 @@
 //! 1e-6 m + 1e-4 of the member's size (a body placed on a face by hand; rounding is far under
 //! it, and a body placed a visible gap above a face is not resting on it).
 
-use crate::level::{BodyDef, BodyKind, Effect, Level, Shape};
+use crate::level::{BodyDef, BodyKind, Effect, Level};
 use glam::DVec2;
 
 /// How a contact holds its body, in the linearization.
@@ -38,66 +38,23 @@ pub struct RestingContact {
 
 /// A convex piece of a shape in world coordinates: the core's vertices (1: a point, 2: a
 /// segment, 3 or more: a polygon) swept by `radius`.
-#[derive(Debug, Clone)]
-struct Piece {
-    core: Vec<DVec2>,
-    radius: f64,
-}
+type Piece = crate::level::shape::Piece;
 
-/// The convex pieces of a body's shape, world frame; None for a shape this model does not
-/// read (an arc track, a compound).
+/// The convex pieces of a body's shape ([`crate::level::shape::pieces`]), world frame; None
+/// for a shape this model does not read (an arc track, a compound).
 fn pieces(b: &BodyDef) -> Option<Vec<Piece>> {
     let at = DVec2::new(b.position.0, b.position.1);
     let w = |p: DVec2| at + DVec2::from_angle(b.angle).rotate(p);
-    let v = |p: (f64, f64)| DVec2::new(p.0, p.1);
-    Some(match b.shape.as_ref()? {
-        Shape::Circle { radius } => vec![Piece {
-            core: vec![w(DVec2::ZERO)],
-            radius: *radius,
-        }],
-        Shape::Box { width, height } => {
-            let (hx, hy) = (0.5 * width, 0.5 * height);
-            vec![Piece {
-                core: [(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)]
-                    .iter()
-                    .map(|&p| w(v(p)))
-                    .collect(),
-                radius: 0.0,
-            }]
-        }
-        Shape::Capsule { length, radius } => vec![Piece {
-            core: vec![
-                w(DVec2::new(-0.5 * length, 0.0)),
-                w(DVec2::new(0.5 * length, 0.0)),
-            ],
-            radius: *radius,
-        }],
-        Shape::Polygon { points } => vec![Piece {
-            core: points.iter().map(|&p| w(v(p))).collect(),
-            radius: 0.0,
-        }],
-        Shape::Segment { a, b: e } => vec![Piece {
-            core: vec![w(v(*a)), w(v(*e))],
-            radius: 0.0,
-        }],
-        Shape::Polyline { points, closed, .. } => {
-            let mut out: Vec<Piece> = points
-                .windows(2)
-                .map(|s| Piece {
-                    core: vec![w(v(s[0])), w(v(s[1]))],
-                    radius: 0.0,
-                })
-                .collect();
-            if *closed && points.len() > 2 {
-                out.push(Piece {
-                    core: vec![w(v(points[points.len() - 1])), w(v(points[0]))],
-                    radius: 0.0,
-                });
-            }
-            out
-        }
-        Shape::Arc { .. } | Shape::Compound { .. } => return None,
-    })
+    let local = crate::level::shape::pieces(b.shape.as_ref()?)?;
+    Some(
+        local
+            .into_iter()
+            .map(|p| Piece {
+                core: p.core.into_iter().map(w).collect(),
+                radius: p.radius,
+            })
+            .collect(),
+    )
 }
 
 /// The edges of a core: none for a point, one for a segment, the closed loop of a polygon.

@@ -1,192 +1,16 @@
-//! Level shapes as drawable geometry, in the body frame (f64, SI): closed convex outlines for
-//! filled shapes and open polylines for segments. The meshes and outlines the view draws come from
-//! here, so every shape of `level::Shape` is drawn the same way.
+//! Level shapes as drawable geometry, in the body frame (f64, SI): the outline each shape gives
+//! (`level::shape::outline`, closed convex polygons for filled shapes and segments for lines),
+//! its triangles for a mesh, bounds and clipping. The meshes and outlines the view draws come
+//! from here, so every shape of `level::Shape` is drawn the same way.
 
-use crate::level::{ArcSide, BodyDef, Level, Shape, TrackSide};
+use crate::level::{BodyDef, Level};
 use glam::DVec2;
 
-/// Drawable pieces of one body, in its frame.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Outline {
-    /// Closed convex polygons (counter-clockwise), one per filled part.
-    pub filled: Vec<Vec<DVec2>>,
-    /// Circles (center, radius) among `filled`, for a spoke that shows the rotation.
-    pub circles: Vec<(DVec2, f64)>,
-    /// Line segments (no area), tracks' edges included.
-    pub segments: Vec<(DVec2, DVec2)>,
-    /// For a segment of an arc track (by index in `segments`): the unit normal, body frame,
-    /// toward the arc's solid side, where its hatching goes.
-    pub solid_side: Vec<(usize, DVec2)>,
-}
+/// The outline of a shape, drawn and picked: the level's geometry (`level::shape::outline`).
+pub use crate::level::shape::Outline;
 
-/// An arc is drawn in pieces of at most this angle, rad (2 degrees): the engine's facets are far
-/// finer (`level::curves`), and finer pieces would not show.
-const ARC_DRAW_STEP: f64 = std::f64::consts::PI / 90.0;
-
-/// Points on a circle outline.
-const CIRCLE_SEGMENTS: usize = 40;
-
-impl Outline {
-    pub fn of(shape: &Shape) -> Outline {
-        let mut o = Outline::default();
-        add_shape(&mut o, shape, DVec2::ZERO, 0.0);
-        o
-    }
-
-    /// Every point of the outline (for bounds).
-    pub fn points(&self) -> impl Iterator<Item = DVec2> + '_ {
-        self.filled
-            .iter()
-            .flatten()
-            .copied()
-            .chain(self.segments.iter().flat_map(|(a, b)| [*a, *b]))
-    }
-
-    /// True if the body-frame point lies inside a filled part (or within `tol` of a segment).
-    pub fn contains(&self, p: DVec2, tol: f64) -> bool {
-        self.filled.iter().any(|poly| convex_contains(poly, p, tol))
-            || self
-                .segments
-                .iter()
-                .any(|(a, b)| segment_distance(*a, *b, p) <= tol)
-    }
-}
-
-fn add_shape(o: &mut Outline, shape: &Shape, offset: DVec2, angle: f64) {
-    let rot = DVec2::from_angle(angle);
-    let tr = |p: DVec2| offset + rot.rotate(p);
-    match shape {
-        Shape::Circle { radius } => {
-            o.filled.push(
-                arc(
-                    DVec2::ZERO,
-                    *radius,
-                    0.0,
-                    std::f64::consts::TAU,
-                    CIRCLE_SEGMENTS,
-                )
-                .map(tr)
-                .collect(),
-            );
-            o.circles.push((offset, *radius));
-        }
-        Shape::Box { width, height } => {
-            let (w, h) = (0.5 * width, 0.5 * height);
-            o.filled.push(
-                [(-w, -h), (w, -h), (w, h), (-w, h)]
-                    .into_iter()
-                    .map(|(x, y)| tr(DVec2::new(x, y)))
-                    .collect(),
-            );
-        }
-        Shape::Capsule { length, radius } => {
-            let l = 0.5 * length;
-            let half = CIRCLE_SEGMENTS / 2;
-            let pi = std::f64::consts::PI;
-            let right = arc(DVec2::new(l, 0.0), *radius, -0.5 * pi, 0.5 * pi, half);
-            let left = arc(DVec2::new(-l, 0.0), *radius, 0.5 * pi, 1.5 * pi, half);
-            o.filled.push(right.chain(left).map(tr).collect());
-        }
-        Shape::Polygon { points } => {
-            let pts: Vec<DVec2> = points.iter().map(|&(x, y)| tr(DVec2::new(x, y))).collect();
-            o.filled.push(convex_hull(&pts));
-        }
-        Shape::Segment { a, b } => {
-            o.segments
-                .push((tr(DVec2::new(a.0, a.1)), tr(DVec2::new(b.0, b.1))));
-        }
-        Shape::Polyline {
-            points,
-            closed,
-            solid,
-        } => {
-            let pts: Vec<DVec2> = points.iter().map(|&(x, y)| tr(DVec2::new(x, y))).collect();
-            let n = pts.len();
-            let edges = if *closed { n } else { n.saturating_sub(1) };
-            for k in 0..edges {
-                let (a, b) = (pts[k], pts[(k + 1) % n]);
-                if let Some(side) = solid {
-                    // The solid side's normal: the edge turned a quarter turn to that side.
-                    let left = (b - a).perp().normalize_or(DVec2::Y);
-                    let n = if *side == TrackSide::Left {
-                        left
-                    } else {
-                        -left
-                    };
-                    o.solid_side.push((o.segments.len(), n));
-                }
-                o.segments.push((a, b));
-            }
-        }
-        Shape::Arc {
-            center,
-            radius,
-            start,
-            end,
-            side,
-            ..
-        } => {
-            let c = DVec2::new(center.0, center.1);
-            let sweep = end - start;
-            let n = ((sweep / ARC_DRAW_STEP).ceil() as usize).clamp(4, 720);
-            let mut pts: Vec<DVec2> = arc(c, *radius, *start, *end, n).collect();
-            if pts.len() == n {
-                // A full turn: close it.
-                pts.push(pts[0]);
-            }
-            for w in pts.windows(2) {
-                let mid = 0.5 * (w[0] + w[1]);
-                let out = (mid - c).normalize_or(DVec2::X);
-                // Riding inside, the solid is outside the circle; riding outside, within it.
-                let solid = match side {
-                    ArcSide::Inside => out,
-                    ArcSide::Outside => -out,
-                };
-                o.solid_side.push((o.segments.len(), rot.rotate(solid)));
-                o.segments.push((tr(w[0]), tr(w[1])));
-            }
-        }
-        Shape::Compound { parts } => {
-            for part in parts {
-                let off = tr(DVec2::new(part.offset.0, part.offset.1));
-                add_shape(o, &part.shape, off, angle + part.angle);
-            }
-        }
-    }
-}
-
-/// `n + 1` points on an arc from angle `a0` to `a1` (the closing point is dropped for full circles).
-fn arc(c: DVec2, r: f64, a0: f64, a1: f64, n: usize) -> impl Iterator<Item = DVec2> {
-    let full = (a1 - a0 - std::f64::consts::TAU).abs() < 1e-12;
-    let count = if full { n } else { n + 1 };
-    (0..count).map(move |k| c + DVec2::from_angle(a0 + (a1 - a0) * k as f64 / n as f64) * r)
-}
-
-/// The analysis layer's hull (the one the level format's polygons use).
-pub use crate::analysis::mass::convex_hull;
-
-fn convex_contains(poly: &[DVec2], p: DVec2, tol: f64) -> bool {
-    if poly.len() < 3 {
-        return false;
-    }
-    (0..poly.len()).all(|k| {
-        let a = poly[k];
-        let b = poly[(k + 1) % poly.len()];
-        let e = b - a;
-        // Inside (left of every CCW edge), or within tol of it.
-        e.perp_dot(p - a) >= -tol * e.length()
-    })
-}
-
-pub fn segment_distance(a: DVec2, b: DVec2, p: DVec2) -> f64 {
-    let e = b - a;
-    let t = if e.length_squared() > 0.0 {
-        ((p - a).dot(e) / e.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + e * t - p).length()
-}
+/// The level's hull (the one the level format's polygons use).
+pub use crate::level::shape::convex_hull;
 
 /// Triangles (fan) of the filled parts, body frame, as f32 xyz (for a Bevy mesh).
 pub fn triangles(o: &Outline) -> Vec<[f32; 3]> {
@@ -303,6 +127,7 @@ pub fn level_bounds(level: &Level) -> Bounds {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::level::Shape;
 
     #[test]
     fn hull_drops_inner_points_and_turns_ccw() {

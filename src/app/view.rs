@@ -4,7 +4,7 @@
 use super::geometry::{self, Bounds, Outline};
 use super::playback::Playback;
 use super::run::Run;
-use crate::level::{Level, Scene, Shape};
+use crate::level::{Level, Scene};
 use crate::sim::Options;
 use crate::simulation::AnySimulation;
 use crate::snapshot::{BodyKind, Snapshot};
@@ -566,18 +566,4 @@ pub fn bodies_under(outlines: &[Outline], s: &Snapshot, p: DVec2, tol: f64) -> V
         .rev()
         .filter(|&i| on_outline(outlines, s, i, p, tol))
         .collect()
-}
-
-/// Shape kinds present, for the legend.
-pub fn shape_name(s: &Shape) -> &'static str {
-    match s {
-        Shape::Circle { .. } => "circle",
-        Shape::Box { .. } => "box",
-        Shape::Capsule { .. } => "capsule",
-        Shape::Polygon { .. } => "polygon",
-        Shape::Segment { .. } => "segment",
-        Shape::Polyline { .. } => "polyline",
-        Shape::Arc { .. } => "arc",
-        Shape::Compound { .. } => "compound",
-    }
 }

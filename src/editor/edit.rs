@@ -2,6 +2,7 @@
 //! bodies it names, change the level, declare the effects it now relies on, say what it did).
 
 use crate::level::curves;
+use crate::level::shape as shapes;
 use crate::level::{
     ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, QuestionDef, Shape,
     SpringDef, TorsionSpringDef, TrackSide, V2,
@@ -381,7 +382,7 @@ fn add_body(level: &mut Level, shape: &NewShape, at: &V2, mass: &f64) -> Result<
             Some((c, onto)) => ((c.x, c.y), format!(", set onto {onto}'s surface")),
             None => (*at, String::new()),
         },
-        _ => match overlapped(level, DVec2::from(*at), inscribed(&shape)) {
+        _ => match overlapped(level, DVec2::from(*at), shapes::inscribed_radius(&shape)) {
             Some(o) => (
                 *at,
                 format!("; it overlaps {o}: drag it clear while paused at t = 0"),
@@ -564,50 +565,10 @@ fn replace_question(
 /// A fixed body's outline in world coordinates: a convex polygon counter-clockwise (boxes and
 /// polygons) or a segment (two points); None for shapes placement does not look at.
 fn fixed_outline(b: &BodyDef) -> Option<Vec<DVec2>> {
-    let local: Vec<DVec2> = match b.shape.as_ref()? {
-        Shape::Box { width, height } => {
-            let (w, h) = (width / 2.0, height / 2.0);
-            vec![
-                DVec2::new(-w, -h),
-                DVec2::new(w, -h),
-                DVec2::new(w, h),
-                DVec2::new(-w, h),
-            ]
-        }
-        Shape::Polygon { points } => hull(points.iter().map(|&p| DVec2::from(p)).collect()),
-        Shape::Segment { a, b } => vec![DVec2::from(*a), DVec2::from(*b)],
-        _ => return None,
-    };
+    let local = shapes::flat_outline(b.shape.as_ref()?)?;
     let rot = DVec2::from_angle(b.angle);
     let at = DVec2::from(b.position);
     Some(local.into_iter().map(|p| at + rot.rotate(p)).collect())
-}
-
-/// The convex hull, counter-clockwise (Andrew's monotone chain).
-fn hull(mut p: Vec<DVec2>) -> Vec<DVec2> {
-    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    p.dedup();
-    if p.len() < 3 {
-        return p;
-    }
-    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
-    let mut h: Vec<DVec2> = Vec::new();
-    for pass in 0..2 {
-        let start = h.len();
-        let pts: Box<dyn Iterator<Item = &DVec2>> = if pass == 0 {
-            Box::new(p.iter())
-        } else {
-            Box::new(p.iter().rev())
-        };
-        for &q in pts {
-            while h.len() >= start + 2 && cross(h[h.len() - 2], h[h.len() - 1], q) <= 0.0 {
-                h.pop();
-            }
-            h.push(q);
-        }
-        h.pop();
-    }
-    h
 }
 
 /// The point of an outline nearest to `p`, and whether `p` is inside it (a polygon only).
@@ -767,27 +728,6 @@ fn overlapped(level: &Level, c: DVec2, r: f64) -> Option<String> {
             })
         })
         .map(|b| b.name.clone())
-}
-
-/// The radius of the largest circle about the body origin inside a new shape, m.
-fn inscribed(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Circle { radius } => *radius,
-        Shape::Box { width, height } => width.min(*height) / 2.0,
-        Shape::Polygon { points } => {
-            let h = hull(points.iter().map(|&p| DVec2::from(p)).collect());
-            if h.len() < 3 {
-                return 0.0;
-            }
-            (0..h.len())
-                .map(|i| {
-                    let (a, b) = (h[i], h[(i + 1) % h.len()]);
-                    (b - a).perp_dot(-a).abs() / (b - a).length().max(1e-300)
-                })
-                .fold(f64::INFINITY, f64::min)
-        }
-        _ => 0.0,
-    }
 }
 
 /// A fixed body holding a ground line `half_width` either side of x = 0 at height `y`.

@@ -9,6 +9,7 @@ mod error;
 pub mod format;
 pub mod motion;
 pub mod profiles;
+pub mod shape;
 mod validate;
 mod warnings;
 

@@ -213,7 +213,7 @@ fn body_mass(b: &BodyDef) -> Option<f64> {
     }
     let m = b.mass.unwrap_or_else(|| {
         b.density.unwrap_or(super::DEFAULT_DENSITY)
-            * b.shape.as_ref().map_or(0.0, super::validate::shape_area)
+            * b.shape.as_ref().map_or(0.0, super::shape::area)
     });
     (m > 0.0).then_some(m)
 }
@@ -429,44 +429,9 @@ fn rotate(p: V2, a: f64) -> V2 {
     (p.0 * c - p.1 * s, p.0 * s + p.1 * c)
 }
 
-/// The center of a shape's bounding box in its body's frame (polygons are often written in world
-/// coordinates on a body at the origin, so the body position alone says little).
-fn local_center(shape: &Shape) -> V2 {
-    match shape {
-        Shape::Circle { .. } | Shape::Box { .. } | Shape::Capsule { .. } => (0.0, 0.0),
-        Shape::Segment { a, b } => ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0),
-        Shape::Arc { center, .. } => *center,
-        Shape::Polygon { points } | Shape::Polyline { points, .. } => {
-            let (lo, hi) = points.iter().fold(
-                (
-                    (f64::INFINITY, f64::INFINITY),
-                    (f64::NEG_INFINITY, f64::NEG_INFINITY),
-                ),
-                |(lo, hi), p| {
-                    (
-                        (lo.0.min(p.0), lo.1.min(p.1)),
-                        (hi.0.max(p.0), hi.1.max(p.1)),
-                    )
-                },
-            );
-            ((lo.0 + hi.0) / 2.0, (lo.1 + hi.1) / 2.0)
-        }
-        Shape::Compound { parts } => {
-            let n = parts.len().max(1) as f64;
-            parts.iter().fold((0.0, 0.0), |acc, p| {
-                let c = rotate(local_center(&p.shape), p.angle);
-                (
-                    acc.0 + (p.offset.0 + c.0) / n,
-                    acc.1 + (p.offset.1 + c.1) / n,
-                )
-            })
-        }
-    }
-}
-
 /// Where a body's collider is centered in the world.
 fn world_center(b: &BodyDef, shape: &Shape) -> V2 {
-    let c = rotate(local_center(shape), b.angle);
+    let c = rotate(super::shape::center(shape), b.angle);
     (b.position.0 + c.0, b.position.1 + c.1)
 }
 

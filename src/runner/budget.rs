@@ -67,7 +67,8 @@
 //!   0.041 us. Before, these were priced at 1/20 to 1/100 of their run.
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
-use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError, Shape};
+use crate::level::shape as shapes;
+use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError};
 use crate::sim::{Options, Settings, Substepping};
 use std::path::Path;
 
@@ -327,72 +328,7 @@ fn megabytes_text(mb: f64) -> String {
 }
 
 /// An axis-aligned box, (min, max).
-type Aabb = ((f64, f64), (f64, f64));
-
-/// The box of a shape placed at `at` turned by `angle`.
-fn shape_box(shape: &Shape, at: (f64, f64), angle: f64) -> Aabb {
-    let (s, c) = angle.sin_cos();
-    let place = |p: (f64, f64)| (at.0 + c * p.0 - s * p.1, at.1 + s * p.0 + c * p.1);
-    let points = |ps: &[(f64, f64)], r: f64| {
-        let mut b = (
-            (f64::INFINITY, f64::INFINITY),
-            (f64::NEG_INFINITY, f64::NEG_INFINITY),
-        );
-        for &p in ps {
-            let q = place(p);
-            b.0 = (b.0 .0.min(q.0 - r), b.0 .1.min(q.1 - r));
-            b.1 = (b.1 .0.max(q.0 + r), b.1 .1.max(q.1 + r));
-        }
-        b
-    };
-    match shape {
-        Shape::Circle { radius } => points(&[(0.0, 0.0)], *radius),
-        Shape::Box { width, height } => {
-            let (w, h) = (width / 2.0, height / 2.0);
-            points(&[(-w, -h), (w, -h), (w, h), (-w, h)], 0.0)
-        }
-        Shape::Capsule { length, radius } => {
-            points(&[(-length / 2.0, 0.0), (length / 2.0, 0.0)], *radius)
-        }
-        Shape::Polygon { points: ps } => points(ps, 0.0),
-        Shape::Segment { a, b } => points(&[*a, *b], 0.0),
-        Shape::Polyline { points: ps, .. } => points(ps, 0.0),
-        Shape::Arc { center, radius, .. } => points(&[*center], *radius),
-        Shape::Compound { parts } => {
-            let mut b = (
-                (f64::INFINITY, f64::INFINITY),
-                (f64::NEG_INFINITY, f64::NEG_INFINITY),
-            );
-            for p in parts {
-                let q = shape_box(&p.shape, place(p.offset), angle + p.angle);
-                b.0 = (b.0 .0.min(q.0 .0), b.0 .1.min(q.0 .1));
-                b.1 = (b.1 .0.max(q.1 .0), b.1 .1.max(q.1 .1));
-            }
-            b
-        }
-    }
-}
-
-/// The facets a curved track is built of (an `Arc`'s from its chord error, a `Polyline`'s
-/// segments), 0 for any other shape.
-fn facets(shape: &Shape) -> f64 {
-    match shape {
-        Shape::Arc {
-            radius,
-            start,
-            end,
-            chord_error,
-            ..
-        } => {
-            let e = crate::level::curves::chord_error(*radius, *chord_error);
-            crate::level::curves::arc_facets(*radius, (end - start).abs(), e)
-                .min(crate::level::curves::MAX_ARC_FACETS) as f64
-        }
-        Shape::Polyline { points, .. } => points.len() as f64,
-        Shape::Compound { parts } => parts.iter().map(|p| facets(&p.shape)).sum(),
-        _ => 0.0,
-    }
-}
+type Aabb = crate::level::shape::Aabb;
 
 /// The potential contact pairs at the start: pairs of bodies with shapes, not both fixed, whose
 /// boxes overlap within 1 cm; the sum over them of the pairs each pair's bodies are in; and the
@@ -405,11 +341,11 @@ fn contact_pairs(level: &Level) -> (f64, f64, f64) {
         .iter()
         .filter_map(|b| {
             let shape = b.shape.as_ref()?;
-            let bb = shape_box(shape, b.position, b.angle);
+            let bb = shapes::bounds(shape, b.position, b.angle);
             let finite = [bb.0 .0, bb.0 .1, bb.1 .0, bb.1 .1]
                 .iter()
                 .all(|v| v.is_finite());
-            finite.then_some((bb, b.kind == BodyKind::Fixed, facets(shape)))
+            finite.then_some((bb, b.kind == BodyKind::Fixed, shapes::facets(shape)))
         })
         .collect();
     boxes.sort_by(|a, b| a.0 .0 .0.total_cmp(&b.0 .0 .0));

@@ -3,43 +3,13 @@
 use super::*;
 use crate::level::curves;
 use crate::level::motion;
+use crate::level::shape::{self as shapes, Least};
+use glam::DVec2;
 
 pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
     match s {
-        Shape::Circle { radius } => v.positive(*radius, "circle radius", "m", pos),
-        Shape::Box { width, height } => {
-            v.positive(*width, "box width", "m", pos)?;
-            v.positive(*height, "box height", "m", pos)
-        }
-        Shape::Capsule { length, radius } => {
-            v.non_negative(*length, "capsule length", "m", pos)?;
-            v.positive(*radius, "capsule radius", "m", pos)
-        }
-        Shape::Polygon { points } => {
-            for p in points {
-                v.finite2(*p, "polygon point", pos)?;
-            }
-            if points.len() < 3 || polygon_area(points).abs() < 1e-12 {
-                return Err(v.err(
-                    pos,
-                    "a polygon needs at least 3 points enclosing an area",
-                    "list the vertices of a convex polygon",
-                ));
-            }
-            Ok(())
-        }
-        Shape::Segment { a, b } => {
-            v.finite2(*a, "segment end a", pos)?;
-            v.finite2(*b, "segment end b", pos)?;
-            if a == b {
-                return Err(v.err(
-                    pos,
-                    "a segment needs two different ends",
-                    "move `b` away from `a`",
-                ));
-            }
-            Ok(())
-        }
+        Shape::Polygon { points } => polygon(v, points, pos),
+        Shape::Segment { a, b } => segment(v, *a, *b, pos),
         Shape::Polyline { points, closed, .. } => polyline(v, points, *closed, pos),
         Shape::Arc {
             center,
@@ -49,29 +19,75 @@ pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
             chord_error,
             ..
         } => arc(v, *center, *radius, (*start, *end), *chord_error, pos),
-        Shape::Compound { parts } => {
-            if parts.is_empty() {
-                return Err(v.err(
-                    pos,
-                    "a compound shape needs at least one part",
-                    "add parts, or use a single shape",
-                ));
-            }
-            for p in parts {
-                v.finite2(p.offset, "part offset", pos)?;
-                v.finite(p.angle, "part angle", pos)?;
-                if curves::is_track(&p.shape) {
-                    return Err(v.err(
-                        pos,
-                        "a polyline or an arc cannot be a part of a compound shape",
-                        "give the track a fixed body of its own (several fixed bodies make a track of arcs and lines)",
-                    ));
-                }
-                shape(v, &p.shape, pos)?;
-            }
-            Ok(())
+        Shape::Compound { parts } => compound(v, parts, pos),
+        // A shape given by sizes alone: each in its range.
+        _ => sizes(v, s, pos),
+    }
+}
+
+/// The sizes a shape is given by ([`shapes::sizes`]), each in its range.
+fn sizes(v: &V, s: &Shape, pos: (usize, usize)) -> R {
+    for size in shapes::sizes(s) {
+        match size.least {
+            Least::Positive => v.positive(size.value, size.what, "m", pos)?,
+            Least::NonNegative => v.non_negative(size.value, size.what, "m", pos)?,
         }
     }
+    Ok(())
+}
+
+/// A polygon: finite points, at least three, enclosing an area.
+fn polygon(v: &V, points: &[V2], pos: (usize, usize)) -> R {
+    for p in points {
+        v.finite2(*p, "polygon point", pos)?;
+    }
+    let listed: Vec<DVec2> = points.iter().map(|&p| DVec2::from(p)).collect();
+    if points.len() < 3 || shapes::polygon_area(&listed).abs() < 1e-12 {
+        return Err(v.err(
+            pos,
+            "a polygon needs at least 3 points enclosing an area",
+            "list the vertices of a convex polygon",
+        ));
+    }
+    Ok(())
+}
+
+/// A segment: two finite, different ends.
+fn segment(v: &V, a: V2, b: V2, pos: (usize, usize)) -> R {
+    v.finite2(a, "segment end a", pos)?;
+    v.finite2(b, "segment end b", pos)?;
+    if a == b {
+        return Err(v.err(
+            pos,
+            "a segment needs two different ends",
+            "move `b` away from `a`",
+        ));
+    }
+    Ok(())
+}
+
+/// A compound: at least one part, each placed finitely, none a track, each a valid shape.
+fn compound(v: &V, parts: &[Part], pos: (usize, usize)) -> R {
+    if parts.is_empty() {
+        return Err(v.err(
+            pos,
+            "a compound shape needs at least one part",
+            "add parts, or use a single shape",
+        ));
+    }
+    for p in parts {
+        v.finite2(p.offset, "part offset", pos)?;
+        v.finite(p.angle, "part angle", pos)?;
+        if curves::is_track(&p.shape) {
+            return Err(v.err(
+                pos,
+                "a polyline or an arc cannot be a part of a compound shape",
+                "give the track a fixed body of its own (several fixed bodies make a track of arcs and lines)",
+            ));
+        }
+        shape(v, &p.shape, pos)?;
+    }
+    Ok(())
 }
 
 /// A polyline track: enough finite points, no zero-length edge, no edge crossing another.
@@ -284,58 +300,70 @@ fn track_in_range(v: &V, points: &[V2], what: &str, pos: (usize, usize)) -> R {
     Ok(())
 }
 
-/// Signed area of a polygon (shoelace).
-pub(super) fn polygon_area(points: &[V2]) -> f64 {
-    let n = points.len();
-    (0..n)
-        .map(|i| {
-            let (a, b) = (points[i], points[(i + 1) % n]);
-            a.0 * b.1 - b.0 * a.1
-        })
-        .sum::<f64>()
-        / 2.0
-}
-
-/// Area of a shape, m^2 (what mass by density multiplies; also `level::warnings`'s masses).
-pub(in crate::level) fn shape_area(s: &Shape) -> f64 {
-    use std::f64::consts::PI;
-    match s {
-        Shape::Circle { radius } => PI * radius * radius,
-        Shape::Box { width, height } => width * height,
-        Shape::Capsule { length, radius } => 2.0 * radius * length + PI * radius * radius,
-        Shape::Polygon { points } => polygon_area(points).abs(),
-        Shape::Segment { .. } | Shape::Polyline { .. } | Shape::Arc { .. } => 0.0,
-        Shape::Compound { parts } => parts.iter().map(|p| shape_area(&p.shape)).sum(),
-    }
-}
-
-// Not yet split into named steps (issue 44): one body's fields validated in file order, so errors come in the order a user reads.
-#[allow(clippy::too_many_lines)]
+/// One body, its fields validated in file order, so errors come in the order a user reads:
+/// where and how fast it starts, its shape, its mass data, its surface, its damping, its motion.
 pub(super) fn body(v: &V, b: &BodyDef) -> R {
-    let at = |f: &str| v.loc.field_pos("bodies", &b.name, f);
+    initial_state(v, b)?;
+    body_shape(v, b)?;
+    mass_data(v, b)?;
+    surface(v, b)?;
+    damping(v, b)?;
+    if let Some(m) = &b.motion {
+        motion(v, b, m, field(v, b, "motion"))?;
+    }
+    Ok(())
+}
+
+/// Where a field of body `b` is written.
+fn field(v: &V, b: &BodyDef, f: &str) -> (usize, usize) {
+    v.loc.field_pos("bodies", &b.name, f)
+}
+
+/// The starting pose and velocities: finite.
+fn initial_state(v: &V, b: &BodyDef) -> R {
     let name = &b.name;
     v.finite2(
         b.position,
         &format!("body \"{name}\" position"),
-        at("position"),
+        field(v, b, "position"),
     )?;
-    v.finite(b.angle, &format!("body \"{name}\" angle"), at("angle"))?;
+    v.finite(
+        b.angle,
+        &format!("body \"{name}\" angle"),
+        field(v, b, "angle"),
+    )?;
     v.finite2(
         b.velocity,
         &format!("body \"{name}\" velocity"),
-        at("velocity"),
+        field(v, b, "velocity"),
     )?;
-    v.finite(b.omega, &format!("body \"{name}\" omega"), at("omega"))?;
-    if let Some(s) = &b.shape {
-        shape(v, s, at("shape"))?;
-        if curves::is_track(s) && b.kind == BodyKind::Dynamic {
-            return Err(v.err(
-                at("shape"),
-                format!("dynamic body \"{name}\" has a polyline or arc shape: these are static tracks"),
-                "make the body `kind: fixed` (or `kinematic`), or give a dynamic body a convex shape (Circle, Box, Capsule, Polygon, Compound)",
-            ));
-        }
+    v.finite(
+        b.omega,
+        &format!("body \"{name}\" omega"),
+        field(v, b, "omega"),
+    )
+}
+
+/// The shape: valid, and a track only on a body that does not move under forces.
+fn body_shape(v: &V, b: &BodyDef) -> R {
+    let Some(s) = &b.shape else { return Ok(()) };
+    let at = field(v, b, "shape");
+    shape(v, s, at)?;
+    if curves::is_track(s) && b.kind == BodyKind::Dynamic {
+        return Err(v.err(
+            at,
+            format!("dynamic body \"{}\" has a polyline or arc shape: these are static tracks", b.name),
+            "make the body `kind: fixed` (or `kinematic`), or give a dynamic body a convex shape (Circle, Box, Capsule, Polygon, Compound)",
+        ));
     }
+    Ok(())
+}
+
+/// Mass, density, inertia and radius of gyration: not two of a pair, each positive, on a
+/// dynamic body only, and a dynamic body left with a mass and a moment of inertia.
+fn mass_data(v: &V, b: &BodyDef) -> R {
+    let name = &b.name;
+    let at = |f: &str| field(v, b, f);
     if b.mass.is_some() && b.density.is_some() {
         return Err(v.err(
             at("density"),
@@ -350,67 +378,67 @@ pub(super) fn body(v: &V, b: &BodyDef) -> R {
             "give one of them",
         ));
     }
-    if let Some(m) = b.mass {
-        v.positive(m, &format!("body \"{name}\" mass"), "kg", at("mass"))?;
-    }
-    if let Some(d) = b.density {
-        v.positive(
-            d,
-            &format!("body \"{name}\" density"),
-            "kg/m^2",
-            at("density"),
-        )?;
-    }
-    if let Some(i) = b.inertia {
-        v.positive(
-            i,
-            &format!("body \"{name}\" inertia"),
-            "kg m^2",
-            at("inertia"),
-        )?;
-    }
-    if let Some(k) = b.radius_of_gyration {
-        v.positive(
-            k,
-            &format!("body \"{name}\" radius_of_gyration"),
-            "m",
-            at("radius_of_gyration"),
-        )?;
-    }
-    if b.kind != BodyKind::Dynamic {
-        for (field, given) in [
-            ("mass", b.mass.is_some()),
-            ("density", b.density.is_some()),
-            ("inertia", b.inertia.is_some()),
-            ("radius_of_gyration", b.radius_of_gyration.is_some()),
-        ] {
-            if given {
-                return Err(v.err(
-                    at(field),
-                    format!("body \"{name}\" is {:?} and cannot have a {field}", b.kind)
-                        .to_lowercase(),
-                    "remove it, or make the body `kind: dynamic`",
-                ));
-            }
+    for (f, value, unit) in [
+        ("mass", b.mass, "kg"),
+        ("density", b.density, "kg/m^2"),
+        ("inertia", b.inertia, "kg m^2"),
+        ("radius_of_gyration", b.radius_of_gyration, "m"),
+    ] {
+        if let Some(x) = value {
+            v.positive(x, &format!("body \"{name}\" {f}"), unit, at(f))?;
         }
+    }
+    if b.kind == BodyKind::Dynamic {
+        dynamic_mass(v, b)
     } else {
-        let area = b.shape.as_ref().map_or(0.0, shape_area);
-        if b.mass.is_none() && area <= 0.0 {
+        no_mass_data(v, b)
+    }
+}
+
+/// A body that is not dynamic takes no mass data: the engine would ignore it.
+fn no_mass_data(v: &V, b: &BodyDef) -> R {
+    for (f, given) in [
+        ("mass", b.mass.is_some()),
+        ("density", b.density.is_some()),
+        ("inertia", b.inertia.is_some()),
+        ("radius_of_gyration", b.radius_of_gyration.is_some()),
+    ] {
+        if given {
             return Err(v.err(
-                at("name"),
-                format!("dynamic body \"{name}\" has no mass: its shape has no area"),
-                "give `mass: ...` (kg), or a shape with an area",
-            ));
-        }
-        if !b.lock_rotation && b.inertia.is_none() && b.radius_of_gyration.is_none() && area <= 0.0
-        {
-            return Err(v.err(
-                at("name"),
-                format!("dynamic body \"{name}\" has no moment of inertia: its shape has no area"),
-                "give `inertia: ...` (kg m^2) or `radius_of_gyration: ...` (m), or set `lock_rotation: true`",
+                field(v, b, f),
+                format!("body \"{}\" is {:?} and cannot have a {f}", b.name, b.kind).to_lowercase(),
+                "remove it, or make the body `kind: dynamic`",
             ));
         }
     }
+    Ok(())
+}
+
+/// A dynamic body's mass and moment of inertia: given, or from a shape with an area.
+fn dynamic_mass(v: &V, b: &BodyDef) -> R {
+    let name = &b.name;
+    let area = b.shape.as_ref().map_or(0.0, shapes::area);
+    if b.mass.is_none() && area <= 0.0 {
+        return Err(v.err(
+            field(v, b, "name"),
+            format!("dynamic body \"{name}\" has no mass: its shape has no area"),
+            "give `mass: ...` (kg), or a shape with an area",
+        ));
+    }
+    if !b.lock_rotation && b.inertia.is_none() && b.radius_of_gyration.is_none() && area <= 0.0 {
+        return Err(v.err(
+            field(v, b, "name"),
+            format!("dynamic body \"{name}\" has no moment of inertia: its shape has no area"),
+            "give `inertia: ...` (kg m^2) or `radius_of_gyration: ...` (m), or set `lock_rotation: true`",
+        ));
+    }
+    Ok(())
+}
+
+/// Friction and restitution coefficients: in range, and their effect declared when nonzero.
+fn surface(v: &V, b: &BodyDef) -> R {
+    let name = &b.name;
+    let at = |f: &str| field(v, b, f);
     if let Some(mu) = b.friction {
         v.non_negative(mu, &format!("body \"{name}\" friction"), "", at("friction"))?;
         if mu > 0.0 {
@@ -443,23 +471,25 @@ pub(super) fn body(v: &V, b: &BodyDef) -> R {
             )?;
         }
     }
-    for (field, c) in [
+    Ok(())
+}
+
+/// Linear and angular damping: not negative, and `damping` declared when nonzero.
+fn damping(v: &V, b: &BodyDef) -> R {
+    for (f, c) in [
         ("linear_damping", b.linear_damping),
         ("angular_damping", b.angular_damping),
     ] {
-        if let Some(c) = c {
-            v.non_negative(c, &format!("body \"{name}\" {field}"), "1/s", at(field))?;
-            if c > 0.0 {
-                v.need(
-                    Effect::Damping,
-                    at(field),
-                    &format!("body \"{name}\" sets {field}"),
-                )?;
-            }
+        let Some(c) = c else { continue };
+        let at = field(v, b, f);
+        v.non_negative(c, &format!("body \"{}\" {f}", b.name), "1/s", at)?;
+        if c > 0.0 {
+            v.need(
+                Effect::Damping,
+                at,
+                &format!("body \"{}\" sets {f}", b.name),
+            )?;
         }
-    }
-    if let Some(m) = &b.motion {
-        motion(v, b, m, at("motion"))?;
     }
     Ok(())
 }

@@ -14,7 +14,6 @@ mod exercise;
 mod forces;
 mod joints;
 
-pub(super) use bodies::shape_area;
 use bodies::*;
 use effects::*;
 use events::*;
