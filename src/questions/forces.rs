@@ -93,7 +93,8 @@ pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapsh
 }
 
 /// The quantity at the sample.
-// A match over every force quantity's reading, one arm per quantity.
+// A match over every force quantity's reading, one arm per quantity (the family's own state
+// is one sum): split, each arm would be a function called once, away from its neighbours.
 #[allow(clippy::too_many_lines)]
 pub(super) fn read(m: &Meter, st: &State, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
     let s = f.cur;

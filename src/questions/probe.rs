@@ -209,7 +209,9 @@ impl QuestionProbe {
 
     /// Reads the quantity when the sample is the moment the question's `at` names (`all[k]` is
     /// the sample, `event` what the question's pair did at it).
-    // A match over every quantity family's reading at its instant, one arm per family.
+    // A match over every instant a question can be read at (`When`), one arm per instant: each
+    // arm is that instant's whole rule, read in one place beside the others. Not per family: the
+    // dispatcher hands the reading to the family, the instant is the probe's alone.
     #[allow(clippy::too_many_lines)]
     fn read_if_due(
         &mut self,

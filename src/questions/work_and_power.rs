@@ -56,7 +56,8 @@ impl Default for State {
 }
 
 /// Accumulates the works over the step from `prev` to `s`.
-// A match over every work and power quantity's step, one arm per quantity.
+// A match over every work and power quantity's step, one arm per quantity, each adding to the
+// family's `State`: split, each arm would be a function called once, away from its neighbours.
 #[allow(clippy::too_many_lines)]
 pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
     let dt = s.time - prev.time;
