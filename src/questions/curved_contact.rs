@@ -15,10 +15,9 @@
 //! state at the sample. A `Polyline` track is not a circle: its own curvature is its facets',
 //! so it keeps Newton's analysis over the window (`forces::contact_force_analysis`).
 
-use super::forces::contact_component;
+use super::contact_reading::{also_acting, contact_component};
 use super::level_facts::ArcTrack;
 use super::meter::Meter;
-use super::rolling::also_acting;
 use super::sample::Sample;
 use crate::analysis::curved_path::{disc_path_radius, normal_force_on_circular_path};
 use crate::analysis::impact::pair_contact;

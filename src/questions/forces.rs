@@ -5,11 +5,12 @@
 //! reaction (PL-8, PL-12), the blow's impulse-momentum solution for a pin impulse (RM-10), and
 //! the one-degree-of-freedom power balance for a motor (RE-11).
 
+use super::contact_reading::{contact_component, turned, CURVED, SLIDING};
 use super::free_body::{contact_needed, side_impulse};
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::{is_massive, joint_index, to_local};
-use super::work_and_power::path_work;
+use super::step_work::path_work;
 use crate::analysis::cross;
 use crate::analysis::energy::{fixed_axis_speed_after_work, kinetic_energy_rate, power};
 use crate::analysis::impact::{pair_contact, pair_normal_impulse};
@@ -21,12 +22,21 @@ use crate::level::{Component, ContactComponent, JointKind, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
-/// Accumulates, for a joint reaction, the path work of loads and springs on the moving body
-/// over the step from `prev` to `s` (for the pivot reaction's omega from work-energy).
 /// How the reason for a one-step force on a curve begins.
 const ON_A_CURVE: &str = "the contact is on a curve";
 
-pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+/// What a force quantity accumulates over the run.
+#[derive(Clone, Default)]
+pub(super) struct State {
+    /// For a joint reaction: the path work of loads and springs on the moving body since the
+    /// start, J (the pivot reaction's omega from work-energy).
+    pub path_work: f64,
+}
+
+/// Accumulates, for a joint reaction, the path work of loads and springs on the moving body
+/// over the step from `prev` to `s` (for the pivot reaction's omega from work-energy), and
+/// judges whether the quantity's analysis applies.
+pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
     if let Quantity::ContactForceFrom {
         body,
         other,
@@ -46,8 +56,8 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             {
                 // Judged at each step (the last is the one read): a track that curves into a
                 // straight run (one Polyline) has a textbook force again on the straight.
-                m.inapplicable = super::rolling::turned(prev, s, i, o)
-                    .is_some_and(|a| a > super::rolling::CURVED)
+                m.inapplicable = turned(prev, s, i, o)
+                    .is_some_and(|a| a > CURVED)
                     .then(|| format!("{ON_A_CURVE} (its normal turns from step to step): a faceted track gives the force at its vertices, in bursts, so one step's m a_G is no textbook force; ask with a `window` of several steps"));
             }
         }
@@ -77,15 +87,16 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
             } else {
                 jj.body1
             };
-            m.analysis_sum += path_work(prev, s, i, true);
+            st.path_work += path_work(prev, s, i, true);
         }
     }
 }
 
 /// The quantity at the sample.
-// A match over every force quantity's reading, one arm per quantity.
+// A match over every force quantity's reading, one arm per quantity (the family's own state
+// is one sum): split, each arm would be a function called once, away from its neighbours.
 #[allow(clippy::too_many_lines)]
-pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
+pub(super) fn read(m: &Meter, st: &State, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     Some(match &m.q {
         Quantity::JointForce(j) => {
@@ -121,7 +132,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 (j.body1, j.anchor)
             };
             let comp = |r: DVec2| component_of(*component, r, s.bodies[mb].com, anchor);
-            (comp(on_moving), pivot_reaction(m, f, k).map(comp))
+            (comp(on_moving), pivot_reaction(m, st, f, k).map(comp))
         }
         Quantity::JointImpulse { joint, component } => {
             let k = joint_index(s, joint)?;
@@ -262,24 +273,6 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
     })
 }
 
-/// A contact's force or impulse `v` on a body as `c` names it, with `n` the contact normal into
-/// the body and t = k x n.
-pub(super) fn contact_component(c: ContactComponent, v: DVec2, n: DVec2) -> f64 {
-    match c {
-        ContactComponent::Normal => v.dot(n),
-        ContactComponent::Tangential => v.dot(n.perp()),
-        ContactComponent::Friction => v.dot(n.perp()).abs(),
-        ContactComponent::X => v.x,
-        ContactComponent::Y => v.y,
-        ContactComponent::Magnitude => v.length(),
-    }
-}
-
-/// A slip speed above which a contact counts as sliding for Coulomb's law, m/s. rapier's sticking
-/// contacts creep at up to a few mm/s (a disc on a pulled plank: 3.2 mm/s, docs/known-gaps.md),
-/// and a sliding contact that stops passes through this speed within a step or two.
-pub(super) const SLIDING: f64 = 1e-2;
-
 /// The textbook's contact force on body i from o, as component `c` (`ContactForceFrom`): while
 /// the contact slides (the slip keeps one sign above [`SLIDING`] on both steps around the
 /// sample), the friction part is Coulomb's mu N opposing the slip, with the engine's N (WE-6);
@@ -378,7 +371,7 @@ fn reaction_not_applicable(m: &Meter, s: &Snapshot, k: usize) -> Option<String> 
 /// omega from work-energy (`analysis::energy::fixed_axis_speed_after_work` with the work of
 /// gravity, loads and springs since the start), its sign the engine's. Applies when one side of
 /// a revolute joint is fixed and the moving body has no other joint or contact.
-fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
+fn pivot_reaction(m: &Meter, st: &State, f: &Sample, k: usize) -> Option<DVec2> {
     let s = f.cur;
     let js = if s.joints.is_empty() {
         f.next.unwrap_or(s)
@@ -447,7 +440,7 @@ fn pivot_reaction(m: &Meter, f: &Sample, k: usize) -> Option<DVec2> {
     // omega from work-energy: gravity's work is m g . (G - G0); loads' and springs' along the path.
     let init = m.init.as_ref()?;
     let b0 = &init.bodies[mb];
-    let work = b.mass * s.gravity.dot(b.com - b0.com) + m.analysis_sum;
+    let work = b.mass * s.gravity.dot(b.com - b0.com) + st.path_work;
     let turning = if b.omega < 0.0 { -1.0 } else { 1.0 };
     let omega = fixed_axis_speed_after_work(i_o, b0.omega, work) * turning;
     Some(fixed_axis_reaction(b.mass, i_o, r, force, moment, omega))

@@ -7,7 +7,8 @@
 //! level's declared restitution.
 
 use super::contact_events::{ContactPhase, PairEvent, PairTracker};
-use super::forces::contact_component;
+use super::contact_reading::contact_component;
+use super::level_facts::LevelFacts;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use super::snapshot_reading::{body_mechanical_energy, height, is_massive};
@@ -18,8 +19,31 @@ use crate::level::{ContactComponent, Quantity};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
+/// What an impact quantity accumulates over the run.
+#[derive(Clone)]
+pub(super) struct State {
+    /// The pair the quantity is about.
+    pub pair: Option<PairTracker>,
+    /// Highest mass center since the contact went quiet (rebound height), m.
+    pub rebound_apex: f64,
+}
+
+impl State {
+    pub fn new(q: &Quantity) -> Self {
+        State {
+            pair: pair_tracker(q),
+            rebound_apex: f64::NEG_INFINITY,
+        }
+    }
+
+    /// Follows the pair over the step that led to the sample: what it did then.
+    pub fn follow_pair(&mut self, f: &Sample, facts: &LevelFacts) -> Option<PairEvent> {
+        self.pair.as_mut().and_then(|p| p.update(f, facts))
+    }
+}
+
 /// The tracker of the pair an impact quantity is about (None for other quantities).
-pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
+fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
     match q {
         Quantity::ReboundHeight { body, other }
         | Quantity::Restitution { body, other }
@@ -30,19 +54,19 @@ pub(super) fn pair_tracker(q: &Quantity) -> Option<PairTracker> {
 }
 
 /// Follows the rebound's apex over the step that led to `s` (`event`: what the pair did then).
-pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
+pub(super) fn advance(m: &mut Meter, st: &mut State, s: &Snapshot, event: Option<PairEvent>) {
     if m.inapplicable.is_none() {
-        m.inapplicable = not_applicable(m, s);
+        m.inapplicable = not_applicable(m, st, s);
     }
     if let Quantity::ReboundHeight { body, .. } = &m.q {
         if let Some(i) = m.body_index(s, body) {
-            let phase = m.pair.as_ref().map_or(ContactPhase::Before, |p| p.phase);
+            let phase = st.pair.as_ref().map_or(ContactPhase::Before, |p| p.phase);
             // A flicker of the contact: the flight has not begun yet.
             if event == Some(PairEvent::Resumed) {
-                m.rebound_apex = f64::NEG_INFINITY;
+                st.rebound_apex = f64::NEG_INFINITY;
             }
             if matches!(phase, ContactPhase::Quiet | ContactPhase::Released) {
-                m.rebound_apex = m.rebound_apex.max(height(s.gravity, s.bodies[i].com));
+                st.rebound_apex = st.rebound_apex.max(height(s.gravity, s.bodies[i].com));
             }
         }
     }
@@ -53,11 +77,11 @@ pub(super) fn advance(m: &mut Meter, s: &Snapshot, event: Option<PairEvent>) {
 /// and `ContactImpulse` read its post-impact state), or, for `ReboundHeight`, the body does not
 /// fly free under gravity alone after the contact (y_c + v'^2 / (2 g) is a projectile's apex):
 /// a joint, a spring, a coupling, a load or damping acts on it.
-fn not_applicable(m: &Meter, s: &Snapshot) -> Option<String> {
+fn not_applicable(m: &Meter, st: &State, s: &Snapshot) -> Option<String> {
     if matches!(m.q, Quantity::Restitution { .. }) {
         return None;
     }
-    if let Some(why) = m
+    if let Some(why) = st
         .pair
         .as_ref()
         .and_then(|p| p.impact.as_ref())
@@ -94,8 +118,8 @@ fn not_applicable(m: &Meter, s: &Snapshot) -> Option<String> {
 
 /// Why an impact quantity has no engine value at the end of the run, when the pair says: it
 /// never touched, its first contact was not an impact, or the contact never let go.
-pub(super) fn why_missing(m: &Meter) -> Option<String> {
-    let p = m.pair.as_ref()?;
+pub(super) fn why_missing(m: &Meter, st: &State) -> Option<String> {
+    let p = st.pair.as_ref()?;
     Some(match (&m.q, p.phase) {
         (_, ContactPhase::Before) => "the two bodies never touched in the run".into(),
         (Quantity::Restitution { .. } | Quantity::EnergyLost { .. }, _) if p.impact.is_none() => {
@@ -112,14 +136,14 @@ pub(super) fn why_missing(m: &Meter) -> Option<String> {
 }
 
 /// The quantity at the sample.
-pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
+pub(super) fn read(m: &Meter, st: &State, f: &Sample) -> Option<EngineAndAnalysis> {
     let s = f.cur;
-    let p = m.pair.as_ref();
+    let p = st.pair.as_ref();
     Some(match &m.q {
         Quantity::ReboundHeight { body: b, .. } => {
             let i = m.body_index(s, b)?;
             let p = p?;
-            let engine = if p.ended() { m.rebound_apex } else { f64::NAN };
+            let engine = if p.ended() { st.rebound_apex } else { f64::NAN };
             // The apex of free flight from the state right after the impact (IM-13).
             let analysis = p.impact.as_ref().map(|imp| {
                 let post = &imp.post[i];

@@ -3,6 +3,7 @@
 //! (`SlipEnds`, `SlipStarts`). Each watcher is fed every sample and says, once, where between
 //! two samples its instant lies; the probe then reads the question's quantity there.
 
+use super::contact_reading::also_acting;
 use super::level_facts::LevelFacts;
 use super::sample::Reading;
 use crate::analysis::closed_forms::{slide_to_roll_time, speed_when_rolling};
@@ -288,8 +289,7 @@ impl Slip {
                 "the floor is not level: the slide-to-roll time is for a level floor".into(),
             );
         }
-        let held =
-            super::rolling::also_acting(s, i, o).or_else(|| info.damped.then_some("damping"));
+        let held = also_acting(s, i, o).or_else(|| info.damped.then_some("damping"));
         if let Some(what) = held {
             return Err(format!(
                 "{what} also acts on the body: the slide-to-roll closed form assumes its weight and the floor alone"

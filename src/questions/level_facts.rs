@@ -5,7 +5,7 @@
 
 use crate::analysis::curved_path::PathSide;
 use crate::analysis::reference::Reference;
-use crate::level::{Effect, JointKind, Level, When};
+use crate::level::{Effect, JointKind, Level, Quantity, When};
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 use std::collections::HashMap;
@@ -226,8 +226,7 @@ impl LevelFacts {
                 .questions
                 .iter()
                 .any(|q| {
-                    super::motion::served_by_reference(&q.quantity)
-                        && matches!(q.at, When::Time(_) | When::End)
+                    served_by_reference(&q.quantity) && matches!(q.at, When::Time(_) | When::End)
                 })
                 .then(|| std::sync::Arc::new(Reference::of_level(level))),
         }
@@ -272,4 +271,27 @@ impl LevelFacts {
         let m = |i: usize| self.bodies.get(i).map_or(0.0, |x| x.friction);
         m(a).max(m(b))
     }
+}
+
+/// The motion quantities the reference trajectory (`analysis::reference`) gives an analysis
+/// value for, read at a time (positions, angles and velocities of bodies and body points).
+pub(super) fn served_by_reference(q: &Quantity) -> bool {
+    matches!(
+        q,
+        Quantity::X(_)
+            | Quantity::Y(_)
+            | Quantity::Angle(_)
+            | Quantity::Vx(_)
+            | Quantity::Vy(_)
+            | Quantity::Speed(_)
+            | Quantity::Omega(_)
+            | Quantity::Direction(_)
+            | Quantity::PointX { .. }
+            | Quantity::PointY { .. }
+            | Quantity::PointSpeed { .. }
+            | Quantity::RelativeDistance(..)
+            | Quantity::RelativeSpeed(..)
+            | Quantity::RelativeAngle(..)
+            | Quantity::RelativePointSpeed { .. }
+    )
 }

@@ -15,16 +15,25 @@
 //! Where things are:
 //! - `probe`: [`QuestionProbe`], which watches the run and decides *when* to read (a time, an
 //!   extreme, a crossing, a contact event, a blow);
-//! - `meter`: one quantity's state over the run, handing the reading to its family;
-//! - the families, each owning how its quantities are accumulated and read: `motion`,
-//!   `forces` (with the engine's free-body diagram in `free_body`), `work_and_power`,
-//!   `periods`, `rolling`, `impacts` (with the impulse-momentum solutions in
-//!   `impact_solution`) and `linkages`;
+//! - `dispatch`: the dispatcher, routing a quantity to its family with the meter and the
+//!   family's state;
+//! - the families, each owning its state over the run (its `State`) and how its quantities are
+//!   accumulated and read: `motion`, `forces` (with the engine's free-body diagram in
+//!   `free_body` and the force on an arc in `curved_contact`), `work_and_power`, `periods`,
+//!   `rolling`, `impacts` (with the impulse-momentum solutions in `impact_solution`) and
+//!   `linkages`;
+//! - `meter`: what every quantity's meter holds whatever its family (the quantity, the level's
+//!   facts, why its analysis does not apply);
 //! - `contact_events`: the first contact of a pair, from touch to release;
 //! - `level_facts`: what a question needs from the level beyond the snapshots;
 //! - `sample`: the snapshots around a sample, and what a reading is;
-//! - `snapshot_reading`: small readings of a snapshot the families share;
+//! - `snapshot_reading`, `contact_reading` and `step_work`: small readings of a snapshot, of a
+//!   contact and of a step's work that the families share;
 //! - `result`: the result a question reports, and grading a student's answer.
+//!
+//! Imports run one way: `probe` -> `dispatch` -> the families -> the shared types, with no
+//! circle (tests/suite/docs/app_import_rule.rs); a family never imports another family, so
+//! what two families share goes below both.
 //!
 //! Adding a quantity: its variant in `level/format/exercise.rs` (with its [`QuantityFamily`]),
 //! its references in `level/validate/exercise.rs`, its reading in its family's file, and a
@@ -33,7 +42,9 @@
 //! [`QuantityFamily`]: crate::level::QuantityFamily
 
 mod contact_events;
+mod contact_reading;
 mod curved_contact;
+mod dispatch;
 mod forces;
 mod free_body;
 mod impact_solution;
@@ -49,6 +60,7 @@ mod result;
 mod rolling;
 mod sample;
 mod snapshot_reading;
+mod step_work;
 pub mod units;
 mod work_and_power;
 

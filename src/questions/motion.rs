@@ -15,10 +15,23 @@ use crate::level::Quantity;
 use crate::snapshot::{BodyState, Snapshot};
 use glam::DVec2;
 
+/// What a motion quantity accumulates over the run.
+#[derive(Clone, Default)]
+pub(super) struct State {
+    /// Distance travelled so far, m (`Distance`).
+    pub engine_sum: f64,
+    /// The angular impulse about the fixed point so far (`AngularMomentumAbout`'s analysis).
+    pub analysis_sum: f64,
+    /// The first contact that pushed in the run: the start of the step it pushed in, and which
+    /// bodies, said for a note. The reference trajectory (`analysis::reference`) models no
+    /// contact, so it does not apply to a reading after that.
+    pub contact_seen: Option<(f64, String)>,
+}
+
 /// Accumulates the distance travelled over the step from `prev` to `s`.
-pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
-    if m.contact_seen.is_none() {
-        m.contact_seen = first_contact(s).map(|why| (prev.time, why));
+pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
+    if st.contact_seen.is_none() {
+        st.contact_seen = first_contact(s).map(|why| (prev.time, why));
     }
     if m.inapplicable.is_none() {
         m.inapplicable = damped_free_body(m, s);
@@ -26,14 +39,14 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
     match &m.q {
         Quantity::Distance(b) => {
             if let Some(i) = m.body_index(s, b) {
-                m.engine_sum += (s.bodies[i].com - prev.bodies[i].com).length();
+                st.engine_sum += (s.bodies[i].com - prev.bodies[i].com).length();
             }
         }
         Quantity::AngularMomentumAbout { body, point } => {
             if let Some(i) = m.body_index(s, body) {
                 // The step's angular impulse about the fixed O (6/17).
                 let o = DVec2::new(point.0, point.1);
-                m.analysis_sum += external_moment_about(prev, s, i, o);
+                st.analysis_sum += external_moment_about(prev, s, i, o);
             }
         }
         _ => {}
@@ -66,7 +79,7 @@ fn damped_free_body(m: &Meter, s: &Snapshot) -> Option<String> {
 }
 
 /// The quantity at the sample.
-pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
+pub(super) fn read(m: &Meter, st: &State, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     let body = |name: &str| m.named_body(s, name);
     let solved = |i: usize| occ.solved_state(i, s);
@@ -95,7 +108,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let dir = |v: DVec2| v.y.atan2(v.x);
             (dir(x.velocity), solved(i).map(|y| dir(y.velocity)))
         }
-        Quantity::Distance(_) => (m.engine_sum, None),
+        Quantity::Distance(_) => (st.engine_sum, None),
         Quantity::Time => (s.time, None),
         Quantity::Ax(b) | Quantity::Ay(b) | Quantity::Accel(b) => {
             let i = m.body_index(s, b)?;
@@ -178,7 +191,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             let h = |y: &BodyState| {
                 angular_momentum_about(y.mass, y.inertia, y.com, y.velocity, y.omega, o)
             };
-            let analysis = m.init.as_ref().map(|s0| h(&s0.bodies[i]) + m.analysis_sum);
+            let analysis = m.init.as_ref().map(|s0| h(&s0.bodies[i]) + st.analysis_sum);
             (h(x), analysis)
         }
         Quantity::RelativePointSpeed {
@@ -203,29 +216,6 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
     })
 }
 
-/// The motion quantities the reference trajectory (`analysis::reference`) gives an analysis
-/// value for, read at a time (positions, angles and velocities of bodies and body points).
-pub(super) fn served_by_reference(q: &Quantity) -> bool {
-    matches!(
-        q,
-        Quantity::X(_)
-            | Quantity::Y(_)
-            | Quantity::Angle(_)
-            | Quantity::Vx(_)
-            | Quantity::Vy(_)
-            | Quantity::Speed(_)
-            | Quantity::Omega(_)
-            | Quantity::Direction(_)
-            | Quantity::PointX { .. }
-            | Quantity::PointY { .. }
-            | Quantity::PointSpeed { .. }
-            | Quantity::RelativeDistance(..)
-            | Quantity::RelativeSpeed(..)
-            | Quantity::RelativeAngle(..)
-            | Quantity::RelativePointSpeed { .. }
-    )
-}
-
 /// The first contact of `s` that pushed, said for a note.
 fn first_contact(s: &Snapshot) -> Option<String> {
     let c = s.contacts.iter().find(|c| c.pushes())?;
@@ -240,7 +230,7 @@ fn first_contact(s: &Snapshot) -> Option<String> {
 
 /// The quantity at time t on the reference trajectory (the level's equations of motion
 /// integrated independently of the engine), or why the scene is outside it.
-pub(super) fn reference_value(m: &Meter, t: f64) -> Result<f64, String> {
+pub(super) fn reference_value(m: &Meter, st: &State, t: f64) -> Result<f64, String> {
     let model = match m.facts.reference.as_deref() {
         Some(Ok(model)) => model,
         Some(Err(why)) => return Err(why.clone()),
@@ -248,7 +238,7 @@ pub(super) fn reference_value(m: &Meter, t: f64) -> Result<f64, String> {
     };
     // A contact that pushed in a step that began before the reading (the meter follows the
     // whole run, so a later one is seen too, and does not matter).
-    if let Some((_, why)) = m.contact_seen.as_ref().filter(|(t0, _)| *t0 < t) {
+    if let Some((_, why)) = st.contact_seen.as_ref().filter(|(t0, _)| *t0 < t) {
         return Err(why.clone());
     }
     let tr = model.integrate(&[t])?;

@@ -30,28 +30,54 @@ use crate::analysis::closed_forms::{
 };
 use crate::analysis::energy::spring_potential;
 use crate::analysis::mass::parallel_axis;
-pub(super) use crate::analysis::oscillation::{Crossings, Extremes};
+use crate::analysis::oscillation::{Crossings, Extremes};
 use crate::analysis::small_oscillations::{Mechanism, SMALL_AMPLITUDE_PERIOD_ERROR};
 use crate::level::Quantity;
 use crate::level::{BodyKind, JointKind};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
 
+/// What a period quantity accumulates over the run.
+#[derive(Clone, Default)]
+pub(super) struct State {
+    /// Zero crossings of an oscillating velocity (periods).
+    pub crossings: Crossings,
+    /// Direction of the spring a `SpringPeriod` body oscillates along.
+    pub spring_axis: Option<DVec2>,
+    /// The general method's period, from the linearized equations of the whole scene
+    /// (PL-14), which is the analysis.
+    pub linearized: Option<f64>,
+    /// The one-body closed form's period, where its assumptions hold (a cross-check of
+    /// `linearized`, never the analysis).
+    pub closed_form: Option<f64>,
+    /// `ModePeriod`: per snapshot body, the weights (m dx_G, I_G dtheta) of the mode's
+    /// modal rate eta' = phi^T M v, and the support's velocity at t = 0 and acceleration.
+    pub modal_weights: Option<Vec<(DVec2, f64)>>,
+    pub support_motion: (DVec2, DVec2),
+    /// `EquilibriumAngle`: the body's angle at its last two extremes (interpolated), and the
+    /// equilibrium angle of its mechanism (PL-14), found once.
+    pub swing: Extremes,
+    pub equilibrium: Option<f64>,
+    /// For `SpringPeriod`: the free body at the spring's other end, when the body's springs all
+    /// join it to that one (their relative motion is what vibrates).
+    pub spring_partner: Option<usize>,
+}
+
 /// Follows the oscillating rate over the step from `prev` to `s`.
-pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
     match &m.q {
         Quantity::PendulumPeriod { body, joint } => {
             if let Some(i) = m.body_index(s, body) {
-                if m.crossings.is_empty() {
+                if st.crossings.is_empty() {
                     // (The joints' anchors from a stepped snapshot: the initial one has none.)
                     let special = pendulum_breaks(m, s, i, joint);
                     if special.is_none() {
-                        m.closed_form = pendulum_theory(m, s, body, joint);
+                        st.closed_form = pendulum_theory(m, s, body, joint);
                     }
-                    general(m, i, special, |shape| shape[i].1);
-                    m.crossings.add(prev.time, prev.bodies[i].omega);
+                    general(m, st, i, special, |shape| shape[i].1);
+                    st.crossings.add(prev.time, prev.bodies[i].omega);
                 }
-                m.crossings.add(s.time, s.bodies[i].omega);
+                st.crossings.add(s.time, s.bodies[i].omega);
             }
         }
         Quantity::SpringPeriod(body) => {
@@ -64,70 +90,72 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         - partner.map_or(DVec2::ZERO, |j| snap.bodies[j].velocity);
                     v.dot(a)
                 };
-                if m.spring_axis.is_none() {
+                if st.spring_axis.is_none() {
                     let init: &Snapshot = m.init.as_deref().unwrap_or(prev);
                     let sp = init
                         .springs
                         .iter()
                         .find(|x| !x.torsion && (x.body1 == i || x.body2 == Some(i)));
-                    m.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
-                    m.spring_partner = spring_partner(init, i);
-                    let special = spring_mass_breaks(m, init, i);
+                    st.spring_axis = sp.map(|x| (x.point2 - x.point1).normalize_or(DVec2::X));
+                    st.spring_partner = spring_partner(init, i);
+                    let special = spring_mass_breaks(m, st, init, i);
                     if special.is_none() {
-                        m.closed_form = spring_mass_theory(m, init, i);
+                        st.closed_form = spring_mass_theory(m, st, init, i);
                     }
-                    match m.spring_axis {
+                    match st.spring_axis {
                         Some(a) => {
-                            let partner = m.spring_partner;
-                            general(m, i, special, |shape| {
+                            let partner = st.spring_partner;
+                            general(m, st, i, special, |shape| {
                                 let own = shape[i].0;
                                 (own - partner.map_or(DVec2::ZERO, |j| shape[j].0)).dot(a)
                             });
-                            m.crossings.add(prev.time, rate(prev, a, m.spring_partner));
+                            st.crossings
+                                .add(prev.time, rate(prev, a, st.spring_partner));
                         }
                         None => m.inapplicable = Some("no linear spring acts on the body".into()),
                     }
                 }
-                if let Some(a) = m.spring_axis {
-                    m.crossings.add(s.time, rate(s, a, m.spring_partner));
+                if let Some(a) = st.spring_axis {
+                    st.crossings.add(s.time, rate(s, a, st.spring_partner));
                 }
             }
         }
         Quantity::ModePeriod { body, mode } => {
-            if m.crossings.is_empty() {
+            if st.crossings.is_empty() {
                 let init: &Snapshot = m.init.as_deref().unwrap_or(prev);
                 match mode_of(m, init, body, *mode) {
                     Ok((t, w, support)) => {
-                        m.linearized = Some(t);
-                        m.modal_weights = Some(w);
-                        m.support_motion = support;
+                        st.linearized = Some(t);
+                        st.modal_weights = Some(w);
+                        st.support_motion = support;
                     }
                     Err(e) => m.inapplicable = Some(e),
                 }
-                if let Some(r) = modal_rate(m, prev) {
-                    m.crossings.add(prev.time, r);
+                if let Some(r) = modal_rate(st, prev) {
+                    st.crossings.add(prev.time, r);
                 }
             }
-            if let Some(r) = modal_rate(m, s) {
-                m.crossings.add(s.time, r);
+            if let Some(r) = modal_rate(st, s) {
+                st.crossings.add(s.time, r);
             }
         }
         Quantity::EquilibriumAngle(body) => {
             if let Some(i) = m.body_index(s, body) {
-                if m.crossings.is_empty() {
-                    m.crossings.add(prev.time, prev.bodies[i].omega);
+                if st.crossings.is_empty() {
+                    st.crossings.add(prev.time, prev.bodies[i].omega);
                     match equilibrium_angle(m, i) {
-                        Ok(a) => m.equilibrium = Some(a),
+                        Ok(a) => st.equilibrium = Some(a),
                         Err(e) => m.inapplicable = Some(e),
                     }
                 }
-                m.crossings.add(s.time, s.bodies[i].omega);
+                st.crossings.add(s.time, s.bodies[i].omega);
                 let (w0, w1) = (prev.bodies[i].omega, s.bodies[i].omega);
                 if (w0 > 0.0 && w1 <= 0.0) || (w0 < 0.0 && w1 >= 0.0) {
                     // omega taken linear over the step: it is zero tau into it, and the angle
                     // there is the trapezoid's, theta_prev + w0 tau / 2.
                     let tau = (s.time - prev.time) * w0 / (w0 - w1);
-                    m.swing.add(w0 > 0.0, prev.bodies[i].angle + 0.5 * w0 * tau);
+                    st.swing
+                        .add(w0 > 0.0, prev.bodies[i].angle + 0.5 * w0 * tau);
                 }
             }
         }
@@ -186,9 +214,9 @@ fn mode_of(
 }
 
 /// The modal rate eta' = phi^T M v at snapshot s, velocities taken relative to the support.
-fn modal_rate(m: &Meter, s: &Snapshot) -> Option<f64> {
-    let w = m.modal_weights.as_ref()?;
-    let (v0, a) = m.support_motion;
+fn modal_rate(st: &State, s: &Snapshot) -> Option<f64> {
+    let w = st.modal_weights.as_ref()?;
+    let (v0, a) = st.support_motion;
     let vs = v0 + a * s.time;
     Some(
         w.iter()
@@ -210,22 +238,22 @@ fn equilibrium_angle(m: &Meter, i: usize) -> Result<f64, String> {
 }
 
 /// The quantity at the sample.
-pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
+pub(super) fn read(m: &Meter, st: &State, f: &Sample) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     Some(match &m.q {
         Quantity::PendulumPeriod { .. }
         | Quantity::SpringPeriod(_)
-        | Quantity::ModePeriod { .. } => (m.crossings.period(), m.linearized),
+        | Quantity::ModePeriod { .. } => (st.crossings.period(), st.linearized),
         Quantity::EquilibriumAngle(b) => {
             let i = m.body_index(s, b)?;
             // The middle of the last whole swing; a body that has not swung twice is read
             // where it is, if it is still (1e-6 rad/s: far under any swing a question is about).
-            let engine = match m.swing.middle() {
+            let engine = match st.swing.middle() {
                 Some(x) => x,
                 None if s.bodies[i].omega.abs() < 1e-6 => s.bodies[i].angle,
                 None => f64::NAN,
             };
-            (engine, m.equilibrium)
+            (engine, st.equilibrium)
         }
         q => unreachable!("{q:?} is not a period"),
     })
@@ -234,11 +262,11 @@ pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {
 /// The one-body spring-mass closed form for body i where [`spring_mass_breaks`] holds it:
 /// 2 pi sqrt(m / sum k) with the level's k and the engine's m, the reduced mass for a free
 /// pair, damped where the springs' dampers act (a cross-check of the general method only).
-fn spring_mass_theory(m: &Meter, s: &Snapshot, i: usize) -> Option<f64> {
+fn spring_mass_theory(m: &Meter, st: &State, s: &Snapshot, i: usize) -> Option<f64> {
     let springs = || m.facts.springs.iter().filter(|x| !x.torsion && x.holds(i));
     let k: f64 = springs().map(|x| x.stiffness).sum();
     let c: f64 = springs().map(|x| x.damping).sum();
-    let mass = match m.spring_partner {
+    let mass = match st.spring_partner {
         Some(j) => reduced_mass(s.bodies[i].mass, s.bodies[j].mass),
         None => s.bodies[i].mass,
     };
@@ -253,19 +281,20 @@ fn spring_mass_theory(m: &Meter, s: &Snapshot, i: usize) -> Option<f64> {
 /// start's amplitude is the analysis, not the linearized one.
 const AMPLITUDE_MATTERS: f64 = 1e-5;
 
-/// The general method's period for body i, into `m.linearized`, or why there is none, into
+/// The general method's period for body i, into `st.linearized`, or why there is none, into
 /// `m.inapplicable`. `measured` is the excited mode's component in the coordinate whose rate
 /// the engine's zero crossings follow (from the mode's shape, per body (dx_G, dtheta)).
 /// `special`: why the one-body closed form does not fit either, when it does not (the note
 /// then says both).
 fn general(
     m: &mut Meter,
+    st: &mut State,
     i: usize,
     special: Option<String>,
     measured: impl Fn(&[(DVec2, f64)]) -> f64,
 ) {
     match general_period(m, i, measured) {
-        Ok(t) => m.linearized = Some(t),
+        Ok(t) => st.linearized = Some(t),
         Err(e) => {
             let general =
                 format!("the linearized equations of the scene (PL-14) give no period: {e}");
@@ -498,10 +527,10 @@ fn coupled(s: &Snapshot, i: usize, formula: &str) -> Option<String> {
 /// springs, under them and their dampers alone: every spring joins it to the ground or to one
 /// free partner (a second moving body on its springs couples their motions: two modes, neither
 /// 2 pi sqrt(m / sum k)), and it rests on nothing (a rolling contact adds I_G / r^2 to m).
-fn spring_mass_breaks(m: &Meter, s: &Snapshot, i: usize) -> Option<String> {
+fn spring_mass_breaks(m: &Meter, st: &State, s: &Snapshot, i: usize) -> Option<String> {
     let facts = &m.facts;
-    let axis = m.spring_axis?;
-    let partner = m.spring_partner;
+    let axis = st.spring_axis?;
+    let partner = st.spring_partner;
     if let Some(x) = s.springs.iter().find(|x| {
         let other = match (x.body1 == i, x.body2) {
             (true, o) => o,

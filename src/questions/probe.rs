@@ -3,10 +3,10 @@
 //! turning the reading into a [`QuestionResult`].
 
 use super::contact_events::{PairEvent, PairTracker};
+use super::dispatch::FamilyMeter;
 use super::impact_solution::{Blow, Impact, NO_IMPACT};
 use super::instants::{Extreme, Slip};
 use super::level_facts::LevelFacts;
-use super::meter::Meter;
 use super::result::QuestionResult;
 use super::sample::{Occasion, Reading, Sample};
 use crate::level::{Level, Quantity, QuestionDef, When};
@@ -19,9 +19,9 @@ use std::sync::Arc;
 pub struct QuestionProbe {
     def: QuestionDef,
     facts: Arc<LevelFacts>,
-    meter: Meter,
+    meter: FamilyMeter,
     /// The signal a crossing waits for.
-    trigger: Option<Meter>,
+    trigger: Option<FamilyMeter>,
     /// The pair whose contact the question waits for.
     pair: Option<PairTracker>,
     /// The extreme (`MaxOf`, `MinOf`) or the slip event (`SlipEnds`, `SlipStarts`) waited for.
@@ -54,11 +54,12 @@ impl QuestionProbe {
     /// builds them once: a copy per question is a copy of every body per question).
     pub fn sharing(facts: Arc<LevelFacts>, def: &QuestionDef) -> Self {
         let trigger = match &def.at {
-            When::Angle { body, .. } => {
-                Some(Meter::new(&Quantity::Angle(body.clone()), facts.clone()))
-            }
+            When::Angle { body, .. } => Some(FamilyMeter::new(
+                &Quantity::Angle(body.clone()),
+                facts.clone(),
+            )),
             When::Crossing { of, .. } | When::MaxOf { of, .. } | When::MinOf { of, .. } => {
-                Some(Meter::new(of, facts.clone()))
+                Some(FamilyMeter::new(of, facts.clone()))
             }
             _ => None,
         };
@@ -78,9 +79,9 @@ impl QuestionProbe {
             }
             _ => None,
         };
-        let mut meter = Meter::new(&def.quantity, facts.clone());
-        meter.configuration_event = !matches!(def.at, When::Time(_) | When::End);
-        meter.impact_instant = matches!(
+        let mut meter = FamilyMeter::new(&def.quantity, facts.clone());
+        meter.common.configuration_event = !matches!(def.at, When::Time(_) | When::End);
+        meter.common.impact_instant = matches!(
             def.at,
             When::FirstContact { .. } | When::ContactEnds { .. } | When::AfterEvent(_)
         );
@@ -113,7 +114,7 @@ impl QuestionProbe {
     /// PL-14) and the one-body closed form's, when the closed form's assumptions hold; the
     /// closed form is a cross-check only (tests hold the two together). None otherwise.
     pub fn closed_form_cross_check(&self) -> Option<(f64, f64)> {
-        Some((self.meter.linearized?, self.meter.closed_form?))
+        self.meter.period_methods()
     }
 
     /// Whether the question has been read for good (later snapshots change nothing).
@@ -208,7 +209,9 @@ impl QuestionProbe {
 
     /// Reads the quantity when the sample is the moment the question's `at` names (`all[k]` is
     /// the sample, `event` what the question's pair did at it).
-    // A match over every quantity family's reading at its instant, one arm per family.
+    // A match over every instant a question can be read at (`When`), one arm per instant: each
+    // arm is that instant's whole rule, read in one place beside the others. Not per family: the
+    // dispatcher hands the reading to the family, the instant is the probe's alone.
     #[allow(clippy::too_many_lines)]
     fn read_if_due(
         &mut self,
@@ -350,7 +353,7 @@ impl QuestionProbe {
                     let lasting = pair.and_then(|p| p.not_impulsive());
                     let occ = match (&imp, lasting) {
                         (Some(i), None) => {
-                            self.meter.inapplicable = self.solution_left_out(
+                            self.meter.common.inapplicable = self.solution_left_out(
                                 sample,
                                 Occasion::PostImpact(i),
                                 &i.left_out,
@@ -401,7 +404,7 @@ impl QuestionProbe {
         let Some(which) = wanted else { return };
         match slip.closed_form(&self.facts, s) {
             Ok((t, v)) => at.analysis = Some(if which == 0 { t } else { v }),
-            Err(why) => self.meter.inapplicable = Some(why),
+            Err(why) => self.meter.common.inapplicable = Some(why),
         }
     }
 
@@ -494,7 +497,7 @@ impl QuestionProbe {
         let occ = match &blow {
             Some(b) => {
                 let occ = Occasion::AfterBlow(b);
-                self.meter.inapplicable = self.solution_left_out(sample, occ, &b.left_out);
+                self.meter.common.inapplicable = self.solution_left_out(sample, occ, &b.left_out);
                 occ
             }
             None => Occasion::Plain,
@@ -514,7 +517,7 @@ impl QuestionProbe {
         occ: Occasion,
         left_out: &Option<String>,
     ) -> Option<String> {
-        let own = self.meter.inapplicable.clone();
+        let own = self.meter.common.inapplicable.clone();
         let Some(why) = left_out else { return own };
         if own.is_some() {
             return own;
@@ -551,7 +554,7 @@ impl QuestionProbe {
         }
         // A reading taken before the analysis stopped applying (a contact that stuck after the
         // sample) keeps its analysis.
-        if let (Some(why), None) = (&self.meter.inapplicable, r.analysis) {
+        if let (Some(why), None) = (&self.meter.common.inapplicable, r.analysis) {
             let said = format!("analysis not applicable: {why}; graded on the engine alone");
             self.note = if self.note.is_empty() {
                 said
@@ -569,16 +572,16 @@ impl QuestionProbe {
     /// trajectory's value as its analysis (`analysis::reference`); where the scene is outside the
     /// reference, the note says why. Returns the analysis's source label ("" when not used).
     fn reference_analysis(&mut self, r: &mut Reading) -> String {
-        let m = &self.meter;
+        let m = &self.meter.common;
         if r.analysis.is_some()
             || m.inapplicable.is_some()
             || m.configuration_event
-            || !super::motion::served_by_reference(&m.q)
+            || !super::level_facts::served_by_reference(&m.q)
             || !r.engine.is_finite()
         {
             return String::new();
         }
-        match super::motion::reference_value(m, r.t) {
+        match self.meter.reference_value(r.t) {
             Ok(v) => {
                 r.analysis = Some(v);
                 crate::analysis::reference::LABEL.to_string()
@@ -620,7 +623,7 @@ fn contact_began(facts: &LevelFacts, prev: &Snapshot, cur: &Snapshot) -> Option<
 const TOUCH_ROUND_OFF: f64 = 1e-9;
 
 /// `meter`'s reading of the snapshot `prev` carried `tau` seconds on ([`carried_to`]).
-fn read_carried(meter: &Meter, prev: &Arc<Snapshot>, tau: f64) -> Reading {
+fn read_carried(meter: &FamilyMeter, prev: &Arc<Snapshot>, tau: f64) -> Reading {
     let at = Arc::new(carried_to(prev, tau));
     let window = [Arc::clone(prev), Arc::clone(&at)];
     let carried = Sample {

@@ -4,6 +4,7 @@
 //! The slope angle and the radius come from the engine's contact at the sample (normal and
 //! point); the analyses are the closed forms of `analysis::closed_forms` (RK-8 with 6/1).
 
+use super::contact_reading::{also_acting, turned, CURVED, SLIDING};
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::Sample;
 use crate::analysis::closed_forms::{
@@ -51,8 +52,8 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         Some(format!(
             "{what} also acts on the body: the rolling closed forms assume its weight and the ground alone"
         ))
-    } else if let Some(slip) = crate::analysis::kinematics::contact_slip(s, o, i)
-        .filter(|v| v.abs() > super::forces::SLIDING)
+    } else if let Some(slip) =
+        crate::analysis::kinematics::contact_slip(s, o, i).filter(|v| v.abs() > SLIDING)
     {
         Some(format!(
             "{SLIDES} (slip {:.3} m/s at t = {:.4} s): the rolling closed forms assume rolling without slipping",
@@ -71,45 +72,6 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
 
 /// How the reason for a body that slides begins.
 const SLIDES: &str = "the body slides on the ground";
-
-/// A turn of the contact normal in one step that means the ground curves, rad. rapier's normal
-/// on a straight slope wobbles by up to 2.4e-6 rad from step to step in f32 (a disc on a 25
-/// degree incline, tests/newuser/rolling/n4_02); a turn of 1e-4 rad per step is a curve of radius
-/// v dt / 1e-4, whose m v^2 / rho is v 1e-4 / dt: 0.5% of g at 2 m/s and 1/240 s.
-pub(super) const CURVED: f64 = 1e-4;
-
-/// What besides its weight and the ground acts on body i in `s`: a joint, a spring, a load, a
-/// coupling, or another body pushing on it (damping is in the level's facts, not the
-/// snapshot). The rolling closed forms and the slide-to-roll closed form share this test.
-pub(super) fn also_acting(s: &Snapshot, i: usize, ground: usize) -> Option<&'static str> {
-    if s.joints.iter().any(|j| j.body1 == i || j.body2 == i) {
-        Some("a joint")
-    } else if s.springs.iter().any(|x| x.body1 == i || x.body2 == Some(i)) {
-        Some("a spring")
-    } else if s.loads.iter().any(|l| l.body == i) {
-        Some("a load")
-    } else if s.couplings.iter().any(|c| c.terms.iter().any(|t| t.0 == i)) {
-        Some("a coupling")
-    } else if s.contacts.iter().any(|c| {
-        (c.body1 == i || c.body2 == i) && c.body1 != ground && c.body2 != ground && c.pushes()
-    }) {
-        Some("another contact")
-    } else {
-        None
-    }
-}
-
-/// How far the contact normal between i and the ground turned over the step, rad.
-pub(super) fn turned(prev: &Snapshot, s: &Snapshot, i: usize, o: usize) -> Option<f64> {
-    let n = |x: &Snapshot| {
-        x.contacts
-            .iter()
-            .find(|c| (c.body1 == i && c.body2 == o) || (c.body1 == o && c.body2 == i))
-            .map(|c| c.normal)
-    };
-    let (a, b) = (n(prev)?, n(s)?);
-    Some(cross(a, b).abs().atan2(a.dot(b).abs()))
-}
 
 /// The quantity at the sample.
 pub(super) fn read(m: &Meter, f: &Sample) -> Option<EngineAndAnalysis> {

@@ -2,12 +2,14 @@
 //! friction, a load's power, and a spring's extension.
 //!
 //! The engine's works are summed step by step with the step's mean velocity (exact for a rigid
-//! body, see [`held_work`]); the analyses are the textbook's path-independent forms (10.2.18,
+//! body, see `step_work::held_work`); the analyses are the textbook's path-independent forms (10.2.18,
 //! 10.2.21, 10.3.2), work-energy (RE-7) and the Coulomb law (WE-6).
 
+use super::contact_reading::SLIDING;
 use super::meter::{EngineAndAnalysis, Meter};
 use super::sample::{Occasion, Sample};
 use super::snapshot_reading::to_local;
+use super::step_work::{held_work, path_work};
 use crate::analysis::energy::{
     body_kinetic_energy, coulomb_friction_work_on_body, damper_work, friction_pair_loss,
     friction_work_on_body, mechanical_efficiency, power,
@@ -21,25 +23,58 @@ use crate::level::{JointKind, Quantity};
 use crate::snapshot::{BodyKind, BodyState, Snapshot, SpringState};
 use glam::DVec2;
 
+/// What a work or power quantity accumulates over the run.
+#[derive(Clone)]
+pub(super) struct State {
+    /// Running sum of the engine's work, J.
+    pub engine_sum: f64,
+    /// Running sum for the analysis: path work of springs, loads and events on the body
+    /// (work-energy analyses), or friction's Coulomb work, J.
+    pub analysis_sum: f64,
+    /// `LoadWork`: the first load seen (force, couple, point, body angle) and whether it stayed equal.
+    pub first_load: Option<(DVec2, f64, DVec2, f64)>,
+    pub load_constant: bool,
+    /// `Efficiency`: the input's work since the start (engine), J, and, when the input is a
+    /// load, its first (force, couple, point, body angle) and whether it stayed equal.
+    pub input_work: f64,
+    pub input_load: Option<(DVec2, f64, DVec2, f64)>,
+    pub input_constant: bool,
+}
+
+impl Default for State {
+    fn default() -> Self {
+        State {
+            engine_sum: 0.0,
+            analysis_sum: 0.0,
+            first_load: None,
+            load_constant: true,
+            input_work: 0.0,
+            input_load: None,
+            input_constant: true,
+        }
+    }
+}
+
 /// Accumulates the works over the step from `prev` to `s`.
-// A match over every work and power quantity's step, one arm per quantity.
+// A match over every work and power quantity's step, one arm per quantity, each adding to the
+// family's `State`: split, each arm would be a function called once, away from its neighbours.
 #[allow(clippy::too_many_lines)]
-pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
+pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
     let dt = s.time - prev.time;
     match &m.q {
         Quantity::GravityWork(b) => {
             if let Some(i) = m.body_index(s, b) {
                 let (b0, b1) = (&prev.bodies[i], &s.bodies[i]);
-                m.engine_sum += b1.mass * s.gravity.dot(0.5 * (b0.velocity + b1.velocity)) * dt;
+                st.engine_sum += b1.mass * s.gravity.dot(0.5 * (b0.velocity + b1.velocity)) * dt;
             }
         }
         Quantity::SpringWork(name) | Quantity::DamperWork(name) => {
             if let Some(sp) = s.springs.iter().find(|x| &x.name == name) {
                 let damper = matches!(m.q, Quantity::DamperWork(_));
                 let (f, c) = spring_part(sp, damper);
-                m.engine_sum += held_work(prev, s, sp.body1, f, sp.applied_at1, c);
+                st.engine_sum += held_work(prev, s, sp.body1, f, sp.applied_at1, c);
                 if let Some(b2) = sp.body2 {
-                    m.engine_sum += held_work(prev, s, b2, -f, sp.applied_at2, -c);
+                    st.engine_sum += held_work(prev, s, b2, -f, sp.applied_at2, -c);
                 }
                 if damper {
                     let c = m
@@ -50,26 +85,26 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         .map_or(0.0, |x| x.damping);
                     let before = prev.springs.iter().find(|x| &x.name == name);
                     if let Some(b) = before {
-                        m.analysis_sum += damper_work(c, sp.length - b.length, dt);
+                        st.analysis_sum += damper_work(c, sp.length - b.length, dt);
                     }
                 }
             }
         }
         Quantity::Efficiency { input, output } => {
             if let Some(l) = s.loads.iter().find(|l| &l.name == output) {
-                m.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
+                st.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
                 note_load(
-                    &mut m.first_load,
-                    &mut m.load_constant,
+                    &mut st.first_load,
+                    &mut st.load_constant,
                     l,
                     &prev.bodies[l.body],
                 );
             }
             if let Some(l) = s.loads.iter().find(|l| &l.name == input) {
-                m.input_work += held_work(prev, s, l.body, l.force, l.point, l.torque);
+                st.input_work += held_work(prev, s, l.body, l.force, l.point, l.torque);
                 note_load(
-                    &mut m.input_load,
-                    &mut m.input_constant,
+                    &mut st.input_load,
+                    &mut st.input_constant,
                     l,
                     &prev.bodies[l.body],
                 );
@@ -101,16 +136,16 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                     }
                     _ => w2 - w1,
                 };
-                m.input_work += j.motor_impulse * rate;
-                m.input_constant = false;
+                st.input_work += j.motor_impulse * rate;
+                st.input_constant = false;
             }
         }
         Quantity::LoadWork(name) => {
             if let Some(l) = s.loads.iter().find(|l| &l.name == name) {
-                m.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
+                st.engine_sum += held_work(prev, s, l.body, l.force, l.point, l.torque);
                 note_load(
-                    &mut m.first_load,
-                    &mut m.load_constant,
+                    &mut st.first_load,
+                    &mut st.load_constant,
                     l,
                     &prev.bodies[l.body],
                 );
@@ -181,10 +216,10 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                         let slip = (v_i - v_o).dot(t);
                         let j_n = p.normal_impulse.max(0.0);
                         if loss {
-                            m.engine_sum += friction_pair_loss(j_t, v_i - v_o);
-                            m.analysis_sum -= mu * j_n * slip.abs();
+                            st.engine_sum += friction_pair_loss(j_t, v_i - v_o);
+                            st.analysis_sum -= mu * j_n * slip.abs();
                         } else {
-                            m.engine_sum += friction_work_on_body(j_t, arm_i, mi);
+                            st.engine_sum += friction_work_on_body(j_t, arm_i, mi);
                             // A slip floor of 1 mm/s: rapier's rolling contacts creep below it.
                             match coulomb_friction_work_on_body(
                                 mu,
@@ -194,7 +229,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
                                 other_fixed,
                                 1e-3,
                             ) {
-                                Some(u) => m.analysis_sum += u,
+                                Some(u) => st.analysis_sum += u,
                                 None if j_n > 0.0 && m.inapplicable.is_none() => {
                                     m.inapplicable = Some(format!(
                                         "at t = {:.4} s the contact stuck on the moving \"{other}\": static friction has no Coulomb law for its work",
@@ -211,7 +246,7 @@ pub(super) fn advance(m: &mut Meter, prev: &Snapshot, s: &Snapshot) {
         Quantity::KineticEnergy(b) => {
             if let Some(i) = m.body_index(s, b) {
                 // Ground springs enter the analysis through their exact potential instead.
-                m.analysis_sum += path_work(prev, s, i, false);
+                st.analysis_sum += path_work(prev, s, i, false);
                 // At a configuration event the analysis is this work-energy sum; at an impact
                 // or a blow it is the impulse solution, which needs none of it.
                 if m.configuration_event && !m.impact_instant && m.inapplicable.is_none() {
@@ -266,7 +301,7 @@ fn unbooked_work(m: &Meter, prev: &Snapshot, s: &Snapshot, i: usize) -> Option<S
         [prev, s].iter().all(|x| {
             let v = x.bodies[i].velocity.length();
             crate::analysis::kinematics::contact_slip(x, o, i)
-                .is_some_and(|w| w.abs() > super::forces::SLIDING.max(0.05 * v))
+                .is_some_and(|w| w.abs() > SLIDING.max(0.05 * v))
         })
     };
     if let Some(c) = s.contacts.iter().find(|c| {
@@ -289,7 +324,7 @@ fn unbooked_work(m: &Meter, prev: &Snapshot, s: &Snapshot, i: usize) -> Option<S
 }
 
 /// The quantity at the sample.
-pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
+pub(super) fn read(m: &Meter, st: &State, f: &Sample, occ: Occasion) -> Option<EngineAndAnalysis> {
     let s = f.cur;
     let init = m.init.as_ref();
     Some(match &m.q {
@@ -311,7 +346,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
                 body_kinetic_energy(b0)
                     + x.mass * s.gravity.dot(rigid(s) - rigid(s0))
                     + springs
-                    + m.analysis_sum
+                    + st.analysis_sum
             });
             let analysis = match occ {
                 Occasion::Plain => analysis.filter(|_| m.configuration_event),
@@ -345,31 +380,31 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
         Quantity::GravityWork(b) => {
             let (i, x) = m.named_body(s, b)?;
             let g0 = init?.bodies[i].com;
-            (m.engine_sum, Some(x.mass * s.gravity.dot(x.com - g0)))
+            (st.engine_sum, Some(x.mass * s.gravity.dot(x.com - g0)))
         }
         Quantity::SpringWork(name) => {
             let sp = s.springs.iter().find(|x| &x.name == name)?;
             let sp0 = init?.springs.iter().find(|x| &x.name == name)?;
-            (m.engine_sum, Some(sp0.energy - sp.energy))
+            (st.engine_sum, Some(sp0.energy - sp.energy))
         }
-        Quantity::DamperWork(_) => (m.engine_sum, Some(m.analysis_sum)),
+        Quantity::DamperWork(_) => (st.engine_sum, Some(st.analysis_sum)),
         Quantity::SpringExtension(name) => {
             (s.springs.iter().find(|x| &x.name == name)?.extension, None)
         }
         Quantity::LoadWork(name) => {
-            let analysis = constant_load_work(s, init?, name, m.first_load, m.load_constant);
-            (m.engine_sum, analysis)
+            let analysis = constant_load_work(s, init?, name, st.first_load, st.load_constant);
+            (st.engine_sum, analysis)
         }
         Quantity::Efficiency { input, output } => {
             let init = init?;
-            let engine = mechanical_efficiency(-m.engine_sum, m.input_work);
-            let analysis = constant_load_work(s, init, output, m.first_load, m.load_constant)
+            let engine = mechanical_efficiency(-st.engine_sum, st.input_work);
+            let analysis = constant_load_work(s, init, output, st.first_load, st.load_constant)
                 .zip(constant_load_work(
                     s,
                     init,
                     input,
-                    m.input_load,
-                    m.input_constant,
+                    st.input_load,
+                    st.input_constant,
                 ))
                 .map(|(out, inp)| mechanical_efficiency(-out, inp));
             (engine, analysis)
@@ -383,7 +418,7 @@ pub(super) fn read(m: &Meter, f: &Sample, occ: Occasion) -> Option<EngineAndAnal
             (power(l.force, v_p, l.torque, b.omega), None)
         }
         Quantity::FrictionWork { .. } | Quantity::FrictionLoss { .. } => {
-            (m.engine_sum, Some(m.analysis_sum))
+            (st.engine_sum, Some(st.analysis_sum))
         }
         q => unreachable!("{q:?} is not a work or power quantity"),
     })
@@ -439,57 +474,4 @@ fn constant_load_work(
     let b = &s.bodies[l.body];
     let p = b.world_point(to_local(b0, p0));
     Some(force.dot(p - p0) + torque * (b.angle - a0))
-}
-
-/// Work done on body i over the step from `prev` to `s` by its loads and by the springs attached
-/// to it (the held force times the displacement of its point; ground springs only with `ground`).
-pub(super) fn path_work(prev: &Snapshot, s: &Snapshot, i: usize, ground: bool) -> f64 {
-    let mut w = 0.0;
-    for l in s.loads.iter().filter(|l| l.body == i) {
-        w += held_work(prev, s, i, l.force, l.point, l.torque);
-    }
-    // An event's impulse J at P does J . v_P,mid (exact for a free rigid body, see held_work).
-    for e in s.impulses.iter().filter(|e| e.body == i) {
-        let dt = s.time - prev.time;
-        if dt > 0.0 {
-            w += held_work(prev, s, i, e.impulse / dt, e.point, e.angular_impulse / dt);
-        }
-    }
-    for sp in &s.springs {
-        if sp.body2.is_none() && !ground {
-            continue;
-        }
-        if sp.body1 == i {
-            w += held_work(
-                prev,
-                s,
-                i,
-                sp.force_on_body1,
-                sp.applied_at1,
-                sp.couple_on_body1,
-            );
-        } else if sp.body2 == Some(i) {
-            w += held_work(
-                prev,
-                s,
-                i,
-                -sp.force_on_body1,
-                sp.applied_at2,
-                -sp.couple_on_body1,
-            );
-        }
-    }
-    w
-}
-
-/// Work of a force F (and couple M) held over the step from `prev` to `s` on body i, applied at
-/// the world point p (its position at the start of the step): U = (F . v_P,mid + M omega_mid) dt
-/// with the step's mean velocity, which makes the works of a step add up to its change of kinetic
-/// energy exactly (the analysis layer's `work_of_impulse`, WE-9 per step).
-fn held_work(prev: &Snapshot, s: &Snapshot, i: usize, f: DVec2, p: DVec2, m: f64) -> f64 {
-    let (b0, b1) = (&prev.bodies[i], &s.bodies[i]);
-    let dt = s.time - prev.time;
-    let v0 = body_point_velocity(b0, p);
-    let v1 = body_point_velocity(b1, b1.world_point(to_local(b0, p)));
-    power(f, 0.5 * (v0 + v1), m, 0.5 * (b0.omega + b1.omega)) * dt
 }

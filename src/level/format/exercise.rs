@@ -468,8 +468,9 @@ impl Quantity {
 }
 
 /// The family a quantity belongs to: the file of `src/questions/` that reads it, so that adding
-/// a quantity touches this file (the variant, its doc and its family), `validate.rs` and one
-/// family file.
+/// a quantity touches this file (the variant, its doc, its unit and its family),
+/// `validate/exercise.rs` and one family file; `questions/dispatch.rs` routes by family and
+/// changes only for a new family.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum QuantityFamily {
     /// Positions, velocities and accelerations of bodies and body points, distance, time.

@@ -1,9 +1,16 @@
-//! The window's import rule: inside `src/app`, imports run one way, down, and make no circle.
+//! The import rule of a folder: inside `src/app` (the window) and `src/questions` (the questions),
+//! imports run one way, down, and make no circle.
 //!
-//! Each file under src/app is a module (`panels/mod.rs` is `app::panels`, `panels/plots.rs` is
+//! In `src/questions` that is: `probe` -> `dispatch` (the dispatcher) -> the quantity families,
+//! each with its own state -> the plain types they share (`meter`, `sample`, `level_facts`,
+//! `contact_reading`, ...). A family that took a helper from another family, or a shared type
+//! that named a family, would close a circle (issue 44: `meter.rs` held every family's state and
+//! routed to the families, which imported it back, a circle of 14 files).
+//!
+//! Each file under the folder is a module (`panels/mod.rs` is `app::panels`, `panels/plots.rs` is
 //! `app::panels::plots`). An *arrow* runs from a file to the module a path in its code names: a
 //! `use` line (braces expanded) or a path written in the code that starts with `super::`,
-//! `self::`, `crate::app::` or, in a `mod.rs`, a module that file declares; the path is followed
+//! `self::`, `crate::app::` (`crate::questions::`) or, in a `mod.rs`, a module that file declares; the path is followed
 //! through modules for as long as its segments name modules, and the arrow ends at the last one
 //! (`super::super::run::Run` from `panels/playback.rs` ends at `app/run.rs`). Only code counts:
 //! comments and string literals are skipped.
@@ -14,7 +21,7 @@
 //!   item defined in that `mod.rs` (`super::UiState` from a panel, `super::empty_scene` from
 //!   `web.rs`), or a name that `mod.rs` only re-exports: a `mod.rs` declares and assembles its
 //!   children and sits above them;
-//! - in `app::panels` from a file outside it other than the window's assembly (`app/mod.rs`,
+//! - (src/app only) in `app::panels` from a file outside it other than the window's assembly (`app/mod.rs`,
 //!   `sandbox.rs` and `web.rs`, which put the panels in the app): the panels are the top floor of
 //!   the window, nothing below them may reach into them (`crate::app::panels::` from below).
 //!
@@ -110,9 +117,10 @@ fn expand(s: &str) -> Vec<String> {
         .collect()
 }
 
-/// Paths written in the code (not in `use` lines): from `super::`, `self::`, `crate::app::` or a
-/// child module of `mod.rs` files (`children`), each with its byte offset.
-fn code_paths(code: &str, children: &BTreeSet<String>) -> Vec<(usize, Vec<String>)> {
+/// Paths written in the code (not in `use` lines): from `super::`, `self::`, `crate::ROOT::` (ROOT
+/// the folder's module, `app`) or a child module of `mod.rs` files (`children`), each with its
+/// byte offset.
+fn code_paths(code: &str, root: &str, children: &BTreeSet<String>) -> Vec<(usize, Vec<String>)> {
     let c: Vec<char> = code.chars().collect();
     let mut out = Vec::new();
     let mut i = 0;
@@ -135,7 +143,7 @@ fn code_paths(code: &str, children: &BTreeSet<String>) -> Vec<(usize, Vec<String
             }
             let first = segs[0].as_str();
             let starts = matches!(first, "super" | "self")
-                || (first == "crate" && segs.get(1).is_some_and(|s| s == "app"))
+                || (first == "crate" && segs.get(1).is_some_and(|s| s == root))
                 || (segs.len() > 1 && children.contains(first));
             if starts && segs.len() > 1 {
                 out.push((i, segs));
@@ -149,20 +157,21 @@ fn code_paths(code: &str, children: &BTreeSet<String>) -> Vec<(usize, Vec<String
 }
 
 /// Where a path written in the module `from` ends: the module it names last (following its
-/// segments while they name modules), or None for a path outside the window.
+/// segments while they name modules), or None for a path outside the folder's module `root`.
 fn resolve(
     from: &[String],
     segs: &[String],
+    root: &str,
     modules: &BTreeSet<Vec<String>>,
 ) -> Option<Vec<String>> {
     let mut cur: Vec<String>;
     let mut rest = segs;
     match segs.first()?.as_str() {
         "crate" => {
-            if segs.get(1)? != "app" {
+            if segs.get(1)? != root {
                 return None;
             }
-            cur = vec!["app".into()];
+            cur = vec![root.into()];
             rest = &segs[2..];
         }
         "super" | "self" => {
@@ -200,7 +209,7 @@ fn resolve(
             break;
         }
     }
-    cur.first().is_some_and(|f| f == "app").then_some(cur)
+    cur.first().is_some_and(|f| f == root).then_some(cur)
 }
 
 /// One arrow: from a file to a module, where it is written.
@@ -212,8 +221,9 @@ struct Arrow {
     path: String,
 }
 
-/// The arrows of the window's files (`files`: path relative to the root, code).
-fn arrows(files: &[(String, String)]) -> Vec<Arrow> {
+/// The arrows of a folder's files (`files`: path relative to the repository, code), the folder
+/// being the module `root` (`app`).
+fn arrows(files: &[(String, String)], root: &str) -> Vec<Arrow> {
     let modules: BTreeSet<Vec<String>> = files.iter().map(|(p, _)| module_of(p)).collect();
     let mut out = Vec::new();
     for (rel, code) in files {
@@ -234,13 +244,13 @@ fn arrows(files: &[(String, String)]) -> Vec<Arrow> {
             .iter()
             .map(|(at, _)| (*at, at + code[*at..].find(';').unwrap_or(0)))
             .collect();
-        for (at, segs) in code_paths(code, &children) {
+        for (at, segs) in code_paths(code, root, &children) {
             if !uses.iter().any(|(a, b)| (*a..=*b).contains(&at)) {
                 found.push((at, segs));
             }
         }
         for (at, segs) in found {
-            if let Some(to) = resolve(&me, &segs, &modules) {
+            if let Some(to) = resolve(&me, &segs, root, &modules) {
                 if to != me {
                     out.push(Arrow {
                         from: rel.clone(),
@@ -271,6 +281,7 @@ fn back_up(arrows: &[Arrow]) -> Vec<String> {
                 a.to.join("::")
             ));
         } else if a.to.len() >= 2
+            && a.to[0] == "app"
             && a.to[1] == "panels"
             && !(me.len() >= 2 && me[1] == "panels")
             && !ASSEMBLY.contains(&a.from.as_str())
@@ -385,10 +396,10 @@ fn without_inline_modules(code: &str) -> String {
     out.into_iter().collect()
 }
 
-/// The window's files as (path from the root, code without comments, strings and inline
-/// modules).
-fn window_files(root: &Path) -> Vec<(String, String)> {
-    rust_files(&root.join("src/app"))
+/// The files of `folder` (`src/app`) as (path from the root, code without comments, strings and
+/// inline modules).
+fn folder_files(root: &Path, folder: &str) -> Vec<(String, String)> {
+    rust_files(&root.join(folder))
         .into_iter()
         .map(|p| {
             let src = fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
@@ -405,13 +416,13 @@ fn window_files(root: &Path) -> Vec<(String, String)> {
 #[test]
 fn the_window_imports_run_down_and_make_no_circle() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let files = window_files(root);
+    let files = folder_files(root, "src/app");
     assert!(
         files.len() > 20,
         "src/app not found under {}",
         root.display()
     );
-    let arrows = arrows(&files);
+    let arrows = arrows(&files, "app");
     // The scanner sees the window's arrows at all (the panels draw in the palette's colors).
     assert!(
         arrows
@@ -419,8 +430,15 @@ fn the_window_imports_run_down_and_make_no_circle() {
             .any(|a| a.from.starts_with("src/app/panels/") && a.to == ["app", "view"]),
         "no arrow found from a panel to app/view.rs: the scanner is broken"
     );
-    let bad = back_up(&arrows);
-    let circles = circles(&files, &arrows);
+    let report = verdict(&files, &arrows);
+    assert!(report.is_empty(), "src/app:\n{report}");
+}
+
+/// The back-up arrows and the circles of a folder's arrows, one line each (the circles with the
+/// arrows inside them), empty when there are none.
+fn verdict(files: &[(String, String)], arrows: &[Arrow]) -> String {
+    let bad = back_up(arrows);
+    let circles = circles(files, arrows);
     let mut report = String::new();
     for b in &bad {
         report.push_str(&format!("back up: {b}\n"));
@@ -432,12 +450,39 @@ fn the_window_imports_run_down_and_make_no_circle() {
             c.join("\n")
         ));
     }
+    if !report.is_empty() {
+        report = format!(
+            "{} arrows run back up and {} circles:\n{report}",
+            bad.len(),
+            circles.len()
+        );
+    }
+    report
+}
+
+/// The questions' imports run dispatcher -> families -> shared plain types (issue 44): no
+/// family's state in the dispatcher's file, no helper one family takes from another.
+#[test]
+fn the_questions_imports_run_down_and_make_no_circle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let files = folder_files(root, "src/questions");
     assert!(
-        bad.is_empty() && circles.is_empty(),
-        "{} arrows run back up and {} circles in src/app:\n{report}",
-        bad.len(),
-        circles.len()
+        files.len() > 15,
+        "src/questions not found under {}",
+        root.display()
     );
+    let arrows = arrows(&files, "questions");
+    // The scanner sees the questions' arrows at all: the dispatcher routes to each family.
+    for family in ["motion", "forces", "work_and_power", "periods", "impacts"] {
+        assert!(
+            arrows
+                .iter()
+                .any(|a| a.from == "src/questions/dispatch.rs" && a.to == ["questions", family]),
+            "no arrow found from the dispatcher to {family}: the scanner is broken"
+        );
+    }
+    let report = verdict(&files, &arrows);
+    assert!(report.is_empty(), "src/questions:\n{report}");
 }
 
 /// The rule on a made-up window: each kind of back-up arrow and a circle is found, and the
@@ -466,7 +511,7 @@ fn the_rule_sees_each_kind_of_back_up_arrow_and_circles() {
         "src/app/panels/bad.rs",
         "use super::{UiState, state};\n",
     ));
-    let arrows = arrows(&files);
+    let arrows = arrows(&files, "app");
     let bad = back_up(&arrows);
     let has = |s: &str| bad.iter().any(|b| b.starts_with(s));
     assert!(has("src/app/panels/bad.rs:1: super::UiState"), "{bad:#?}");
