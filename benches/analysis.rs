@@ -32,7 +32,7 @@
 
 use rigidlab::analysis::frame::FrameAnalysis;
 use rigidlab::checks::CheckSet;
-use rigidlab::level::{parse, Scene};
+use rigidlab::level::{parse, CheckDef, CheckKind, Scene};
 use rigidlab::sim::{Options, Simulation, Substepping};
 use std::path::Path;
 use std::time::Instant;
@@ -90,119 +90,181 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-// A bench's script: each measurement in turn, printed as it is taken, so the ratios of one
-// run stand together; not yet split into one function per measurement (issue 44).
-#[allow(clippy::too_many_lines)]
+/// The bench's script: each measurement in turn, then the report, so the ratios of one run
+/// stand together.
 fn main() {
     let scene = parse(Path::new("bench.ron"), &scene_ron()).unwrap_or_else(|e| panic!("{e}"));
     let every = parse(Path::new("bench-every-kind.ron"), &every_kind_ron())
         .unwrap_or_else(|e| panic!("{e}"));
+    // A's level: the same scene with its scene-wide checks only.
+    let mut scene_only = scene.clone();
+    scene_only.level.checks.retain(|c| c.body.is_none());
+    print_scene(&scene, &scene_only, &every);
+    // RIGIDLAB_BENCH_KIND=restitution: only that kind's runs below (to profile it).
+    let profiling = std::env::var("RIGIDLAB_BENCH_KIND").is_ok();
+    let mut configs = time_configs([&scene_only, &scene, &every], profiling);
+    let forms = Forms::of(&every);
+    let (mut by_form, mut bare_us) = forms.time();
+    let (mut frame_us, frame_rows) = time_frame_pass(&scene, profiling);
+    if profiling {
+        print_profile(&forms, &mut by_form);
+        return;
+    }
+    assert!(configs.rows + frame_rows > 0);
+    print_configs(&mut configs, &mut frame_us);
+    print_forms(&forms, &mut by_form, &mut bare_us);
+}
+
+/// What the scene holds and what A, B and C run.
+fn print_scene(scene: &Scene, scene_only: &Scene, every: &Scene) {
     let level = &scene.level;
     let dynamic = level
         .bodies
         .iter()
         .filter(|b| b.kind == rigidlab::level::BodyKind::Dynamic)
         .count();
-    // A's level: the same scene with its scene-wide checks only.
-    let mut scene_only = scene.clone();
-    scene_only.level.checks.retain(|c| c.body.is_none());
     let per_body = level.checks.len() - scene_only.level.checks.len();
     println!(
         "scene: {dynamic} dynamic bodies ({BARS} pinned bars, {BALLS} balls in a box); A: {} scene checks; B: {per_body} per-body probes as well; C: {} per-body probes of every kind; {STEPS} steps x {REPEATS} repeats",
         scene_only.level.checks.len(),
         every.level.checks.len(),
     );
-    let configs = [&scene_only, &scene, &every];
-    let mut ratios: [Vec<f64>; 3] = Default::default();
-    let mut check_us: [Vec<f64>; 3] = Default::default();
-    let mut step_us = Vec::new();
-    let mut contacts = 0;
-    let mut rows = 0;
+}
+
+/// A, B and C's blocks: per configuration the ratios and the check times, and the physics
+/// times of all.
+#[derive(Default)]
+struct Configs {
+    ratios: [Vec<f64>; 3],
+    check_us: [Vec<f64>; 3],
+    step_us: Vec<f64>,
+    /// Contact manifolds at the end of the last run.
+    contacts: usize,
+    rows: usize,
+}
+
+fn time_configs(configs: [&Scene; 3], profiling: bool) -> Configs {
+    let mut out = Configs::default();
     // Runs take turns (A, B, C, A, ...), so each run has the cache and the analysis work of
     // that configuration alone, and all see the same machine noise.
-    // RIGIDLAB_BENCH_KIND=restitution: only that kind's runs below (to profile it).
-    let profiling = std::env::var("RIGIDLAB_BENCH_KIND").is_ok();
     for k in 0..if profiling { 0 } else { 3 * REPEATS } {
         let c = k % 3;
         for block in time_blocks(configs[c]) {
-            step_us.push(block.step_us);
-            ratios[c].push(block.checks_us / block.step_us);
-            check_us[c].push(block.checks_us);
-            (contacts, rows) = (block.contacts, rows + block.rows);
+            out.step_us.push(block.step_us);
+            out.ratios[c].push(block.checks_us / block.step_us);
+            out.check_us[c].push(block.checks_us);
+            (out.contacts, out.rows) = (block.contacts, out.rows + block.rows);
         }
     }
-    // Issue 15's goal, check by check: each check on every body it applies to, alone, <= 5% of
-    // the physics step. A kind with two forms (newton_euler about G and about a point) is timed
-    // form by form: each form is one check on every body. A round runs the bare scene (C's level
-    // with no checks) and then each form once, so block k of a form's run is compared with block
-    // k of the same round's bare run (the same steps of the same scene, seconds apart). Two
-    // denominators: the physics step the check's level runs, and the bare scene's. They differ
-    // where the check reads joint impulses: its level then advances rapier one substep per call
-    // (`Substepping::Split`) so that a blow through a pin is not lost, several times the bare
-    // step. That is a simulation setting the reading needs, priced on its own line below; the
-    // analysis's cost is judged against the step the level runs.
-    // Two forms of a kind are two checks where a body has both (newton_euler about G and about a
-    // point); a kind whose balls take one form and whose bars the other is one check.
-    let two_forms_of = |k| {
-        let checks = &every.level.checks;
-        checks.iter().any(|a| {
-            checks.iter().any(|b| {
-                a.kind == k
-                    && b.kind == k
-                    && a.body == b.body
-                    && a.point.is_some() != b.point.is_some()
+    out
+}
+
+/// Issue 15's goal, check by check: each check on every body it applies to, alone, <= 5% of
+/// the physics step. A kind with two forms (newton_euler about G and about a point) is timed
+/// form by form: each form is one check on every body.
+struct Forms {
+    every: Scene,
+    /// The kinds with two forms.
+    split_kinds: Vec<CheckKind>,
+    /// Each form (its kind, and whether about a point where the kind has two) and its label.
+    forms: Vec<((CheckKind, bool), String)>,
+}
+
+impl Forms {
+    fn of(every: &Scene) -> Forms {
+        // Two forms of a kind are two checks where a body has both (newton_euler about G and
+        // about a point); a kind whose balls take one form and whose bars the other is one check.
+        let two_forms_of = |k| {
+            let checks = &every.level.checks;
+            checks.iter().any(|a| {
+                checks.iter().any(|b| {
+                    a.kind == k
+                        && b.kind == k
+                        && a.body == b.body
+                        && a.point.is_some() != b.point.is_some()
+                })
             })
-        })
-    };
-    let mut split_kinds: Vec<_> = every.level.checks.iter().map(|c| c.kind).collect();
-    split_kinds.sort_by_key(|k| k.name());
-    split_kinds.dedup();
-    split_kinds.retain(|&k| two_forms_of(k));
-    let form_of = |c: &rigidlab::level::CheckDef| {
-        (c.kind, split_kinds.contains(&c.kind) && c.point.is_some())
-    };
-    let mut forms: Vec<_> = every.level.checks.iter().map(form_of).collect();
-    forms.sort_by_key(|(k, p)| (k.name(), *p));
-    forms.dedup();
-    let labels: Vec<String> = forms
-        .iter()
-        .map(|&(k, p)| match (split_kinds.contains(&k), p) {
-            (true, true) => format!("{} about a point", k.name()),
-            (true, false) => format!("{} about G", k.name()),
-            _ => k.name().to_string(),
-        })
-        .collect();
-    let mut forms: Vec<_> = forms.into_iter().zip(labels).collect();
-    if let Ok(only) = std::env::var("RIGIDLAB_BENCH_KIND") {
-        forms.retain(|((k, _), _)| k.name() == only);
+        };
+        let mut split_kinds: Vec<_> = every.level.checks.iter().map(|c| c.kind).collect();
+        split_kinds.sort_by_key(|k| k.name());
+        split_kinds.dedup();
+        split_kinds.retain(|&k| two_forms_of(k));
+        let mut out = Forms {
+            every: every.clone(),
+            split_kinds,
+            forms: Vec::new(),
+        };
+        let mut forms: Vec<_> = every.level.checks.iter().map(|c| out.form_of(c)).collect();
+        forms.sort_by_key(|(k, p)| (k.name(), *p));
+        forms.dedup();
+        let labels: Vec<String> = forms
+            .iter()
+            .map(|&(k, p)| match (out.split_kinds.contains(&k), p) {
+                (true, true) => format!("{} about a point", k.name()),
+                (true, false) => format!("{} about G", k.name()),
+                _ => k.name().to_string(),
+            })
+            .collect();
+        out.forms = forms.into_iter().zip(labels).collect();
+        if let Ok(only) = std::env::var("RIGIDLAB_BENCH_KIND") {
+            out.forms.retain(|((k, _), _)| k.name() == only);
+        }
+        out
     }
-    let mut bare = every.clone();
-    bare.level.checks.clear();
-    let of_form = |form| {
-        let mut only = every.clone();
-        only.level.checks.retain(|c| form_of(c) == form);
+
+    fn form_of(&self, c: &CheckDef) -> (CheckKind, bool) {
+        (
+            c.kind,
+            self.split_kinds.contains(&c.kind) && c.point.is_some(),
+        )
+    }
+
+    /// C's level with the checks of one form only.
+    fn of_form(&self, form: (CheckKind, bool)) -> Scene {
+        let mut only = self.every.clone();
+        only.level.checks.retain(|c| self.form_of(c) == form);
         only
-    };
-    // Per form: checks / its own step, checks / the bare step, checks us per step, and its own
-    // step, us.
-    let mut by_form: Vec<[Vec<f64>; 4]> = vec![Default::default(); forms.len()];
-    let mut bare_us = Vec::new();
-    for _ in 0..REPEATS {
-        let bare_blocks = time_blocks(&bare);
-        bare_us.extend(bare_blocks.iter().map(|b| b.step_us));
-        for ((form, _), r) in forms.iter().zip(by_form.iter_mut()) {
-            for (block, b) in time_blocks(&of_form(*form)).iter().zip(&bare_blocks) {
-                r[0].push(block.checks_us / block.step_us);
-                r[1].push(block.checks_us / b.step_us);
-                r[2].push(block.checks_us);
-                r[3].push(block.step_us);
+    }
+
+    /// A round runs the bare scene (C's level with no checks) and then each form once, so
+    /// block k of a form's run is compared with block k of the same round's bare run (the same
+    /// steps of the same scene, seconds apart). Two denominators: the physics step the check's
+    /// level runs, and the bare scene's. They differ where the check reads joint impulses: its
+    /// level then advances rapier one substep per call (`Substepping::Split`) so that a blow
+    /// through a pin is not lost, several times the bare step. That is a simulation setting the
+    /// reading needs, priced on its own line in the report; the analysis's cost is judged
+    /// against the step the level runs.
+    ///
+    /// Per form: checks / its own step, checks / the bare step, checks us per step, and its own
+    /// step, us; and the bare scene's steps, us.
+    fn time(&self) -> (Vec<[Vec<f64>; 4]>, Vec<f64>) {
+        let mut bare = self.every.clone();
+        bare.level.checks.clear();
+        let mut by_form: Vec<[Vec<f64>; 4]> = vec![Default::default(); self.forms.len()];
+        let mut bare_us = Vec::new();
+        for _ in 0..REPEATS {
+            let bare_blocks = time_blocks(&bare);
+            bare_us.extend(bare_blocks.iter().map(|b| b.step_us));
+            for ((form, _), r) in self.forms.iter().zip(by_form.iter_mut()) {
+                for (block, b) in time_blocks(&self.of_form(*form)).iter().zip(&bare_blocks) {
+                    r[0].push(block.checks_us / block.step_us);
+                    r[1].push(block.checks_us / b.step_us);
+                    r[2].push(block.checks_us);
+                    r[3].push(block.step_us);
+                }
             }
         }
+        (by_form, bare_us)
     }
-    // The shared frame pass alone, on the same steps (information: how much of A it is).
+}
+
+/// The shared frame pass alone, on the same steps (information: how much of A it is): its time
+/// per step, us, per block, and the body rows it read.
+fn time_frame_pass(scene: &Scene, profiling: bool) -> (Vec<f64>, usize) {
     let mut frame_us = Vec::new();
+    let mut rows = 0;
     for _ in 0..if profiling { 0 } else { REPEATS } {
-        let mut sim = Simulation::new(&scene, &Options::default());
+        let mut sim = Simulation::new(scene, &Options::default());
         let mut frame = FrameAnalysis::new();
         frame.observe(sim.snapshot());
         let mut t_f = 0.0;
@@ -217,26 +279,38 @@ fn main() {
             }
         }
     }
-    if profiling {
-        for ((_, label), r) in forms.iter().zip(by_form.iter_mut()) {
-            println!(
-                "   {:<42} {:>7.2} us {:>7.2}% of its own step {:>7.2}% of the bare step",
-                label,
-                median(&mut r[2]),
-                100.0 * median(&mut r[0]),
-                100.0 * median(&mut r[1])
-            );
-        }
-        return;
+    (frame_us, rows)
+}
+
+/// With RIGIDLAB_BENCH_KIND: the profiled kind's forms only.
+fn print_profile(forms: &Forms, by_form: &mut [[Vec<f64>; 4]]) {
+    for ((_, label), r) in forms.forms.iter().zip(by_form.iter_mut()) {
+        println!(
+            "   {:<42} {:>7.2} us {:>7.2}% of its own step {:>7.2}% of the bare step",
+            label,
+            median(&mut r[2]),
+            100.0 * median(&mut r[0]),
+            100.0 * median(&mut r[1])
+        );
     }
-    assert!(rows > 0);
+}
+
+/// A, B and C against the physics step, with their goals.
+fn print_configs(configs: &mut Configs, frame_us: &mut [f64]) {
+    let Configs {
+        ratios,
+        check_us,
+        step_us,
+        contacts,
+        ..
+    } = configs;
     let blocks: usize = ratios.iter().map(Vec::len).sum();
     println!("contact manifolds at the end: {contacts}; {blocks} blocks of {BLOCK} steps");
     println!(
         "per step (block medians): physics {:.1} us; A: all-body analysis + scene checks {:.1} us (the shared frame pass alone: {:.1} us); B: every check of the level {:.1} us; C: every per-body kind {:.1} us",
-        median(&mut step_us),
+        median(step_us),
         median(&mut check_us[0]),
-        median(&mut frame_us),
+        median(frame_us),
         median(&mut check_us[1]),
         median(&mut check_us[2]),
     );
@@ -262,7 +336,11 @@ fn main() {
             q.1
         );
     }
-    let bare_step = median(&mut bare_us);
+}
+
+/// C check by check, each against the step its level runs and the bare scene's, with the goal.
+fn print_forms(forms: &Forms, by_form: &mut [[Vec<f64>; 4]], bare_us: &mut [f64]) {
+    let bare_step = median(bare_us);
     println!(
         "C check by check, the goal (each check on every body, alone; medians of blocks; the bare scene's physics step {bare_step:.1} us):"
     );
@@ -272,18 +350,19 @@ fn main() {
     );
     let mut missed = Vec::new();
     let mut split_steps = Vec::new();
-    for (((kind, point), label), r) in forms.iter().zip(by_form.iter_mut()) {
-        let n = every
+    for (((kind, point), label), r) in forms.forms.iter().zip(by_form.iter_mut()) {
+        let n = forms
+            .every
             .level
             .checks
             .iter()
-            .filter(|c| form_of(c) == (*kind, *point))
+            .filter(|c| forms.form_of(c) == (*kind, *point))
             .count();
         let (own, of_bare, us) = (median(&mut r[0]), median(&mut r[1]), median(&mut r[2]));
         if own > 0.05 {
             missed.push(label.clone());
         }
-        let split = Simulation::new(&of_form((*kind, *point)), &Options::default())
+        let split = Simulation::new(&forms.of_form((*kind, *point)), &Options::default())
             .settings
             .substepping
             == Substepping::Split;

@@ -17,7 +17,7 @@ use super::kinetics::contact_arms_at_start;
 use super::links::BodyLinks;
 use super::momentum::{angular_momentum_g, linear_momentum};
 use super::{cross, Motion};
-use crate::snapshot::{BodyKind, Snapshot};
+use crate::snapshot::{BodyKind, ContactState, Snapshot};
 use glam::DVec2;
 use std::cell::{Cell, Ref, RefCell};
 
@@ -531,14 +531,29 @@ impl Pass<'_> {
         }
     }
 
-    // Not yet split into named steps (issue 44): the shared per-step pass every check reads, one section per reading.
-    #[allow(clippy::too_many_lines)]
+    /// The shared per-step pass every check reads, one section per source of impulses.
     fn run(&mut self) {
+        self.weights();
+        self.loads();
+        self.springs();
+        self.events();
+        let snap = self.snap;
+        for c in &snap.contacts {
+            self.contact(c);
+        }
+        self.joints();
+        self.couplings();
+    }
+
+    fn start(&self, i: usize) -> DVec2 {
+        self.before[i].com
+    }
+
+    /// Every body with mass starts from its weight, m g dt at the gravity point (external),
+    /// and gets its gravity point and mean velocities, used by all its impulses.
+    fn weights(&mut self) {
         let snap = self.snap;
         let dt = snap.dt;
-        let start = |p: &Self, i: usize| p.before[i].com;
-        // Every body with mass starts from its weight, m g dt at the gravity point (external),
-        // and gets its gravity point and mean velocities, used by all its impulses.
         let (mut weight, mut weight_moment) = (DVec2::ZERO, 0.0);
         for &i in self.massive {
             let (m0, m1) = (&self.before[i], &self.after[i]);
@@ -566,17 +581,27 @@ impl Pass<'_> {
         self.external.impulse += weight;
         self.external.moment_origin += weight_moment;
         self.external.largest_impulse = self.external.largest_impulse.max(weight.length());
-        // A force held over the step: rapier applies it at G plus the couple of its start-of-step
-        // arm, so its line of action moves with G (`kinetics` module doc).
+    }
+
+    /// A force held over the step: rapier applies it at G plus the couple of its start-of-step
+    /// arm, so its line of action moves with G (`kinetics` module doc).
+    fn loads(&mut self) {
+        let snap = self.snap;
+        let dt = snap.dt;
         for l in &snap.loads {
             if self.has_mass(l.body) {
-                let arm = l.point - start(self, l.body);
+                let arm = l.point - self.start(l.body);
                 let at = self.g_point(l.body) + arm;
                 let j = l.force * dt;
                 let work = Some((Slot::Loads, true));
                 self.add(l.body, j, at, arm, l.torque * dt, false, work);
             }
         }
+    }
+
+    fn springs(&mut self) {
+        let snap = self.snap;
+        let dt = snap.dt;
         for sp in &snap.springs {
             // A linear spring's force at each end, or a torsion spring's couple.
             let ends = [
@@ -604,14 +629,18 @@ impl Pass<'_> {
                 // mass: in the scene's ledger, not in the body's own. By a kinematic body: in neither.
                 let ground = other.is_none_or(|o| snap.bodies[o].kind == BodyKind::Fixed);
                 let work = (!ground).then_some((Slot::Other, !internal));
-                let arm = p - start(self, i);
+                let arm = p - self.start(i);
                 let at = self.g_point(i) + arm;
                 self.add(i, force * dt, at, arm, couple * dt, internal, work);
             }
         }
+    }
+
+    fn events(&mut self) {
+        let snap = self.snap;
         for e in &snap.impulses {
             if self.has_mass(e.body) {
-                let arm = e.point - start(self, e.body);
+                let arm = e.point - self.start(e.body);
                 let work = Some((Slot::Events, true));
                 self.add(
                     e.body,
@@ -624,69 +653,73 @@ impl Pass<'_> {
                 );
             }
         }
-        for c in &snap.contacts {
-            let (in1, in2) = (self.has_mass(c.body1), self.has_mass(c.body2));
-            if !in1 && !in2 {
-                continue;
-            }
-            let internal = in1 && in2;
-            let t = c.tangent();
-            // A contact whose pair pushed the step before is no impact: its normal impulse
-            // works through the bodies' displacement (`energy::work_of_contact_impulse`).
-            // Unless it now pushes impulsively, over twice its last step's (a floor under a
-            // block struck down into it, a support under a body struck from above): that
-            // impulse changes the velocities within the step, and the mean velocity books it
-            // exactly, where the displacement books the soft contact's sink. The tenth new
-            // user's block struck down by (4, -6) N s (tests/newuser/impacts/n10_05b): the floor's
-            // 6 N s against the 0.041 N s of resting, booked at the block's 0.35 mm sink, gave
-            // the work-energy ledger 1.0 J of 1.6 J too much.
-            let resting = self.with_work && {
-                let key = pair_key(c.body1, c.body2);
-                let pair = |list: &[((usize, usize), f64)]| {
-                    list.binary_search_by_key(&key, |&(k, _)| k)
-                        .ok()
-                        .map(|k| list[k].1)
-                };
-                pair(self.pushed_before).is_some_and(|before| {
-                    !super::impact::pushes_impulsively(pair(self.pushing).unwrap_or(0.0), before)
-                })
+    }
+
+    /// A contact whose pair pushed the step before is no impact: its normal impulse works
+    /// through the bodies' displacement (`energy::work_of_contact_impulse`).
+    /// Unless it now pushes impulsively, over twice its last step's (a floor under a
+    /// block struck down into it, a support under a body struck from above): that
+    /// impulse changes the velocities within the step, and the mean velocity books it
+    /// exactly, where the displacement books the soft contact's sink. The tenth new
+    /// user's block struck down by (4, -6) N s (tests/newuser/impacts/n10_05b): the floor's
+    /// 6 N s against the 0.041 N s of resting, booked at the block's 0.35 mm sink, gave
+    /// the work-energy ledger 1.0 J of 1.6 J too much.
+    fn rests(&self, c: &ContactState) -> bool {
+        self.with_work && {
+            let key = pair_key(c.body1, c.body2);
+            let pair = |list: &[((usize, usize), f64)]| {
+                list.binary_search_by_key(&key, |&(k, _)| k)
+                    .ok()
+                    .map(|k| list[k].1)
             };
-            let work = (Slot::Contacts, true);
-            for p in &c.points {
-                let (j_n, j_t) = (c.normal * p.normal_impulse, t * p.tangent_impulse);
-                let j2 = j_n + j_t;
-                let (arm1, arm2) = p
-                    .arms
-                    .unwrap_or_else(|| contact_arms_at_start(snap, self.before, c, p));
-                let u = |pass: &Self, i: usize, sign: f64, arm: DVec2| {
-                    let m = &pass.mids[i];
-                    let moved = resting.then_some(m.moved);
-                    work_of_contact_impulse(
-                        j_n * sign,
-                        j_t * sign,
-                        arm,
-                        (m.velocity, m.omega),
-                        moved,
-                    )
-                };
-                if in2 {
-                    let at = self.g_point(c.body2) + arm2;
-                    self.add_sums(c.body2, j2, at, arm2, 0.0, internal);
-                    if self.with_work {
-                        let w = u(self, c.body2, 1.0, arm2);
-                        self.add_work(c.body2, work, w);
-                    }
+            pair(self.pushed_before).is_some_and(|before| {
+                !super::impact::pushes_impulsively(pair(self.pushing).unwrap_or(0.0), before)
+            })
+        }
+    }
+
+    fn contact(&mut self, c: &ContactState) {
+        let snap = self.snap;
+        let (in1, in2) = (self.has_mass(c.body1), self.has_mass(c.body2));
+        if !in1 && !in2 {
+            return;
+        }
+        let internal = in1 && in2;
+        let t = c.tangent();
+        let resting = self.rests(c);
+        let work = (Slot::Contacts, true);
+        for p in &c.points {
+            let (j_n, j_t) = (c.normal * p.normal_impulse, t * p.tangent_impulse);
+            let j2 = j_n + j_t;
+            let (arm1, arm2) = p
+                .arms
+                .unwrap_or_else(|| contact_arms_at_start(snap, self.before, c, p));
+            let u = |pass: &Self, i: usize, sign: f64, arm: DVec2| {
+                let m = &pass.mids[i];
+                let moved = resting.then_some(m.moved);
+                work_of_contact_impulse(j_n * sign, j_t * sign, arm, (m.velocity, m.omega), moved)
+            };
+            if in2 {
+                let at = self.g_point(c.body2) + arm2;
+                self.add_sums(c.body2, j2, at, arm2, 0.0, internal);
+                if self.with_work {
+                    let w = u(self, c.body2, 1.0, arm2);
+                    self.add_work(c.body2, work, w);
                 }
-                if in1 {
-                    let at = self.g_point(c.body1) + arm1;
-                    self.add_sums(c.body1, -j2, at, arm1, 0.0, internal);
-                    if self.with_work {
-                        let w = u(self, c.body1, -1.0, arm1);
-                        self.add_work(c.body1, work, w);
-                    }
+            }
+            if in1 {
+                let at = self.g_point(c.body1) + arm1;
+                self.add_sums(c.body1, -j2, at, arm1, 0.0, internal);
+                if self.with_work {
+                    let w = u(self, c.body1, -1.0, arm1);
+                    self.add_work(c.body1, work, w);
                 }
             }
         }
+    }
+
+    fn joints(&mut self) {
+        let snap = self.snap;
         for j in &snap.joints {
             let (in1, in2) = (self.has_mass(j.body1), self.has_mass(j.body2));
             let internal = in1 && in2;
@@ -708,6 +741,10 @@ impl Pass<'_> {
                 self.add(i, imp, at, arm, couple, internal, None);
             }
         }
+    }
+
+    fn couplings(&mut self) {
+        let snap = self.snap;
         for c in &snap.couplings {
             for (i, j, couple) in c.body_impulses() {
                 if !self.has_mass(i) {

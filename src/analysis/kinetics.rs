@@ -178,8 +178,6 @@ pub fn for_each_body_impulse(
     )
 }
 
-// Not yet split into named steps (issue 44): visits every kind of impulse a step applies to a body, one arm per kind.
-#[allow(clippy::too_many_lines)]
 fn visit_impulses(
     before: Before,
     snap: &Snapshot,
@@ -189,39 +187,92 @@ fn visit_impulses(
     links: Option<&BodyLinks>,
     mut visit: impl FnMut(StepImpulse),
 ) {
-    let dt = snap.dt;
-    if dt <= 0.0 {
+    if snap.dt <= 0.0 {
         return;
     }
-    let n = snap.bodies.len();
-    let member = |i: usize| i < n && snap.bodies[i].mass > 0.0 && before.admits(i) && in_set(i);
-    let start = |i: usize| before.get(i).map_or(snap.bodies[i].com, |m| m.com);
-    let g_point = |i: usize| gravity_point(start(i), snap.bodies[i].com, substeps);
-
-    // With one or two bodies' start states only, the set is (at most) those: skip the scan.
-    // The bodies in index order, each once.
-    let (range, pair) = match before {
-        Before::All(_) => (0..n, None),
-        Before::One(k, _) => (k..(k + 1).min(n), None),
-        Before::Two([(a, _), (b, _)]) => (
-            0..0,
-            Some(if a == b {
-                [a, usize::MAX]
-            } else {
-                [a.min(b), a.max(b)]
-            }),
-        ),
+    let walk = Walk {
+        before,
+        snap,
+        substeps,
+        in_set,
+        skip_internal,
+        links,
     };
-    let bodies = range.chain(pair.into_iter().flatten().filter(|&i| i < n));
-    if snap.gravity != DVec2::ZERO {
+    walk.gravity(&mut visit);
+    walk.loads(&mut visit);
+    walk.springs(&mut visit);
+    walk.events(&mut visit);
+    walk.contacts(&mut visit);
+    walk.joints(&mut visit);
+    couplings(snap, &|i| walk.member(i), &|i| walk.g_point(i), &mut visit);
+}
+
+/// One walk over the impulses of the step that led to `snap`: the set it reads (`in_set`,
+/// narrowed by `before`), and whether it skips the impulses internal to the set.
+struct Walk<'a, F> {
+    before: Before<'a>,
+    snap: &'a Snapshot,
+    substeps: usize,
+    in_set: F,
+    skip_internal: bool,
+    links: Option<&'a BodyLinks>,
+}
+
+impl<F: Fn(usize) -> bool> Walk<'_, F> {
+    fn member(&self, i: usize) -> bool {
+        let snap = self.snap;
+        i < snap.bodies.len()
+            && snap.bodies[i].mass > 0.0
+            && self.before.admits(i)
+            && (self.in_set)(i)
+    }
+
+    fn start(&self, i: usize) -> DVec2 {
+        self.before
+            .get(i)
+            .map_or(self.snap.bodies[i].com, |m| m.com)
+    }
+
+    fn g_point(&self, i: usize) -> DVec2 {
+        gravity_point(self.start(i), self.snap.bodies[i].com, self.substeps)
+    }
+
+    /// Whether an impulse between two bodies is to be visited on neither side: neither is in
+    /// the set, or it is internal to the set and the walk skips those.
+    fn passes_by(&self, in1: bool, in2: bool) -> bool {
+        !in1 && !in2 || self.skip_internal && in1 && in2
+    }
+
+    /// Every member's weight over the step, at its gravity point.
+    fn gravity(&self, visit: &mut impl FnMut(StepImpulse)) {
+        let snap = self.snap;
+        if snap.gravity == DVec2::ZERO {
+            return;
+        }
+        let n = snap.bodies.len();
+        // With one or two bodies' start states only, the set is (at most) those: skip the scan.
+        // The bodies in index order, each once.
+        let (range, pair) = match self.before {
+            Before::All(_) => (0..n, None),
+            Before::One(k, _) => (k..(k + 1).min(n), None),
+            Before::Two([(a, _), (b, _)]) => (
+                0..0,
+                Some(if a == b {
+                    [a, usize::MAX]
+                } else {
+                    [a.min(b), a.max(b)]
+                }),
+            ),
+        };
+        let bodies = range.chain(pair.into_iter().flatten().filter(|&i| i < n));
         for i in bodies {
             let b = &snap.bodies[i];
-            if member(i) {
+            if self.member(i) {
                 visit(StepImpulse {
                     body: i,
                     source: Source::Gravity,
-                    impulse: b.mass * snap.gravity * dt,
-                    point: g_point(i),
+                    impulse: b.mass * snap.gravity * snap.dt,
+                    point: self.g_point(i),
                     arm: DVec2::ZERO,
                     couple: 0.0,
                     other: None,
@@ -229,169 +280,202 @@ fn visit_impulses(
             }
         }
     }
-    // A force held over the step, applied by rapier as a force at G plus a constant couple.
-    let held = |i: usize, source: Source, p: DVec2, f: DVec2, torque: f64, other| {
-        let arm = p - start(i);
+
+    /// A force held over the step, applied by rapier as a force at G plus a constant couple.
+    fn held(
+        &self,
+        i: usize,
+        source: Source,
+        p: DVec2,
+        f: DVec2,
+        torque: f64,
+        other: Option<usize>,
+    ) -> StepImpulse {
+        let dt = self.snap.dt;
+        let arm = p - self.start(i);
         StepImpulse {
             body: i,
             source,
             impulse: f * dt,
-            point: g_point(i) + arm,
+            point: self.g_point(i) + arm,
             arm,
             couple: torque * dt,
             other,
         }
-    };
-    for (k, l) in snap.loads.iter().enumerate() {
-        if member(l.body) {
-            visit(held(
-                l.body,
-                Source::Load(k),
-                l.point,
-                l.force,
-                l.torque,
-                None,
-            ));
-        }
     }
-    for (k, s) in snap.springs.iter().enumerate() {
-        let (in1, in2) = (member(s.body1), s.body2.is_some_and(member));
-        if skip_internal && in1 && in2 {
-            continue;
-        }
-        if in1 {
-            visit(held(
-                s.body1,
-                Source::Spring(k),
-                s.applied_at1,
-                s.force_on_body1,
-                s.couple_on_body1,
-                s.body2,
-            ));
-        }
-        if in2 {
-            let b2 = s.body2.unwrap_or_default();
-            visit(held(
-                b2,
-                Source::Spring(k),
-                s.applied_at2,
-                -s.force_on_body1,
-                -s.couple_on_body1,
-                Some(s.body1),
-            ));
-        }
-    }
-    for (k, e) in snap.impulses.iter().enumerate() {
-        if member(e.body) {
-            visit(StepImpulse {
-                body: e.body,
-                source: Source::Event(k),
-                impulse: e.impulse,
-                point: e.point,
-                arm: e.point - start(e.body),
-                couple: e.angular_impulse,
-                other: None,
-            });
-        }
-    }
-    for k in ids(&before, links, BodyLinks::contacts_of, snap.contacts.len()) {
-        let c = &snap.contacts[k];
-        let (in1, in2) = (member(c.body1), member(c.body2));
-        if !in1 && !in2 || skip_internal && in1 && in2 {
-            continue; // neither, or internal to the set
-        }
-        let t = c.tangent();
-        // Carries body1's end-of-step points back to its start pose (one rotation per contact,
-        // and only for points without the solver's arms).
-        let mut back: Option<StartOfStep> = None;
-        for (q, p) in c.points.iter().enumerate() {
-            let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
-            let source = Source::Contact {
-                contact: k,
-                point: q,
-            };
-            // The lever arms from G that rapier's solver used (frozen at the narrow phase's last
-            // full update of the manifold), else the point as the narrow phase found it at the
-            // start of this step.
-            let (arm1, arm2) = p.arms.unwrap_or_else(|| {
-                let back = back.get_or_insert_with(|| {
-                    StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1))
-                });
-                let p1 = back.point(p.point);
-                // The point on body2's surface: body1's point moved by the separation along n.
-                (
-                    p1 - start(c.body1),
-                    p1 + c.normal * p.distance - start(c.body2),
-                )
-            });
-            if in2 {
-                visit(StepImpulse {
-                    body: c.body2,
-                    source,
-                    impulse: j2,
-                    point: g_point(c.body2) + arm2,
-                    arm: arm2,
-                    couple: 0.0,
-                    other: Some(c.body1),
-                });
-            }
-            if in1 {
-                visit(StepImpulse {
-                    body: c.body1,
-                    source,
-                    impulse: -j2,
-                    point: g_point(c.body1) + arm1,
-                    arm: arm1,
-                    couple: 0.0,
-                    other: Some(c.body2),
-                });
+
+    fn loads(&self, visit: &mut impl FnMut(StepImpulse)) {
+        for (k, l) in self.snap.loads.iter().enumerate() {
+            if self.member(l.body) {
+                visit(self.held(l.body, Source::Load(k), l.point, l.force, l.torque, None));
             }
         }
     }
-    for k in ids(&before, links, BodyLinks::joints_of, snap.joints.len()) {
-        let j = &snap.joints[k];
-        let (in1, in2) = (member(j.body1), member(j.body2));
-        if !in1 && !in2 || skip_internal && in1 && in2 {
-            continue;
-        }
-        let sides = [
-            (
-                in2,
-                j.body2,
-                j.body1,
-                j.impulse_on_body2,
-                j.anchor,
-                j.angular_impulse_on_body2,
-            ),
-            (
-                in1,
-                j.body1,
-                j.body2,
-                -j.impulse_on_body2,
-                j.anchor1,
-                j.angular_impulse_on_body1,
-            ),
-        ];
-        for (inside, body, other, imp, at, angular) in sides {
-            if !inside {
+
+    fn springs(&self, visit: &mut impl FnMut(StepImpulse)) {
+        for (k, s) in self.snap.springs.iter().enumerate() {
+            let (in1, in2) = (
+                self.member(s.body1),
+                s.body2.is_some_and(|b| self.member(b)),
+            );
+            if self.skip_internal && in1 && in2 {
                 continue;
             }
-            let arm = at - snap.bodies[body].com;
-            visit(StepImpulse {
-                body,
-                source: Source::Joint(k),
-                impulse: imp,
-                // Its angular impulse is about G where each substep's rows acted: placed, like a
-                // contact's, at the arm from the gravity point.
-                point: g_point(body) + arm,
-                arm,
-                // The row solver's angular impulse about G minus the moment of the linear part.
-                couple: angular - cross(arm, imp),
-                other: Some(other),
-            });
+            if in1 {
+                visit(self.held(
+                    s.body1,
+                    Source::Spring(k),
+                    s.applied_at1,
+                    s.force_on_body1,
+                    s.couple_on_body1,
+                    s.body2,
+                ));
+            }
+            if in2 {
+                let b2 = s.body2.unwrap_or_default();
+                visit(self.held(
+                    b2,
+                    Source::Spring(k),
+                    s.applied_at2,
+                    -s.force_on_body1,
+                    -s.couple_on_body1,
+                    Some(s.body1),
+                ));
+            }
         }
     }
-    couplings(snap, &member, &g_point, &mut visit);
+
+    fn events(&self, visit: &mut impl FnMut(StepImpulse)) {
+        for (k, e) in self.snap.impulses.iter().enumerate() {
+            if self.member(e.body) {
+                visit(StepImpulse {
+                    body: e.body,
+                    source: Source::Event(k),
+                    impulse: e.impulse,
+                    point: e.point,
+                    arm: e.point - self.start(e.body),
+                    couple: e.angular_impulse,
+                    other: None,
+                });
+            }
+        }
+    }
+
+    fn contacts(&self, visit: &mut impl FnMut(StepImpulse)) {
+        let snap = self.snap;
+        let before = &self.before;
+        for k in ids(
+            before,
+            self.links,
+            BodyLinks::contacts_of,
+            snap.contacts.len(),
+        ) {
+            let c = &snap.contacts[k];
+            let (in1, in2) = (self.member(c.body1), self.member(c.body2));
+            if self.passes_by(in1, in2) {
+                continue; // neither, or internal to the set
+            }
+            let t = c.tangent();
+            // Carries body1's end-of-step points back to its start pose (one rotation per contact,
+            // and only for points without the solver's arms).
+            let mut back: Option<StartOfStep> = None;
+            for (q, p) in c.points.iter().enumerate() {
+                let j2 = c.normal * p.normal_impulse + t * p.tangent_impulse;
+                let source = Source::Contact {
+                    contact: k,
+                    point: q,
+                };
+                // The lever arms from G that rapier's solver used (frozen at the narrow phase's last
+                // full update of the manifold), else the point as the narrow phase found it at the
+                // start of this step.
+                let (arm1, arm2) = p.arms.unwrap_or_else(|| {
+                    let back = back.get_or_insert_with(|| {
+                        StartOfStep::new(&snap.bodies[c.body1], before.get(c.body1))
+                    });
+                    let p1 = back.point(p.point);
+                    // The point on body2's surface: body1's point moved by the separation along n.
+                    (
+                        p1 - self.start(c.body1),
+                        p1 + c.normal * p.distance - self.start(c.body2),
+                    )
+                });
+                if in2 {
+                    visit(StepImpulse {
+                        body: c.body2,
+                        source,
+                        impulse: j2,
+                        point: self.g_point(c.body2) + arm2,
+                        arm: arm2,
+                        couple: 0.0,
+                        other: Some(c.body1),
+                    });
+                }
+                if in1 {
+                    visit(StepImpulse {
+                        body: c.body1,
+                        source,
+                        impulse: -j2,
+                        point: self.g_point(c.body1) + arm1,
+                        arm: arm1,
+                        couple: 0.0,
+                        other: Some(c.body2),
+                    });
+                }
+            }
+        }
+    }
+
+    fn joints(&self, visit: &mut impl FnMut(StepImpulse)) {
+        let snap = self.snap;
+        for k in ids(
+            &self.before,
+            self.links,
+            BodyLinks::joints_of,
+            snap.joints.len(),
+        ) {
+            let j = &snap.joints[k];
+            let (in1, in2) = (self.member(j.body1), self.member(j.body2));
+            if self.passes_by(in1, in2) {
+                continue;
+            }
+            let sides = [
+                (
+                    in2,
+                    j.body2,
+                    j.body1,
+                    j.impulse_on_body2,
+                    j.anchor,
+                    j.angular_impulse_on_body2,
+                ),
+                (
+                    in1,
+                    j.body1,
+                    j.body2,
+                    -j.impulse_on_body2,
+                    j.anchor1,
+                    j.angular_impulse_on_body1,
+                ),
+            ];
+            for (inside, body, other, imp, at, angular) in sides {
+                if !inside {
+                    continue;
+                }
+                let arm = at - snap.bodies[body].com;
+                visit(StepImpulse {
+                    body,
+                    source: Source::Joint(k),
+                    impulse: imp,
+                    // Its angular impulse is about G where each substep's rows acted: placed, like a
+                    // contact's, at the arm from the gravity point.
+                    point: self.g_point(body) + arm,
+                    arm,
+                    // The row solver's angular impulse about G minus the moment of the linear part.
+                    couple: angular - cross(arm, imp),
+                    other: Some(other),
+                });
+            }
+        }
+    }
 }
 
 /// The contacts (or joints) a walk visits, ascending: every one, or with links and a set of one

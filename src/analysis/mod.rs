@@ -26,6 +26,7 @@
 //! - [`small_oscillations`]: the modes and periods of any mechanism linearized about its equilibrium (PL-14).
 //! - [`reference`](mod@reference): the reference trajectory, the equations of motion integrated in f64 (Dop853), with the joints' reactions.
 
+pub mod applied_forces;
 pub mod closed_forms;
 pub mod curved_path;
 pub mod energy;

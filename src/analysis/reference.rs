@@ -16,7 +16,8 @@
 //!   the reactions are -J^T mu;
 //! - the applied forces: gravity, linear springs and their dampers, torsion springs and theirs,
 //!   the bodies' damping (-m d v, -I d omega, rapier's continuous model), loads (constant or
-//!   tabulated, world-fixed or following the body).
+//!   tabulated, world-fixed or following the body), translated from the level by
+//!   `applied_forces`, which the linearization (`small_oscillations`) shares.
 //!
 //! Drift: an acceleration-level formulation leaves C and dC/dt to drift by the integration
 //! error. Rather than Baumgarte terms (whose gains are a tuning that changes the dynamics), the
@@ -35,12 +36,12 @@
 //! [`MAX_MOVING_BODIES`] dynamic bodies. Contacts are not modelled: the caller must make sure
 //! none happens (the questions check that the engine's run had none before the reading).
 
+use crate::analysis::applied_forces::{AppliedForces, LinearSpring, Load, TorsionSpring};
 use crate::analysis::mass::of_body;
 use crate::analysis::{cross, k_cross};
 use crate::level::motion::{pose_at, rate_at};
 use crate::level::{
-    BodyDef, BodyKind, Coordinate, Effect, EventDef, JointKind, Level, Motor, Profile,
-    DEFAULT_DENSITY,
+    BodyDef, BodyKind, Coordinate, Effect, EventDef, JointKind, Level, Motor, DEFAULT_DENSITY,
 };
 use crate::sim::profiles::{scalar_profile_at, vector_profile_at};
 use differential_equations::prelude::*;
@@ -157,35 +158,6 @@ struct Row {
     carried: Option<Vec<f64>>,
 }
 
-#[derive(Debug, Clone)]
-struct Spring {
-    body1: usize,
-    point1: DVec2,
-    body2: Option<usize>,
-    point2: DVec2,
-    stiffness: f64,
-    rest_length: f64,
-    damping: f64,
-}
-
-#[derive(Debug, Clone)]
-struct Torsion {
-    body1: usize,
-    body2: Option<usize>,
-    stiffness: f64,
-    rest_angle: f64,
-    damping: f64,
-}
-
-#[derive(Debug, Clone)]
-struct Load {
-    body: usize,
-    point: DVec2,
-    force: Option<Profile<(f64, f64)>>,
-    torque: Option<Profile<f64>>,
-    follow: bool,
-}
-
 /// A level's equations of motion, ready to integrate.
 #[derive(Debug, Clone)]
 pub struct Reference {
@@ -193,8 +165,8 @@ pub struct Reference {
     /// Level index of each slot's body.
     slots: Vec<usize>,
     constraints: Vec<Constraint>,
-    springs: Vec<Spring>,
-    torsions: Vec<Torsion>,
+    springs: Vec<LinearSpring>,
+    torsions: Vec<TorsionSpring>,
     loads: Vec<Load>,
     gravity: DVec2,
     joint_count: usize,
@@ -252,7 +224,8 @@ impl Reference {
                 .ok_or_else(|| format!("no body \"{n}\""))
         };
         refuse_events(level)?;
-        let bodies = collect_bodies(level, has(Effect::Damping))?;
+        let forces = AppliedForces::of_level(level, &index)?;
+        let bodies = collect_bodies(level, &forces)?;
         let slots: Vec<usize> = (0..bodies.len())
             .filter(|&k| bodies[k].slot.is_some())
             .collect();
@@ -260,14 +233,10 @@ impl Reference {
             bodies,
             slots,
             constraints: Vec::new(),
-            springs: Vec::new(),
-            torsions: Vec::new(),
-            loads: Vec::new(),
-            gravity: if has(Effect::Gravity) {
-                v2(level.world.gravity.unwrap_or((0.0, -9.81)))
-            } else {
-                DVec2::ZERO
-            },
+            springs: forces.springs,
+            torsions: forces.torsion_springs,
+            loads: forces.loads,
+            gravity: forces.gravity,
             joint_count: level.joints.len(),
         };
         if has(Effect::Joints) {
@@ -283,41 +252,6 @@ impl Reference {
             for c in &level.couplings {
                 r.add_coupling(c, &index)?;
             }
-        }
-        let damping = has(Effect::Damping);
-        if has(Effect::Springs) {
-            for s in &level.springs {
-                r.springs.push(Spring {
-                    body1: index(&s.body1)?,
-                    point1: v2(s.point1),
-                    body2: s.body2.as_deref().map(index).transpose()?,
-                    point2: v2(s.point2),
-                    stiffness: s.stiffness,
-                    rest_length: s.rest_length,
-                    damping: if damping { s.damping } else { 0.0 },
-                });
-            }
-            for s in &level.torsion_springs {
-                let b1 = index(&s.body1)?;
-                let b2 = s.body2.as_deref().map(index).transpose()?;
-                let a2 = b2.map_or(0.0, |k| level.bodies[k].angle);
-                r.torsions.push(Torsion {
-                    body1: b1,
-                    body2: b2,
-                    stiffness: s.stiffness,
-                    rest_angle: s.rest_angle.unwrap_or(level.bodies[b1].angle - a2),
-                    damping: if damping { s.damping } else { 0.0 },
-                });
-            }
-        }
-        for l in &level.loads {
-            r.loads.push(Load {
-                body: index(&l.body)?,
-                point: v2(l.point),
-                force: l.force.clone(),
-                torque: l.torque.clone(),
-                follow: l.follow_body,
-            });
         }
         Ok(r)
     }
@@ -654,7 +588,7 @@ impl Reference {
                 .force
                 .as_ref()
                 .map_or(DVec2::ZERO, |p| v2(vector_profile_at(p, t)));
-            if l.follow {
+            if l.follow_body {
                 force = DVec2::from_angle(x.angle).rotate(force);
             }
             let couple = l.torque.as_ref().map_or(0.0, |p| scalar_profile_at(p, t));
@@ -975,7 +909,7 @@ fn refuse_events(level: &Level) -> Result<(), String> {
     }
 }
 
-fn collect_bodies(level: &Level, damping: bool) -> Result<Vec<Body>, String> {
+fn collect_bodies(level: &Level, forces: &AppliedForces) -> Result<Vec<Body>, String> {
     let mut slot = 0;
     let mut bodies = Vec::with_capacity(level.bodies.len());
     for b in &level.bodies {
@@ -990,6 +924,7 @@ fn collect_bodies(level: &Level, damping: bool) -> Result<Vec<Body>, String> {
                 return Err(format!("body \"{}\" has no moment of inertia", b.name));
             }
         }
+        let (linear_damping, angular_damping) = forces.body_damping(b);
         bodies.push(Body {
             def: b.clone(),
             slot: moves.then(|| {
@@ -999,16 +934,8 @@ fn collect_bodies(level: &Level, damping: bool) -> Result<Vec<Body>, String> {
             mass: mp.mass,
             inertia: mp.inertia,
             com: mp.com,
-            linear_damping: if damping {
-                b.linear_damping.unwrap_or(0.0)
-            } else {
-                0.0
-            },
-            angular_damping: if damping {
-                b.angular_damping.unwrap_or(0.0)
-            } else {
-                0.0
-            },
+            linear_damping,
+            angular_damping,
         });
     }
     if slot > MAX_MOVING_BODIES {

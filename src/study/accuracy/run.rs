@@ -3,54 +3,24 @@
 
 use super::*;
 
-/// The error part of a level's study (runs in parallel with other levels).
-// Not yet split into named steps (issue 44): the reference, the window and every point's runs share the level's budget.
-#[allow(clippy::too_many_lines)]
+/// The error part of a level's study (runs in parallel with other levels): the reference, the
+/// window and every point's runs, which share the level's budget.
 pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> LevelStudy {
     let level = &scene.level;
     let name = level_name(&scene.file);
     let pts = points(level, plan);
     let exact = has_exact(level);
     let conserved = metrics::conserved(level);
-    let base = Setting::of_level(level);
-    // The reference steps at least 4 times finer than the finest swept dt.
-    let finest = sweep_dts(level, plan)
-        .into_iter()
-        .fold(level.world.dt, f64::min);
-    let ref_setting = Setting {
-        dt: plan.reference.0.min(finest / 4.0),
-        substeps: plan.reference.1,
-        iterations: plan.reference.2.max(level.world.solver_iterations),
-        precision: Precision::F64,
-        all_effects: false,
-    };
+    let ref_setting = reference_setting(level, plan);
     let mut notes = Vec::new();
-    let duration = level.world.duration;
-
-    // Budget: time a short run at the level's settings, then size the window so that the f64
-    // reference fits its budget. Levels with an exact answer always run their whole duration
-    // (questions may be asked at its end).
-    let probe = duration.min(0.25);
-    let unit = measure::unit_cost(scene, &base, probe).unwrap_or(1e-6);
-    let ref_per_s = measure::predicted(&ref_setting, 1.0, unit);
-    let piece_s = plan.piece_s.min(duration / 4.0);
-    let window = (plan.reference_budget_s / ref_per_s)
-        .max(piece_s)
-        .min(duration);
-    if window < duration {
-        notes.push(format!(
-            "self-consistency{} over the first {window:.3} s of {duration} s (the f64 reference costs about {ref_per_s:.1} s of wall time per simulated second)",
-            if exact { "" } else { ", joint drift and cost" }
-        ));
-    }
-    let windowed = measure::with_duration(scene, window);
+    let budget = Budget::of(scene, plan, &ref_setting, exact, &mut notes);
+    let windowed = measure::with_duration(scene, budget.window);
     // Questions may be asked at the end: levels with an exact answer run their whole duration.
     let studied = if exact {
         scene.clone()
     } else {
         windowed.clone()
     };
-    let run_span = if exact { duration } else { window };
     let reference = measure::reference(&windowed, &ref_setting);
     if let Some(e) = &reference.stopped {
         notes.push(format!(
@@ -59,16 +29,142 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
             reference.duration()
         ));
     }
-    // Light levels run their conservation variant for longer (several periods).
-    let span = if window < duration {
-        window
-    } else {
-        duration.max(plan.conservation_s)
+    let sweep = Sweep {
+        scene,
+        studied: &studied,
+        windowed: &windowed,
+        reference: &reference,
+        plan,
+        budget: &budget,
+        conserved,
+        exact,
     };
     let mut rows = Vec::new();
     let mut timeable = Vec::new();
     for p in &pts {
-        let s = &p.setting;
+        let runs = sweep.runs(&p.setting);
+        timeable.push(runs.full.ran && runs.full.stopped.is_none());
+        rows.push(sweep.row(&name, p, runs));
+        tick();
+    }
+    if !exact {
+        notes.push(
+            "no textbook answer or closed-form check: the error is self-consistency against the f64 reference".into(),
+        );
+    }
+    LevelStudy {
+        name,
+        title: level.title.clone(),
+        class: class(level),
+        scene: studied,
+        points: pts,
+        rows,
+        has_exact: exact,
+        conserved,
+        notes,
+        reference: ref_setting,
+        window_s: budget.run_span,
+        timeable,
+        load: None,
+    }
+}
+
+/// The reference's setting: f64, and stepping at least 4 times finer than the finest swept dt.
+fn reference_setting(level: &level::Level, plan: &Plan) -> Setting {
+    let finest = sweep_dts(level, plan)
+        .into_iter()
+        .fold(level.world.dt, f64::min);
+    Setting {
+        dt: plan.reference.0.min(finest / 4.0),
+        substeps: plan.reference.1,
+        iterations: plan.reference.2.max(level.world.solver_iterations),
+        precision: Precision::F64,
+        all_effects: false,
+    }
+}
+
+/// How much of the level a study runs, sized so that the f64 reference fits its budget.
+struct Budget {
+    /// The cost of one substep at the level's settings, s (`measure::unit_cost`).
+    unit: f64,
+    /// The span the reference and the self-consistency pieces cover, s.
+    window: f64,
+    /// One self-consistency piece, s.
+    piece_s: f64,
+    /// The span of each point's full run, s.
+    run_span: f64,
+    /// The span of the conservation runs, s.
+    span: f64,
+}
+
+impl Budget {
+    /// Time a short run at the level's settings, then size the window so that the f64
+    /// reference fits its budget. Levels with an exact answer always run their whole duration
+    /// (questions may be asked at its end).
+    fn of(
+        scene: &Scene,
+        plan: &Plan,
+        ref_setting: &Setting,
+        exact: bool,
+        notes: &mut Vec<String>,
+    ) -> Budget {
+        let level = &scene.level;
+        let base = Setting::of_level(level);
+        let duration = level.world.duration;
+        let probe = duration.min(0.25);
+        let unit = measure::unit_cost(scene, &base, probe).unwrap_or(1e-6);
+        let ref_per_s = measure::predicted(ref_setting, 1.0, unit);
+        let piece_s = plan.piece_s.min(duration / 4.0);
+        let window = (plan.reference_budget_s / ref_per_s)
+            .max(piece_s)
+            .min(duration);
+        if window < duration {
+            notes.push(format!(
+                "self-consistency{} over the first {window:.3} s of {duration} s (the f64 reference costs about {ref_per_s:.1} s of wall time per simulated second)",
+                if exact { "" } else { ", joint drift and cost" }
+            ));
+        }
+        Budget {
+            unit,
+            window,
+            piece_s,
+            run_span: if exact { duration } else { window },
+            // Light levels run their conservation variant for longer (several periods).
+            span: if window < duration {
+                window
+            } else {
+                duration.max(plan.conservation_s)
+            },
+        }
+    }
+}
+
+/// What every point of a level's sweep runs against.
+struct Sweep<'a> {
+    scene: &'a Scene,
+    /// The scene of the full runs: the whole level with an exact answer, else the window.
+    studied: &'a Scene,
+    windowed: &'a Scene,
+    reference: &'a measure::Reference,
+    plan: &'a Plan,
+    budget: &'a Budget,
+    conserved: metrics::Conserved,
+    exact: bool,
+}
+
+/// One point's runs, and what kept them from running or finishing.
+struct PointRuns {
+    full: measure::FullRun,
+    position_error_m: Option<f64>,
+    cons: measure::Conservation,
+    status: Vec<String>,
+}
+
+impl Sweep<'_> {
+    /// The full run, the self-consistency pieces and the conservation run at setting s, each
+    /// skipped when its predicted time is over the plan's cap.
+    fn runs(&self, s: &Setting) -> PointRuns {
+        let (plan, budget) = (self.plan, self.budget);
         let mut status = Vec::new();
         let over = |what: &str, t: f64, status: &mut Vec<String>| {
             let over = t > plan.run_cap_s;
@@ -80,43 +176,67 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
             }
             over
         };
-        let full = if over("run", measure::predicted(s, run_span, unit), &mut status) {
+        let predicted = |span: f64| measure::predicted(s, span, budget.unit);
+        let full = if over("run", predicted(budget.run_span), &mut status) {
             measure::FullRun::default()
         } else {
-            measure::full_run(&studied, s)
+            measure::full_run(self.studied, s)
         };
         let pos = if over(
             "pieces",
-            plan.pieces as f64 * measure::predicted(s, piece_s, unit),
+            plan.pieces as f64 * predicted(budget.piece_s),
             &mut status,
         ) {
             Err(String::new())
         } else {
-            measure::self_consistency(&windowed, s, &reference, plan.pieces, piece_s)
+            measure::self_consistency(
+                self.windowed,
+                s,
+                self.reference,
+                plan.pieces,
+                budget.piece_s,
+            )
         };
-        let cons = if conserved.any()
-            && !over(
-                "conservation run",
-                measure::predicted(s, span, unit),
-                &mut status,
-            ) {
-            Some(measure::conservation(scene, s, conserved, span))
+        let cons = if self.conserved.any()
+            && !over("conservation run", predicted(budget.span), &mut status)
+        {
+            Some(measure::conservation(
+                self.scene,
+                s,
+                self.conserved,
+                budget.span,
+            ))
         } else {
             None
         };
         if let Some(e) = &full.stopped {
             status.push(format!("run stopped: {e}"));
         }
-        timeable.push(full.ran && full.stopped.is_none());
         if let Err(e) = &pos {
             if !e.is_empty() {
                 status.push(format!("piece stopped: {e}"));
             }
         }
         if let Some(e) = cons.as_ref().and_then(|c| c.stopped.clone()) {
-            status.push(format!("{span} s run stopped: {e}"));
+            status.push(format!("{} s run stopped: {e}", budget.span));
         }
-        let position_error_m = pos.ok();
+        PointRuns {
+            full,
+            position_error_m: pos.ok(),
+            cons: cons.unwrap_or_default(),
+            status,
+        }
+    }
+
+    /// The row of accuracy.csv of point p of level `name`.
+    fn row(&self, name: &str, p: &Point, runs: PointRuns) -> Row {
+        let (s, exact) = (&p.setting, self.exact);
+        let PointRuns {
+            full,
+            position_error_m,
+            cons,
+            status,
+        } = runs;
         let error = if exact {
             match (full.question_error, full.closed_form_error) {
                 (Some(a), Some(b)) => Some(a.max(b)),
@@ -125,7 +245,6 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
         } else {
             position_error_m
         };
-        let cons = cons.unwrap_or_default();
         let knob = if p.baseline {
             "baseline".to_string()
         } else {
@@ -135,9 +254,9 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
             }
             k.join("+")
         };
-        rows.push(Row {
-            level: name.clone(),
-            class: class(level).into(),
+        Row {
+            level: name.to_string(),
+            class: class(&self.scene.level).into(),
             knob,
             dt: s.dt,
             dt_label: s.dt_label(),
@@ -150,7 +269,7 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
             } else {
                 status.join("; ")
             },
-            window_s: run_span,
+            window_s: self.budget.run_span,
             error,
             error_kind: if exact {
                 "exact_rel".into()
@@ -172,28 +291,7 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
             cost_min_us_per_sim_s: None,
             cost_spread: None,
             cost_rounds: None,
-        });
-        tick();
-    }
-    if !exact {
-        notes.push(
-            "no textbook answer or closed-form check: the error is self-consistency against the f64 reference".into(),
-        );
-    }
-    LevelStudy {
-        name,
-        title: level.title.clone(),
-        class: class(level),
-        scene: studied,
-        points: pts,
-        rows,
-        has_exact: exact,
-        conserved,
-        notes,
-        reference: ref_setting,
-        window_s: run_span,
-        timeable,
-        load: None,
+        }
     }
 }
 
