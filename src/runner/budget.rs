@@ -3,7 +3,8 @@
 //!
 //! The estimate adds measured unit costs over what the level and the overrides say the run
 //! will do: rapier calls (one a step, or one a substep where substeps are split:
-//! [`Substepping`]), bodies and constraints (joints and potential contact pairs) per substep and
+//! [`Substepping`], or where a ball that can spin touches something at the start), the
+//! couplings rigidlab solves after each call, the curved tracks' facets built once, bodies and constraints (joints and potential contact pairs) per substep and
 //! per solver iteration, contact pairs made and kept, questions and checks per step, and the
 //! history a check keeps. `check`, `run`, `study stability` and `render --time` all price their
 //! run here. The table in docs/cli.md compares the estimate with the measured wall time and
@@ -57,14 +58,29 @@
 //!   one point 1282 MB, 300 at one point 124 MB (2.1 to 2.5 KB a pair); 10^4 questions 66.5 MB
 //!   (3.4 KB each); 1000 free bodies 32.6 MB; the `impulse_momentum` check over 1e6 steps
 //!   77.1 MB (48 bytes a step, as `ImpulseMomentumLedger` stores them).
-//! - [`FACET_CALL_US`]: with impact cuts on (sim/impacts.rs), each rapier call plans its
-//!   impacts against every nearby pair, and a curved track's pair against each of its facets.
-//!   Measured 2026-12-06 (CPU time, `rigidlab check --no-advice` with and without
-//!   `--no-impact-cuts`): tests/newuser/n7_05 (a puck in a full ring of 7025 facets, 3840 steps
-//!   of one call) 1.20 s against 0.11 s, 0.040 us a facet-call; n7_03 (a block on a quarter
-//!   ring of 1979 facets, 3840 steps) 0.34 s against 0.08 s, 0.034 us; n7_02 (a ball rolling
-//!   in a bowl of 2236 facets, 624 steps split into 4 calls by its spin) 0.33 s against 0.10 s,
-//!   0.041 us. Before, these were priced at 1/20 to 1/100 of their run.
+//! - [`FACET_US`]: a curved track's facets (an `Arc`'s, a `Polyline`'s points) are built once,
+//!   with the tree parry searches them by; a ball on an `Arc` touches its circle
+//!   (sim/arc_track.rs), and any other shape finds its facets through that tree, so a call does
+//!   not pay for each facet. Measured 2026-12-06 (the thread's CPU time of 20 runs in one
+//!   process, `runner::budget::measure_estimates` in tests/suite/runner/budget.rs): a puck in a
+//!   ring of 7025 facets over 1000 steps (tests/newuser/curved/n13_05) 10.3 ms, where the other
+//!   terms price 2.5 ms: 1.1 us a facet. From 2026-12-06 to then each call was priced 0.04 us a
+//!   facet (`FACET_CALL_US`, measured before the arc's exact contact: n7_05, a puck in that ring,
+//!   1.20 s then): after it n13_05 was priced 0.29 s for 10 ms, n7_05 1.1 s for 18 ms.
+//! - [`COUPLING_CALL_US`]: a coupling (a cable, a belt, gears: sim/couplings.rs) is solved by
+//!   rigidlab after every rapier call, in sweeps over its terms' coordinates (an angle is an
+//!   atan2). Measured 2026-12-06 as above, the run's time past the other terms over its calls
+//!   and couplings: levels/kinematics/ha_double_pulley_cable (1 coupling, 16,800 calls) 0.142 s
+//!   against 0.028 s, 6.8 us a coupling-call; tests/newuser/linkages/n8_10 (1, 3000 calls) 28 ms
+//!   against 5 ms, 7.7 us; levels/kinetics/classic_atwood_massive_pulley (2, 1152 calls) 17.8
+//!   ms against 2.3 ms, 6.7 us. Unpriced before, these ran 5x to 8x their estimate.
+//! - A spinning ball in contact: rigidlab splits a step into one-substep calls where a dynamic
+//!   ball touching something turns (sim/contact_points.rs, `spinning_ball_touches`), a choice
+//!   made during the run. The estimate makes it before: a dynamic `Circle` that may turn (not
+//!   `lock_rotation`; friction on, or started turning) in a contact pair at the start, with more
+//!   than one substep, is priced at `substeps` calls a step. Measured 2026-12-06:
+//!   levels/kinetics/classic_rolling_disc splits 248 of its 252 steps (996 calls, priced 252
+//!   before), tests/newuser/curved/n7_02 (a ball rolling in a bowl) 588 of 624.
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
 use crate::level::shape as shapes;
@@ -98,9 +114,11 @@ pub const PAIR_STEP_US: f64 = 0.1;
 /// Making one contact pair, per pair its two bodies already have, ns (paid once, when the pairs
 /// of bodies that overlap at the start are made).
 pub const PAIR_MADE_NS: f64 = 17.0;
-/// With impact cuts on, one facet of a curved track (an `Arc`'s facets, a `Polyline`'s
-/// points) in a potential contact pair, planned against in one rapier call, us.
-pub const FACET_CALL_US: f64 = 0.04;
+/// One facet of a curved track (an `Arc`'s facets, a `Polyline`'s points), built once with its
+/// search tree, us.
+pub const FACET_US: f64 = 1.1;
+/// One coupling solved after one rapier call, us.
+pub const COUPLING_CALL_US: f64 = 7.0;
 /// One question watching one step, us.
 pub const QUESTION_STEP_US: f64 = 0.15;
 /// One check observing one step, us.
@@ -143,7 +161,8 @@ pub struct Work {
     pub steps: f64,
     pub substeps: usize,
     pub iterations: usize,
-    /// rapier calls a step: 1, or `substeps` where substeps are split.
+    /// rapier calls a step: 1, or `substeps` where substeps are split (planned, or for a ball
+    /// that can spin in contact).
     pub calls_per_step: usize,
     pub bodies: usize,
     pub joints: usize,
@@ -151,9 +170,10 @@ pub struct Work {
     pub pairs: f64,
     /// Sum over those pairs of the pairs their two bodies are in (what making them costs).
     pub pair_degrees: f64,
-    /// Sum over those pairs of their curved tracks' facets, where impact cuts plan each call
-    /// against them (0 without impact cuts).
-    pub pair_facets: f64,
+    /// The facets of the level's curved tracks, built once.
+    pub facets: f64,
+    /// Couplings rigidlab solves after every rapier call (0 without joints).
+    pub couplings: usize,
     pub questions: usize,
     pub checks: usize,
     /// Bytes the checks keep per step (their histories).
@@ -183,10 +203,10 @@ impl Work {
                 .round()
                 .max(1.0)
         });
-        let (pairs, pair_degrees, pair_facets) = if set.effects.has(Effect::Contacts) {
-            contact_pairs(level)
+        let contacts = if set.effects.has(Effect::Contacts) {
+            contact_pairs(level, set.effects.has(Effect::Friction))
         } else {
-            (0.0, 0.0, 0.0)
+            Pairs::default()
         };
         let history_bytes_per_step = level
             .checks
@@ -209,16 +229,30 @@ impl Work {
             steps,
             substeps: set.substeps,
             iterations: set.solver_iterations,
-            calls_per_step: if set.substepping == Substepping::Split {
+            // A step with a spinning ball in contact is split as the run goes
+            // (sim/contact_points.rs): priced so from the start.
+            calls_per_step: if set.substepping == Substepping::Split
+                || (set.substeps > 1 && contacts.spinning_ball)
+            {
                 set.substeps
             } else {
                 1
             },
             bodies: level.bodies.len(),
             joints: level.joints.len(),
-            pairs,
-            pair_degrees,
-            pair_facets: if set.impact_cuts { pair_facets } else { 0.0 },
+            pairs: contacts.pairs,
+            pair_degrees: contacts.degrees,
+            facets: level
+                .bodies
+                .iter()
+                .filter_map(|b| b.shape.as_ref())
+                .map(shapes::facets)
+                .sum(),
+            couplings: if set.effects.has(Effect::Joints) {
+                level.couplings.len()
+            } else {
+                0
+            },
             questions: level.questions.len(),
             checks: level.checks.len(),
             history_bytes_per_step,
@@ -231,13 +265,14 @@ impl Work {
         let rows = self.joints as f64 + self.pairs;
         let engine = if self.f64 { F64_COST } else { 1.0 };
         engine
-            * (self.calls_per_step as f64 * (CALL_US + self.pair_facets * FACET_CALL_US)
+            * (self.calls_per_step as f64 * CALL_US
                 + self.bodies as f64 * BODY_STEP_US
                 + self.substeps as f64
                     * (SUBSTEP_US
                         + self.bodies as f64 * BODY_SUBSTEP_US
                         + rows * (ROW_SUBSTEP_US + self.iterations as f64 * ROW_ITERATION_US))
                 + self.pairs * PAIR_STEP_US)
+            + self.calls_per_step as f64 * self.couplings as f64 * COUPLING_CALL_US
             + self.questions as f64 * QUESTION_STEP_US
             + self.checks as f64 * CHECK_STEP_US
     }
@@ -252,8 +287,10 @@ impl Estimate {
 
     /// The unit costs applied to `work`: the formula docs/cli.md states.
     pub fn price(work: Work, mode: Mode) -> Estimate {
-        let mut seconds =
-            START_S + work.steps * work.step_us() * 1e-6 + work.pair_degrees * PAIR_MADE_NS * 1e-9;
+        let mut seconds = START_S
+            + work.steps * work.step_us() * 1e-6
+            + work.pair_degrees * PAIR_MADE_NS * 1e-9
+            + work.facets * FACET_US * 1e-6;
         let mut megabytes = BASE_MB
             + (work.bodies as f64 * BODY_KB
                 + work.joints as f64 * JOINT_KB
@@ -330,13 +367,23 @@ fn megabytes_text(mb: f64) -> String {
 /// An axis-aligned box, (min, max).
 type Aabb = crate::level::shape::Aabb;
 
+/// The potential contact pairs at the start, counted by [`contact_pairs`].
+#[derive(Debug, Default, Clone, Copy)]
+struct Pairs {
+    pairs: f64,
+    /// Sum over the pairs of the pairs each pair's bodies are in.
+    degrees: f64,
+    /// Whether a ball that can spin is in one: a dynamic `Circle`, free to turn, with friction
+    /// on or started turning (sim/contact_points.rs splits its steps while it turns).
+    spinning_ball: bool,
+}
+
 /// The potential contact pairs at the start: pairs of bodies with shapes, not both fixed, whose
-/// boxes overlap within 1 cm; the sum over them of the pairs each pair's bodies are in; and the
-/// sum over them of their curved tracks' facets. A sweep along x; counting stops past
-/// [`PAIRS_COUNTED`].
-fn contact_pairs(level: &Level) -> (f64, f64, f64) {
+/// boxes overlap within 1 cm. A sweep along x; counting stops past [`PAIRS_COUNTED`].
+/// `friction`: whether the run has friction, which turns a ball that rolls.
+fn contact_pairs(level: &Level, friction: bool) -> Pairs {
     const MARGIN: f64 = 0.01;
-    let mut boxes: Vec<(Aabb, bool, f64)> = level
+    let mut boxes: Vec<(Aabb, bool, bool)> = level
         .bodies
         .iter()
         .filter_map(|b| {
@@ -345,17 +392,21 @@ fn contact_pairs(level: &Level) -> (f64, f64, f64) {
             let finite = [bb.0 .0, bb.0 .1, bb.1 .0, bb.1 .1]
                 .iter()
                 .all(|v| v.is_finite());
-            finite.then_some((bb, b.kind == BodyKind::Fixed, shapes::facets(shape)))
+            let may_spin = b.kind == BodyKind::Dynamic
+                && matches!(shape, crate::level::Shape::Circle { .. })
+                && !b.lock_rotation
+                && (friction || b.omega != 0.0);
+            finite.then_some((bb, b.kind == BodyKind::Fixed, may_spin))
         })
         .collect();
     boxes.sort_by(|a, b| a.0 .0 .0.total_cmp(&b.0 .0 .0));
     let mut degree = vec![0usize; boxes.len()];
     let mut pairs = 0.0;
-    let mut pair_facets = 0.0;
+    let mut spinning_ball = false;
     'sweep: for i in 0..boxes.len() {
-        let (a, fixed_a, facets_a) = boxes[i];
+        let (a, fixed_a, spin_a) = boxes[i];
         for j in i + 1..boxes.len() {
-            let (b, fixed_b, facets_b) = boxes[j];
+            let (b, fixed_b, spin_b) = boxes[j];
             if b.0 .0 > a.1 .0 + MARGIN {
                 break;
             }
@@ -365,13 +416,16 @@ fn contact_pairs(level: &Level) -> (f64, f64, f64) {
             degree[i] += 1;
             degree[j] += 1;
             pairs += 1.0;
-            pair_facets += facets_a + facets_b;
+            spinning_ball |= spin_a || spin_b;
             if pairs >= PAIRS_COUNTED {
                 break 'sweep;
             }
         }
     }
     // Sum over the pairs of their bodies' pairs: sum over the bodies of d^2.
-    let pair_degrees = degree.iter().map(|&d| (d as f64).powi(2)).sum();
-    (pairs, pair_degrees, pair_facets)
+    Pairs {
+        pairs,
+        degrees: degree.iter().map(|&d| (d as f64).powi(2)).sum(),
+        spinning_ball,
+    }
 }
