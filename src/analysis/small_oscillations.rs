@@ -971,9 +971,11 @@ impl<'a> Model<'a> {
         let w2max = eig.eigenvalues.amax().max(1e-300);
         let tol = 1e-6 * w2max;
         if let Some(k) = (0..d).find(|&i| eig.eigenvalues[i] < -tol) {
+            let falls = &nb * (lm_inv.transpose() * eig.eigenvectors.column(k));
             return Err(format!(
-                "the equilibrium nearest the start is unstable (omega^2 = {:.3e} 1/s^2 < 0)",
-                eig.eigenvalues[k]
+                "the equilibrium nearest the start is unstable (omega^2 = {:.3e} 1/s^2 < 0): it falls away moving {}",
+                eig.eigenvalues[k],
+                self.largest_motion(&falls)
             ));
         }
         if eig.eigenvalues.max() <= tol || eig.eigenvalues.max() <= 0.0 {
@@ -1089,6 +1091,25 @@ impl<'a> Model<'a> {
             amplitude_period,
             period_error,
         })
+    }
+}
+
+impl Model<'_> {
+    /// Which member a motion `full` (full coordinates) moves most, and along what: a platform on
+    /// a compressed spring with no guide falls sideways ("platform" along x), which the note
+    /// names, so that the reason is not mistaken for the free body next to it (n14_20).
+    fn largest_motion(&self, full: &DVector<f64>) -> String {
+        let mut best = (0.0, String::new());
+        for (k, b) in self.m.members.iter().enumerate() {
+            let Some(s) = self.slot_of[k] else { continue };
+            for (c, what) in ["along x", "along y", "turning"].iter().enumerate() {
+                let size = full[3 * s + c].abs();
+                if size > best.0 {
+                    best = (size, format!("\"{}\" {what}", b.name));
+                }
+            }
+        }
+        best.1
     }
 }
 

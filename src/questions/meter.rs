@@ -149,6 +149,7 @@ impl Meter {
     pub fn why_missing(&self) -> Option<String> {
         match self.q.family() {
             QuantityFamily::Impacts => impacts::why_missing(self),
+            QuantityFamily::Periods => periods::why_missing(self),
             _ => None,
         }
     }
