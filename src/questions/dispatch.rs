@@ -79,10 +79,11 @@ impl FamilyMeter {
     }
 
     /// Why the quantity has no engine value, where its family can tell (an impact that never
-    /// happened or never ended).
+    /// happened or never ended; a mode whose shape the linearization could not give).
     pub fn why_missing(&self) -> Option<String> {
         match &self.state {
             FamilyState::Impacts(st) => impacts::why_missing(&self.common, st),
+            FamilyState::Periods(st) => periods::why_missing(&self.common, st),
             _ => None,
         }
     }

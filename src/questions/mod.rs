@@ -66,4 +66,4 @@ mod work_and_power;
 
 pub use level_facts::LevelFacts;
 pub use probe::{initial_in_f64, QuestionProbe};
-pub use result::{grade_answer, QuestionResult, StudentGrade};
+pub use result::{grade_answer, QuestionResult, StudentGrade, CANNOT_BE_READ};

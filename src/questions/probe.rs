@@ -450,9 +450,19 @@ impl QuestionProbe {
                 b = m;
             }
         }
-        // Only a crossing before the touch (or at it, to round-off) is one on this path.
+        // Only a crossing before the touch (or at it, to round-off) is one on this path. The
+        // touch is found on the shapes as the engine holds them (f32: a 0.05 m radius is
+        // 0.05 + 7e-10), the value is the level's: at the touching distance the path may reach
+        // it a hair after the touch (a ball meeting a box at RelativeDistance r + h/2 never
+        // did, n14_21); a path within length round-off of the value at the touch crosses there.
         let f = 0.5 * (a + b);
-        (prev.time + f * dt <= t_c + TOUCH_ROUND_OFF * dt).then_some(f)
+        if prev.time + f * dt <= t_c + TOUCH_ROUND_OFF * dt {
+            return Some(f);
+        }
+        let f_c = (t_c - prev.time) / dt;
+        let at_touch = signal(f_c);
+        ((0.0..=1.0).contains(&f_c) && at_touch.abs() <= touch_length_round_off(value, s0))
+            .then_some(f_c)
     }
 
     /// In a step where a contact began and the step's end has not reached `value` (the impact
@@ -472,8 +482,9 @@ impl QuestionProbe {
         }
         let signal = |f: f64| read_carried(trigger, prev, f * dt).engine - value;
         let at_touch = signal(f_c);
-        let reached = at_touch.is_finite()
-            && ((at_touch > 0.0) != (s0 > 0.0) || at_touch.abs() <= 1e-9 * s0.abs());
+        let near = touch_length_round_off(value, s0);
+        let reached =
+            at_touch.is_finite() && ((at_touch > 0.0) != (s0 > 0.0) || at_touch.abs() <= near);
         if !reached {
             return None;
         }
@@ -481,7 +492,7 @@ impl QuestionProbe {
         for _ in 0..60 {
             let m = 0.5 * (a + b);
             let x = signal(m);
-            if (x > 0.0) == (s0 > 0.0) && x.abs() > 1e-9 * s0.abs() {
+            if (x > 0.0) == (s0 > 0.0) && x.abs() > near {
                 a = m;
             } else {
                 b = m;
@@ -621,6 +632,14 @@ fn contact_began(facts: &LevelFacts, prev: &Snapshot, cur: &Snapshot) -> Option<
 /// the touch and the crossing of a touching height are found by different roots and agree to
 /// round-off only.
 const TOUCH_ROUND_OFF: f64 = 1e-9;
+
+/// How near a crossing's value the path carried to a touch must come for the crossing to be
+/// at the touch: the engine's shapes in f32 round lengths at 6e-8 relative (a box's half height
+/// plus a ball's radius), so 1e-6 of the value and of the step's start distance from it
+/// (1e-7 m at a 0.1 m touching distance, 3e-8 s at 3 m/s).
+fn touch_length_round_off(value: f64, s0: f64) -> f64 {
+    1e-6 * (value.abs() + s0.abs())
+}
 
 /// `meter`'s reading of the snapshot `prev` carried `tau` seconds on ([`carried_to`]).
 fn read_carried(meter: &FamilyMeter, prev: &Arc<Snapshot>, tau: f64) -> Reading {

@@ -9,6 +9,11 @@ use super::sample::Reading;
 use crate::level::QuestionDef;
 use serde::{Deserialize, Serialize};
 
+/// How a question's note starts when its quantity cannot be read in the scene at any setting
+/// (a `ModePeriod` where the linearization refuses the scene): `study::advice` says so at once
+/// instead of searching finer settings.
+pub const CANNOT_BE_READ: &str = "cannot be read in this scene; no setting changes it";
+
 /// One question's result (the JSON report's `questions[]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct QuestionResult {

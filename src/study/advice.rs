@@ -19,7 +19,7 @@
 //! wrong expected answer.
 
 use crate::level::{Precision, Scene};
-use crate::questions::QuestionResult;
+use crate::questions::{QuestionResult, CANNOT_BE_READ};
 use crate::report::{Advice, AdvisedSettings, LevelReport};
 use crate::runner::{self, Estimate, Mode};
 use crate::sim::{Options, Settings};
@@ -98,12 +98,20 @@ pub fn engine_failed(r: &LevelReport) -> bool {
 /// whose note starts "cannot judge"): finer settings cannot change that, so there is nothing to
 /// search. Found by the tenth new user (tests/newuser/n10_11b: a `center_of_percussion` check
 /// on a bar that rests on a peg was searched through to 32x and then blamed on the engine).
+/// So is a question whose quantity cannot be read in the scene at all (its note starts with
+/// [`CANNOT_BE_READ`]: a `ModePeriod` where the linearization refuses the scene; n14's probe was
+/// searched to its bound, "none within", even at 60 s).
 pub fn beyond_settings(r: &LevelReport) -> Option<String> {
-    if r.error.is_some() || r.questions.iter().any(|q| !q.passed) {
+    if r.error.is_some() {
+        return None;
+    }
+    let unreadable = |q: &&QuestionResult| q.note.starts_with(CANNOT_BE_READ);
+    let failing_q: Vec<_> = r.questions.iter().filter(|q| !q.passed).collect();
+    if !failing_q.iter().all(unreadable) {
         return None;
     }
     let failing: Vec<_> = r.checks.iter().filter(|c| !c.passed).collect();
-    let judged_none = !failing.is_empty()
+    let judged_none = (!failing.is_empty() || !failing_q.is_empty())
         && failing
             .iter()
             .all(|c| c.samples == 0 && c.note.starts_with("cannot judge"));
@@ -112,12 +120,29 @@ pub fn beyond_settings(r: &LevelReport) -> Option<String> {
             .iter()
             .map(|c| format!("{} on {} ({})", c.kind, c.subject, c.note))
             .collect();
+        let checks = match which.len() {
+            0 => None,
+            1 => Some(format!("the check {} cannot judge the scene", which[0])),
+            _ => Some(format!(
+                "the checks {} cannot judge the scene",
+                which.join("; ")
+            )),
+        };
+        let questions = (!failing_q.is_empty()).then(|| {
+            let ids: Vec<_> = failing_q
+                .iter()
+                .map(|q| format!("`{}` ({})", q.id, q.note))
+                .collect();
+            format!("question {}", ids.join(", "))
+        });
+        let what: Vec<String> = checks.into_iter().chain(questions).collect();
         format!(
-            "no setting changes this: {} the scene; remove the check or change the scene",
-            if which.len() == 1 {
-                format!("the check {} cannot judge", which[0])
+            "no setting changes this: {}; remove {} or change the scene",
+            what.join("; "),
+            if failing_q.is_empty() {
+                "the check"
             } else {
-                format!("the checks {} cannot judge", which.join("; "))
+                "what cannot be read"
             }
         )
     })

@@ -49,7 +49,7 @@ struct Modes {
 impl Model<'_> {
     pub(super) fn solve(&self) -> Result<SmallOscillations, String> {
         let lin = self.linearize()?;
-        let undamped = Undamped::of(&lin)?;
+        let undamped = Undamped::of(&lin, |full| self.largest_motion(full))?;
         // The start in the chart, and in modal coordinates.
         let s0 = lin.nb.transpose() * (&self.q0 - &lin.q);
         let sdot0 = lin.nb.transpose() * &self.qdot0;
@@ -258,6 +258,23 @@ impl Model<'_> {
         }
     }
 
+    /// Which member a motion `full` (full coordinates) moves most, and along what: a platform on
+    /// a compressed spring with no guide falls sideways ("platform" along x), which the note
+    /// names, so that the reason is not mistaken for the free body next to it (n14_20).
+    fn largest_motion(&self, full: &DVector<f64>) -> String {
+        let mut best = (0.0, String::new());
+        for (k, b) in self.m.members.iter().enumerate() {
+            let Some(s) = self.slot_of[k] else { continue };
+            for (c, what) in ["along x", "along y", "turning"].iter().enumerate() {
+                let size = full[3 * s + c].abs();
+                if size > best.0 {
+                    best = (size, format!("\"{}\" {what}", b.name));
+                }
+            }
+        }
+        best.1
+    }
+
     /// Per member: (dx_G, dy_G, dtheta) of a mode's full coordinates.
     fn shape(&self, full: &DVector<f64>) -> Vec<(DVec2, f64)> {
         (0..self.m.members.len())
@@ -386,7 +403,9 @@ impl Model<'_> {
 impl Undamped {
     /// K phi = w^2 M phi through M = L L^T: (L^-1 K L^-T) y = w^2 y, phi = L^-T y. Err when the
     /// equilibrium is unstable or nothing restores the mechanism.
-    fn of(lin: &Linearized) -> Result<Undamped, String> {
+    /// `motion` names the member and direction a full-coordinate motion moves most (the note
+    /// says which way an unstable equilibrium falls).
+    fn of(lin: &Linearized, motion: impl Fn(&DVector<f64>) -> String) -> Result<Undamped, String> {
         let chol = Cholesky::new(lin.m_r.clone())
             .ok_or("the reduced mass matrix is not positive definite")?;
         let lm = chol.l();
@@ -402,9 +421,11 @@ impl Undamped {
         let tol = 1e-6 * w2max;
         let d = lin.nb.ncols();
         if let Some(k) = (0..d).find(|&i| eig.eigenvalues[i] < -tol) {
+            let falls = &lin.nb * (lm_inv.transpose() * eig.eigenvectors.column(k));
             return Err(format!(
-                "the equilibrium nearest the start is unstable (omega^2 = {:.3e} 1/s^2 < 0)",
-                eig.eigenvalues[k]
+                "the equilibrium nearest the start is unstable (omega^2 = {:.3e} 1/s^2 < 0): it falls away moving {}",
+                eig.eigenvalues[k],
+                motion(&falls)
             ));
         }
         if eig.eigenvalues.max() <= tol || eig.eigenvalues.max() <= 0.0 {

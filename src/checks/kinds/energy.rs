@@ -688,7 +688,16 @@ impl FrameProbe for WorkEnergy {
                 (a + (t - mt) * (e - me), b + (t - mt).powi(2))
             });
             let slope = if den > 0.0 { num / den } else { 0.0 };
-            if self.crossings.len() >= 3 {
+            // Per period only where the body swings: its omega's sign changes come at regular
+            // half periods (within 25 %). A puck sliding round a loop has omega ~ 0 whose sign
+            // flips on rounding, at random: n14's loop read "drift per period (period 0.0191
+            // s)", a period the motion does not have.
+            let halves: Vec<f64> = self.crossings.windows(2).map(|w| w[1] - w[0]).collect();
+            let (shortest, longest) = halves
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(a, b), &h| (a.min(h), b.max(h)));
+            let regular = longest <= 1.25 * shortest;
+            if self.crossings.len() >= 3 && regular {
                 let k = self.crossings.len() - 1;
                 let period = 2.0 * (self.crossings[k] - self.crossings[0]) / k as f64;
                 note += &format!(

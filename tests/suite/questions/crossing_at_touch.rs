@@ -152,3 +152,57 @@ fn a_crossing_at_the_touching_height_on_a_dynamic_platform() {
     let t_c = 0.37 / 12.0;
     crossing_before_a_moving_platform("mass: 100.0", 0.47, 0.1 + 2.0 * t_c - 0.5 * G * t_c * t_c);
 }
+
+/// A ball (r = 0.05 m, e = 0) dropped onto a box 0.1 m high (fixed, or kinematic and rising at
+/// u = 0.5 m/s), asked its v_y and the time at the crossing of `RelativeDistance` = 0.1 m, the
+/// G-to-G distance at which they touch (the fourteenth new user, n14_21). The touch is found on
+/// the engine's f32 shapes (0.05 + 0.05 = 0.1 + 1.5e-9), so the approach reaches the level's
+/// 0.1 a hair after it and the crossing "did not happen" (NaN), or, for `Y`, was read after the
+/// landing (v_y = 0). Free fall relative to the box from d0 = 0.5 m: d0 = g t^2 / 2 + u t,
+/// v_y = -g t. (`Y` at the fixed box's touching height too: it read 0.32000 s, after the
+/// landing, for 0.31928 s at dt = 1 ms.) Tolerance 5e-3 as above (the engine reaches a height early by h_s / (2 t)).
+#[test]
+fn a_relative_distance_crossing_at_touch_is_read_on_the_approach() {
+    for u in [0.0, 0.5] {
+        let kind = if u == 0.0 { "fixed" } else { "kinematic" };
+        let d0 = 0.5;
+        let t = (-u + (u * u + 2.0 * G * d0).sqrt()) / G;
+        let text = format!(
+            r#"Level(title: "a ball dropped onto a box", effects: [gravity, contacts, restitution],
+            world: (dt: 0.001, substeps: 4, duration: 0.5),
+            bodies: [
+                (name: "box", kind: {kind}, shape: Box(width: 1.0, height: 0.1), position: (0.0, 0.0), velocity: (0.0, {u})),
+                (name: "ball", shape: Circle(radius: 0.05), mass: 0.5, position: (0.0, 0.6), restitution: 0.0),
+            ],
+            questions: [
+                (id: "vy", ask: "v_y as it touches", unit: "m/s", expected: {v}, tolerance: 5e-3,
+                 quantity: Vy("ball"), at: Crossing(of: RelativeDistance("box", "ball"), value: 0.1), why: "free fall"),
+                (id: "t", ask: "when it touches", unit: "s", expected: {t}, tolerance: 5e-3,
+                 quantity: Time, at: Crossing(of: RelativeDistance("box", "ball"), value: 0.1), why: "free fall"),
+                {y_question}
+            ])"#,
+            v = -G * t,
+            // Y's touching height is the box's top plus r where the box stays put.
+            y_question = if u == 0.0 {
+                format!(
+                    r#"(id: "t_y", ask: "when G is at the touching height", unit: "s", expected: {t}, tolerance: 5e-3,
+                 quantity: Time, at: Crossing(of: Y("ball"), value: 0.1), why: "free fall"),"#
+                )
+            } else {
+                String::new()
+            },
+        );
+        let r = run(&parse(&text), &Options::default());
+        for q in &r.questions {
+            eprintln!("u {u}: {} {} for {}", q.id, q.engine, q.expected);
+            assert!(
+                rel(q.engine, q.expected) <= 5e-3,
+                "u {u}: {} read {} for {} ({})",
+                q.id,
+                q.engine,
+                q.expected,
+                q.note
+            );
+        }
+    }
+}

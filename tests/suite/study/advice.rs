@@ -279,3 +279,47 @@ fn a_check_that_cannot_judge_its_scene_gets_no_search() {
     );
     assert!(!out.status.success());
 }
+
+/// A question whose quantity cannot be read in the scene at any setting gets its verdict at
+/// once: a `ModePeriod` of a puck in an `Arc` bowl (the fourteenth new user's probe, a copy of
+/// tests/newuser/curved/n14_04 with the question added), whose modal rate needs the
+/// linearization's mode shape, which a curved contact refuses. Before, the note said "too few
+/// oscillations, no contact, or a missing item" and the advice searched finer settings to its
+/// bound ("none within"), at 2 s and at 60 s alike.
+#[test]
+fn a_quantity_that_cannot_be_read_gets_no_search() {
+    let scene = level::parse(
+        Path::new("probe_a_bowl_modeperiod.ron"),
+        r#"Level(title: "a puck in a bowl, ModePeriod", effects: [gravity, contacts],
+          world: (dt: 0.001, substeps: 4, duration: 4.3),
+          bodies: [
+            (name: "bowl", kind: fixed, shape: Arc(radius: 1.0, start: 3.141592653589793, end: 6.283185307179586, side: inside)),
+            (name: "b", shape: Circle(radius: 0.05), mass: 0.2, position: (0.07591895927071406, -0.9469616209874884)),
+          ],
+          questions: [
+            (id: "mode0", ask: "T", unit: "s", expected: 1.956054333554723, tolerance: 2e-3,
+             quantity: ModePeriod(body: "b", mode: 0), at: End, why: "the exact period at 0.08 rad"),
+          ])"#,
+    )
+    .unwrap();
+    let own = run(&scene, &Options::default());
+    let q = &own.questions[0];
+    assert!(q.engine.is_nan() && !q.passed, "{q:?}");
+    assert!(
+        q.note.starts_with(rigidlab::questions::CANNOT_BE_READ) && q.note.contains("linearization"),
+        "{}",
+        q.note
+    );
+    match advise(&scene, &Options::default(), Some(&own)) {
+        Advice::NoneWithin {
+            none_within, why, ..
+        } => {
+            assert_eq!(none_within, 0.0, "{why}");
+            assert!(
+                why.starts_with("no setting changes this") && why.contains("mode0"),
+                "{why}"
+            );
+        }
+        a => panic!("{a:?}"),
+    }
+}
