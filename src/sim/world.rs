@@ -476,7 +476,10 @@ impl Simulation {
             // Round bodies' friction acts on their rims, not halfway into an overlap
             // (sim/contact_points.rs).
             self.world.step_with_events(
-                &super::contact_points::RoundContactPoints { call_dt: h as Real },
+                &super::contact_points::RoundContactPoints {
+                    call_dt: h as Real,
+                    gravity: self.world.gravity,
+                },
                 &(),
             );
             let call_lambdas = self.solve_couplings();
