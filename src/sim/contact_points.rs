@@ -60,7 +60,6 @@ impl PhysicsHooks for RoundContactPoints {
             // (sim/arc_curvature.rs).
             *m.normal = call.normal;
             *m.restitution = call.restitution;
-            *m.friction *= call.friction_scale;
             for sc in m.solver_contacts.iter_mut() {
                 sc.dist = call.dist;
                 if ball1 {
@@ -146,7 +145,8 @@ impl RoundContactPoints {
             return None;
         }
         let rb = context.bodies.get(ball_body?)?;
-        if !rb.is_dynamic() {
+        // A rough pair keeps rapier's plane (sim/arc_curvature.rs says why).
+        if !rb.is_dynamic() || m.friction.abs() > 0.0 {
             return None;
         }
         let center = ball_c.position().translation;
@@ -156,14 +156,17 @@ impl RoundContactPoints {
             .points
             .iter()
             .any(|p| p.data.warmstart_impulse != 0.0);
+        let state = super::arc_curvature::Ball {
+            center,
+            r: ball.radius,
+            w: rb.velocity_at_point(center),
+        };
         super::arc_curvature::for_ball_on_arc(
             arc,
             arc_c.position(),
-            center,
-            ball.radius,
-            rb.velocity_at_point(center),
+            state,
             ball1,
-            (*m.restitution, resting, *m.friction),
+            (*m.restitution, resting),
             self.gravity,
             self.call_dt,
         )
