@@ -69,7 +69,8 @@ pub(crate) struct ArcCall {
 struct Ride {
     /// Unit normal from the track toward the ball's centre at the call's start.
     n: Vector,
-    /// G's distance from the circle's centre.
+    /// The circle's centre (world) and G's distance from it.
+    o: Vector,
     d: Real,
     inside: bool,
     /// The surface gap along the radius, m.
@@ -91,7 +92,13 @@ fn ride(arc: &ArcTrack, arc_pose: &Pose, ball_center: Vector, r: Real) -> Option
     } else {
         (u, d - radius - r)
     };
-    Some(Ride { n, d, inside, gap })
+    Some(Ride {
+        n,
+        o,
+        d,
+        inside,
+        gap,
+    })
 }
 
 fn rotate(v: Vector, angle: Real) -> Vector {
@@ -127,6 +134,13 @@ pub(crate) fn for_ball_on_arc(
     let outward = if ride.inside { -ride.n } else { ride.n };
     let perp = Vector::new(-outward.y, outward.x);
     let phi = w.dot(perp) / ride.d * h;
+    // A ball that passes the arc's end within the call flies on from there: the chord would turn
+    // it past the end (measured 2026-12-06 on tests/newuser/curved/n6_13, a disc leaving a guide
+    // 30 degrees up: its apex 4.9e-3 high). Its last call keeps rapier's plane.
+    let end = ride.o + rotate(ball_center - ride.o, phi);
+    if !arc.spans_point(arc_pose.inverse_transform_point(end)) {
+        return None;
+    }
     let n_half = rotate(ride.n, phi / 2.0);
     let cos_half = (phi / 2.0).cos();
     // The velocity's parts along n_half (track -> ball, positive away from the track): the
