@@ -48,6 +48,7 @@ pub mod sim64 {
     pub(crate) use rapier2d_f64 as rapier;
     pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod arc_contacts;
+    mod arc_curvature;
     mod arc_track;
     mod build;
     mod contact_points;

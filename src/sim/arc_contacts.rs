@@ -97,20 +97,25 @@ fn ball_contact(
 
 /// The subshape ids of a ball's manifold with an arc's circle: no facet's index, so the facets'
 /// branch knows to start afresh.
-const CIRCLE: u32 = u32::MAX;
+pub(crate) const CIRCLE: u32 = u32::MAX;
 
 /// The one-point manifold of a ball on an arc, kept in `manifolds[0]` so that its contact's
 /// impulses carry over to the next call (parry's ball-ball manifold does the same).
-fn ball_manifold<M, C>(
+///
+/// Its last call's total `impulse` is set to zero (the warm-start impulses stay): rapier's
+/// solver takes a contact with a zero `impulse` as new, and bounces only new contacts (unless
+/// e >= 1), while the circle's contact is turned by rapier's restitution pass in every call
+/// (sim/arc_curvature.rs, which decides newness itself from the warm-start impulse). rapier
+/// writes the call's impulse back after solving, so readings are unchanged.
+fn ball_manifold<M>(
     pos12: &Pose,
     arc: &ArcTrack,
     ball: &Ball,
     arc_first: bool,
     prediction: Real,
-    manifolds: &mut Vec<ContactManifold<M, C>>,
+    manifolds: &mut Vec<ContactManifold<M, ContactData>>,
 ) where
     M: Default,
-    C: Default + Copy,
 {
     if manifolds.len() != 1 || manifolds[0].subshape1 != CIRCLE {
         manifolds.clear();
@@ -127,6 +132,7 @@ fn ball_manifold<M, C>(
     match m.points.first_mut() {
         Some(kept) => {
             kept.copy_geometry_from(contact);
+            kept.data.impulse = 0.0;
             m.points.truncate(1);
         }
         None => m.points.push(contact),
@@ -222,10 +228,9 @@ impl QueryDispatcher for ArcContacts {
     }
 }
 
-impl<M, C> PersistentQueryDispatcher<M, C> for ArcContacts
+impl<M> PersistentQueryDispatcher<M, ContactData> for ArcContacts
 where
     M: Default + Clone + Send + Sync,
-    C: Default + Copy + Send + Sync,
 {
     fn contact_manifolds(
         &self,
@@ -233,7 +238,7 @@ where
         g1: &dyn Shape,
         g2: &dyn Shape,
         prediction: Real,
-        manifolds: &mut Vec<ContactManifold<M, C>>,
+        manifolds: &mut Vec<ContactManifold<M, ContactData>>,
         workspace: &mut Option<ContactManifoldsWorkspace>,
     ) -> Result<(), Unsupported> {
         let pair = arc_pair(g1, g2).ok_or(Unsupported)?;
@@ -274,7 +279,7 @@ where
         _normal_constraints1: Option<&dyn NormalConstraints>,
         _normal_constraints2: Option<&dyn NormalConstraints>,
         _prediction: Real,
-        _manifold: &mut ContactManifold<M, C>,
+        _manifold: &mut ContactManifold<M, ContactData>,
     ) -> Result<(), Unsupported> {
         // An arc is not convex: parry never asks this of it.
         Err(Unsupported)

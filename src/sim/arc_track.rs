@@ -83,6 +83,11 @@ impl ArcTrack {
         self.spans((arm.y as f64).atan2(arm.x as f64))
     }
 
+    /// The circle in the arc's frame: its centre, its radius, and whether bodies ride inside.
+    pub fn circle(&self) -> (Vector, Real, bool) {
+        (self.center, self.radius, self.inside)
+    }
+
     /// The arc's end point at angle `theta`.
     fn end_point(&self, theta: f64) -> Vector {
         self.center + Vector::new(theta.cos() as Real, theta.sin() as Real) * self.radius

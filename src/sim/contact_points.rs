@@ -32,8 +32,11 @@ use super::rapier::prelude::*;
 /// with `ActiveHooks::MODIFY_SOLVER_CONTACTS` (`build::colliders`).
 pub(crate) struct RoundContactPoints {
     /// The length of the rapier call the contacts are built for (s): a spinning ball's anchor
-    /// is followed over it ([`spin_offset_rate`]).
+    /// is followed over it ([`spin_offset_rate`]), a ball on an arc turns over it
+    /// (sim/arc_curvature.rs).
     pub call_dt: Real,
+    /// The world's gravity (a ball on an arc: the friction rows' share of its normal impulse).
+    pub gravity: Vector,
 }
 
 impl PhysicsHooks for RoundContactPoints {
@@ -48,9 +51,35 @@ impl PhysicsHooks for RoundContactPoints {
         if ball1 == ball2 {
             return;
         }
+        let arc_call = self.arc_call(context, ball1);
         let ModifiableContacts::Rigid(m) = &mut context.contacts else {
             return;
         };
+        if let Some(call) = arc_call {
+            // Third: a ball on an arc's circle follows the circle over the call
+            // (sim/arc_curvature.rs).
+            *m.normal = call.normal;
+            *m.restitution = call.restitution;
+            for sc in m.solver_contacts.iter_mut() {
+                sc.dist = call.dist;
+                if ball1 {
+                    sc.anchor1 = call.ball_point;
+                } else {
+                    sc.anchor2 = call.ball_point;
+                }
+                sc.tangent_velocity += call.normal * call.normal_speed;
+            }
+        } else if m.manifold.subshape1 == super::arc_contacts::CIRCLE
+            && *m.restitution < 1.0
+            && m.manifold
+                .points
+                .iter()
+                .any(|p| p.data.warmstart_impulse != 0.0)
+        {
+            // The dispatcher shows the circle's contact as new to every call: a resting one
+            // bounces no more than rapier would bounce it.
+            *m.restitution = 0.0;
+        }
         let n = *m.normal;
         let ball_body = if ball1 {
             context.rigid_body1
@@ -72,6 +101,75 @@ impl PhysicsHooks for RoundContactPoints {
                 sc.tangent_velocity += n * spin_offset_rate(b - c, omega, self.call_dt, n, ball1);
             }
         }
+    }
+}
+
+impl RoundContactPoints {
+    /// How a ball's contact with an arc's circle is handed to the solver for this call, or
+    /// None for any other pair (sim/arc_curvature.rs).
+    fn arc_call(
+        &self,
+        context: &ContactModificationContext,
+        ball1: bool,
+    ) -> Option<super::arc_curvature::ArcCall> {
+        let m = context.rigid()?;
+        if m.manifold.subshape1 != super::arc_contacts::CIRCLE || m.solver_contacts.len() != 1 {
+            return None;
+        }
+        let (ball_h, arc_h, ball_body, arc_body) = if ball1 {
+            (
+                context.collider1,
+                context.collider2,
+                context.rigid_body1,
+                context.rigid_body2,
+            )
+        } else {
+            (
+                context.collider2,
+                context.collider1,
+                context.rigid_body2,
+                context.rigid_body1,
+            )
+        };
+        let (ball_c, arc_c) = (
+            context.colliders.get(ball_h)?,
+            context.colliders.get(arc_h)?,
+        );
+        let arc = arc_c.shape().as_shape::<super::arc_track::ArcTrack>()?;
+        let ball = ball_c.shape().as_ball()?;
+        // A moving track keeps rapier's plane (the module's doc).
+        if arc_body
+            .and_then(|h| context.bodies.get(h))
+            .is_some_and(|rb| !rb.is_fixed())
+        {
+            return None;
+        }
+        let rb = context.bodies.get(ball_body?)?;
+        // A rough pair keeps rapier's plane (sim/arc_curvature.rs says why).
+        if !rb.is_dynamic() || m.friction.abs() > 0.0 {
+            return None;
+        }
+        let center = ball_c.position().translation;
+        // rapier's own newness: a contact that bore no load in the last call.
+        let resting = m
+            .manifold
+            .points
+            .iter()
+            .any(|p| p.data.warmstart_impulse != 0.0);
+        let state = super::arc_curvature::Ball {
+            center,
+            r: ball.radius,
+            w: rb.velocity_at_point(center),
+        };
+        super::arc_curvature::for_ball_on_arc(
+            arc,
+            arc_c.position(),
+            state,
+            ball1,
+            (*m.restitution, resting),
+            self.gravity,
+            self.call_dt,
+        )
     }
 }
 

@@ -13,6 +13,7 @@ pub(crate) use rapier2d as rapier;
 pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precision::F32;
 
 mod arc_contacts;
+mod arc_curvature;
 mod arc_track;
 mod build;
 mod contact_points;

@@ -105,6 +105,7 @@ impl Simulation {
         self.world.step_with_events(
             &RoundContactPoints {
                 call_dt: call.h as Real,
+                gravity: self.world.gravity,
             },
             &(),
         );
