@@ -59,6 +59,15 @@ pub const DAMPER_WORK: KnownGap = KnownGap {
     past: "more substeps get past it",
 };
 
+/// Every gap the advice can name, in the order it names them.
+pub const ALL: [KnownGap; 5] = [
+    JOINTED_RESTITUTION,
+    RESTING_RESTITUTION,
+    ROUGH_ECCENTRIC_BOUNCE,
+    MOTOR_WINDING_CABLE,
+    DAMPER_WORK,
+];
+
 /// How close two bodies' boxes must be at the start for one to rest on the other, m: rapier's
 /// soft contact sinks a resting body by 6.9e-5 m (docs/known-gaps.md), far inside this.
 const TOUCH: f64 = 1e-3;

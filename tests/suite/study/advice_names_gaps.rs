@@ -83,3 +83,17 @@ fn a_free_ball_bouncing_on_a_floor_is_not_told_a_gap() {
     assert!(json.get("known_gaps").is_none(), "{json}");
     assert!(why.contains("an expected answer to recheck"), "{why}");
 }
+
+/// Each gap the advice names is a row of docs/known-gaps.md: its heading is the row's first
+/// cell, and the row gives the id, so a teacher finds the sizes from the advice's words.
+#[test]
+fn every_named_gap_is_a_row_of_known_gaps() {
+    let doc = std::fs::read_to_string(common::repo_path("docs/known-gaps.md")).unwrap();
+    for g in gaps::ALL {
+        let row = doc
+            .lines()
+            .find(|l| l.starts_with(&format!("| {} |", g.heading)))
+            .unwrap_or_else(|| panic!("no row headed {:?}", g.heading));
+        assert!(row.contains(&format!("`{}`", g.id)), "{}: {row}", g.id);
+    }
+}
