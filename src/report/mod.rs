@@ -65,7 +65,20 @@ pub enum Advice {
         why: String,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         within_estimated_seconds: Option<f64>,
+        /// The published engine gaps (docs/known-gaps.md) the scene matches, when the search
+        /// ended without a passing setting (`study::gaps`); `why` names them too.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        known_gaps: Vec<KnownGapRef>,
     },
+}
+
+/// A published engine gap the advice names: its stable id, its heading in docs/known-gaps.md,
+/// and whether a setting gets past it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct KnownGapRef {
+    pub id: String,
+    pub heading: String,
+    pub setting_gets_past: bool,
 }
 
 /// Solver settings the advice names (the level's solver iterations and effects unchanged).

@@ -18,6 +18,7 @@
 //! does not go away with accuracy within the bound: an engine limit (docs/known-gaps.md) or a
 //! wrong expected answer.
 
+use super::gaps;
 use crate::level::{Precision, Scene};
 use crate::questions::{QuestionResult, CANNOT_BE_READ};
 use crate::report::{Advice, AdvisedSettings, LevelReport};
@@ -169,6 +170,7 @@ pub fn advise_within(
             none_within: 0.0,
             why,
             within_estimated_seconds: None,
+            known_gaps: Vec::new(),
         };
     }
     let precision = opts.precision.unwrap_or(scene.level.world.precision);
@@ -191,6 +193,7 @@ pub fn advise_within(
                     none_within: 0.0,
                     why,
                     within_estimated_seconds: None,
+                    known_gaps: Vec::new(),
                 };
             }
             tried = Some(Tried {
@@ -200,7 +203,28 @@ pub fn advise_within(
             });
         }
     }
-    search(scene, opts, &own_settings, failed_wall_ms, cost_s, tried)
+    let advice = search(scene, opts, &own_settings, failed_wall_ms, cost_s, tried);
+    name_gaps(advice, &gaps::matching(&scene.level, own))
+}
+
+/// The advice with the published gaps the scene matches named (`study::gaps`), when the search
+/// ended without a passing setting: in `why` and in the JSON's `known_gaps`. Advice that found
+/// settings is left as it is.
+fn name_gaps(advice: Advice, matched: &[gaps::KnownGap]) -> Advice {
+    match advice {
+        Advice::NoneWithin {
+            none_within,
+            why,
+            within_estimated_seconds,
+            ..
+        } if !matched.is_empty() => Advice::NoneWithin {
+            none_within,
+            why: format!("{why}{}", gaps::sentence(matched)),
+            within_estimated_seconds,
+            known_gaps: gaps::refs(matched),
+        },
+        other => other,
+    }
 }
 
 /// A candidate already run before the search (the first finer setting, for the analysis):
@@ -394,6 +418,7 @@ fn search(
                 c.cost_ratio,
             ),
             within_estimated_seconds: Some(cost_s),
+            known_gaps: Vec::new(),
         },
         None => Advice::NoneWithin {
             none_within: searched_to,
@@ -403,6 +428,7 @@ fn search(
                  (docs/known-gaps.md) or an expected answer to recheck"
             ),
             within_estimated_seconds: None,
+            known_gaps: Vec::new(),
         },
     }
 }

@@ -2,6 +2,7 @@
 
 pub mod accuracy;
 pub mod advice;
+pub mod gaps;
 pub mod stability;
 
 use clap::Subcommand;

@@ -74,6 +74,7 @@ fn an_engine_limit_gets_none_within_and_why() {
             none_within,
             why,
             within_estimated_seconds,
+            ..
         } => {
             assert!(none_within >= 4.0, "searched to {none_within}x");
             assert!(why.contains("known-gaps"), "{why}");

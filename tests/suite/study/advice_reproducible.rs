@@ -201,6 +201,7 @@ fn an_analysis_that_cannot_fit_is_said_at_once_without_a_search() {
         none_within,
         why,
         within_estimated_seconds,
+        ..
     } = &a
     else {
         panic!("settings advised for an analysis that cannot fit: {a:?}")

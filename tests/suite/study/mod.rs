@@ -2,5 +2,6 @@
 
 mod accuracy;
 mod advice;
+mod advice_names_gaps;
 mod advice_reproducible;
 mod stability;
