@@ -11,7 +11,7 @@ use crate::level::shape::bounds;
 use crate::level::{BodyDef, BodyKind, Coordinate, Effect, Level, Motor, Quantity, Shape, When};
 use crate::report::{KnownGapRef, LevelReport};
 
-/// One published gap: a short stable id, its row's heading in docs/known-gaps.md, and whether
+/// One published gap: a short stable id, its section's heading in docs/known-gaps.md, and whether
 /// a setting gets past it (the row's "which settings help").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct KnownGap {
@@ -24,14 +24,14 @@ pub struct KnownGap {
 
 pub const JOINTED_RESTITUTION: KnownGap = KnownGap {
     id: "restitution-leaves-joints-out",
-    heading: "A jointed body is bounced as if it were free: rapier's restitution pass leaves the joints out",
+    heading: "A jointed body is bounced as if it were free",
     setting_gets_past: false,
     past: "no setting passes away from the center of percussion",
 };
 
 pub const RESTING_RESTITUTION: KnownGap = KnownGap {
     id: "restitution-leaves-resting-contact-out",
-    heading: "A body resting on a support is bounced as if it were free: rapier's restitution pass leaves the resting contact out",
+    heading: "A body resting on a support is bounced as if it were free",
     setting_gets_past: false,
     past: "no setting passes",
 };
@@ -53,8 +53,7 @@ pub const MOTOR_WINDING_CABLE: KnownGap = KnownGap {
 
 pub const DAMPER_WORK: KnownGap = KnownGap {
     id: "damper-work-first-order",
-    heading: "A spring's damper is held over each substep from the velocity at its start, so the \
-              path decays a little slower than c dx/dt's, first order in the substep",
+    heading: "A spring's damper is held over each substep, first order in the substep",
     setting_gets_past: true,
     past: "more substeps get past it",
 };

@@ -1,5 +1,5 @@
 //! A failing level whose scene matches a published engine gap gets the gap named in its advice
-//! (issue 41): its stable id and its docs/known-gaps.md heading, in `why` and in the JSON's
+//! (issue 41): its stable id and its docs/known-gaps.md section's heading, in `why` and in the JSON's
 //! `known_gaps`, and whether a setting gets past it. Matched by the scene's pattern, so a twin
 //! that does not hold the pattern is not told it.
 
@@ -84,16 +84,21 @@ fn a_free_ball_bouncing_on_a_floor_is_not_told_a_gap() {
     assert!(why.contains("an expected answer to recheck"), "{why}");
 }
 
-/// Each gap the advice names is a row of docs/known-gaps.md: its heading is the row's first
-/// cell, and the row gives the id, so a teacher finds the sizes from the advice's words.
+/// Each gap the advice names has its section in docs/known-gaps.md: its heading is the
+/// section's, and the section gives the id, so a teacher finds the sizes from the advice's words.
 #[test]
-fn every_named_gap_is_a_row_of_known_gaps() {
+fn every_named_gap_is_a_section_of_known_gaps() {
     let doc = std::fs::read_to_string(common::repo_path("docs/known-gaps.md")).unwrap();
     for g in gaps::ALL {
-        let row = doc
-            .lines()
-            .find(|l| l.starts_with(&format!("| {} |", g.heading)))
-            .unwrap_or_else(|| panic!("no row headed {:?}", g.heading));
-        assert!(row.contains(&format!("`{}`", g.id)), "{}: {row}", g.id);
+        let start = doc
+            .find(&format!("\n## {}\n", g.heading))
+            .unwrap_or_else(|| panic!("no section headed {:?}", g.heading));
+        let body = &doc[start + 4..];
+        let section = &body[..body.find("\n## ").unwrap_or(body.len())];
+        assert!(
+            section.contains(&format!("`{}`", g.id)),
+            "{}: {section}",
+            g.id
+        );
     }
 }
