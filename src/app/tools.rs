@@ -108,7 +108,7 @@ impl Protractor {
 /// Aiming time: a drag of D meters gives the body a velocity change of about D / AIM_TIME.
 pub const AIM_TIME: f64 = 0.5;
 
-/// The pointer as every mouse tool reads it this frame, read once by [`read_pointer`].
+/// The pointer as every mouse tool reads it this frame, read once by `read_pointer`.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct Pointer {
     /// The mouse over the scene's viewport, window pixels.
