@@ -314,5 +314,5 @@ impl EnergyGuard {
 /// The change of a joint coordinate over a step: a pin's wraps to (-pi, pi], so a change is
 /// taken the short way round (a slider moves far less than pi metres in a step).
 pub fn coordinate_change(now: f64, before: f64) -> f64 {
-    super::world::wrap_pi(now - before)
+    crate::sim::angles::wrap_pi(now - before)
 }

@@ -12,6 +12,7 @@ pub(crate) use rapier2d as rapier;
 /// The precision this copy of the stage is compiled for.
 pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precision::F32;
 
+pub mod angles;
 mod arc_contacts;
 mod arc_curvature;
 mod arc_track;

@@ -1,4 +1,5 @@
-//! `Simulation::new`'s phases: the rapier world filled from the scene in the order rapier needs
+//! `Simulation::new` and its phases (here, not in world.rs, so that the world and its setup do
+//! not import each other): the rapier world filled from the scene in the order rapier needs
 //! (world, bodies with their colliders, joints), then what the step keeps beside it (welds to
 //! come, forced bodies, carriers), then the initial readings the first step starts from.
 
@@ -7,7 +8,8 @@ use super::rapier::prelude::*;
 use super::world::Simulation;
 use crate::level::*;
 use crate::sim::explosion_guard::EnergyGuard;
-use crate::sim::settings::Settings;
+use crate::sim::options::Options;
+use crate::sim::settings::{Settings, StepCalls};
 use crate::snapshot::*;
 use glam::DVec2;
 use std::collections::HashMap;
@@ -98,6 +100,45 @@ pub(super) fn empty_snapshot(settings: &Settings, gravity: Vector) -> Snapshot {
 }
 
 impl Simulation {
+    /// Builds the rapier world of a scene, in the order rapier needs, and reads its initial state.
+    pub fn new(scene: &Scene, opts: &Options) -> Self {
+        let level = scene.level.clone();
+        let settings = Settings::resolve(&level, opts, super::PRECISION);
+        let (mut world, prediction_distance) = empty_world(&level, &settings);
+        let (bodies, body_index) = insert_bodies(&mut world, &level, &settings);
+        let joints = insert_joints(&mut world, &level, &settings, &bodies, &body_index);
+        let mut sim = Simulation {
+            snapshot: empty_snapshot(&settings, world.gravity),
+            level,
+            settings,
+            world,
+            bodies,
+            joints,
+            joint_defs: Vec::new(),
+            joint_bodies: Vec::new(),
+            body_index,
+            coupling_rest: Vec::new(),
+            carriers: Vec::new(),
+            pending_welds: Vec::new(),
+            forced_bodies: Vec::new(),
+            torsion_rest: Vec::new(),
+            energy: EnergyGuard::default(),
+            contact_readings: true,
+            prediction_distance,
+            after_impact: false,
+            last_step_cuts: 0,
+            calls: StepCalls::default(),
+            has_kinematic: scene
+                .level
+                .bodies
+                .iter()
+                .any(|b| b.kind == BodyKind::Kinematic),
+        };
+        sim.keep_step_bookkeeping();
+        sim.read_initial_state();
+        sim
+    }
+
     /// What the step keeps beside the rapier world, from the level: the joints' definitions,
     /// the welds waiting for a contact, the couplings' carriers and the bodies whose forces the
     /// step resets.

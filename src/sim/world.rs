@@ -2,10 +2,9 @@
 
 use super::build;
 use super::rapier::prelude::*;
-use super::setup;
 use crate::level::*;
 use crate::sim::explosion_guard::{motion_energy, EnergyGuard, FACTOR, SUSTAIN};
-use crate::sim::options::{Options, SimError};
+use crate::sim::options::SimError;
 use crate::sim::settings::{Settings, StepCalls};
 use crate::snapshot::*;
 use glam::DVec2;
@@ -42,7 +41,7 @@ pub struct Simulation {
     /// Whether the snapshot carries the step's contacts (`Simulation::set_contact_readings`).
     pub(super) contact_readings: bool,
     /// Whether the level has a kinematic body (the energy guard reads its contacts).
-    has_kinematic: bool,
+    pub(super) has_kinematic: bool,
     /// The world's own normalized prediction distance, restored after a call the impact plan
     /// lowered it for (sim/impacts.rs).
     pub(super) prediction_distance: Real,
@@ -57,45 +56,6 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Builds the rapier world of a scene, in the order rapier needs, and reads its initial state.
-    pub fn new(scene: &Scene, opts: &Options) -> Self {
-        let level = scene.level.clone();
-        let settings = Settings::resolve(&level, opts, super::PRECISION);
-        let (mut world, prediction_distance) = setup::empty_world(&level, &settings);
-        let (bodies, body_index) = setup::insert_bodies(&mut world, &level, &settings);
-        let joints = setup::insert_joints(&mut world, &level, &settings, &bodies, &body_index);
-        let mut sim = Simulation {
-            snapshot: setup::empty_snapshot(&settings, world.gravity),
-            level,
-            settings,
-            world,
-            bodies,
-            joints,
-            joint_defs: Vec::new(),
-            joint_bodies: Vec::new(),
-            body_index,
-            coupling_rest: Vec::new(),
-            carriers: Vec::new(),
-            pending_welds: Vec::new(),
-            forced_bodies: Vec::new(),
-            torsion_rest: Vec::new(),
-            energy: EnergyGuard::default(),
-            contact_readings: true,
-            prediction_distance,
-            after_impact: false,
-            last_step_cuts: 0,
-            calls: StepCalls::default(),
-            has_kinematic: scene
-                .level
-                .bodies
-                .iter()
-                .any(|b| b.kind == BodyKind::Kinematic),
-        };
-        sim.keep_step_bookkeeping();
-        sim.read_initial_state();
-        sim
-    }
-
     /// The run's resolved settings.
     pub fn settings(&self) -> &Settings {
         &self.settings
@@ -405,11 +365,7 @@ impl Simulation {
     }
 }
 
-/// Wraps an angle difference to (-pi, pi].
-pub(super) fn wrap_pi(a: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    a - TAU * ((a + PI) / TAU).floor()
-}
+pub(super) use crate::sim::angles::wrap_pi;
 
 pub(crate) fn to_d(v: Vector) -> DVec2 {
     DVec2::new(v.x as f64, v.y as f64)
