@@ -106,6 +106,28 @@ pub fn failures(r: &LevelReport) -> Vec<String> {
     out
 }
 
+/// The normal contact force on body `i` over the step (the sum of its contacts' normal impulses,
+/// each along its normal into `i`, over dt), N; zero at the initial snapshot (dt = 0).
+pub fn normal_contact_force(s: &rigidlab::snapshot::Snapshot, i: usize) -> glam::DVec2 {
+    if s.dt <= 0.0 {
+        return glam::DVec2::ZERO;
+    }
+    s.contacts
+        .iter()
+        .filter_map(|c| {
+            let sign = if c.body2 == i {
+                1.0
+            } else if c.body1 == i {
+                -1.0
+            } else {
+                return None;
+            };
+            let j: f64 = c.points.iter().map(|p| p.normal_impulse).sum();
+            Some(sign * j / s.dt * c.normal)
+        })
+        .sum()
+}
+
 /// The largest of `values` (0 for none). Panics on a NaN or an infinity: `fold(0.0, f64::max)`
 /// would drop a NaN (f64::max ignores it), and a test must not pass on a value it could not
 /// measure.

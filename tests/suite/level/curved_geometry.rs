@@ -141,20 +141,7 @@ fn run_steps(text: &str, opts: &Options, body: &str) -> Vec<Step> {
     let mut out = Vec::new();
     runner::run_scene(&scene, opts, &HashMap::new(), |s| {
         let b = &s.bodies[i];
-        let mut force = DVec2::ZERO;
-        for c in &s.contacts {
-            let sign = if c.body2 == i {
-                1.0
-            } else if c.body1 == i {
-                -1.0
-            } else {
-                continue;
-            };
-            let j: f64 = c.points.iter().map(|p| p.normal_impulse).sum();
-            if s.dt > 0.0 {
-                force += sign * j / s.dt * c.normal;
-            }
-        }
+        let force = common::normal_contact_force(s, i);
         out.push(Step {
             t: s.time,
             g: b.com,
