@@ -66,7 +66,9 @@ pub(super) fn check(v: &V, i: usize, c: &CheckDef) -> R {
     Ok(())
 }
 
-// A match over every quantity's references to validate, one arm per quantity family.
+// A match over every quantity's references to validate, one arm per quantity family, in the
+// order of the `Quantity` enum: split, each arm would be a function called once, away from the
+// neighbours a new quantity is written beside (CONTRIBUTING's "where to add").
 #[allow(clippy::too_many_lines)]
 pub(super) fn question(v: &V, q: &QuestionDef) -> R {
     let at = |f: &str| v.loc.field_pos("questions", &q.id, f);
