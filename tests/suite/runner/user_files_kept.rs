@@ -40,6 +40,22 @@ fn names(dir: &Path) -> Vec<String> {
 }
 
 const FREE_FALL: &str = "levels/kinematics/free_fall.ron";
+
+/// `study accuracy FREE_FALL --out OUT --quick`, run in `dir`; returns (exit code, stderr).
+fn study_quick(dir: &Path, out: &Path) -> (i32, String) {
+    let level = repo_path(FREE_FALL);
+    run_in(
+        dir,
+        &[
+            "study",
+            "accuracy",
+            level.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quick",
+        ],
+    )
+}
 /// A pendulum: its run writes joints beside the bodies.
 const PENDULUM: &str = "levels/kinetics/classic_physical_pendulum_small.ron";
 
@@ -249,35 +265,14 @@ fn study_accuracy_exits_2_when_a_plot_cannot_be_written() {
     let out = dir.join("out");
     // A folder where the level's plot goes.
     fs::create_dir_all(out.join("kinematics_free_fall.png")).unwrap();
-    let level = repo_path(FREE_FALL);
-    let (code, err) = run_in(
-        &dir,
-        &[
-            "study",
-            "accuracy",
-            level.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--quick",
-        ],
-    );
+    let (code, err) = study_quick(&dir, &out);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("cannot write the plot"), "{err}");
     // The files that could be written are.
     assert!(out.join("accuracy.csv").is_file() && out.join("summary.md").is_file());
     // And with nothing in the way, exit 0 and the plot.
     fs::remove_dir(out.join("kinematics_free_fall.png")).unwrap();
-    let (code, err) = run_in(
-        &dir,
-        &[
-            "study",
-            "accuracy",
-            level.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-            "--quick",
-        ],
-    );
+    let (code, err) = study_quick(&dir, &out);
     assert_eq!(code, 0, "{err}");
     assert!(out.join("kinematics_free_fall.png").is_file());
     assert_eq!(
@@ -308,22 +303,9 @@ fn render_and_study_write_over_only_their_own_files() {
 
     let out = dir.join("out");
     fs::create_dir_all(&out).unwrap();
-    let study = |out: &Path| {
-        run_in(
-            &dir,
-            &[
-                "study",
-                "accuracy",
-                level.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-                "--quick",
-            ],
-        )
-    };
     // The user's notes under the summary's name: refused before the sweep, kept.
     fs::write(out.join("summary.md"), "my notes\n").unwrap();
-    let (code, err) = study(&out);
+    let (code, err) = study_quick(&dir, &out);
     assert_eq!(code, 2, "{err}");
     assert!(
         err.contains("summary.md exists and rigidlab did not write it"),
@@ -338,14 +320,14 @@ fn render_and_study_write_over_only_their_own_files() {
     // A user's image under a plot's name: that plot is refused (exit 2), the image kept.
     let plot = out.join("kinematics_free_fall.png");
     fs::write(&plot, &photo_bytes).unwrap();
-    let (code, err) = study(&out);
+    let (code, err) = study_quick(&dir, &out);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("rigidlab did not write it"), "{err}");
     assert_eq!(fs::read(&plot).unwrap(), photo_bytes, "the image is kept");
     // With the image moved away, the study writes its files, and a rerun replaces them.
     fs::remove_file(&plot).unwrap();
     for run in 0..2 {
-        let (code, err) = study(&out);
+        let (code, err) = study_quick(&dir, &out);
         assert_eq!(code, 0, "run {run}: {err}");
     }
     assert_eq!(
