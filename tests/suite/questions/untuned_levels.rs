@@ -208,6 +208,17 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     // (1e-2 allowed; the speed there passes).
     ("n14_14_puck_off_cylinder.ron", "question polar_leave"),
     ("n14_15_puck_off_cylinder_fast_twin.ron", "question N_30"),
+    // The fifteenth new user (tests/newuser/*/n15_*, 2026-12-06, docs/newuser-trials/n15_REPORT.md):
+    // 88 of 92 of their own runs passed. Open, measured at 70b5b06: a loop's N at the top near
+    // the least release height comes in bursts where the puck rides 1 to 5 um off the circle
+    // (n15_01c: 0.01 s window 6.7e-2 low at own settings, 1.33e-1 at 8 substeps, while PN-2 on
+    // the engine's state is 2.8e-2 low; n15_01b at 16 substeps 4.98e-2 high), and the leaving
+    // angle off a cylinder read at `ContactEnds` after the last burst (n15_02a at 16 substeps
+    // 1.06e-2, n15_02b at 8 substeps 1.04e-2, 1e-2 allowed).
+    ("n15_01b_ramp_floor_loop_2p75rho.ron", "question N_top"),
+    ("n15_01c_ramp_floor_loop_2p6rho.ron", "question N_top"),
+    ("n15_02a_puck_off_cylinder_slow.ron", "question polar_leave"),
+    ("n15_02b_puck_off_cylinder_fast.ron", "question polar_leave"),
 ];
 
 /// Engine gaps the new user's levels run into, measured (docs/known-gaps.md), each a file and
