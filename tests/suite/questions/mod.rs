@@ -9,6 +9,7 @@ mod crossing_at_touch;
 mod curved_normal_force;
 mod formula_holds;
 mod impact_lasting;
+mod impact_moving_platform;
 mod impact_one_reading;
 mod ladder_release;
 mod library;
