@@ -124,7 +124,7 @@ fn track(s: &LevelShape) -> SharedShape {
                     (*start, *end),
                     *inside,
                 );
-                TrackPart::Arc(arc, ends)
+                TrackPart::Arc(Box::new(arc), ends)
             }
         })
         .collect();

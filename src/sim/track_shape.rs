@@ -20,8 +20,8 @@ use super::rapier::prelude::*;
 pub(crate) enum TrackPart {
     /// A straight piece between two points.
     Line(Vector, Vector),
-    /// An arc piece and its two end points.
-    Arc(ArcTrack, (Vector, Vector)),
+    /// An arc piece (boxed: a line is a tenth of its size) and its two end points.
+    Arc(Box<ArcTrack>, (Vector, Vector)),
 }
 
 impl TrackPart {
@@ -71,7 +71,7 @@ impl TrackShape {
             }
         }
         match best?.0 {
-            TrackPart::Arc(arc, _) => Some(arc),
+            TrackPart::Arc(arc, _) => Some(arc.as_ref()),
             TrackPart::Line(..) => None,
         }
     }
@@ -193,7 +193,7 @@ mod tests {
         TrackShape::new(
             Polyline::new(pts, None),
             vec![
-                TrackPart::Arc(arc, (Vector::new(-1.0, 1.0), Vector::ZERO)),
+                TrackPart::Arc(Box::new(arc), (Vector::new(-1.0, 1.0), Vector::ZERO)),
                 TrackPart::Line(Vector::ZERO, Vector::new(1.0, 0.0)),
             ],
         )

@@ -17,8 +17,9 @@
 //!   e / 2 x v_floor^2 / v_top^2 (3.0 for the 3 rho start, 3.7 for 2.75 rho): 5.1e-4 at most;
 //! - the soft contact's sag, delta = a / (2 pi 60 Hz)^2 for a contact acceleration a (1.9e-4 m
 //!   at the ramp's bottom, a = g + v^2 / 1.95 = 26 m/s^2; 6.9e-5 m on the floor), moves G off
-//!   the textbook's height: g delta / v^2 < 1e-4 of v;
-//! so 1e-3 holds the textbook with twice the margin, and the joint strike (1% of the energy,
+//!   the textbook's height: g delta / v^2 < 1e-4 of v.
+//!
+//! So 1e-3 holds the textbook with twice the margin, and the joint strike (1% of the energy,
 //! 5e-3 of the speed on the floor, measured by the n15 user at every setting) fails it fivefold.
 //!
 //! The joint itself: the energy E = m v^2 / 2 + m g y_G from just before the ramp's end (G at
