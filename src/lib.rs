@@ -61,6 +61,7 @@ pub mod sim64 {
     mod readings;
     mod setup;
     mod step;
+    mod track_shape;
     mod welds;
     mod world;
     pub use world::Simulation;

@@ -194,7 +194,10 @@ pub fn shape_area_props(shape: &Shape) -> AreaProps {
             let pts: Vec<DVec2> = points.iter().map(|p| DVec2::new(p.0, p.1)).collect();
             polygon_area_props(&convex_hull(&pts))
         }
-        Shape::Segment { .. } | Shape::Polyline { .. } | Shape::Arc { .. } => AreaProps::default(),
+        Shape::Segment { .. }
+        | Shape::Polyline { .. }
+        | Shape::Arc { .. }
+        | Shape::Track { .. } => AreaProps::default(),
         Shape::Compound { parts } => {
             // Each part moved to its offset and turned (turning keeps the polar moment), then
             // combined about the common centroid by the parallel-axis theorem (MP-2, MP-4).

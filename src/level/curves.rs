@@ -62,9 +62,25 @@ pub fn arc_points(center: V2, radius: f64, start: f64, end: f64, e: f64) -> (Vec
     (points, closed)
 }
 
-/// The points of a track shape (`Polyline` or `Arc`) and whether it closes; None for the others.
+/// The points of a track shape (`Polyline`, `Arc` or `Track`) and whether it closes; None for
+/// the others and for a `Track` that does not walk (validation refuses it).
 pub fn track_points(s: &Shape) -> Option<(Vec<V2>, bool)> {
     match s {
+        Shape::Track {
+            start,
+            heading,
+            pieces,
+            solid,
+            chord_error,
+        } => super::track::walk(
+            *start,
+            *heading,
+            pieces,
+            *solid,
+            super::track::Facets::Engine(*chord_error),
+        )
+        .ok()
+        .map(|path| (path.points, false)),
         Shape::Polyline { points, closed, .. } => Some((points.clone(), *closed)),
         Shape::Arc {
             center,
@@ -91,13 +107,17 @@ pub fn solid_side(s: &Shape) -> Option<bool> {
     match s {
         Shape::Polyline { solid, .. } => solid.map(|side| side == TrackSide::Left),
         Shape::Arc { side, .. } => Some(*side == ArcSide::Outside),
+        Shape::Track { solid, .. } => Some(*solid == TrackSide::Left),
         _ => None,
     }
 }
 
 /// True for the shapes that are static tracks only (no area, never on a dynamic body).
 pub fn is_track(s: &Shape) -> bool {
-    matches!(s, Shape::Polyline { .. } | Shape::Arc { .. })
+    matches!(
+        s,
+        Shape::Polyline { .. } | Shape::Arc { .. } | Shape::Track { .. }
+    )
 }
 
 /// What is wrong with a polyline's geometry, by point index.
@@ -157,7 +177,7 @@ fn on_segment(a: V2, b: V2, p: V2) -> bool {
 }
 
 /// Whether the closed segments ab and cd have a point in common.
-fn segments_meet(a: V2, b: V2, c: V2, d: V2) -> bool {
+pub(crate) fn segments_meet(a: V2, b: V2, c: V2, d: V2) -> bool {
     let (o1, o2) = (orient(a, b, c), orient(a, b, d));
     let (o3, o4) = (orient(c, d, a), orient(c, d, b));
     if o1 * o2 < 0.0 && o3 * o4 < 0.0 {

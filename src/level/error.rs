@@ -101,12 +101,12 @@ pub struct Locator<'a> {
     sections: std::cell::RefCell<HashMap<String, Vec<usize>>>,
 }
 
-fn is_ident(b: u8) -> bool {
+pub(super) fn is_ident(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_'
 }
 
 /// Byte offset of `key:` (as a field name, not inside a longer word) in `text[from..]`.
-fn find_key(text: &str, key: &str, from: usize) -> Option<usize> {
+pub(super) fn find_key(text: &str, key: &str, from: usize) -> Option<usize> {
     let mut start = from;
     while let Some(i) = text.get(start..)?.find(key) {
         let at = start + i;
@@ -123,7 +123,7 @@ fn find_key(text: &str, key: &str, from: usize) -> Option<usize> {
 /// the contents of its strings and characters (`"..."` with escapes, raw `r#"..."#`, `'c'`)
 /// replaced by spaces, newlines kept: the same byte offsets, lines and columns, and only the
 /// structure left to search.
-fn blank_comments_and_strings(text: &str) -> String {
+pub(super) fn blank_comments_and_strings(text: &str) -> String {
     let b = text.as_bytes();
     let n = b.len();
     let mut out = b.to_vec();

@@ -344,9 +344,46 @@ pub enum Shape {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         chord_error: Option<f64>,
     },
+    /// A track of straight and circular pieces joined end to end from `start` (body frame, m):
+    /// `Line(to:)`, `Arc(center:, sweep:)` (rad, counter-clockwise positive, its radius the
+    /// distance from where it starts to `center`) and `Turn(radius:, angle:)` (tangent to the
+    /// way the track heads, turning left for a positive angle; a first piece turns from
+    /// `heading`, rad). `solid` is the side of the ground looking along the track (default
+    /// `right`: drawn left to right with the ground below). Built as one polyline through every
+    /// piece (each arc piece's facets within `chord_error`, m, default 1e-7 of its radius) and
+    /// each arc piece's circle for a ball's contact (`level::track`). No mass; never on a
+    /// dynamic body.
+    Track {
+        start: V2,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        heading: Option<f64>,
+        pieces: Vec<TrackPiece>,
+        #[serde(default = "ground_on_the_right")]
+        solid: TrackSide,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        chord_error: Option<f64>,
+    },
     Compound {
         parts: Vec<Part>,
     },
+}
+
+/// One piece of a `Track`, from where the piece before it ends.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum TrackPiece {
+    /// A straight piece to `to` (m).
+    Line { to: V2 },
+    /// A circular piece about `center` (m) turning `sweep` rad, counter-clockwise positive.
+    Arc { center: V2, sweep: f64 },
+    /// A circular piece of `radius` m tangent to the track's heading, turning `angle` rad:
+    /// positive to the left (counter-clockwise), negative to the right.
+    Turn { radius: f64, angle: f64 },
+}
+
+/// A `Track`'s default ground: on the right of the way it runs.
+fn ground_on_the_right() -> TrackSide {
+    TrackSide::Right
 }
 
 /// Which side of an arc bodies ride on: `inside` (the concave side: a loop, a bowl, a ring; the

@@ -9,7 +9,9 @@ mod error;
 pub mod format;
 pub mod motion;
 pub mod profiles;
+mod quantity_form;
 pub mod shape;
+pub mod track;
 mod validate;
 mod warnings;
 
@@ -187,7 +189,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, LevelError> {
     let text = text.strip_prefix(BOM).unwrap_or(text);
     let level: Level = ron_options()
         .from_str(text)
-        .map_err(|e| syntax_error(path, &e))?;
+        .map_err(|e| syntax_error(path, text, &e))?;
     validate::validate(path, text, &level)?;
     Ok(Scene {
         file: path.to_path_buf(),
@@ -206,9 +208,9 @@ pub fn to_ron(level: &Level) -> String {
         .expect("a Level always serializes")
 }
 
-fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
+fn syntax_error(path: &Path, text: &str, e: &ron::error::SpannedError) -> LevelError {
     use ron::error::Error as E;
-    let help = match &e.code {
+    let mut help = match &e.code {
         E::NoSuchStructField { expected, .. } => {
             format!("remove it or use one of: {}", expected.join(", "))
         }
@@ -231,6 +233,14 @@ fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
         }
         _ => "see docs/levels.md for the level format".to_string(),
     };
+    // Inside a question's quantity, how that quantity is written (issue 41: `PolarAngle("puck")`
+    // got "Expected identifier" and no word of its `(body:, about:)`).
+    if !matches!(e.code, E::NoSuchEnumVariant { .. }) {
+        let at = byte_offset(text, e.span.start.line, e.span.start.col);
+        if let Some(form) = quantity_form::hint(text, at) {
+            help = format!("{form}; {help}");
+        }
+    }
     LevelError {
         file: path.to_path_buf(),
         line: e.span.start.line,
@@ -238,6 +248,21 @@ fn syntax_error(path: &Path, e: &ron::error::SpannedError) -> LevelError {
         message: e.code.to_string(),
         help,
     }
+}
+
+/// The byte offset of a 1-based line and column (a column counts characters, as ron's do).
+fn byte_offset(text: &str, line: usize, col: usize) -> usize {
+    let start: usize = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum();
+    let rest = &text[start.min(text.len())..];
+    start
+        + rest
+            .char_indices()
+            .nth(col.saturating_sub(1))
+            .map_or(rest.len(), |(i, _)| i)
 }
 
 /// Every `*.ron` file under the given files and folders (recursively), sorted. Warnings about

@@ -31,6 +31,7 @@ pub fn name(s: &Shape) -> &'static str {
         Shape::Segment { .. } => "segment",
         Shape::Polyline { .. } => "polyline",
         Shape::Arc { .. } => "arc",
+        Shape::Track { .. } => "track",
         Shape::Compound { .. } => "compound",
     }
 }
@@ -72,6 +73,7 @@ pub fn sizes(s: &Shape) -> Vec<Size> {
         | Shape::Segment { .. }
         | Shape::Polyline { .. }
         | Shape::Arc { .. }
+        | Shape::Track { .. }
         | Shape::Compound { .. } => Vec::new(),
     }
 }
@@ -84,7 +86,10 @@ pub fn area(s: &Shape) -> f64 {
         Shape::Box { width, height } => width * height,
         Shape::Capsule { length, radius } => 2.0 * radius * length + PI * radius * radius,
         Shape::Polygon { points } => polygon_area(&convex_hull(&dvec(points))).abs(),
-        Shape::Segment { .. } | Shape::Polyline { .. } | Shape::Arc { .. } => 0.0,
+        Shape::Segment { .. }
+        | Shape::Polyline { .. }
+        | Shape::Arc { .. }
+        | Shape::Track { .. } => 0.0,
         Shape::Compound { parts } => parts.iter().map(|p| area(&p.shape)).sum(),
     }
 }
@@ -159,6 +164,7 @@ pub fn bounds(s: &Shape, at: V2, angle: f64) -> Aabb {
         Shape::Segment { a, b } => points(&[*a, *b], 0.0),
         Shape::Polyline { points: ps, .. } => points(ps, 0.0),
         Shape::Arc { center, radius, .. } => points(&[*center], *radius),
+        Shape::Track { .. } => points(&track_drawn(s), 0.0),
         Shape::Compound { parts } => {
             let mut b = (
                 (f64::INFINITY, f64::INFINITY),
@@ -182,6 +188,10 @@ pub fn center(s: &Shape) -> V2 {
         Shape::Circle { .. } | Shape::Box { .. } | Shape::Capsule { .. } => (0.0, 0.0),
         Shape::Segment { a, b } => ((a.0 + b.0) / 2.0, (a.1 + b.1) / 2.0),
         Shape::Arc { center, .. } => *center,
+        Shape::Track { .. } => {
+            let ((x0, y0), (x1, y1)) = bounds(s, (0.0, 0.0), 0.0);
+            ((x0 + x1) / 2.0, (y0 + y1) / 2.0)
+        }
         Shape::Polygon { points } | Shape::Polyline { points, .. } => {
             let (lo, hi) = points.iter().fold(
                 (
@@ -247,7 +257,7 @@ pub fn pieces(s: &Shape) -> Option<Vec<Piece>> {
             }
             out
         }
-        Shape::Arc { .. } | Shape::Compound { .. } => return None,
+        Shape::Arc { .. } | Shape::Track { .. } | Shape::Compound { .. } => return None,
     })
 }
 
@@ -266,6 +276,7 @@ pub fn flat_outline(s: &Shape) -> Option<Vec<DVec2>> {
         | Shape::Capsule { .. }
         | Shape::Polyline { .. }
         | Shape::Arc { .. }
+        | Shape::Track { .. }
         | Shape::Compound { .. } => None,
     }
 }
@@ -292,6 +303,7 @@ pub fn inscribed_radius(s: &Shape) -> f64 {
         | Shape::Segment { .. }
         | Shape::Polyline { .. }
         | Shape::Arc { .. }
+        | Shape::Track { .. }
         | Shape::Compound { .. } => 0.0,
     }
 }
@@ -311,6 +323,7 @@ pub fn facets(s: &Shape) -> f64 {
             curves::arc_facets(*radius, (end - start).abs(), e).min(curves::MAX_ARC_FACETS) as f64
         }
         Shape::Polyline { points, .. } => points.len() as f64,
+        Shape::Track { .. } => curves::track_points(s).map_or(0.0, |(p, _)| p.len() as f64),
         Shape::Compound { parts } => parts.iter().map(|p| facets(&p.shape)).sum(),
         Shape::Circle { .. }
         | Shape::Box { .. }
@@ -395,6 +408,9 @@ fn add_outline(o: &mut Outline, shape: &Shape, offset: DVec2, angle: f64) {
             closed,
             solid,
         } => polyline_outline(o, points, *closed, *solid, tr),
+        Shape::Track { solid, .. } => {
+            polyline_outline(o, &track_drawn(shape), false, Some(*solid), tr)
+        }
         Shape::Arc {
             center,
             radius,
@@ -453,6 +469,24 @@ fn polyline_outline(
         }
         o.segments.push((a, b));
     }
+}
+
+/// A `Track`'s points as the window draws them (arc pieces in steps of [`ARC_DRAW_STEP`]); its
+/// start alone where it does not walk (validation refuses such a track before a run).
+fn track_drawn(s: &Shape) -> Vec<V2> {
+    let Shape::Track {
+        start,
+        heading,
+        pieces,
+        solid,
+        ..
+    } = s
+    else {
+        return Vec::new();
+    };
+    let step = super::track::Facets::Step(ARC_DRAW_STEP);
+    super::track::walk(*start, *heading, pieces, *solid, step)
+        .map_or_else(|_| vec![*start], |path| path.points)
 }
 
 /// `n + 1` points on an arc from angle `a0` to `a1` (the closing point is dropped for full circles).

@@ -12,6 +12,9 @@
 //!   new manifolds). Past the arc's ends, the facets ([`ArcTrack::spans_point`]).
 //! - Any other shape against an arc (a block on a ramp), and every query but contacts: the
 //!   arc's facets, through the default dispatcher, exactly as before the arc had a circle.
+//! - A `Track` of pieces (sim/track_shape.rs) the same way: a ball within the angles of its
+//!   nearest piece, when that is an arc, touches that piece's circle; elsewhere the track's one
+//!   polyline.
 
 use super::arc_track::ArcTrack;
 use super::rapier::parry::query::details::NormalConstraints;
@@ -22,6 +25,7 @@ use super::rapier::parry::query::{
 };
 use super::rapier::parry::shape::{Ball, PackedFeatureId, Shape};
 use super::rapier::prelude::*;
+use super::track_shape::{curved, Curved};
 
 /// Answers the pairs that hold an arc track; `Unsupported` for the others.
 #[derive(Debug, Clone, Copy, Default)]
@@ -32,15 +36,16 @@ pub(crate) fn dispatcher() -> impl PersistentQueryDispatcher<ContactManifoldData
     ArcContacts.chain(DefaultQueryDispatcher)
 }
 
-/// A pair seen from the arc: the arc, the other shape, and whether the arc is the pair's first.
+/// A pair seen from the arc (or track): the arc, the other shape, and whether the arc is the
+/// pair's first.
 struct ArcPair<'a> {
-    arc: &'a ArcTrack,
+    arc: Curved<'a>,
     other: &'a dyn Shape,
     arc_first: bool,
 }
 
 fn arc_pair<'a>(g1: &'a dyn Shape, g2: &'a dyn Shape) -> Option<ArcPair<'a>> {
-    match (g1.as_shape::<ArcTrack>(), g2.as_shape::<ArcTrack>()) {
+    match (curved(g1), curved(g2)) {
         (Some(arc), _) => Some(ArcPair {
             arc,
             other: g2,
@@ -55,10 +60,10 @@ fn arc_pair<'a>(g1: &'a dyn Shape, g2: &'a dyn Shape) -> Option<ArcPair<'a>> {
     }
 }
 
-/// The shape the default dispatcher is handed for `g`: an arc's facets, or `g` itself.
+/// The shape the default dispatcher is handed for `g`: an arc's (a track's) facets, or `g`.
 fn facets(g: &dyn Shape) -> &dyn Shape {
-    match g.as_shape::<ArcTrack>() {
-        Some(arc) => &arc.polyline,
+    match curved(g) {
+        Some(c) => c.facets(),
         None => g,
     }
 }
@@ -66,14 +71,15 @@ fn facets(g: &dyn Shape) -> &dyn Shape {
 /// A ball's contact with an arc, in each shape's frame: (point1, point2, normal1, normal2,
 /// dist) as parry's `Contact` holds them, shape 1 first. `pos12` is shape 2's pose in shape
 /// 1's frame.
-/// Whether the ball's center lies within the arc's angles (else its contact is the facets').
-fn within(pos12: &Pose, arc: &ArcTrack, arc_first: bool) -> bool {
+/// The circle whose angles the ball's center lies within (its track's nearest arc piece), if
+/// any: else its contact is the facets'.
+fn within<'a>(pos12: &Pose, arc: Curved<'a>, arc_first: bool) -> Option<&'a ArcTrack> {
     let c = if arc_first {
         pos12.translation
     } else {
         pos12.inverse().translation
     };
-    arc.spans_point(c)
+    arc.circle(c).filter(|a| a.spans_point(c))
 }
 
 fn ball_contact(
@@ -170,12 +176,9 @@ impl QueryDispatcher for ArcContacts {
         prediction: Real,
     ) -> Result<Option<Contact>, Unsupported> {
         let pair = arc_pair(g1, g2).ok_or(Unsupported)?;
-        if let Some(ball) = pair
-            .other
-            .as_ball()
-            .filter(|_| within(pos12, pair.arc, pair.arc_first))
-        {
-            let (p1, p2, n1, n2, dist) = ball_contact(pos12, pair.arc, ball, pair.arc_first);
+        let circle = within(pos12, pair.arc, pair.arc_first);
+        if let Some((ball, arc)) = pair.other.as_ball().zip(circle) {
+            let (p1, p2, n1, n2, dist) = ball_contact(pos12, arc, ball, pair.arc_first);
             return Ok((dist <= prediction).then(|| Contact::new(p1, p2, n1, n2, dist)));
         }
         DefaultQueryDispatcher.contact(pos12, facets(g1), facets(g2), prediction)
@@ -242,15 +245,12 @@ where
         workspace: &mut Option<ContactManifoldsWorkspace>,
     ) -> Result<(), Unsupported> {
         let pair = arc_pair(g1, g2).ok_or(Unsupported)?;
-        if let Some(ball) = pair
-            .other
-            .as_ball()
-            .filter(|_| within(pos12, pair.arc, pair.arc_first))
-        {
+        let circle = within(pos12, pair.arc, pair.arc_first);
+        if let Some((ball, arc)) = pair.other.as_ball().zip(circle) {
             // A workspace left by the facets stays: rapier takes a pair's manifold count as
             // stable unless it holds one, and a count changed without one panics its solver
             // graph ("stale ContactRef", manifold_store.rs). The facets' branch drops it.
-            ball_manifold(pos12, pair.arc, ball, pair.arc_first, prediction, manifolds);
+            ball_manifold(pos12, arc, ball, pair.arc_first, prediction, manifolds);
             return Ok(());
         }
         if manifolds

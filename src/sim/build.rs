@@ -3,7 +3,9 @@
 use super::arc_track::ArcTrack;
 use super::rapier::parry::shape::{Polyline, PolylineFlags};
 use super::rapier::prelude::*;
+use super::track_shape::{TrackPart, TrackShape};
 use crate::level::curves;
+use crate::level::track::Walked;
 use crate::level::{
     ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part,
     Shape as LevelShape, V2,
@@ -31,6 +33,7 @@ pub fn shared_shape(s: &LevelShape) -> SharedShape {
             SharedShape::convex_hull(&pts).unwrap_or_else(|| SharedShape::ball(1e-3))
         }
         LevelShape::Segment { a, b } => SharedShape::segment(v(*a), v(*b)),
+        LevelShape::Track { .. } => track(s),
         LevelShape::Polyline { .. } | LevelShape::Arc { .. } => {
             // Validation keeps tracks whole (at least two points, never in a compound).
             let (points, closed) = curves::track_points(s).unwrap_or_default();
@@ -76,6 +79,62 @@ pub fn shared_shape(s: &LevelShape) -> SharedShape {
             SharedShape::compound(flat)
         }
     }
+}
+
+/// A `Track`: the one-sided polyline through all its pieces (as a `Polyline`'s), and each arc
+/// piece's circle with its own facets, which a ball touches (sim/track_shape.rs).
+fn track(s: &LevelShape) -> SharedShape {
+    let LevelShape::Track {
+        start,
+        heading,
+        pieces,
+        solid,
+        chord_error,
+    } = s
+    else {
+        unreachable!("track() is called on a Track")
+    };
+    // Validation walks the track before a run: a track that does not walk never gets here.
+    let facets = crate::level::track::Facets::Engine(*chord_error);
+    let Ok(path) = crate::level::track::walk(*start, *heading, pieces, *solid, facets) else {
+        return SharedShape::ball(1e-3);
+    };
+    let parts = path
+        .pieces
+        .iter()
+        .enumerate()
+        .map(|(k, piece)| match piece {
+            Walked::Line { from, to } => TrackPart::Line(v(*from), v(*to)),
+            Walked::Arc {
+                center,
+                radius,
+                start,
+                end,
+                inside,
+            } => {
+                // The piece's own points: from the start of its first edge to the end of its last.
+                let first = path.edge_piece.iter().position(|&p| p == k).unwrap_or(0);
+                let last = path.edge_piece.iter().rposition(|&p| p == k).unwrap_or(0) + 1;
+                let pts: Vec<Vector> = path.points[first..=last].iter().map(|p| v(*p)).collect();
+                let ends = (pts[0], pts[pts.len() - 1]);
+                let arc = ArcTrack::new(
+                    Polyline::new(pts, None),
+                    v(*center),
+                    *radius as Real,
+                    (*start, *end),
+                    *inside,
+                );
+                TrackPart::Arc(Box::new(arc), ends)
+            }
+        })
+        .collect();
+    let mut pts: Vec<Vector> = path.points.iter().map(|p| v(*p)).collect();
+    // parry's one-sided polyline has its solid on the left of its direction (as for `Polyline`).
+    if *solid == crate::level::TrackSide::Right {
+        pts.reverse();
+    }
+    let polyline = Polyline::with_flags(pts, None, PolylineFlags::ORIENTED);
+    SharedShape::new(TrackShape::new(polyline, parts))
 }
 
 /// The index buffer of a closed polyline through `n` points (None: open, in order).

@@ -135,7 +135,12 @@ impl RoundContactPoints {
             context.colliders.get(ball_h)?,
             context.colliders.get(arc_h)?,
         );
-        let arc = arc_c.shape().as_shape::<super::arc_track::ArcTrack>()?;
+        // An arc's circle, or the circle of a track's arc piece nearest the ball (the piece the
+        // dispatcher gave the contact of: sim/track_shape.rs).
+        let local = arc_c
+            .position()
+            .inverse_transform_point(ball_c.position().translation);
+        let arc = super::track_shape::curved(arc_c.shape())?.circle(local)?;
         let ball = ball_c.shape().as_ball()?;
         // A moving track keeps rapier's plane (the module's doc).
         if arc_body

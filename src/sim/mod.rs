@@ -30,6 +30,7 @@ mod readings;
 pub mod settings;
 mod setup;
 mod step;
+mod track_shape;
 mod welds;
 mod world;
 

@@ -10,6 +10,7 @@
 use crate::level::shape::bounds;
 use crate::level::{BodyDef, BodyKind, Coordinate, Effect, Level, Motor, Quantity, Shape, When};
 use crate::report::{KnownGapRef, LevelReport};
+use glam::DVec2;
 
 /// One published gap: a short stable id, its section's heading in docs/known-gaps.md, and whether
 /// a setting gets past it (the row's "which settings help").
@@ -58,13 +59,22 @@ pub const DAMPER_WORK: KnownGap = KnownGap {
     past: "more substeps get past it",
 };
 
+pub const JOINT_STRIKE: KnownGap = KnownGap {
+    id: "joint-strike-between-fixed-bodies",
+    heading: "A body crossing from one fixed track body to another strikes the second's end",
+    setting_gets_past: false,
+    past: "no setting passes: build the track as one `Track` of pieces (docs/levels.md), \
+           which has no end at its joints",
+};
+
 /// Every gap the advice can name, in the order it names them.
-pub const ALL: [KnownGap; 5] = [
+pub const ALL: [KnownGap; 6] = [
     JOINTED_RESTITUTION,
     RESTING_RESTITUTION,
     ROUGH_ECCENTRIC_BOUNCE,
     MOTOR_WINDING_CABLE,
     DAMPER_WORK,
+    JOINT_STRIKE,
 ];
 
 /// How close two bodies' boxes must be at the start for one to rest on the other, m: rapier's
@@ -105,6 +115,9 @@ pub fn matching(level: &Level, r: Option<&LevelReport>) -> Vec<KnownGap> {
     }
     if failing_damper_work(level, r) {
         out.push(DAMPER_WORK);
+    }
+    if fixed_tracks_meet(level) {
+        out.push(JOINT_STRIKE);
     }
     out
 }
@@ -268,6 +281,84 @@ fn motor_winds_cable(level: &Level) -> bool {
                 })
             })
         })
+}
+
+/// A moving body in contact with a scene in which two fixed track bodies (segments, polylines,
+/// arcs, tracks) continue one another: an end of one within [`TOUCH`] of an end of the other,
+/// the two running on within 60 degrees of one line (a corner of a floor and a wall is not a
+/// joint a body rides across). A body riding the first into its soft contact meets the second's
+/// end there (n15_01's ramp `Arc` ending at the floor `Segment`'s end, n7_03's).
+fn fixed_tracks_meet(level: &Level) -> bool {
+    if !level.effects.contains(&Effect::Contacts)
+        || !level.bodies.iter().any(|b| b.kind == BodyKind::Dynamic)
+    {
+        return false;
+    }
+    let ends: Vec<Vec<TrackEnd>> = level
+        .bodies
+        .iter()
+        .filter(|b| b.kind == BodyKind::Fixed)
+        .map(track_ends)
+        .filter(|e| !e.is_empty())
+        .collect();
+    ends.iter().enumerate().any(|(i, a)| {
+        ends[i + 1..].iter().any(|b| {
+            a.iter().any(|(p, u)| {
+                b.iter()
+                    .any(|(q, w)| (*p - *q).length() <= TOUCH && u.dot(*w) < -0.5)
+            })
+        })
+    })
+}
+
+/// Where a track ends (world) and the unit direction out past that end.
+type TrackEnd = (DVec2, DVec2);
+
+/// The ends of a fixed body's track: a segment's two, an open polyline's or a `Track`'s first
+/// and last points, an arc's end points short of a full turn; none for other shapes.
+fn track_ends(b: &BodyDef) -> Vec<TrackEnd> {
+    let rot = DVec2::from_angle(b.angle);
+    let at = DVec2::from(b.position);
+    let out =
+        |p: DVec2, beyond: DVec2| (at + rot.rotate(p), rot.rotate(beyond).normalize_or_zero());
+    let line_ends = |first: DVec2, second: DVec2, before_last: DVec2, last: DVec2| {
+        vec![out(first, first - second), out(last, last - before_last)]
+    };
+    let points = |ps: &[(f64, f64)]| -> Vec<TrackEnd> {
+        let n = ps.len();
+        if n < 2 {
+            return Vec::new();
+        }
+        let d = |k: usize| DVec2::from(ps[k]);
+        line_ends(d(0), d(1), d(n - 2), d(n - 1))
+    };
+    match &b.shape {
+        Some(Shape::Segment { a, b }) => points(&[*a, *b]),
+        Some(Shape::Polyline {
+            points: ps,
+            closed: false,
+            ..
+        }) => points(ps),
+        Some(s @ Shape::Track { .. }) => {
+            crate::level::curves::track_points(s).map_or_else(Vec::new, |(ps, _)| points(&ps))
+        }
+        Some(Shape::Arc {
+            center,
+            radius,
+            start,
+            end,
+            ..
+        }) if end - start < std::f64::consts::TAU - 1e-9 => {
+            let c = DVec2::from(*center);
+            let (s0, e0) = (DVec2::from_angle(*start), DVec2::from_angle(*end));
+            // Past `start` the arc would run clockwise, past `end` counter-clockwise.
+            vec![
+                out(c + s0 * *radius, -s0.perp()),
+                out(c + e0 * *radius, e0.perp()),
+            ]
+        }
+        _ => Vec::new(),
+    }
 }
 
 /// A `DamperWork` question that failed.

@@ -19,6 +19,7 @@ pub(super) fn shape(v: &V, s: &Shape, pos: (usize, usize)) -> R {
             chord_error,
             ..
         } => arc(v, *center, *radius, (*start, *end), *chord_error, pos),
+        Shape::Track { .. } => track(v, s, pos),
         Shape::Compound { parts } => compound(v, parts, pos),
         // A shape given by sizes alone: each in its range.
         _ => sizes(v, s, pos),
@@ -246,6 +247,114 @@ fn arc(
     Ok(())
 }
 
+/// A `Track`: every value finite, every piece of some length and less than a whole turn, a
+/// `Turn` with a heading to turn from, facets within the limits, and no piece crossing another;
+/// each error names the piece (from 1, in the order written).
+fn track(v: &V, s: &Shape, pos: (usize, usize)) -> R {
+    use crate::level::track::{self as tracks, Facets, TrackFault as F};
+    let Shape::Track {
+        start,
+        heading,
+        pieces,
+        solid,
+        chord_error,
+    } = s
+    else {
+        return Ok(());
+    };
+    if let Some(e) = chord_error {
+        v.positive(*e, "track chord_error", "m", pos)?;
+    }
+    let kind = |k: usize| match pieces.get(k) {
+        Some(TrackPiece::Line { .. }) => "Line",
+        Some(TrackPiece::Arc { .. }) => "Arc",
+        Some(TrackPiece::Turn { .. }) => "Turn",
+        None => "piece",
+    };
+    let piece = |k: usize| format!("track piece {} ({})", k + 1, kind(k));
+    let fault = tracks::walk(
+        *start,
+        *heading,
+        pieces,
+        *solid,
+        Facets::Engine(*chord_error),
+    )
+    .and_then(|path| match tracks::crossing(&path) {
+        Some(f) => Err(f),
+        None => Ok(path),
+    });
+    let (message, help) = match fault {
+        Ok(path) => {
+            track_in_range(v, &path.points, "track point", pos)?;
+            return track_engine_points(v, &path.points, pos);
+        }
+        Err(F::Empty) => (
+            "a track needs at least one piece".to_string(),
+            "list its pieces: `pieces: [Line(to: (x, y)), Arc(center: (x, y), sweep: a), Turn(radius: r, angle: a)]`".to_string(),
+        ),
+        Err(F::NotFinite(None, what)) => (
+            format!("the track's {what} is not a finite number"),
+            "give a number".to_string(),
+        ),
+        Err(F::NotFinite(Some(k), what)) => (
+            format!("{}: its {what} is not a finite number", piece(k)),
+            "give a number".to_string(),
+        ),
+        Err(F::ZeroLength(k)) => (
+            format!("{} has no length", piece(k)),
+            "a Line must go somewhere else than where it starts, an Arc's center must be away from where it starts and its sweep not 0, a Turn's angle not 0; or remove the piece".to_string(),
+        ),
+        Err(F::WholeTurn(k, a)) => (
+            format!("{} turns {a} rad, a whole turn or more", piece(k)),
+            "turn less than 6.283185307179586 rad (a ring is an `Arc` of its own body)".to_string(),
+        ),
+        Err(F::NoHeading(k)) => (
+            format!("{} has no heading to turn from", piece(k)),
+            "give the track a `heading` (rad, the way it starts: 0 east, 1.5707963267948966 north), or start it with a Line or an Arc".to_string(),
+        ),
+        Err(F::Radius(k, r)) => (
+            format!("{}: its radius {r} m is not positive", piece(k)),
+            "give a radius greater than 0 (the angle's sign says which way it turns)".to_string(),
+        ),
+        Err(F::TooManyFacets(k)) => (
+            format!("{} would need more than {} facets", piece(k), curves::MAX_ARC_FACETS),
+            "give the track a larger `chord_error` (m)".to_string(),
+        ),
+        Err(F::TooManyPoints(n)) => (
+            format!("this track would have {n} points, more than {}", tracks::MAX_TRACK_POINTS),
+            "give the track a larger `chord_error` (m), or split it over two fixed bodies".to_string(),
+        ),
+        Err(F::FoldsBack(i, j, p)) => (
+            format!("{} folds back on {} near {p:?}", piece(j), piece(i)),
+            "turn the piece the other way, or move its end".to_string(),
+        ),
+        Err(F::Crossing(i, j, p)) => (
+            format!("the track crosses itself: {} meets {} near {p:?}", piece(i), piece(j)),
+            "move the pieces so that the track does not cross itself (split a crossing track over two fixed bodies)".to_string(),
+        ),
+    };
+    Err(v.err(pos, message, help))
+}
+
+/// A track's points as the engine holds them: no two neighbours one point.
+fn track_engine_points(v: &V, points: &[V2], pos: (usize, usize)) -> R {
+    let rounded: Vec<V2> = points.iter().map(|p| engine_point(v, *p)).collect();
+    if let Some(k) = rounded.windows(2).position(|w| w[0] == w[1]) {
+        return Err(v.err(
+            pos,
+            format!(
+                "this track's points {k} {:?} and {} {:?} are one point in {}, the engine's precision",
+                points[k],
+                k + 1,
+                points[k + 1],
+                v.level.world.precision.name()
+            ),
+            "give larger pieces or a larger chord_error (fewer, longer facets)",
+        ));
+    }
+    Ok(())
+}
+
 /// The largest size of a track coordinate at each precision, m: the largest power of two
 /// whose ulp is within rapier's allowed contact error (`normalized_allowed_linear_error`,
 /// 0.005 m at `length_unit` 1). Past it the engine cannot place a contact on the track to its own
@@ -352,7 +461,7 @@ fn body_shape(v: &V, b: &BodyDef) -> R {
     if curves::is_track(s) && b.kind == BodyKind::Dynamic {
         return Err(v.err(
             at,
-            format!("dynamic body \"{}\" has a polyline or arc shape: these are static tracks", b.name),
+            format!("dynamic body \"{}\" has a polyline, arc or track shape: these are static tracks", b.name),
             "make the body `kind: fixed` (or `kinematic`), or give a dynamic body a convex shape (Circle, Box, Capsule, Polygon, Compound)",
         ));
     }

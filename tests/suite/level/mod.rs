@@ -5,4 +5,6 @@ mod curved_geometry;
 mod f32_increments;
 mod fuzz;
 mod joint_anchors;
+mod quantity_forms;
+mod tracks;
 mod validation_scale;

@@ -2,6 +2,7 @@
 //! and the engine's known gaps with their sizes (src/sim).
 
 mod closed_forms;
+mod compound_track;
 mod contact_readings;
 mod couplings;
 mod curved_contact_exact;
