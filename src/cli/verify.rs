@@ -30,7 +30,7 @@ pub struct Outcome {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub id: Option<String>,
     /// Each parameter's value in its unit.
-    pub values: Vec<(String, f64, String)>,
+    pub values: Vec<Value>,
     pub shown: String,
     pub passed: bool,
     /// Why it does not validate, or the run's error.
@@ -39,6 +39,14 @@ pub struct Outcome {
     /// The run's report (with its advice when it failed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub report: Option<LevelReport>,
+}
+
+/// One parameter's value in a variant.
+#[derive(Debug, Serialize)]
+pub struct Value {
+    pub name: String,
+    pub value: f64,
+    pub unit: String,
 }
 
 /// The whole verification.
@@ -129,7 +137,10 @@ fn one(
     let mut out = Outcome {
         kind,
         id,
-        values,
+        values: values
+            .into_iter()
+            .map(|(name, value, unit)| Value { name, value, unit })
+            .collect(),
         shown,
         passed: false,
         error: None,

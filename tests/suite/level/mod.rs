@@ -5,4 +5,5 @@ mod curved_geometry;
 mod f32_increments;
 mod fuzz;
 mod joint_anchors;
+mod parameters;
 mod validation_scale;
