@@ -1,4 +1,4 @@
-//! The command line: `rigidlab [check|run|play|render|study]`.
+//! The command line: `rigidlab [check|run|verify|play|render|study]`.
 
 use crate::level::{self, LevelError};
 use crate::report::{self, CsvWriter, LevelReport, Report};
