@@ -38,7 +38,8 @@ pub enum Values {
 }
 
 impl Values {
-    pub fn len(&self) -> u64 {
+    /// The number of values (at least one: validation refuses an empty list).
+    pub fn count(&self) -> u64 {
         match self {
             Values::Grid { n, .. } => *n,
             Values::List(l) => l.len() as u64,

@@ -152,6 +152,23 @@ impl Parameterized {
 
     /// Makes, parses and validates one variant; an error names its values.
     pub fn make(&self, path: &Path, idx: &[u64]) -> Result<Made, LevelError> {
+        let fits = idx.len() == self.params.len()
+            && self
+                .params
+                .iter()
+                .zip(idx)
+                .all(|(p, &k)| k < p.values.count());
+        if !fits {
+            return Err(LevelError::new(
+                path,
+                (0, 0),
+                format!(
+                    "no variant {idx:?}: the level has {} parameters",
+                    self.params.len()
+                ),
+                "give one value index per parameter, each below its number of values",
+            ));
+        }
         let variant = self.variant(idx);
         let own: Vec<f64> = variant.values.iter().map(|v| v.1).collect();
         let si: Vec<f64> = self

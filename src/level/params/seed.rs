@@ -47,6 +47,6 @@ pub fn student_indices(file_name: &str, id: &str, params: &[Parameter]) -> Vec<u
     let mut rng = SplitMix64(fnv1a64(seed_text(file_name, id).as_bytes()));
     params
         .iter()
-        .map(|p| rng.next_u64() % p.values.len())
+        .map(|p| rng.next_u64() % p.values.count())
         .collect()
 }

@@ -70,6 +70,8 @@ fn verify_passes_the_library_exercises() {
         "levels/kinetics/incline_friction_param.ron",
         "levels/kinetics/classic_atwood_massive_pulley_param.ron",
         "levels/kinetics/simple_pendulum_param.ron",
+        "levels/impact/central_impact_param.ron",
+        "levels/energy/classic_spring_block_param.ron",
     ] {
         let (code, text, err) = out(&["verify", f, "--variants", "20"]);
         assert_eq!(code, 0, "{f}:\n{text}{err}");
