@@ -116,4 +116,19 @@ fn check_student_runs_that_students_numbers() {
     let a = 9.81 * (35f64.to_radians().sin() - 0.1 * 35f64.to_radians().cos());
     assert!((expected(&again) - a).abs() < 1e-9);
     assert_ne!(expected(&other), expected(&again));
+    // `run` takes the same id to the same variant.
+    let (code, table, err) = out(&["run", f, "--student", "s1234567"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("m = 1.5 kg, theta = 35 deg, mu = 0.1"),
+        "{err}"
+    );
+    assert!(table.contains(&format!("{a:.5}")), "{table}");
+}
+
+#[test]
+fn verify_refuses_a_level_without_parameters() {
+    let (code, _, err) = out(&["verify", "levels/kinetics/incline_friction.ron"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("declares no parameters"), "{err}");
 }
