@@ -12,6 +12,7 @@
 mod decl;
 mod expand;
 pub mod expr;
+mod overlap;
 pub mod seed;
 mod text;
 
@@ -289,10 +290,29 @@ impl Parameterized {
             .collect()
     }
 
-    /// Checks every corner of the ranges: the first that fails, as an error naming its values.
+    /// Checks the nominal variant and every corner of the ranges: the first that fails, as an
+    /// error naming its values. A corner also fails where it puts a colliding body's center
+    /// inside another body that the nominal variant does not ([`overlap`]).
     pub fn check_corners(&self, path: &Path) -> Result<(), LevelError> {
+        let nominal = self.make(path, &self.indices(&Pick::Nominal))?;
+        let known = overlap::inside_pairs(&nominal.level);
         for c in self.corners() {
-            self.make(path, &c)?;
+            let made = self.make(path, &c)?;
+            let new = overlap::inside_pairs(&made.level)
+                .into_iter()
+                .find(|pair| !known.contains(pair));
+            if let Some((outer, inner)) = new {
+                let loc = super::error::Locator::new(&self.text);
+                return Err(LevelError::new(
+                    path,
+                    loc.field_pos("bodies", &inner, "position"),
+                    format!(
+                        "body `{inner}` starts with its center inside `{outer}` [variant: {}]",
+                        made.variant.shown
+                    ),
+                    "the parameters' ranges move one body into the other: narrow the ranges, or write the positions so that they follow the parameters",
+                ));
+            }
         }
         Ok(())
     }
@@ -325,7 +345,6 @@ pub fn make_checked(
     let Some(p) = Parameterized::read(path, text)? else {
         return Ok(None);
     };
-    p.make(path, &p.indices(&Pick::Nominal))?;
     p.check_corners(path)?;
     let made = p.make(path, &p.indices(pick))?;
     Ok(Some((p, made)))

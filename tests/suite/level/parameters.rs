@@ -248,3 +248,29 @@ fn the_same_id_gives_the_same_numbers_and_ids_spread_over_the_grid() {
     let a = 9.81 * (35f64.to_radians().sin() - 0.1 * 35f64.to_radians().cos());
     assert!((q.expected - a).abs() < 1e-12);
 }
+
+#[test]
+fn a_range_that_puts_a_body_inside_another_at_a_corner_is_refused() {
+    // A ball resting on a floor whose top is at y = 0; its height above the floor is
+    // h - 0.1 m: 0.1 m (touching) at the nominal h = 0.2, inside the 0.2 m thick floor at the
+    // corner h = 0, whose center is then 0.1 m below its top face.
+    let text = r#"Level(
+  title: "ball on a floor",
+  parameters: [(name: "h", range: (0.0, 0.4), step: 0.1, unit: "m", nominal: 0.2)],
+  effects: [gravity, contacts],
+  bodies: [
+    (name: "floor", kind: fixed, shape: Box(width: 4.0, height: 0.2), position: (0.0, -0.1)),
+    (name: "ball", shape: Circle(radius: 0.1), mass: 1.0, position: (0.0, h - 0.1)),
+  ],
+)"#;
+    let e = error(text);
+    assert!(
+        e.message
+            .contains("`ball` starts with its center inside `floor`"),
+        "{e}"
+    );
+    assert!(e.message.contains("h = 0 m"), "{e}");
+    assert_eq!(e.line, pos(text, "position: (0.0, h").0, "{e}");
+    // The same ball over a range that keeps it above the floor loads.
+    parse(&text.replace("range: (0.0, 0.4)", "range: (0.2, 0.4)")).unwrap();
+}
