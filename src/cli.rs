@@ -1,4 +1,4 @@
-//! The command line: `rigidlab [check|run|play|render|study]`.
+//! The command line: `rigidlab [check|run|verify|play|render|study]`.
 
 use crate::level::{self, LevelError};
 use crate::report::{self, CsvWriter, LevelReport, Report};
@@ -10,6 +10,8 @@ use std::collections::HashMap;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
+
+mod verify;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -48,12 +50,41 @@ pub enum Command {
         /// seconds needs more to be searched through.
         #[arg(long, alias = "advice-seconds", value_name = "S", value_parser = parse_seconds, default_value_t = crate::study::advice::SEARCH_COST_S)]
         advice_cost: f64,
+        /// A student id: a level with parameters runs this student's variant (the same numbers
+        /// for the same id and level file everywhere; docs/levels.md#variants-from-a-student-id).
+        #[arg(long, value_name = "ID")]
+        student: Option<String>,
+        #[command(flatten)]
+        solver: SolverArgs,
+    },
+    /// Run every corner of a parameterized level's ranges and N random variants; report each
+    /// that fails with its values and advice (exit 0: all pass, 1: one fails, 2: bad input).
+    Verify {
+        level: PathBuf,
+        /// How many random variants to run besides the nominal one and the corners.
+        #[arg(long, default_value_t = 20)]
+        variants: usize,
+        /// The random variants' seed: variant i is the one of student id `verify:SEED:i`.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Print JSON instead of the text report.
+        #[arg(long)]
+        json: bool,
+        /// Do not search settings that pass for a failing variant.
+        #[arg(long)]
+        no_advice: bool,
+        /// How much the advice may search each failing variant (as `check --advice-cost`).
+        #[arg(long, value_name = "S", value_parser = parse_seconds, default_value_t = crate::study::advice::SEARCH_COST_S)]
+        advice_cost: f64,
         #[command(flatten)]
         solver: SolverArgs,
     },
     /// Run one level and write its per-step snapshots.
     Run {
         level: PathBuf,
+        /// A student id: run this student's variant of a level with parameters.
+        #[arg(long, value_name = "ID")]
+        student: Option<String>,
         /// Write bodies to FILE and joints/contacts/springs beside it (FILE_joints.csv, ...),
         /// each whole once the run is complete; none of them may be the level.
         #[arg(long)]
@@ -232,15 +263,38 @@ pub fn main() -> ExitCode {
             answers,
             no_advice,
             advice_cost,
+            student,
             solver,
         }) => check(
             &paths,
             json,
             answers,
             (!no_advice).then_some(advice_cost),
+            &pick(student),
             &solver,
         ),
-        Some(Command::Run { level, csv, solver }) => run(&level, csv, &solver),
+        Some(Command::Verify {
+            level,
+            variants,
+            seed,
+            json,
+            no_advice,
+            advice_cost,
+            solver,
+        }) => verify::verify(verify::VerifyArgs {
+            level: &level,
+            variants,
+            seed,
+            json,
+            advice: (!no_advice).then_some(advice_cost),
+            solver: &solver,
+        }),
+        Some(Command::Run {
+            level,
+            student,
+            csv,
+            solver,
+        }) => run(&level, &pick(student), csv, &solver),
         Some(Command::Play { level }) => play(level),
         Some(Command::Study { study }) => crate::study::main(study),
         Some(Command::Render {
@@ -250,6 +304,11 @@ pub fn main() -> ExitCode {
             allow_long,
         }) => render(level, time, out, allow_long),
     }
+}
+
+/// The variant `--student` asks for (the nominal one without it).
+fn pick(student: Option<String>) -> level::params::Pick {
+    student.map_or(level::params::Pick::Nominal, level::params::Pick::Student)
 }
 
 fn bad(e: impl std::fmt::Display) -> ExitCode {
@@ -262,6 +321,7 @@ fn check(
     json: bool,
     answer_list: Vec<(String, String)>,
     advice: Option<f64>,
+    pick: &level::params::Pick,
     solver: &SolverArgs,
 ) -> ExitCode {
     let opts = match solver.options() {
@@ -289,7 +349,7 @@ fn check(
     let mut asked_elsewhere: Vec<String> = Vec::new();
     let mut levels = Vec::new();
     for f in &files {
-        let run = load_warned(f)
+        let run = load_warned(f, pick)
             .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
             .map_err(RunError::Level)
             .and_then(|scene| {
@@ -387,13 +447,27 @@ fn check(
     report::print(&text, code)
 }
 
-/// Loads a level and prints its warnings (legal but probably not meant) to stderr.
-fn load_warned(path: &std::path::Path) -> Result<level::Scene, LevelError> {
-    let (scene, warnings) = level::load_with_warnings(path)?;
-    for w in warnings {
+/// Loads a level (the picked variant of a level with parameters) and prints its warnings (legal
+/// but probably not meant) to stderr, and a student's variant: its values and statement.
+fn load_warned(
+    path: &std::path::Path,
+    pick: &level::params::Pick,
+) -> Result<level::Scene, LevelError> {
+    let loaded = level::load_variant(path, pick)?;
+    for w in loaded.warnings {
         stderr!("{w}");
     }
-    Ok(scene)
+    if let (level::params::Pick::Student(id), Some(v)) = (pick, &loaded.variant) {
+        stderr!(
+            "{}: student {}: {}
+  statement: {}",
+            path.display(),
+            id.trim(),
+            v.shown,
+            loaded.scene.level.statement
+        );
+    }
+    Ok(loaded.scene)
 }
 
 /// Runs estimated to take longer than this many seconds (runner::budget) show a progress bar.
@@ -428,12 +502,17 @@ fn failed(file: &std::path::Path, error: &str) -> LevelReport {
     LevelReport::failed(file, error)
 }
 
-fn run(path: &std::path::Path, csv: Option<PathBuf>, solver: &SolverArgs) -> ExitCode {
+fn run(
+    path: &std::path::Path,
+    pick: &level::params::Pick,
+    csv: Option<PathBuf>,
+    solver: &SolverArgs,
+) -> ExitCode {
     let opts = match solver.options() {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let scene = match load_warned(path).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
+    let scene = match load_warned(path, pick).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
         Ok(s) => s,
         Err(e) => return bad(e),
     };

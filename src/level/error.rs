@@ -123,7 +123,7 @@ pub(super) fn find_key(text: &str, key: &str, from: usize) -> Option<usize> {
 /// the contents of its strings and characters (`"..."` with escapes, raw `r#"..."#`, `'c'`)
 /// replaced by spaces, newlines kept: the same byte offsets, lines and columns, and only the
 /// structure left to search.
-pub(super) fn blank_comments_and_strings(text: &str) -> String {
+pub(crate) fn blank_comments_and_strings(text: &str) -> String {
     let b = text.as_bytes();
     let n = b.len();
     let mut out = b.to_vec();

@@ -8,6 +8,7 @@ pub mod curves;
 mod error;
 pub mod format;
 pub mod motion;
+pub mod params;
 pub mod profiles;
 mod quantity_form;
 pub mod shape;
@@ -53,12 +54,49 @@ pub fn load(path: &Path) -> Result<Scene, LevelError> {
 /// [`load`], with the warnings of a valid level (legal but probably not meant; see
 /// `level/warnings.rs`). The command line prints them before it runs the level.
 pub fn load_with_warnings(path: &Path) -> Result<(Scene, Vec<LevelWarning>), LevelError> {
+    load_variant(path, &params::Pick::Nominal).map(|l| (l.scene, l.warnings))
+}
+
+/// A level read for a run: its scene, the variant picked (a level with parameters), and its
+/// warnings.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    pub scene: Scene,
+    pub variant: Option<params::Variant>,
+    pub warnings: Vec<LevelWarning>,
+}
+
+/// [`load_with_warnings`] for one variant of a level with parameters (`check --student`); a
+/// level without parameters is the same for every pick.
+pub fn load_variant(path: &Path, pick: &params::Pick) -> Result<Loaded, LevelError> {
     let bytes = read(path)?;
-    let scene = parse_bytes(path, &bytes)?;
-    let text = std::str::from_utf8(&bytes).unwrap_or_default();
-    let text = text.strip_prefix(BOM).unwrap_or(text);
+    let bytes = bytes.strip_prefix(BOM.as_bytes()).unwrap_or(&bytes);
+    let text = utf8(path, bytes)?;
+    if let Some((p, made)) = params::make_checked(path, text, pick)? {
+        let warnings = p.warnings(path, &made);
+        return Ok(Loaded {
+            scene: Scene {
+                file: path.to_path_buf(),
+                level: made.level,
+            },
+            variant: Some(made.variant),
+            warnings,
+        });
+    }
+    let scene = parse(path, text)?;
     let warnings = warnings::find(path, text, &scene.level);
-    Ok((scene, warnings))
+    Ok(Loaded {
+        scene,
+        variant: None,
+        warnings,
+    })
+}
+
+/// A level file's text (UTF-8, without a byte-order mark), read as [`load`] reads it.
+pub fn read_text(path: &Path) -> Result<String, LevelError> {
+    let bytes = read(path)?;
+    let bytes = bytes.strip_prefix(BOM.as_bytes()).unwrap_or(&bytes);
+    utf8(path, bytes).map(str::to_string)
 }
 
 /// A level file's bytes: a regular file of at most [`MAX_LEVEL_BYTES`].
@@ -157,8 +195,13 @@ pub fn file_kind(meta: &std::fs::Metadata) -> &'static str {
 /// column of the first bad byte.
 pub fn parse_bytes(path: &Path, bytes: &[u8]) -> Result<Scene, LevelError> {
     let bytes = bytes.strip_prefix(BOM.as_bytes()).unwrap_or(bytes);
+    parse(path, utf8(path, bytes)?)
+}
+
+/// The bytes as UTF-8 text, or an error at the line and column of the first bad byte.
+fn utf8<'a>(path: &Path, bytes: &'a [u8]) -> Result<&'a str, LevelError> {
     match std::str::from_utf8(bytes) {
-        Ok(text) => parse(path, text),
+        Ok(text) => Ok(text),
         Err(e) => {
             let valid = &bytes[..e.valid_up_to()];
             // The valid prefix is UTF-8, so lines and columns count characters as elsewhere.
@@ -187,6 +230,13 @@ const BOM: &str = "\u{feff}";
 /// is skipped (ron refused it as "Expected opening `(`").
 pub fn parse(path: &Path, text: &str) -> Result<Scene, LevelError> {
     let text = text.strip_prefix(BOM).unwrap_or(text);
+    // A level with parameters: its nominal variant, once every corner of its ranges is valid.
+    if let Some((_, made)) = params::make_checked(path, text, &params::Pick::Nominal)? {
+        return Ok(Scene {
+            file: path.to_path_buf(),
+            level: made.level,
+        });
+    }
     let level: Level = ron_options()
         .from_str(text)
         .map_err(|e| syntax_error(path, text, &e))?;

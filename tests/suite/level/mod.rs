@@ -5,6 +5,7 @@ mod curved_geometry;
 mod f32_increments;
 mod fuzz;
 mod joint_anchors;
+mod parameters;
 mod quantity_forms;
 mod tracks;
 mod validation_scale;

@@ -20,7 +20,10 @@ const G: f64 = 9.81;
 fn touching_time(amplitude: f64, omega: f64, drop: f64) -> f64 {
     let gap = |t: f64| drop - 0.5 * G * t * t - amplitude * (omega * t).sin();
     let (mut lo, mut hi) = (0.0, (2.0 * (drop + amplitude + 0.01) / G).sqrt());
-    assert!(gap(lo) > 0.0 && gap(hi) < 0.0, "the ball reaches the platform");
+    assert!(
+        gap(lo) > 0.0 && gap(hi) < 0.0,
+        "the ball reaches the platform"
+    );
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
         if gap(mid) > 0.0 {
@@ -63,8 +66,13 @@ fn rebound_off_oscillating_platform(amplitude: f64, omega: f64, drop: f64, e: f6
     );
     let r = run(&parse(&text), &Options::default());
     let q = &r.questions[0];
-    let analysis = q.analysis.expect("an impact analysis against a kinematic body");
-    eprintln!("A {amplitude}, w {omega}: v' analysis {analysis}, engine {}, IM-11 {v_after}", q.engine);
+    let analysis = q
+        .analysis
+        .expect("an impact analysis against a kinematic body");
+    eprintln!(
+        "A {amplitude}, w {omega}: v' analysis {analysis}, engine {}, IM-11 {v_after}",
+        q.engine
+    );
     assert!(
         rel(analysis, v_after) <= 1e-3,
         "A {amplitude}, w {omega}: the analysis read v' {analysis} for {v_after} ({})",

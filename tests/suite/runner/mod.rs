@@ -7,3 +7,4 @@ mod cli_memory;
 mod fuzz_campaign;
 mod report_step_calls;
 mod user_files_kept;
+mod verify_cli;
