@@ -447,13 +447,6 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question e"),
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question J_peg"),
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question lost"),
-    // A damped pair over 3 s: DamperWork's analysis, -integral of c v^2 along the engine's
-    // path, is first order in the substep (2.0e-3 at its own settings, 8.0e-3 at 1 substep):
-    // the damper's force is held over each substep from its start's velocity, so the path
-    // decays a little slower than the textbook's; the engine's own ledger closes (3.7e-5).
-    // (Fixed the same day: the period reader counted the decayed motion's rounding noise,
-    // 1.8e-2 off at 4x substeps; crossings now stop under 1 % of the largest half swing.)
-    ("n8_16_two_blocks_spring_damper_pair.ron", "question W_c:"),
     // A ninth new user on curved tracks (tests/newuser/curved/n9_*, 2026-11-27). A light puck (0.2 kg)
     // nudged at 0.2 m/s over a smooth 0.5 m cylinder (it leaves at 48 degrees): N at 25 degrees
     // over a 0.01 s window reads 1.41209 for 1.39598 N (1.15e-2) at 1/4800 s, 1.37734 (1.34e-2)
