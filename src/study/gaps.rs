@@ -9,7 +9,7 @@
 
 use crate::level::shape::bounds;
 use crate::level::{BodyDef, BodyKind, Coordinate, Effect, Level, Motor, Quantity, Shape, When};
-use crate::report::{KnownGapRef, LevelReport};
+use crate::report::KnownGapRef;
 
 /// One published gap: a short stable id, its section's heading in docs/known-gaps.md, and whether
 /// a setting gets past it (the row's "which settings help").
@@ -51,29 +51,21 @@ pub const MOTOR_WINDING_CABLE: KnownGap = KnownGap {
     past: "more substeps get past it (the shortfall is F h r^2 / I for a substep h)",
 };
 
-pub const DAMPER_WORK: KnownGap = KnownGap {
-    id: "damper-work-first-order",
-    heading: "A spring's damper is held over each substep, first order in the substep",
-    setting_gets_past: true,
-    past: "more substeps get past it",
-};
-
 /// Every gap the advice can name, in the order it names them.
-pub const ALL: [KnownGap; 5] = [
+pub const ALL: [KnownGap; 4] = [
     JOINTED_RESTITUTION,
     RESTING_RESTITUTION,
     ROUGH_ECCENTRIC_BOUNCE,
     MOTOR_WINDING_CABLE,
-    DAMPER_WORK,
 ];
 
 /// How close two bodies' boxes must be at the start for one to rest on the other, m: rapier's
 /// soft contact sinks a resting body by 6.9e-5 m (docs/known-gaps.md), far inside this.
 const TOUCH: f64 = 1e-3;
 
-/// The gaps the scene of `level` matches, for its run's report `r`: each at most once, in the
-/// order above (deterministic).
-pub fn matching(level: &Level, r: Option<&LevelReport>) -> Vec<KnownGap> {
+/// The gaps the scene of `level` matches: each at most once, in the order above
+/// (deterministic).
+pub fn matching(level: &Level) -> Vec<KnownGap> {
     let mut out = Vec::new();
     let pairs = impact_pairs(level);
     let bounce: Vec<_> = pairs
@@ -102,9 +94,6 @@ pub fn matching(level: &Level, r: Option<&LevelReport>) -> Vec<KnownGap> {
     }
     if motor_winds_cable(level) {
         out.push(MOTOR_WINDING_CABLE);
-    }
-    if failing_damper_work(level, r) {
-        out.push(DAMPER_WORK);
     }
     out
 }
@@ -268,15 +257,4 @@ fn motor_winds_cable(level: &Level) -> bool {
                 })
             })
         })
-}
-
-/// A `DamperWork` question that failed.
-fn failing_damper_work(level: &Level, r: Option<&LevelReport>) -> bool {
-    r.into_iter().flat_map(|r| &r.questions).any(|q| {
-        !q.passed
-            && level
-                .questions
-                .iter()
-                .any(|d| d.id == q.id && matches!(d.quantity, Quantity::DamperWork(_)))
-    })
 }
