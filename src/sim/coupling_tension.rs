@@ -12,12 +12,16 @@
 //! tension changed by over the call (none in steady motion), and its impulse is added to the
 //! held one as the call's.
 //!
+//! A coordinate an ideal velocity motor holds does not give in the projection (the motor
+//! answers the cable: `Simulation::solve_couplings`); the couple the projection would have given
+//! it is the motor's, booked in the motor's reading (`book_motor_absorbed`).
+//!
 //! An impact's call is left out of the tension carried on: its impulse over the call's length
 //! is a blow, not a pull, and held over the next call would strike again.
 
 use super::rapier::prelude::*;
 use super::world::Simulation;
-use crate::level::{Coordinate, Effect};
+use crate::level::{Coordinate, Effect, JointKind, Motor};
 
 impl Simulation {
     /// Applies each coupling's held tension to its terms: r_i T along x or y at the mass center,
@@ -59,5 +63,40 @@ impl Simulation {
                 *t = *lambda / h;
             }
         }
+    }
+
+    /// Adds to each ideal motor's reading the couple the projections of the step gave it instead
+    /// of its body (`motor_absorbed`), and clears it: on body2 as the motor's impulse and in both
+    /// bodies' angular impulses.
+    pub(super) fn book_motor_absorbed(&mut self) {
+        if self.motor_absorbed.iter().all(|&x| x == 0.0) {
+            return;
+        }
+        let held = self.motor_held_angles();
+        for (j, def) in self.snapshot.joints.iter_mut().zip(&self.joint_defs) {
+            let ideal = matches!(
+                def.motor,
+                Some(Motor::Velocity {
+                    max_force: None,
+                    ..
+                })
+            );
+            if !ideal || def.kind != JointKind::Revolute {
+                continue;
+            }
+            let (b1, b2) = (j.body1, j.body2);
+            let (on2, held_body) = if held[b2] {
+                (self.motor_absorbed[b2], b2)
+            } else if held[b1] {
+                (-self.motor_absorbed[b1], b1)
+            } else {
+                continue;
+            };
+            j.motor_impulse += on2;
+            j.angular_impulse_on_body2 += on2;
+            j.angular_impulse_on_body1 -= on2;
+            self.motor_absorbed[held_body] = 0.0;
+        }
+        self.motor_absorbed.iter_mut().for_each(|x| *x = 0.0);
     }
 }

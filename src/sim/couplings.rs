@@ -124,7 +124,12 @@ impl Simulation {
                     }
                     for &(b, c, r) in ts {
                         let w = self.coordinate(b, c).2;
-                        if w == 0.0 || (hold && !gives(b, c)) {
+                        if pass == 0 && hold && !gives(b, c) {
+                            // The motor takes the cable's couple on it: its reading gets it.
+                            self.motor_absorbed[b] -= r * mu;
+                            continue;
+                        }
+                        if w == 0.0 {
                             continue;
                         }
                         let d = (r * w * mu) as Real;
@@ -163,7 +168,7 @@ impl Simulation {
 
     /// Per body: whether an ideal velocity motor (no force limit) holds its angle, on a pin to a
     /// body that does not move under forces (fixed or kinematic).
-    fn motor_held_angles(&self) -> Vec<bool> {
+    pub(super) fn motor_held_angles(&self) -> Vec<bool> {
         let mut held = vec![false; self.bodies.len()];
         if !self.settings.effects.has(Effect::Motors) {
             return held;

@@ -119,6 +119,7 @@ impl Simulation {
             body_index,
             coupling_rest: Vec::new(),
             coupling_tension: Vec::new(),
+            motor_absorbed: Vec::new(),
             carriers: Vec::new(),
             pending_welds: Vec::new(),
             forced_bodies: Vec::new(),
@@ -226,6 +227,7 @@ impl Simulation {
             .collect();
         let none = vec![0.0; self.level.couplings.len()];
         self.coupling_tension = none.clone();
+        self.motor_absorbed = vec![0.0; self.bodies.len()];
         let carried: Vec<Vec<DVec2>> = self
             .carriers
             .iter()

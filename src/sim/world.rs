@@ -33,6 +33,9 @@ pub struct Simulation {
     /// Per coupling: its last rapier call's generalized force (impulse / call length), held over
     /// the next call so that rapier's solver meets the cable's pull (`sim/coupling_tension.rs`).
     pub(super) coupling_tension: Vec<f64>,
+    /// Per body: the angular impulse over the step the couplings' projections gave its ideal
+    /// velocity motor instead of it (`sim/coupling_tension.rs`), booked in the motor's reading.
+    pub(super) motor_absorbed: Vec<f64>,
     /// Welds still waiting for their first contact: (event name, body1, body2).
     pub(super) pending_welds: Vec<(String, usize, usize)>,
     /// Bodies that loads, springs, carriers or held coupling tensions act on (their forces are

@@ -8,7 +8,7 @@
 //! jointed body, nor one resting on a support.
 
 use crate::level::shape::bounds;
-use crate::level::{BodyDef, BodyKind, Coordinate, Effect, Level, Motor, Quantity, Shape, When};
+use crate::level::{BodyDef, BodyKind, Effect, Level, Quantity, Shape, When};
 use crate::report::KnownGapRef;
 
 /// One published gap: a short stable id, its section's heading in docs/known-gaps.md, and whether
@@ -44,19 +44,11 @@ pub const ROUGH_ECCENTRIC_BOUNCE: KnownGap = KnownGap {
            without friction",
 };
 
-pub const MOTOR_WINDING_CABLE: KnownGap = KnownGap {
-    id: "motor-winding-cable-slow",
-    heading: "A velocity motor winding a cable runs slow, first order in the substep",
-    setting_gets_past: true,
-    past: "more substeps get past it (the shortfall is F h r^2 / I for a substep h)",
-};
-
 /// Every gap the advice can name, in the order it names them.
-pub const ALL: [KnownGap; 4] = [
+pub const ALL: [KnownGap; 3] = [
     JOINTED_RESTITUTION,
     RESTING_RESTITUTION,
     ROUGH_ECCENTRIC_BOUNCE,
-    MOTOR_WINDING_CABLE,
 ];
 
 /// How close two bodies' boxes must be at the start for one to rest on the other, m: rapier's
@@ -91,9 +83,6 @@ pub fn matching(level: &Level) -> Vec<KnownGap> {
                 .any(|n| !jointed(level, n) && body(level, n).is_some_and(eccentric))
     }) {
         out.push(ROUGH_ECCENTRIC_BOUNCE);
-    }
-    if motor_winds_cable(level) {
-        out.push(MOTOR_WINDING_CABLE);
     }
     out
 }
@@ -238,23 +227,4 @@ fn struck_while_resting(level: &Level, struck: &str, by: &str) -> bool {
 
 fn placed(b: &BodyDef) -> Option<crate::level::shape::Aabb> {
     b.shape.as_ref().map(|s| bounds(s, b.position, b.angle))
-}
-
-/// A joint with a velocity motor on a body that a coupling turns by its angle (a drum winding
-/// a cable).
-fn motor_winds_cable(level: &Level) -> bool {
-    if !level.effects.contains(&Effect::Motors) {
-        return false;
-    }
-    level
-        .joints
-        .iter()
-        .filter(|j| matches!(j.motor, Some(Motor::Velocity { .. })))
-        .any(|j| {
-            level.couplings.iter().any(|c| {
-                c.terms.iter().any(|t| {
-                    t.coordinate == Coordinate::Angle && (t.body == j.body1 || t.body == j.body2)
-                })
-            })
-        })
 }

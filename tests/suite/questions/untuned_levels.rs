@@ -454,14 +454,6 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // 5e-5. Off-level copies: 2.8e-3 at 10 degrees, 5.8e-3 at 20, 8.5e-3 at 30 (1.0e-2 at 8
     // substeps), 1.9e-2 at 35 (8 substeps): up to 0.9% of m g, farther from the leaving point
     // than known-gaps.md's "at 30 degrees within 1.6e-3" suggests.
-    // A velocity motor winding a cable (n11_09, the eleventh new user): the drum settles at
-    // 8.345 rad/s for its motor's 10, short by F h r^2 / I to 4 digits (h a substep's time; as
-    // if the cable pulled the drum back after the motor reached its rate within each call, not
-    // yet traced): the load's power -83.45 W for -100 (16.5%), 8.3% at 2x substeps,
-    // 4.1% at 4x, 1.0% at 64 (docs/known-gaps.md). Tension and torque are right (158.86 N).
-    ("n11_09_motor_hauls_block_efficiency.ron", "question P_out"),
-    ("n11_09_motor_hauls_block_efficiency.ron", "question U_f"),
-    ("n11_09_motor_hauls_block_efficiency.ron", "question eta"),
     // The fourteenth new user (tests/newuser/*/n14_*, 2026-12-06). A puck sliding down a ramp
     // `Arc` into a loop `Arc` at 1/4800 s read its speed at the top 6.2e-3 to 8.5e-3 low (n14_01,
     // n14_02, n14_23), first order in dt, until the chord contact the same day (sim/
