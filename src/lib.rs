@@ -52,6 +52,7 @@ pub mod sim64 {
     mod arc_track;
     mod build;
     mod contact_points;
+    mod coupling_tension;
     mod couplings;
     mod impacts;
     mod interventions;

@@ -241,15 +241,25 @@ pub fn mechanical_efficiency(u_out: f64, u_in: f64) -> f64 {
     }
 }
 
-/// Work a linear viscous damper does on the bodies over a step, from the change of the spring's
-/// length: the damper force c dL/dt opposes the stretching, U = -c (dL/dt) dL = -c dL^2 / dt
-/// with dL the length change over the step dt (WE-1 with F = c v: always negative).
-pub fn damper_work(c: f64, d_length: f64, dt: f64) -> f64 {
-    if dt > 0.0 {
-        -c * d_length * d_length / dt
-    } else {
-        0.0
-    }
+/// Work a linear viscous damper does on the bodies over a step, U = -integral of c (dL/dt)^2 dt
+/// (WE-1 with the damper force c dL/dt opposing the stretching: always negative), by the
+/// trapezoid rule from the rates dL/dt at the step's start and end: second order in the step.
+///
+/// (Until 2026-12-06 it took the step's mean rate, U = -c dL^2 / dt: a mean squared is less
+/// than the mean of the squares, and the difference summed to a boundary term of the order of
+/// c h v0^2, 8e-3 of the work on a damped pair at 1 ms.)
+///
+/// # Examples
+///
+/// A damper (c = 4 N s/m) whose rate falls from 1 to 0.5 m/s over 1 ms:
+///
+/// ```
+/// use rigidlab::analysis::energy::damper_work;
+/// let u = damper_work(4.0, 1.0, 0.5, 1e-3);
+/// assert!((u - (-4.0 * 0.5 * (1.0 + 0.25) * 1e-3)).abs() < 1e-15);
+/// ```
+pub fn damper_work(c: f64, rate0: f64, rate1: f64, dt: f64) -> f64 {
+    -c * 0.5 * (rate0 * rate0 + rate1 * rate1) * dt
 }
 
 /// Work of a pair of equal and opposite impulses (J on body B at p, -J on body A at p):

@@ -85,7 +85,12 @@ pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapsh
                         .map_or(0.0, |x| x.damping);
                     let before = prev.springs.iter().find(|x| &x.name == name);
                     if let Some(b) = before {
-                        st.analysis_sum += damper_work(c, sp.length - b.length, dt);
+                        // The rate at the step's start is taken after its blows (they act
+                        // there), at its end from the end's state: the trapezoid over the step.
+                        let start = |k: usize| after_blows(prev, s, k);
+                        let end = |k: usize| (s.bodies[k].velocity, s.bodies[k].omega);
+                        let (r0, r1) = (spring_rate(b, prev, start), spring_rate(sp, s, end));
+                        st.analysis_sum += damper_work(c, r0, r1, dt);
                     }
                 }
             }
@@ -426,6 +431,41 @@ pub(super) fn read(m: &Meter, st: &State, f: &Sample, occ: Occasion) -> Option<E
 
 /// The elastic part (k x) of a spring's held force and couple on body1, or with `damper` its
 /// damper part (c dx/dt), split along the line between its ends at the step's start.
+/// A body's velocities (v_G, omega) at the start of the step from `prev` to `s`: `prev`'s, with
+/// the step's blows, which act at its start.
+fn after_blows(prev: &Snapshot, s: &Snapshot, k: usize) -> (DVec2, f64) {
+    let a = &prev.bodies[k];
+    let blows = s.impulses.iter().filter(|e| e.body == k);
+    velocities_after_impulses(
+        a.mass,
+        a.inertia,
+        a.com,
+        (a.velocity, a.omega),
+        blows.map(|e| (e.impulse, e.point, e.angular_impulse)),
+    )
+}
+
+/// A spring's rate dL/dt in snapshot `at` (its ends' points), the bodies moving at `vel(k)`:
+/// the relative velocity of its ends along its axis (RK-6), or for a torsion spring the
+/// relative angular velocity omega1 - omega2. A fixed end (no body) is at rest.
+fn spring_rate(sp: &SpringState, at: &Snapshot, vel: impl Fn(usize) -> (DVec2, f64)) -> f64 {
+    let motion = |k: usize| {
+        let (v, w) = vel(k);
+        (v, w, at.bodies[k].com)
+    };
+    if sp.torsion {
+        return vel(sp.body1).1 - sp.body2.map_or(0.0, |k| vel(k).1);
+    }
+    let end_velocity = |k: Option<usize>, p: DVec2| {
+        k.map_or(DVec2::ZERO, |k| {
+            let (v, w, g) = motion(k);
+            point_velocity(v, w, p - g)
+        })
+    };
+    let axis = (sp.point2 - sp.point1).normalize_or_zero();
+    axis.dot(end_velocity(sp.body2, sp.point2) - end_velocity(Some(sp.body1), sp.point1))
+}
+
 fn spring_part(sp: &SpringState, damper: bool) -> (DVec2, f64) {
     let (f_d, c_d) = if sp.torsion {
         (DVec2::ZERO, -sp.damper_tension)

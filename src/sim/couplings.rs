@@ -77,6 +77,7 @@ impl Simulation {
                     .collect()
             })
             .collect();
+        let held = self.motor_held_angles();
         for pass in 0..2 {
             // pass 0: velocities; pass 1: positions.
             for _sweep in 0..64 {
@@ -93,6 +94,17 @@ impl Simulation {
                     if den <= 0.0 {
                         continue;
                     }
+                    // A coordinate an ideal velocity motor holds does not give (the motor
+                    // answers the cable): the others take the whole correction, unless all
+                    // the coupling's coordinates are held.
+                    let gives = |b: usize, c: Coordinate| !(c == Coordinate::Angle && held[b]);
+                    let free: f64 = ts
+                        .iter()
+                        .filter(|&&(b, c, _)| gives(b, c))
+                        .map(|&(b, c, r)| r * r * self.coordinate(b, c).2)
+                        .sum();
+                    let hold = free > 0.0 && free < den;
+                    let den = if hold { free } else { den };
                     // A velocity error below what the engine's precision can hold is left
                     // alone: rapier's f32 velocity would not change, but the impulse would still
                     // be counted in lambda (the massive Atwood pulley's alpha from its diagram
@@ -112,6 +124,11 @@ impl Simulation {
                     }
                     for &(b, c, r) in ts {
                         let w = self.coordinate(b, c).2;
+                        if pass == 0 && hold && !gives(b, c) {
+                            // The motor takes the cable's couple on it: its reading gets it.
+                            self.motor_absorbed[b] -= r * mu;
+                            continue;
+                        }
                         if w == 0.0 {
                             continue;
                         }
@@ -147,6 +164,37 @@ impl Simulation {
             }
         }
         lambdas
+    }
+
+    /// Per body: whether an ideal velocity motor (no force limit) holds its angle, on a pin to a
+    /// body that does not move under forces (fixed or kinematic).
+    pub(super) fn motor_held_angles(&self) -> Vec<bool> {
+        let mut held = vec![false; self.bodies.len()];
+        if !self.settings.effects.has(Effect::Motors) {
+            return held;
+        }
+        let still = |name: &str| {
+            let i = self.body_index[name];
+            self.level.bodies[i].kind != crate::level::BodyKind::Dynamic
+        };
+        for j in &self.joint_defs {
+            let ideal = matches!(
+                j.motor,
+                Some(Motor::Velocity {
+                    max_force: None,
+                    ..
+                })
+            );
+            if !ideal || j.kind != JointKind::Revolute {
+                continue;
+            }
+            if still(&j.body1) {
+                held[self.body_index[&j.body2]] = true;
+            } else if still(&j.body2) {
+                held[self.body_index[&j.body1]] = true;
+            }
+        }
+        held
     }
 
     /// Gives each cable's carrier (the pulley it runs over) the reaction it is owed as a force

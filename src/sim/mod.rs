@@ -18,6 +18,7 @@ mod arc_curvature;
 mod arc_track;
 mod build;
 mod contact_points;
+mod coupling_tension;
 mod couplings;
 pub mod explosion_guard;
 mod impacts;

@@ -118,6 +118,8 @@ impl Simulation {
             joint_bodies: Vec::new(),
             body_index,
             coupling_rest: Vec::new(),
+            coupling_tension: Vec::new(),
+            motor_absorbed: Vec::new(),
             carriers: Vec::new(),
             pending_welds: Vec::new(),
             forced_bodies: Vec::new(),
@@ -176,7 +178,8 @@ impl Simulation {
         self.forced_bodies = self.forced_bodies();
     }
 
-    /// The bodies that loads, springs or couplings' carriers act on, each once.
+    /// The bodies that loads, springs, couplings' carriers or couplings' held tensions act on,
+    /// each once.
     fn forced_bodies(&self) -> Vec<usize> {
         let mut forced: Vec<usize> = self
             .level
@@ -193,6 +196,9 @@ impl Simulation {
             forced.extend(t.body2.as_ref().map(|b| self.body_index[b]));
         }
         forced.extend(self.carriers.iter().flatten().map(|c| c.0));
+        for c in &self.level.couplings {
+            forced.extend(c.terms.iter().map(|t| self.body_index[&t.body]));
+        }
         forced.sort_unstable();
         forced.dedup();
         forced
@@ -220,6 +226,8 @@ impl Simulation {
             .map(|c| self.coupling_value(c))
             .collect();
         let none = vec![0.0; self.level.couplings.len()];
+        self.coupling_tension = none.clone();
+        self.motor_absorbed = vec![0.0; self.bodies.len()];
         let carried: Vec<Vec<DVec2>> = self
             .carriers
             .iter()

@@ -30,9 +30,16 @@ pub struct Simulation {
     /// `gears`) and the impulse each is still owed, delivered during the next rapier call (see
     /// `sim/couplings.rs`).
     pub(super) carriers: Vec<Vec<(usize, DVec2)>>,
+    /// Per coupling: its last rapier call's generalized force (impulse / call length), held over
+    /// the next call so that rapier's solver meets the cable's pull (`sim/coupling_tension.rs`).
+    pub(super) coupling_tension: Vec<f64>,
+    /// Per body: the angular impulse over the step the couplings' projections gave its ideal
+    /// velocity motor instead of it (`sim/coupling_tension.rs`), booked in the motor's reading.
+    pub(super) motor_absorbed: Vec<f64>,
     /// Welds still waiting for their first contact: (event name, body1, body2).
     pub(super) pending_welds: Vec<(String, usize, usize)>,
-    /// Bodies that loads or springs act on (their forces are reset every step).
+    /// Bodies that loads, springs, carriers or held coupling tensions act on (their forces are
+    /// reset before every rapier call).
     pub(super) forced_bodies: Vec<usize>,
     /// Each torsion spring's rest angle, rad (its own, or the relative angle at t = 0).
     pub(super) torsion_rest: Vec<f64>,

@@ -204,7 +204,7 @@ pub fn advise_within(
         }
     }
     let advice = search(scene, opts, &own_settings, failed_wall_ms, cost_s, tried);
-    name_gaps(advice, &gaps::matching(&scene.level, own))
+    name_gaps(advice, &gaps::matching(&scene.level))
 }
 
 /// The advice with the published gaps the scene matches named (`study::gaps`), when the search

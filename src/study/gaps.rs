@@ -8,8 +8,8 @@
 //! jointed body, nor one resting on a support.
 
 use crate::level::shape::bounds;
-use crate::level::{BodyDef, BodyKind, Coordinate, Effect, Level, Motor, Quantity, Shape, When};
-use crate::report::{KnownGapRef, LevelReport};
+use crate::level::{BodyDef, BodyKind, Effect, Level, Quantity, Shape, When};
+use crate::report::KnownGapRef;
 use glam::DVec2;
 
 /// One published gap: a short stable id, its section's heading in docs/known-gaps.md, and whether
@@ -45,20 +45,6 @@ pub const ROUGH_ECCENTRIC_BOUNCE: KnownGap = KnownGap {
            without friction",
 };
 
-pub const MOTOR_WINDING_CABLE: KnownGap = KnownGap {
-    id: "motor-winding-cable-slow",
-    heading: "A velocity motor winding a cable runs slow, first order in the substep",
-    setting_gets_past: true,
-    past: "more substeps get past it (the shortfall is F h r^2 / I for a substep h)",
-};
-
-pub const DAMPER_WORK: KnownGap = KnownGap {
-    id: "damper-work-first-order",
-    heading: "A spring's damper is held over each substep, first order in the substep",
-    setting_gets_past: true,
-    past: "more substeps get past it",
-};
-
 pub const JOINT_STRIKE: KnownGap = KnownGap {
     id: "joint-strike-between-fixed-bodies",
     heading: "A body crossing from one fixed track body to another strikes the second's end",
@@ -68,12 +54,10 @@ pub const JOINT_STRIKE: KnownGap = KnownGap {
 };
 
 /// Every gap the advice can name, in the order it names them.
-pub const ALL: [KnownGap; 6] = [
+pub const ALL: [KnownGap; 4] = [
     JOINTED_RESTITUTION,
     RESTING_RESTITUTION,
     ROUGH_ECCENTRIC_BOUNCE,
-    MOTOR_WINDING_CABLE,
-    DAMPER_WORK,
     JOINT_STRIKE,
 ];
 
@@ -81,9 +65,9 @@ pub const ALL: [KnownGap; 6] = [
 /// soft contact sinks a resting body by 6.9e-5 m (docs/known-gaps.md), far inside this.
 const TOUCH: f64 = 1e-3;
 
-/// The gaps the scene of `level` matches, for its run's report `r`: each at most once, in the
-/// order above (deterministic).
-pub fn matching(level: &Level, r: Option<&LevelReport>) -> Vec<KnownGap> {
+/// The gaps the scene of `level` matches: each at most once, in the order above
+/// (deterministic).
+pub fn matching(level: &Level) -> Vec<KnownGap> {
     let mut out = Vec::new();
     let pairs = impact_pairs(level);
     let bounce: Vec<_> = pairs
@@ -109,12 +93,6 @@ pub fn matching(level: &Level, r: Option<&LevelReport>) -> Vec<KnownGap> {
                 .any(|n| !jointed(level, n) && body(level, n).is_some_and(eccentric))
     }) {
         out.push(ROUGH_ECCENTRIC_BOUNCE);
-    }
-    if motor_winds_cable(level) {
-        out.push(MOTOR_WINDING_CABLE);
-    }
-    if failing_damper_work(level, r) {
-        out.push(DAMPER_WORK);
     }
     if fixed_tracks_meet(level) {
         out.push(JOINT_STRIKE);
@@ -264,25 +242,6 @@ fn placed(b: &BodyDef) -> Option<crate::level::shape::Aabb> {
     b.shape.as_ref().map(|s| bounds(s, b.position, b.angle))
 }
 
-/// A joint with a velocity motor on a body that a coupling turns by its angle (a drum winding
-/// a cable).
-fn motor_winds_cable(level: &Level) -> bool {
-    if !level.effects.contains(&Effect::Motors) {
-        return false;
-    }
-    level
-        .joints
-        .iter()
-        .filter(|j| matches!(j.motor, Some(Motor::Velocity { .. })))
-        .any(|j| {
-            level.couplings.iter().any(|c| {
-                c.terms.iter().any(|t| {
-                    t.coordinate == Coordinate::Angle && (t.body == j.body1 || t.body == j.body2)
-                })
-            })
-        })
-}
-
 /// A moving body in contact with a scene in which two fixed track bodies (segments, polylines,
 /// arcs, tracks) continue one another: an end of one within [`TOUCH`] of an end of the other,
 /// the two running on within 60 degrees of one line (a corner of a floor and a wall is not a
@@ -359,15 +318,4 @@ fn track_ends(b: &BodyDef) -> Vec<TrackEnd> {
         }
         _ => Vec::new(),
     }
-}
-
-/// A `DamperWork` question that failed.
-fn failing_damper_work(level: &Level, r: Option<&LevelReport>) -> bool {
-    r.into_iter().flat_map(|r| &r.questions).any(|q| {
-        !q.passed
-            && level
-                .questions
-                .iter()
-                .any(|d| d.id == q.id && matches!(d.quantity, Quantity::DamperWork(_)))
-    })
 }

@@ -109,7 +109,8 @@ impl Simulation {
             },
             &(),
         );
-        let call_lambdas = self.solve_couplings();
+        let mut call_lambdas = self.solve_couplings();
+        self.close_coupling_call(&mut call_lambdas, call.h, call.impact_now);
         self.owe_carriers(&call_lambdas);
         for (l, x) in readings.lambdas.iter_mut().zip(call_lambdas) {
             *l += x;

@@ -86,8 +86,8 @@ impl Simulation {
     }
 
     /// The forces held over one rapier call: the step's loads, the pulls the carriers are owed
-    /// (sim/couplings.rs), and springs and dampers evaluated at the call's start, which
-    /// `readings` sums as the step's mean.
+    /// (sim/couplings.rs), the couplings' last tensions (sim/coupling_tension.rs), springs evaluated at the call's start and dampers at its predicted
+    /// mean rate (`dampers.rs`), which `readings` sums as the step's mean.
     pub(super) fn apply_call_forces(
         &mut self,
         loads: &[HeldLoad],
@@ -97,7 +97,9 @@ impl Simulation {
     ) {
         self.apply_forces(loads);
         self.load_carriers(call.h, &mut readings.carried);
-        let springs = self.apply_springs();
+        self.hold_coupling_tensions();
+        let mut springs = self.apply_springs();
+        self.hold_dampers_at_mean_rate(&mut springs, call.h);
         readings.add_springs(springs, call.h / dt, call.first);
     }
 

@@ -5,12 +5,14 @@
 //! 2. The call plan: one rapier call of n substeps, or n calls of one (split substeps), each cut
 //!    where an impact falls in it (`plan.rs`).
 //! 3. Each rapier call: its parameters; the loads, carriers' pulls, springs and dampers held over
-//!    it (`forces.rs`); the prescribed motions, rapier's own step and the couplings projected
+//!    it (`forces.rs`; the dampers at the call's predicted mean rate, `dampers.rs`); the
+//!    prescribed motions, rapier's own step and the couplings projected
 //!    after it; the call's impulses summed into the step's (`calls.rs`).
 //! 4. The snapshot at the step's end: bodies, the non-finite guard, contacts, welds, joints,
 //!    couplings, springs, then the explosion guards (`snapshot.rs`).
 
 mod calls;
+mod dampers;
 mod forces;
 mod plan;
 mod snapshot;

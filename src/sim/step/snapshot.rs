@@ -43,6 +43,7 @@ impl Simulation {
         } else {
             self.read_joints();
         }
+        self.book_motor_absorbed();
         self.snapshot.couplings = self.coupling_states(&readings.lambdas, &readings.carried);
         self.snapshot.springs = self.springs_at_step_end(readings.springs);
     }

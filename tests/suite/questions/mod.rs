@@ -7,6 +7,7 @@ mod contacts_in_full;
 mod coupling_force;
 mod crossing_at_touch;
 mod curved_normal_force;
+mod damper_work;
 mod formula_holds;
 mod impact_lasting;
 mod impact_moving_platform;

@@ -458,13 +458,6 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question e"),
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question J_peg"),
     ("n8_13_pinned_bar_strikes_peg_mid.ron", "question lost"),
-    // A damped pair over 3 s: DamperWork's analysis, -integral of c v^2 along the engine's
-    // path, is first order in the substep (2.0e-3 at its own settings, 8.0e-3 at 1 substep):
-    // the damper's force is held over each substep from its start's velocity, so the path
-    // decays a little slower than the textbook's; the engine's own ledger closes (3.7e-5).
-    // (Fixed the same day: the period reader counted the decayed motion's rounding noise,
-    // 1.8e-2 off at 4x substeps; crossings now stop under 1 % of the largest half swing.)
-    ("n8_16_two_blocks_spring_damper_pair.ron", "question W_c:"),
     // A ninth new user on curved tracks (tests/newuser/curved/n9_*, 2026-11-27). A light puck (0.2 kg)
     // nudged at 0.2 m/s over a smooth 0.5 m cylinder (it leaves at 48 degrees): N at 25 degrees
     // over a 0.01 s window reads 1.41209 for 1.39598 N (1.15e-2) at 1/4800 s, 1.37734 (1.34e-2)
@@ -472,14 +465,6 @@ const NEWUSER_KNOWN_GAPS: &[(&str, &str)] = &[
     // 5e-5. Off-level copies: 2.8e-3 at 10 degrees, 5.8e-3 at 20, 8.5e-3 at 30 (1.0e-2 at 8
     // substeps), 1.9e-2 at 35 (8 substeps): up to 0.9% of m g, farther from the leaving point
     // than known-gaps.md's "at 30 degrees within 1.6e-3" suggests.
-    // A velocity motor winding a cable (n11_09, the eleventh new user): the drum settles at
-    // 8.345 rad/s for its motor's 10, short by F h r^2 / I to 4 digits (h a substep's time; as
-    // if the cable pulled the drum back after the motor reached its rate within each call, not
-    // yet traced): the load's power -83.45 W for -100 (16.5%), 8.3% at 2x substeps,
-    // 4.1% at 4x, 1.0% at 64 (docs/known-gaps.md). Tension and torque are right (158.86 N).
-    ("n11_09_motor_hauls_block_efficiency.ron", "question P_out"),
-    ("n11_09_motor_hauls_block_efficiency.ron", "question U_f"),
-    ("n11_09_motor_hauls_block_efficiency.ron", "question eta"),
     // The fourteenth new user (tests/newuser/*/n14_*, 2026-12-06). A puck sliding down a ramp
     // `Arc` into a loop `Arc` at 1/4800 s read its speed at the top 6.2e-3 to 8.5e-3 low (n14_01,
     // n14_02, n14_23), first order in dt, until the chord contact the same day (sim/

@@ -17,6 +17,7 @@ mod impulse_conversions;
 mod joint_reaction_particle;
 mod known_gaps;
 mod load_tables;
+mod motor_cable;
 mod motor_units;
 mod pinned_bar_peg;
 mod precision;
