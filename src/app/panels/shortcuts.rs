@@ -12,6 +12,7 @@ use super::super::physics::PhysicsCommand;
 use super::super::playback::{play_restarts, Playback};
 use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
+use super::super::ui::Typing;
 use super::super::user_files;
 use super::super::view::View;
 use super::state::UiState;
@@ -146,7 +147,12 @@ pub fn keys_to_egui(
     }
 }
 
-/// The shortcuts, as a Bevy system (ignored while egui has the keyboard, e.g. in an answer box).
+/// What the status line says when a key is not taken as a shortcut after typing in a box.
+pub const TYPING_NOTE: &str =
+    "keys go to the text box you typed in: click the scene or press Esc to use the shortcuts";
+
+/// The shortcuts, as a Bevy system: off while a text field has or had the keyboard (an answer
+/// box, the save path: [`Typing`]) until a click in the scene or Esc.
 #[allow(clippy::too_many_arguments)]
 pub fn keys(
     keys: Res<ButtonInput<KeyCode>>,
@@ -159,11 +165,19 @@ pub fn keys(
     mut commands: Commands,
     mut edits: MessageWriter<EditorCommand>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
-    unsaved: Option<Res<super::super::unsaved::Unsaved>>,
+    (unsaved, typing): (
+        Option<Res<super::super::unsaved::Unsaved>>,
+        Option<Res<Typing>>,
+    ),
 ) {
     // Read every frame, so the modifiers held stay known while egui has the keyboard.
     let chords = chords(&mut held, messages.read());
-    if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
+    let egui_wants = egui_input.is_some_and(|e| e.wants_any_keyboard_input());
+    if !Typing::shortcuts_on(typing.as_deref(), egui_wants) {
+        if !egui_wants && keys.get_just_pressed().any(|k| *k != KeyCode::Escape) {
+            // The box lost its focus but the user is still typing: say why nothing happens.
+            ui.message = Some((TYPING_NOTE.into(), false));
+        }
         return;
     }
     if !super::super::unsaved::not_asking(unsaved) {
