@@ -130,6 +130,7 @@ pub fn grade_message(q: &crate::level::QuestionDef, g: &Grade) -> (String, bool)
             true,
         ),
         Ok((_, err, false)) => {
+            // (No ✘: the window's fonts have no glyph for it, it drew as a box.)
             // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
             let sign = if (err - 2.0).abs() <= tolerance {
                 "; the magnitude is right: check the sign"
@@ -138,7 +139,7 @@ pub fn grade_message(q: &crate::level::QuestionDef, g: &Grade) -> (String, bool)
             };
             (
                 format!(
-                    "✘ not yet: off by {:.2}% (tolerance {:.2}%){sign}",
+                    "not yet: off by {:.2}% (tolerance {:.2}%){sign}",
                     err * 100.0,
                     tolerance * 100.0
                 ),

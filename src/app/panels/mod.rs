@@ -27,6 +27,7 @@ mod track_editor;
 
 pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
+pub use playback::{energy_drift_note, DRIFT_WARNING};
 pub use solver::study_error;
 pub use state::UiState;
 
@@ -394,7 +395,7 @@ fn status_bar(root: &mut egui::Ui, p: &mut PanelInput) {
     egui::Panel::bottom("status").show(root, |ui| {
         ui.horizontal_wrapped(|ui| {
             if typing_off_box {
-                ui.label(rich("⌨ shortcuts paused after typing: click the scene or press Esc", palette::FRICTION));
+                ui.label(rich(shortcuts::TYPING_NOTE, palette::FRICTION));
                 ui.separator();
             }
             if let Some((m, ok)) = &st.message {

@@ -147,9 +147,8 @@ pub fn keys_to_egui(
     }
 }
 
-/// What the status line says when a key is not taken as a shortcut after typing in a box.
-pub const TYPING_NOTE: &str =
-    "keys go to the text box you typed in: click the scene or press Esc to use the shortcuts";
+/// What the status line says while keys are not taken as shortcuts after typing in a box.
+pub const TYPING_NOTE: &str = "shortcuts paused after typing: click the scene or press Esc";
 
 /// The shortcuts, as a Bevy system: off while a text field has or had the keyboard (an answer
 /// box, the save path: [`Typing`]) until a click in the scene or Esc.
@@ -174,10 +173,7 @@ pub fn keys(
     let chords = chords(&mut held, messages.read());
     let egui_wants = egui_input.is_some_and(|e| e.wants_any_keyboard_input());
     if !Typing::shortcuts_on(typing.as_deref(), egui_wants) {
-        if !egui_wants && keys.get_just_pressed().any(|k| *k != KeyCode::Escape) {
-            // The box lost its focus but the user is still typing: say why nothing happens.
-            ui.message = Some((TYPING_NOTE.into(), false));
-        }
+        // (The status line says so while it lasts: panels/mod.rs, TYPING_NOTE.)
         return;
     }
     if !super::super::unsaved::not_asking(unsaved) {
