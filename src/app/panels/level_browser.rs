@@ -156,7 +156,7 @@ pub fn version_line(e: &Entry) -> String {
         .path
         .file_name()
         .map_or(String::new(), |n| n.to_string_lossy().to_string());
-    match e.modified.and_then(|t| utc_minute(t)) {
+    match e.modified.and_then(utc_minute) {
         Some(date) => format!("{name} · {date}"),
         None => name,
     }

@@ -243,7 +243,7 @@ pub fn nice_ticks(lo: f64, hi: f64, most: usize) -> Vec<f64> {
     let step = [1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * p)
-        .find(|s| ((hi / s).floor() - (lo / s).ceil()) as usize + 1 <= most)
+        .find(|s| (((hi / s).floor() - (lo / s).ceil()) as usize) < most)
         .unwrap_or(10.0 * p);
     let (first, last) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
     (first..=last).map(|k| k as f64 * step).collect()
