@@ -275,14 +275,19 @@ fn run_commands(
     }
 }
 
-/// A preview in one line: the engine's value, the analysis's, and when it was read.
+/// A preview in one line: the engine's value, the analysis's, and when it was read. Where the
+/// analysis has no value, one reason is given: the note's when it says why (an analysis whose
+/// assumptions the scene breaks is "not applicable", which "no analysis formula" contradicted
+/// on the same line), else that there is no formula for the quantity.
 pub fn preview_note(r: &QuestionResult) -> String {
+    let explained = r.note.contains("not applicable");
     let analysis = match r.analysis {
-        Some(a) => format!("analysis {a:.6} {}", r.unit),
-        None => "no analysis formula for it".into(),
+        Some(a) => format!(", analysis {a:.6} {}", r.unit),
+        None if explained => String::new(),
+        None => ", no analysis formula for it".into(),
     };
     let mut s = format!(
-        "{}: engine {:.6} {}, {analysis}, read at t = {:.4} s",
+        "{}: engine {:.6} {}{analysis}, read at t = {:.4} s",
         r.id, r.engine, r.unit, r.time
     );
     if !r.note.is_empty() {

@@ -860,8 +860,11 @@ pub fn overlay_keys(
     keys: Res<ButtonInput<KeyCode>>,
     mut ov: ResMut<Overlays>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+    typing: Option<Res<super::ui::Typing>>,
 ) {
-    if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
+    // Not while a text field has or had the keyboard (a typed path toggled overlays).
+    let egui_wants = egui_input.is_some_and(|e| e.wants_any_keyboard_input());
+    if !super::ui::Typing::shortcuts_on(typing.as_deref(), egui_wants) {
         return;
     }
     let ov = &mut *ov;

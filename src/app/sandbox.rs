@@ -71,7 +71,7 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
             WindowPlugin {
                 primary_window: Some(Window {
                     title: "rigidlab".into(),
-                    resolution: (1440, 900).into(),
+                    resolution: OPENING_SIZE.into(),
                     ..default()
                 }),
                 // app/unsaved.rs closes it, after asking when there are unsaved edits.
@@ -91,6 +91,7 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
         ));
     }
     add_sandbox(&mut app, scene, browser, true);
+    app.add_systems(Update, fit_to_monitor);
     frame_cost::choose_executor(&mut app);
     if std::env::var_os("RIGIDLAB_CONTINUOUS").is_some() {
         // Xvfb has no window manager: the window never gets focus and Bevy would throttle.
@@ -101,6 +102,55 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
         return Err("the sandbox window closed with an error".into());
     }
     Ok(())
+}
+
+/// The size the window opens at, in logical pixels, before the monitor is known: it fits a
+/// 1280x800 screen with a title bar and a panel (it opened at 1440x900, which cut the right
+/// panel and the status line off a 1280x800 laptop screen).
+pub const OPENING_SIZE: (u32, u32) = (1240, 740);
+
+/// The size the window takes once the monitor is known: as large as the panels like it
+/// (1440x900) where the screen has room for it, else the screen less room for a title bar and
+/// a taskbar (40 logical pixels across, 60 down), never below 640x480. `monitor` is the screen's
+/// size in logical pixels.
+pub fn fitted_size(monitor: (f32, f32)) -> (f32, f32) {
+    let (w, h) = monitor;
+    (
+        (w - 40.0).clamp(640.0, 1440.0),
+        (h - 60.0).clamp(480.0, 900.0),
+    )
+}
+
+/// Fits the window to the monitor it opened on, once (winit reports the monitors after the
+/// first frames): the window and every panel, the status line included, on the screen. The
+/// scene is fitted again a few frames later, once the panels have laid out the new size.
+fn fit_to_monitor(
+    mut resized_at: Local<Option<u32>>,
+    mut frames: Local<u32>,
+    mut windows: Query<&mut Window, With<bevy::window::PrimaryWindow>>,
+    monitors: Query<&bevy::window::Monitor, With<bevy::window::PrimaryMonitor>>,
+    mut view: ResMut<super::view::View>,
+) {
+    *frames += 1;
+    if let Some(at) = *resized_at {
+        if *frames == at + 5 {
+            view.fit = true;
+        }
+        return;
+    }
+    let (Ok(mut window), Ok(m)) = (windows.single_mut(), monitors.single()) else {
+        return;
+    };
+    *resized_at = Some(*frames);
+    let scale = m.scale_factor.max(0.5) as f32;
+    let screen = (
+        m.physical_width as f32 / scale,
+        m.physical_height as f32 / scale,
+    );
+    let (w, h) = fitted_size(screen);
+    window.resolution.set(w, h);
+    window.position =
+        bevy::window::WindowPosition::Centered(bevy::window::MonitorSelection::Primary);
 }
 
 /// The sandbox over an app that has its window: egui, the physics of `scene`, the drawing, the

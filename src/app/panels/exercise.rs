@@ -115,29 +115,33 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
 /// A typed answer's grade: (answer, relative error, passed), or why the answer could not be read.
 pub type Grade = Result<(f64, f64, bool), String>;
 
-/// What the student reads after submitting an answer, and whether it was right.
+/// What the student reads after submitting an answer, and whether it was right. The tolerance
+/// printed is the one that graded it, the question's `student_tolerance` (the level's
+/// `tolerance` judges the engine in `rigidlab check`, not the student).
 pub fn grade_message(q: &crate::level::QuestionDef, g: &Grade) -> (String, bool) {
+    let tolerance = q.student_tolerance;
     match g {
         Ok((_, err, true)) => (
             format!(
                 "✔ correct: off by {:.2}% (tolerance {:.2}%)",
                 err * 100.0,
-                q.tolerance * 100.0
+                tolerance * 100.0
             ),
             true,
         ),
         Ok((_, err, false)) => {
+            // (No ✘: the window's fonts have no glyph for it, it drew as a box.)
             // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
-            let sign = if (err - 2.0).abs() <= q.tolerance {
+            let sign = if (err - 2.0).abs() <= tolerance {
                 "; the magnitude is right: check the sign"
             } else {
                 ""
             };
             (
                 format!(
-                    "✘ not yet: off by {:.2}% (tolerance {:.2}%){sign}",
+                    "not yet: off by {:.2}% (tolerance {:.2}%){sign}",
                     err * 100.0,
-                    q.tolerance * 100.0
+                    tolerance * 100.0
                 ),
                 false,
             )

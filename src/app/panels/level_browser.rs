@@ -21,6 +21,9 @@ pub struct Entry {
     pub error: Option<String>,
     /// The file's text when it is compiled in (the web page has no file system).
     pub source: Option<Arc<str>>,
+    /// When the file was last written (a file on disk; the listing shows it for saved levels,
+    /// whose versions share one title).
+    pub modified: Option<std::time::SystemTime>,
 }
 
 impl Entry {
@@ -117,6 +120,10 @@ impl Entry {
         loaded: Result<Scene, level::LevelError>,
         source: Option<Arc<str>>,
     ) -> Entry {
+        let modified = source
+            .is_none()
+            .then(|| std::fs::metadata(&path).and_then(|m| m.modified()).ok())
+            .flatten();
         match loaded {
             Ok(s) => Entry {
                 path,
@@ -124,6 +131,7 @@ impl Entry {
                 statement: s.level.statement,
                 error: None,
                 source,
+                modified,
             },
             Err(e) => Entry {
                 title: path
@@ -134,9 +142,45 @@ impl Entry {
                 statement: String::new(),
                 error: Some(e.to_string()),
                 source,
+                modified,
             },
         }
     }
+}
+
+/// How a listed level is told from another with the same title: its file name, and when it was
+/// written where that is known (`my-scene-saved-2.ron · 2026-12-07 00:10 UTC`). Saved versions of
+/// one level were listed under one title, nothing to tell them apart.
+pub fn version_line(e: &Entry) -> String {
+    let name = e
+        .path
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().to_string());
+    match e.modified.and_then(utc_minute) {
+        Some(date) => format!("{name} · {date}"),
+        None => name,
+    }
+}
+
+/// A time as `YYYY-MM-DD HH:MM UTC` (None before 1970). The civil date from the day count is
+/// Howard Hinnant's `civil_from_days` (proleptic Gregorian calendar, eras of 400 years).
+pub fn utc_minute(t: std::time::SystemTime) -> Option<String> {
+    let secs = t.duration_since(std::time::UNIX_EPOCH).ok()?.as_secs();
+    let (days, rem) = ((secs / 86_400) as i64, secs % 86_400);
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    Some(format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
+        rem / 3600,
+        rem % 3600 / 60
+    ))
 }
 
 /// The topic a level is listed under: its folder below the root.
@@ -156,7 +200,6 @@ pub(super) fn level_browser(
     load: &mut Option<Scene>,
 ) {
     ui.horizontal(|ui| {
-        ui.heading("Levels");
         if !browser.embedded
             && ui
                 .small_button("⟳")
@@ -181,6 +224,8 @@ pub(super) fn level_browser(
         ui.label(format!("no *.ron levels under {}", browser.root.display()));
     }
     for (group, entries) in &browser.groups {
+        // The user's saved levels: versions of one level share its title.
+        let versions = group.starts_with("saved");
         egui::CollapsingHeader::new(group.as_str())
             .default_open(
                 entries.iter().any(|e| e.path == phys.scene.file) || browser.groups.len() <= 6,
@@ -188,10 +233,16 @@ pub(super) fn level_browser(
             .show(ui, |ui| {
                 for e in entries {
                     let current = e.path == phys.scene.file;
-                    let text = if e.error.is_some() {
-                        rich(format!("⚠ {}", e.title), palette::NORMAL)
+                    // A saved version shows its file and when it was written under the title.
+                    let title = if versions {
+                        format!("{}\n    {}", e.title, version_line(e))
                     } else {
-                        egui::RichText::new(&e.title)
+                        e.title.clone()
+                    };
+                    let text = if e.error.is_some() {
+                        rich(format!("⚠ {title}"), palette::NORMAL)
+                    } else {
+                        egui::RichText::new(title)
                     };
                     let r = ui.selectable_label(current, text);
                     let r = match &e.error {

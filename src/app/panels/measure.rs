@@ -114,12 +114,17 @@ pub(super) fn measure(
         ui.selectable_value(&mut tools.tool, Tool::Protractor, "protractor");
         match tools.protractor.and_then(|p| p.angle()) {
             Some(a) => ui.label(format!("{:.2}° between the arms", a.to_degrees())),
-            None => ui.label(
-                rich(
-                    "drag from the vertex along one arm, then click the other arm's end",
-                    palette::OUTLINE,
+            // Wrapped: beside a button a label does not wrap, and this one, at a legible size,
+            // widened the whole panel.
+            None => ui.add(
+                egui::Label::new(
+                    rich(
+                        "drag from the vertex along one arm, then click the other arm's end",
+                        palette::OUTLINE,
+                    )
+                    .small(),
                 )
-                .small(),
+                .wrap(),
             ),
         };
     });
@@ -137,12 +142,15 @@ pub(super) fn measure(
                 ));
             }
             None => {
-                ui.label(
-                    rich(
-                        "drag in the scene to measure a length and its angle",
-                        palette::OUTLINE,
+                ui.add(
+                    egui::Label::new(
+                        rich(
+                            "drag in the scene to measure a length and its angle",
+                            palette::OUTLINE,
+                        )
+                        .small(),
                     )
-                    .small(),
+                    .wrap(),
                 );
             }
         }

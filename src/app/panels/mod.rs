@@ -26,7 +26,8 @@ pub mod tour;
 mod track_editor;
 
 pub use exercise::{grade, grade_message, Exercise, Grade};
-pub use level_browser::{Browser, Entry};
+pub use level_browser::{utc_minute, version_line, Browser, Entry};
+pub use playback::{energy_drift_note, DRIFT_WARNING};
 pub use solver::study_error;
 pub use state::UiState;
 
@@ -39,7 +40,7 @@ use super::playback::Playback;
 use super::prefs::{Prefs, PrefsFile};
 use super::run::Run;
 use super::tools::ToolState;
-use super::ui::rich;
+use super::ui::{legible, rich, Typing};
 use super::unsaved::{Leaving, Unsaved};
 use super::user_files::default_save_path;
 use super::view::{palette, View, WorldCamera};
@@ -71,6 +72,7 @@ impl Plugin for PanelsPlugin {
         app.init_resource::<UiState>()
             .init_resource::<Exercise>()
             .init_resource::<shortcuts::EguiKeys>()
+            .init_resource::<Typing>()
             .add_systems(
                 PreUpdate,
                 shortcuts::keys_to_egui.in_set(bevy_egui::EguiInputSet::ReadBevyMessages),
@@ -137,6 +139,7 @@ struct PanelInput<'w, 's> {
     browser: ResMut<'w, Browser>,
     time: ResMut<'w, Time<Virtual>>,
     rate: Option<Res<'w, FrameRate>>,
+    typing: ResMut<'w, Typing>,
     files: FileInput<'w, 's>,
 }
 
@@ -189,8 +192,9 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
     let st = &mut *p.st;
     let phys = &*p.phys;
     if st.generation.is_none() {
-        // The textbook look: dark ink on paper.
+        // The textbook look: dark ink on paper, no text smaller than ui::SMALL_TEXT.
         ctx.set_visuals(egui::Visuals::light());
+        ctx.all_styles_mut(legible);
         if let Some(prefs) = p.files.prefs.as_deref() {
             st.tour.open = !prefs.tour_done;
             st.time_scale = prefs.time_scale;
@@ -225,7 +229,8 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
     }
 }
 
-/// The left panel: the level browser over the exercise. The level the browser asked for, if any.
+/// The left panel: the open exercise over the level browser. The level the browser asked for,
+/// if any.
 fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
     let mut load: Option<Scene> = None;
     egui::Panel::left("levels")
@@ -233,12 +238,45 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
         .default_size(300.0)
         .size_range(200.0..=520.0)
         .show(root, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                level_browser(ui, &mut p.browser, &p.phys, &mut load);
-                ui.separator();
-                exercise(ui, &p.phys, &p.live, &mut p.exercise);
-            });
+            load = left_column(ui, &mut p.browser, (&p.phys, &p.live), &mut p.exercise);
         });
+    load
+}
+
+/// The left panel's column: the open exercise first, its statement and questions where a
+/// student looks first (they sat below the whole level list: 30 titles to scroll past), then
+/// every level, folded while a level is open. A level opened (or another one) folds the list
+/// and brings the column back to its top. The level the browser asked for, if any.
+pub fn left_column(
+    ui: &mut egui::Ui,
+    browser: &mut Browser,
+    (phys, live): (&Run, &LiveChecks),
+    ex: &mut Exercise,
+) -> Option<Scene> {
+    let mut load: Option<Scene> = None;
+    let shown = egui::Id::new("left column: level shown");
+    let new_level = ui.data(|d| d.get_temp::<PathBuf>(shown)) != Some(phys.scene.file.clone());
+    ui.data_mut(|d| d.insert_temp(shown, phys.scene.file.clone()));
+    // No exercise to read (the empty scene): the list is what there is to see.
+    let nothing_open = phys.sim.level.bodies.is_empty() && phys.sim.level.questions.is_empty();
+    let mut scroll = egui::ScrollArea::vertical().id_salt("left column");
+    if new_level {
+        scroll = scroll.vertical_scroll_offset(0.0);
+    }
+    scroll.show(ui, |ui| {
+        exercise(ui, phys, live, ex);
+        ui.separator();
+        let count: usize = browser.groups.values().map(Vec::len).sum();
+        let mut list = egui::CollapsingHeader::new(
+            egui::RichText::new(format!("Levels ({count}): open another")).heading(),
+        )
+        .id_salt("all levels")
+        .default_open(nothing_open);
+        if new_level {
+            list = list.open(Some(nothing_open));
+        }
+        list.show(ui, |ui| level_browser(ui, browser, phys, &mut load));
+    });
     load
 }
 
@@ -252,24 +290,13 @@ fn right_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Vec<PhysicsCommand> {
         .size_range(260.0..=520.0)
         .show(root, |ui| {
             egui::ScrollArea::vertical().show(ui, |ui| {
-                let restarts = playback(
+                let edits = upper_controls(
                     ui,
-                    (&p.phys, &p.play),
-                    &mut p.st.time_scale,
-                    &mut p.view,
-                    p.ov.selected,
+                    (&p.phys, &p.play, &p.files.editor),
+                    (&mut p.view, &mut p.ov, &mut p.tools, &mut p.st),
                     &mut asked,
                 );
-                if restarts {
-                    // The impulse tool's arrow goes with the run it struck.
-                    p.tools.last_impulse = None;
-                }
-                ui.separator();
-                overlay_controls(ui, &mut p.ov, &p.phys);
-                ui.separator();
-                tool_controls(ui, &mut p.tools, &p.phys, &mut p.st);
-                ui.separator();
-                build_panel(ui, p);
+                send_edits(p, edits);
                 ui.separator();
                 solver(ui, &p.phys, &p.live, &mut asked);
                 ui.separator();
@@ -284,20 +311,42 @@ fn right_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Vec<PhysicsCommand> {
     asked
 }
 
-/// The Build panel; its edits go to the editor (a new scene over unsaved edits asks first).
-fn build_panel(ui: &mut egui::Ui, p: &mut PanelInput) {
+/// The right panel's controls, top to bottom: playback, overlays, tools and the Build panel.
+/// What playback asks of the run goes to `asked`; the Build panel's edits are returned. Rows
+/// whose content comes and goes keep their height (`ui::fixed_rows`), so nothing here moves
+/// under the pointer as the run plays, a body is selected or an edit is answered.
+pub fn upper_controls(
+    ui: &mut egui::Ui,
+    (phys, play, editor): (&Run, &Playback, &Editor),
+    (view, ov, tools, st): (&mut View, &mut Overlays, &mut ToolState, &mut UiState),
+    asked: &mut Vec<PhysicsCommand>,
+) -> Vec<EditorCommand> {
+    let restarts = playback(
+        ui,
+        (phys, play),
+        &mut st.time_scale,
+        view,
+        ov.selected,
+        asked,
+    );
+    if restarts {
+        // The impulse tool's arrow goes with the run it struck.
+        tools.last_impulse = None;
+    }
+    ui.separator();
+    overlay_controls(ui, ov, phys);
+    ui.separator();
+    tool_controls(ui, tools, phys, st);
+    ui.separator();
+    let mut out = Vec::new();
+    scene_editor(ui, phys, editor, tools, ov.selected, st, &mut out);
+    out
+}
+
+/// The Build panel's edits to the editor (a new scene over unsaved edits asks first).
+fn send_edits(p: &mut PanelInput, out: Vec<EditorCommand>) {
     let phys = &*p.phys;
     let f = &mut p.files;
-    let mut out = Vec::new();
-    scene_editor(
-        ui,
-        phys,
-        &f.editor,
-        &mut p.tools,
-        p.ov.selected,
-        &mut p.st,
-        &mut out,
-    );
     for c in out {
         if c == EditorCommand::New {
             // Unsaved edits: ask first (app/unsaved.rs).
@@ -342,8 +391,13 @@ fn measure_and_plots(ui: &mut egui::Ui, p: &mut PanelInput) {
 fn status_bar(root: &mut egui::Ui, p: &mut PanelInput) {
     let rate = p.rate.as_deref().cloned().unwrap_or_default();
     let st = &mut *p.st;
+    let typing_off_box = p.typing.active && !root.ctx().text_edit_focused();
     egui::Panel::bottom("status").show(root, |ui| {
         ui.horizontal_wrapped(|ui| {
+            if typing_off_box {
+                ui.label(rich(shortcuts::TYPING_NOTE, palette::FRICTION));
+                ui.separator();
+            }
             if let Some((m, ok)) = &st.message {
                 ui.label(rich(m.clone(), if *ok { palette::GRAVITY } else { palette::NORMAL }));
                 ui.separator();
@@ -417,6 +471,12 @@ fn tidy_after_frame(ctx: &egui::Context, p: &mut PanelInput) {
     if !ctx.text_edit_focused() && !ctx.is_pointer_over_egui() {
         ctx.memory_mut(|m| m.stop_text_input());
     }
+    // The keyboard stays the text field's after it loses the focus, until a click in the scene
+    // or Esc (ui::Typing): the shortcuts read this next frame.
+    let scene_click = ctx.input(|i| i.pointer.any_pressed()) && !ctx.is_pointer_over_egui();
+    let escape = ctx.input(|i| i.key_pressed(egui::Key::Escape));
+    p.typing
+        .follow(ctx.text_edit_focused(), scene_click, escape);
     if phys.tracked != p.ov.selected {
         p.run_commands.write(PhysicsCommand::Track(p.ov.selected));
     }

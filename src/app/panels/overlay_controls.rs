@@ -5,7 +5,7 @@
 use super::super::overlays::{legend_entries, Overlays};
 use super::super::quantities::ForceKind;
 use super::super::run::Run;
-use super::super::ui::rich;
+use super::super::ui::{fixed_rows, rich};
 use super::super::view::palette;
 use bevy::prelude::*;
 use bevy_egui::egui;
@@ -27,7 +27,9 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
         ui.checkbox(&mut ov.labels, "magnitudes (L)");
         ui.end_row();
     });
-    if ov.free_body {
+    // Always there, greyed while the free-body diagram is off: a row that came with F (the key
+    // too) moved the tools below it.
+    ui.add_enabled_ui(ov.free_body, |ui| {
         ui.horizontal_wrapped(|ui| {
             ui.label("forces");
             for (kind, color) in [
@@ -52,7 +54,7 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
             }
             ui.checkbox(&mut ov.components, "x, y components");
         });
-    }
+    });
     ui.horizontal(|ui| {
         ui.label("arrow scale");
         ui.add(
@@ -61,12 +63,16 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
                 .max_decimals(2),
         );
     });
-    ui.horizontal_wrapped(|ui| {
-        for (text, color) in legend_entries(ov, &phys.sim.level, phys.frame_window()) {
-            ui.label(rich(text, color).small());
-        }
+    fixed_rows(ui, 2.0, |ui| {
+        ui.horizontal_wrapped(|ui| {
+            for (text, color) in legend_entries(ov, &phys.sim.level, phys.frame_window()) {
+                ui.label(rich(text, color).small());
+            }
+        });
     });
-    match ov.selected {
+    // The same height either way (the hint wraps in a narrow panel; the button row is taller
+    // than a line of small text).
+    fixed_rows(ui, 2.0, |ui| match ov.selected {
         Some(i) => {
             ui.horizontal(|ui| {
                 let name = phys
@@ -90,5 +96,5 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
                 .small(),
             );
         }
-    }
+    });
 }

@@ -5,7 +5,7 @@
 use super::super::physics::PhysicsCommand;
 use super::super::playback::{play_restarts, Playback};
 use super::super::run::Run;
-use super::super::ui::{fmt, rich};
+use super::super::ui::{fixed_rows, fmt, rich};
 use super::super::view::{palette, View};
 use bevy_egui::egui;
 
@@ -22,8 +22,14 @@ pub(super) fn playback(
     let (time, step) = (phys.snapshot().time, phys.snapshot().step);
     let duration = phys.sim.level.world.duration;
     ui.heading("Playback");
+    // Where the timeline is going shares the time's line: a row of its own came and went above
+    // the buttons, which moved under the pointer.
+    let going = phys
+        .seek
+        .map(|target| format!("   going to t = {:.3} s…", target as f64 * phys.sim.dt()))
+        .unwrap_or_default();
     ui.label(format!(
-        "t = {:.3} s of {:.3} s   (step {})",
+        "t = {:.3} s of {:.3} s   (step {}){going}",
         time, duration, step
     ));
     timeline(ui, phys, out);
@@ -47,9 +53,26 @@ pub(super) fn playback(
         out.push(PhysicsCommand::StopAtEnd(stop_at_end));
     }
     follow(ui, phys, view, selected);
-    blows(ui, phys);
-    warnings(ui, phys, play);
+    run_notes(ui, phys, play);
     restarts
+}
+
+/// The run's blows and warnings in a box of fixed height (scrolled when they are more): they
+/// come and go while the run plays (a blow struck, the physics falling behind real time) and
+/// moved every control below them as they did.
+fn run_notes(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
+    let height = 2.0 * super::super::ui::row_height(ui);
+    egui::ScrollArea::vertical()
+        .id_salt("run notes")
+        .max_height(height)
+        .min_scrolled_height(height)
+        .auto_shrink([true, true])
+        .show(ui, |ui| {
+            fixed_rows(ui, 2.0, |ui| {
+                warnings(ui, phys, play);
+                blows(ui, phys);
+            })
+        });
 }
 
 /// The timeline: drag to any time of the level; going back replays the run from t = 0
@@ -67,15 +90,6 @@ fn timeline(ui: &mut egui::Ui, phys: &Run, out: &mut Vec<PhysicsCommand>) {
     );
     if r.changed() {
         out.push(PhysicsCommand::Seek((at / dt).round() as u64));
-    }
-    if let Some(target) = phys.seek {
-        ui.label(
-            rich(
-                format!("going to t = {:.3} s…", target as f64 * dt),
-                palette::OUTLINE,
-            )
-            .small(),
-        );
     }
 }
 
@@ -133,23 +147,22 @@ fn follow(ui: &mut egui::Ui, phys: &Run, view: &mut View, selected: Option<usize
     if view.follow.is_some_and(|i| Some(i) != selected) {
         view.follow = None;
     }
-    if let Some(i) = selected {
-        let name = phys
-            .scene
-            .level
-            .bodies
-            .get(i)
-            .map_or("", |b| b.name.as_str());
-        let mut follow = view.follow == Some(i);
-        if ui
-            .checkbox(&mut follow, format!("camera follows {name}"))
-            .on_hover_text(
-                "keeps its mass center at the center of the view (Home fits the scene again)",
-            )
-            .changed()
-        {
-            view.follow = follow.then_some(i);
-        }
+    // Always there (greyed without a selection), so selecting a body moves nothing below it.
+    let name = selected
+        .and_then(|i| phys.scene.level.bodies.get(i))
+        .map_or("the selected body", |b| b.name.as_str());
+    let mut follow = selected.is_some() && view.follow == selected;
+    if ui
+        .add_enabled(
+            selected.is_some(),
+            egui::Checkbox::new(&mut follow, format!("camera follows {name}")),
+        )
+        .on_hover_text(
+            "keeps its mass center at the center of the view (Home fits the scene again)",
+        )
+        .changed()
+    {
+        view.follow = if follow { selected } else { None };
     }
 }
 
@@ -192,10 +205,42 @@ fn blows(ui: &mut egui::Ui, phys: &Run) {
     }
 }
 
-/// Why the run stopped, runs slowed, or is no longer the exercise's.
+/// The energy drift above which the run says so where the student looks (5 % of the largest
+/// energy term): a 60 Hz pendulum lost 36 % in 33 s with only a line in the solver panel to
+/// say so.
+pub const DRIFT_WARNING: f64 = 0.05;
+
+/// Where the level conserves energy (no contact, friction, damping, motor, load or event:
+/// `study::accuracy::metrics::conserved`), the drift of T + V since t = 0 as a fraction of the
+/// largest energy term at t = 0, with what to do about it, once it is above [`DRIFT_WARNING`].
+pub fn energy_drift_note(phys: &Run) -> Option<String> {
+    if !crate::study::accuracy::metrics::conserved(&phys.sim.level).energy {
+        return None;
+    }
+    let (first, last) = (phys.series.first()?, phys.series.last()?);
+    let scale = first
+        .kinetic
+        .abs()
+        .max(first.gravity.abs())
+        .max(first.elastic.abs());
+    let drift = (last.total() - first.total()) / scale;
+    (drift.is_finite() && drift.abs() > DRIFT_WARNING).then(|| {
+        format!(
+            "Energy should stay constant here but has {} {:.0}% since t = 0 (the engine's step, \
+             not physics): halve dt in Solver to shrink it.",
+            if drift < 0.0 { "lost" } else { "gained" },
+            drift.abs() * 100.0
+        )
+    })
+}
+
+/// Why the run stopped, runs slowed, or is no longer the exercise's, or its energy drifted.
 fn warnings(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
     if let Some(e) = &phys.error {
         ui.label(rich(e.clone(), palette::NORMAL));
+    }
+    if let Some(note) = energy_drift_note(phys) {
+        ui.label(rich(note, palette::NORMAL));
     }
     if play.behind && !play.paused {
         ui.label(rich(

@@ -231,6 +231,74 @@ pub fn drawn_range((lo, hi): (f64, f64)) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// The ticks of an axis over `lo..=hi`: multiples of a step of 1, 2 or 5 times a power of ten,
+/// at most `most` of them (and at least 2 when the range is not empty), each the step times an
+/// integer so 0 is printed 0 and not 1e-17.
+pub fn nice_ticks(lo: f64, hi: f64, most: usize) -> Vec<f64> {
+    if !(lo.is_finite() && hi.is_finite()) || hi <= lo || most < 2 {
+        return Vec::new();
+    }
+    let rough = (hi - lo) / (most - 1) as f64;
+    let p = 10f64.powf(rough.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * p)
+        .find(|s| (((hi / s).floor() - (lo / s).ceil()) as usize) < most)
+        .unwrap_or(10.0 * p);
+    let (first, last) = ((lo / step).ceil() as i64, (hi / step).floor() as i64);
+    (first..=last).map(|k| k as f64 * step).collect()
+}
+
+/// Grid lines and tick labels on a plot's frame: the value axis on the left of `inner`, the
+/// other along its bottom (egui draws no axes by itself: the plots had none).
+fn axes(
+    painter: &egui::Painter,
+    inner: egui::Rect,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    font: &egui::FontId,
+) {
+    let grid = egui::Stroke::new(1.0, egui::Color32::from_gray(225));
+    let ink = egui::Color32::from_gray(70);
+    for v in nice_ticks(y0, y1, 5) {
+        let y = inner.max.y - ((v - y0) / (y1 - y0)) as f32 * inner.height();
+        painter.line_segment(
+            [egui::pos2(inner.min.x, y), egui::pos2(inner.max.x, y)],
+            grid,
+        );
+        painter.text(
+            egui::pos2(inner.min.x - 3.0, y),
+            egui::Align2::RIGHT_CENTER,
+            fmt(v),
+            font.clone(),
+            ink,
+        );
+    }
+    for v in nice_ticks(x0, x1, 6) {
+        let x = inner.min.x + ((v - x0) / (x1 - x0)) as f32 * inner.width();
+        painter.line_segment(
+            [egui::pos2(x, inner.min.y), egui::pos2(x, inner.max.y)],
+            grid,
+        );
+        painter.text(
+            egui::pos2(x, inner.max.y + 1.0),
+            egui::Align2::CENTER_TOP,
+            fmt(v),
+            font.clone(),
+            ink,
+        );
+    }
+}
+
+/// Room around a plot's lines: the value ticks on the left, the range on top, the other
+/// axis's ticks and name at the bottom.
+fn plot_area(rect: egui::Rect, bottom: f32) -> egui::Rect {
+    egui::Rect::from_min_max(
+        rect.min + egui::vec2(40.0, 16.0),
+        rect.max - egui::vec2(8.0, bottom),
+    )
+}
+
 /// The labels of a plot's value axis: the largest value at the top, the smallest at the bottom.
 pub fn extreme_labels((lo, hi): (f64, f64), unit: &str) -> (String, String) {
     (
@@ -257,7 +325,7 @@ pub fn nearest_sample(
 /// and a readout of the sample nearest the pointer.
 fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) {
     let width = ui.available_width().min(320.0);
-    let (rect, hover) = ui.allocate_exact_size(egui::vec2(width, 160.0), egui::Sense::hover());
+    let (rect, hover) = ui.allocate_exact_size(egui::vec2(width, 180.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, egui::Color32::from_gray(250));
     let pts: Vec<(f64, f64)> = samples
@@ -280,7 +348,10 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
         return;
     };
     let ((x0, x1), (y0, y1)) = (drawn_range(xr), drawn_range(yr));
-    let inner = rect.shrink2(egui::vec2(4.0, 14.0));
+    // Below the ticks, the other quantity's name and range.
+    let inner = plot_area(rect, 30.0);
+    let font = egui::FontId::proportional(super::super::ui::SMALL_TEXT);
+    axes(&painter, inner, (x0, x1), (y0, y1), &font);
     let map = |a: f64, b: f64| {
         egui::pos2(
             inner.min.x + ((a - x0) / (x1 - x0)) as f32 * inner.width(),
@@ -292,7 +363,6 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
         line,
         egui::Stroke::new(1.5, color32(palette::VELOCITY)),
     ));
-    let font = egui::FontId::proportional(10.0);
     let gray = egui::Color32::from_gray(90);
     painter.text(
         rect.left_top() + egui::vec2(3.0, 1.0),
@@ -321,8 +391,8 @@ fn xy_plot(ui: &mut egui::Ui, samples: &[BodySample], x: BodyPlot, y: BodyPlot) 
             egui::Stroke::new(1.5, egui::Color32::from_gray(40)),
         );
         painter.text(
-            rect.left_bottom() + egui::vec2(3.0, -14.0),
-            egui::Align2::LEFT_BOTTOM,
+            inner.left_top() + egui::vec2(3.0, 1.0),
+            egui::Align2::LEFT_TOP,
             format!(
                 "t = {:.3} s: {} {}, {} {}",
                 ts[k],
@@ -419,7 +489,7 @@ type Pick<'a> = &'a dyn Fn(&SeriesPoint) -> f64;
 /// A small line plot against time, with the value range and time range written on it.
 fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)], unit: &str) {
     let width = ui.available_width().min(320.0);
-    let (rect, hover) = ui.allocate_exact_size(egui::vec2(width, 110.0), egui::Sense::hover());
+    let (rect, hover) = ui.allocate_exact_size(egui::vec2(width, 130.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 2.0, egui::Color32::from_gray(250));
     painter.rect_stroke(
@@ -439,7 +509,9 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
         return;
     };
     let (lo, hi) = drawn_range(extent);
-    let inner = rect.shrink2(egui::vec2(4.0, 14.0));
+    let inner = plot_area(rect, 16.0);
+    let font = egui::FontId::proportional(super::super::ui::SMALL_TEXT);
+    axes(&painter, inner, (t0, t1), (lo, hi), &font);
     let map = |t: f64, v: f64| {
         egui::pos2(
             inner.min.x + ((t - t0) / (t1 - t0)) as f32 * inner.width(),
@@ -461,7 +533,6 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
             .collect();
         painter.add(egui::Shape::line(pts, egui::Stroke::new(1.5, color32(*c))));
     }
-    let font = egui::FontId::proportional(10.0);
     let gray = egui::Color32::from_gray(90);
     // The cursor readout: the sample nearest the pointer's time, each line's value there.
     if let Some(pos) = hover.hover_pos() {
@@ -487,26 +558,22 @@ fn line_plot(ui: &mut egui::Ui, series: &[SeriesPoint], lines: &[(Pick, Color)],
             egui::Color32::from_gray(30),
         );
     }
-    // The labels print the extremes of the series, not the drawn range's margin.
-    let (top, bottom) = extreme_labels(extent, unit);
-    painter.text(
-        rect.left_top() + egui::vec2(3.0, 1.0),
-        egui::Align2::LEFT_TOP,
-        top,
-        font.clone(),
-        gray,
-    );
+    // The labels print the extremes of the series, not the drawn range's margin; the readout
+    // takes their place while the pointer is on the plot.
+    if hover.hover_pos().is_none() {
+        let (top, bottom) = extreme_labels(extent, unit);
+        painter.text(
+            rect.left_top() + egui::vec2(3.0, 1.0),
+            egui::Align2::LEFT_TOP,
+            format!("{top} · {bottom}"),
+            font.clone(),
+            gray,
+        );
+    }
     painter.text(
         rect.left_bottom() + egui::vec2(3.0, -1.0),
         egui::Align2::LEFT_BOTTOM,
-        bottom,
-        font.clone(),
-        gray,
-    );
-    painter.text(
-        rect.right_bottom() + egui::vec2(-3.0, -1.0),
-        egui::Align2::RIGHT_BOTTOM,
-        format!("t = {:.2} s", t1),
+        "t, s",
         font,
         gray,
     );

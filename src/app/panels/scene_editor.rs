@@ -5,7 +5,7 @@
 use super::super::editor::{joint_name, Editor, EditorCommand, Placeable};
 use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
-use super::super::ui::rich;
+use super::super::ui::{fixed_rows, rich};
 use super::super::view::palette;
 use super::number_field::{number_field, Accepts};
 use super::state::UiState;
@@ -89,7 +89,7 @@ pub(super) fn scene_editor(
         }
         _ => "select a body to edit it; while paused at t = 0, drag it to move it",
     };
-    ui.label(rich(hint, palette::OUTLINE).small());
+    fixed_rows(ui, 2.0, |ui| ui.label(rich(hint, palette::OUTLINE).small()));
     let r = egui::CollapsingHeader::new("curved track: arc, polyline")
         .id_salt("curved track")
         .show(ui, |ui| {
@@ -97,7 +97,12 @@ pub(super) fn scene_editor(
         });
     st.buttons
         .insert("curved track".into(), r.header_response.rect);
-    if let Some((note, ok)) = &editor.note {
+    // The editor's answer to the last edit, in a place of its own height: it appeared with the
+    // first edit and moved the inspector below it under the pointer.
+    fixed_rows(ui, 2.0, |ui| {
+        let Some((note, ok)) = &editor.note else {
+            return;
+        };
         // A refusal can run to several lines (the validator says how to fix the level): its
         // first clause here, the whole of it on hover.
         let (short, cut) = if *ok {
@@ -114,7 +119,7 @@ pub(super) fn scene_editor(
         if cut {
             r.on_hover_text(note.as_str());
         }
-    }
+    });
 
     let level = &phys.scene.level;
     if let Some(b) = selected.and_then(|i| level.bodies.get(i)) {

@@ -12,6 +12,7 @@ use super::super::physics::PhysicsCommand;
 use super::super::playback::{play_restarts, Playback};
 use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
+use super::super::ui::Typing;
 use super::super::user_files;
 use super::super::view::View;
 use super::state::UiState;
@@ -146,7 +147,11 @@ pub fn keys_to_egui(
     }
 }
 
-/// The shortcuts, as a Bevy system (ignored while egui has the keyboard, e.g. in an answer box).
+/// What the status line says while keys are not taken as shortcuts after typing in a box.
+pub const TYPING_NOTE: &str = "shortcuts paused after typing: click the scene or press Esc";
+
+/// The shortcuts, as a Bevy system: off while a text field has or had the keyboard (an answer
+/// box, the save path: [`Typing`]) until a click in the scene or Esc.
 #[allow(clippy::too_many_arguments)]
 pub fn keys(
     keys: Res<ButtonInput<KeyCode>>,
@@ -159,11 +164,16 @@ pub fn keys(
     mut commands: Commands,
     mut edits: MessageWriter<EditorCommand>,
     egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
-    unsaved: Option<Res<super::super::unsaved::Unsaved>>,
+    (unsaved, typing): (
+        Option<Res<super::super::unsaved::Unsaved>>,
+        Option<Res<Typing>>,
+    ),
 ) {
     // Read every frame, so the modifiers held stay known while egui has the keyboard.
     let chords = chords(&mut held, messages.read());
-    if egui_input.is_some_and(|e| e.wants_any_keyboard_input()) {
+    let egui_wants = egui_input.is_some_and(|e| e.wants_any_keyboard_input());
+    if !Typing::shortcuts_on(typing.as_deref(), egui_wants) {
+        // (The status line says so while it lasts: panels/mod.rs, TYPING_NOTE.)
         return;
     }
     if !super::super::unsaved::not_asking(unsaved) {

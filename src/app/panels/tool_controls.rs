@@ -3,7 +3,7 @@
 
 use super::super::run::Run;
 use super::super::tools::{Tool, ToolState};
-use super::super::ui::rich;
+use super::super::ui::{fixed_rows, rich};
 use super::super::user_files::save_level;
 use super::super::view::palette;
 use super::state::UiState;
@@ -33,13 +33,18 @@ pub(super) fn tool_controls(
         Tool::SetOrigin => "click: the point O for the angular momentum H_O",
         _ => "a build tool (see Build below)",
     };
-    ui.label(rich(help, palette::OUTLINE).small());
+    // Hints of different lengths in the same height, and the save button always there (greyed
+    // at t = 0): the Build tools below never move under the pointer.
+    fixed_rows(ui, 2.0, |ui| ui.label(rich(help, palette::OUTLINE).small()));
     let t = phys.snapshot().time;
-    if t > 0.0
-        && ui
-            .button(format!("save this moment (t = {t:.3} s) as a level"))
-            .on_hover_text("the bodies' poses and velocities now become the new level's start")
-            .clicked()
+    if ui
+        .add_enabled(
+            t > 0.0,
+            egui::Button::new(format!("save this moment (t = {t:.3} s) as a level")),
+        )
+        .on_hover_text("the bodies' poses and velocities now become the new level's start")
+        .on_disabled_hover_text("play the run first: the moment is saved as a new level's start")
+        .clicked()
     {
         let stem = st.save_path.trim_end_matches(".ron").to_string();
         let path = format!("{stem}-at-{t:.3}s.ron");

@@ -13,6 +13,7 @@ mod mouse_tools;
 mod playback;
 mod plot_labels;
 mod plugins;
+mod student_window;
 mod unsaved_work;
 mod web_page;
 mod window;
