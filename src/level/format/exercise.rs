@@ -676,6 +676,19 @@ pub enum When {
         #[serde(default)]
         other: Option<String>,
     },
+    /// The instant `body` leaves `other` (at or after `after` s), by the body's path: where the
+    /// gap between the two surfaces (for an `Arc`, its true circle, not its facets) starts
+    /// growing for good, placed where the gap's acceleration, rising in a straight line after
+    /// the surfaces part, reaches zero (between steps). `body` is a `Circle`, `other` an `Arc`
+    /// on a fixed body or a `Circle`. A smooth `Circle` leaving the outside of a fixed `Arc`
+    /// under gravity alone has the textbook's analysis (`PolarAngle` about the arc's centre,
+    /// `Speed`, `Time`: docs/levels.md).
+    Leaves {
+        body: String,
+        other: String,
+        #[serde(default)]
+        after: f64,
+    },
     /// The end of the step in which the named impulse event acted: the state just after the blow.
     AfterEvent(String),
     /// The end of the first step, when the joints first act: bodies whose initial velocities break a
