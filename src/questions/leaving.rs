@@ -244,10 +244,20 @@ pub(super) fn leaving_analysis(
     let c = leaving_angle_cos_on_convex_circle(g, rho, v_t, cos_a).ok_or(
         "no leaving analysis: the body leaves the circle at once (its speed needs more than the weight's normal part)",
     )?;
-    // G turns about the centre the way its velocity goes; it leaves phi* from the top on that
-    // side (past the top first when it climbs toward it).
-    let side = if v_t >= 0.0 { 1.0 } else { -1.0 };
+    // It leaves phi* from the top on the side it moves toward, once past the top if it climbs
+    // over it (v^2 > 2 g rho (1 - cos phi_a)), else on its own side (angles counter-clockwise).
     let top = up.y.atan2(up.x);
+    let own_side = up.perp_dot(u).signum() * f64::from(up.perp_dot(u).abs() > 1e-12);
+    let moving = v_t.signum() * f64::from(v_t != 0.0);
+    let climbs_over = v_t * v_t > 2.0 * g * rho * (1.0 - cos_a);
+    let side = if own_side == 0.0 || moving * own_side < 0.0 && climbs_over {
+        moving
+    } else {
+        own_side
+    };
+    if side == 0.0 {
+        return Err("no leaving analysis: the body rests balanced on the top (the textbook's body never leaves)".into());
+    }
     let dir = DVec2::from_angle(top + side * c.acos());
     if !arc.spans(dir) {
         return Err(

@@ -11,6 +11,7 @@ mod formula_holds;
 mod impact_lasting;
 mod impact_one_reading;
 mod ladder_release;
+mod leaving_cylinder;
 mod library;
 mod new_quantities;
 mod polar_angle;
