@@ -103,6 +103,8 @@ pub(super) struct Leaving {
     /// the noise, and since; and the gap's acceleration over each step since, (mid-step time, a).
     readings: Vec<Reading>,
     rise: Vec<(f64, f64)>,
+    /// Whether the last sample's gap was past zero.
+    parted: bool,
     /// The first state the body touched the other in, at or after `after` (the analysis's
     /// starting point).
     pub start: Option<std::sync::Arc<Snapshot>>,
@@ -118,6 +120,7 @@ impl Leaving {
             touched: false,
             readings: Vec::new(),
             rise: Vec::new(),
+            parted: false,
             start: None,
         }
     }
@@ -160,7 +163,14 @@ impl Leaving {
             self.rise.push((0.5 * (t0 + s.time), a));
         }
         self.readings.push(r);
+        self.parted = gap > 0.0;
         (gap > SEPARATED && !self.rise.is_empty()).then(|| self.place())?
+    }
+
+    /// At the run's end: where the body left, when its surfaces have parted (a gap past zero,
+    /// its acceleration past the noise for three steps) but not yet by [`SEPARATED`].
+    pub fn at_run_end(&mut self) -> Option<Left> {
+        (self.parted && self.rise.len() >= 3).then(|| self.place())?
     }
 
     /// The instant the gap's acceleration, in a straight line through the first two samples

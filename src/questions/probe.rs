@@ -593,6 +593,14 @@ impl QuestionProbe {
                 self.value = Some(p);
             }
         }
+        // A body parting from the other as the run ends counts as leaving it.
+        if let (When::Leaves { body, other, .. }, false) = (self.def.at.clone(), self.done) {
+            if let Some(left) = self.leaving.as_mut().and_then(Leaving::at_run_end) {
+                let mut at = Reading::lerp(left.from, left.to, left.fraction);
+                self.leaving_analysis((&body, &other), &mut at);
+                self.value = Some(at);
+            }
+        }
         if self.value.is_none() && self.note.is_empty() {
             self.note = match &self.def.at {
                 When::End | When::Time(_) | When::Max(_) | When::Min(_) => "no sample".into(),

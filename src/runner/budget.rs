@@ -81,6 +81,11 @@
 //!   than one substep, is priced at `substeps` calls a step. Measured 2026-12-06:
 //!   levels/kinetics/classic_rolling_disc splits 248 of its 252 steps (996 calls, priced 252
 //!   before), tests/newuser/curved/n7_02 (a ball rolling in a bowl) 588 of 624.
+//! - A smooth ball on an arc: rigidlab splits a step into one-substep calls while a smooth
+//!   dynamic ball rides a fixed `Arc`'s circle (sim/arc_split.rs). The estimate prices it so
+//!   from the start for a smooth dynamic `Circle` in a contact pair with a fixed smooth `Arc`,
+//!   with more than one substep. Measured 2026-12-07: tests/newuser/curved/n14_02 (a puck down a
+//!   ramp arc into a loop, 1/4800 s, 4 substeps) 0.34 s before, 1.09 s split, every step split.
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
 use crate::level::shape as shapes;

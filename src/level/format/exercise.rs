@@ -316,7 +316,8 @@ pub enum Quantity {
     SlipSpeed { body: String, other: String },
     /// The polar angle of the mass center about the world point `about`: atan2(y_G - y_O,
     /// x_G - x_O), rad, counter-clockwise from +x, in (-pi, pi]. Where a body leaves a cylinder
-    /// centered at O. No analysis.
+    /// centered at O. Analysis: at `Leaves` of a smooth `Circle` from the outside of a fixed
+    /// `Arc`, about the arc's centre, the textbook's leaving angle; else none.
     PolarAngle { body: String, about: (f64, f64) },
     /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered, or
     /// averaged over `window` s). Analysis: the one-degree-of-freedom power balance (RE-11):
