@@ -49,6 +49,7 @@ pub mod sim64 {
     pub(crate) const PRECISION: crate::sim::Precision = crate::sim::Precision::F64;
     mod arc_contacts;
     mod arc_curvature;
+    mod arc_split;
     mod arc_track;
     mod build;
     mod contact_points;

@@ -1,6 +1,6 @@
 //! A body whose mass center G rides a circular path: the normal force a circular track gives it
-//! (PN-2 along the path's normal), the radius of G's path for a disc on a circular track, and
-//! the least speed at the top of a vertical loop.
+//! (PN-2 along the path's normal), the radius of G's path for a disc on a circular track, the
+//! least speed at the top of a vertical loop, and where a body leaves a smooth convex circle.
 //!
 //! PN-2 resolves Newton's law along the normal of G's path, toward its center of curvature:
 //! sum F_n = m a_n = m v^2 / rho, v the speed of G along the path. On a track that pushes G
@@ -67,6 +67,25 @@ pub fn normal_force_on_circular_path(
 /// v_top = sqrt(g rho).
 pub fn least_speed_at_loop_top(g: f64, rho: f64) -> f64 {
     (g * rho).sqrt()
+}
+
+/// Where a body whose G rides the outside of a smooth circle (path radius `rho`, gravity `g`
+/// alone besides the track) leaves it: cos(phi*) of G's angle from the circle's highest point.
+/// From a point at phi_a (cos `cos_phi_a`) with speed `v_a` along the path, WE-14 gives
+/// v^2 = v_a^2 + 2 g rho (cos phi_a - cos phi), and PN-2 along the normal,
+/// m g cos phi - N = m v^2 / rho, has N = 0 where g rho cos phi = v^2:
+///   cos phi* = (v_a^2 / (g rho) + 2 cos phi_a) / 3,
+/// the textbook's cos phi* = (v0^2 / (g rho) + 2) / 3 for a release at the top with v0 (2/3 at
+/// rest). None where the body leaves at once (cos phi* >= cos phi_a: the weight's normal part
+/// cannot turn it even there) or the radicand leaves [-1, 1].
+pub fn leaving_angle_cos_on_convex_circle(
+    g: f64,
+    rho: f64,
+    v_a: f64,
+    cos_phi_a: f64,
+) -> Option<f64> {
+    let c = (v_a * v_a / (g * rho) + 2.0 * cos_phi_a) / 3.0;
+    (c.is_finite() && c < cos_phi_a && c > -1.0).then_some(c)
 }
 
 #[cfg(test)]
@@ -137,5 +156,17 @@ mod tests {
         )
         .unwrap();
         assert!(n.abs() < 1e-12, "{n}");
+    }
+
+    #[test]
+    fn a_particle_released_at_rest_on_top_leaves_at_cos_two_thirds() {
+        // The textbook's particle on a smooth hemisphere, nudged from rest at the top: N = 0
+        // where cos phi = 2/3 (48.19 degrees); with v0^2 = g rho, cos phi = 1 (it leaves at once).
+        let c = leaving_angle_cos_on_convex_circle(G, 0.5, 0.0, 1.0).unwrap();
+        assert!((c - 2.0 / 3.0).abs() < 1e-15, "{c}");
+        assert!(leaving_angle_cos_on_convex_circle(G, 0.5, (G * 0.5f64).sqrt(), 1.0).is_none());
+        // n14_14's puck: v0 = 0.5 m/s, rho = 0.55 m: cos phi* = (0.25 / 5.3955 + 2) / 3.
+        let c = leaving_angle_cos_on_convex_circle(G, 0.55, 0.5, 1.0).unwrap();
+        assert!((c - 0.682111636).abs() < 1e-9, "{c}");
     }
 }

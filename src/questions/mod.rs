@@ -50,6 +50,7 @@ mod free_body;
 mod impact_solution;
 mod impacts;
 mod instants;
+mod leaving;
 pub mod level_facts;
 mod linkages;
 mod meter;

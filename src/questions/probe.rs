@@ -6,6 +6,7 @@ use super::contact_events::{PairEvent, PairTracker};
 use super::dispatch::FamilyMeter;
 use super::impact_solution::{Blow, Impact, NO_IMPACT};
 use super::instants::{Extreme, Slip};
+use super::leaving::{self, Leaving};
 use super::level_facts::LevelFacts;
 use super::result::QuestionResult;
 use super::sample::{Occasion, Reading, Sample};
@@ -27,6 +28,8 @@ pub struct QuestionProbe {
     /// The extreme (`MaxOf`, `MinOf`) or the slip event (`SlipEnds`, `SlipStarts`) waited for.
     extreme: Option<Extreme>,
     slip: Option<Slip>,
+    /// The pair `Leaves` waits for.
+    leaving: Option<Leaving>,
     /// The snapshots the next samples still need (their averaging windows).
     hist: VecDeque<Arc<Snapshot>>,
     last: Option<Reading>,
@@ -73,6 +76,10 @@ impl QuestionProbe {
             When::SlipStarts { body, other, after } => Some(Slip::new(body, other, false, *after)),
             _ => None,
         };
+        let leaving = match &def.at {
+            When::Leaves { body, other, after } => Some(Leaving::new(body, other, *after)),
+            _ => None,
+        };
         let pair = match &def.at {
             When::FirstContact { body, other } | When::ContactEnds { body, other } => {
                 Some(PairTracker::new(body, other.as_deref()))
@@ -93,6 +100,7 @@ impl QuestionProbe {
             pair,
             extreme,
             slip,
+            leaving,
             hist: VecDeque::new(),
             last: None,
             last_signal: None,
@@ -378,6 +386,19 @@ impl QuestionProbe {
                 }
                 _ => {}
             },
+            When::Leaves { body, other, .. } => {
+                let r = self.meter.read(sample, Occasion::Plain);
+                let found = match self.leaving.as_mut() {
+                    Some(l) => l.feed(&self.facts, &all[k], r),
+                    None => None,
+                };
+                if let Some(left) = found {
+                    let mut at = Reading::lerp(left.from, left.to, left.fraction);
+                    self.leaving_analysis((&body, &other), &mut at);
+                    self.value = Some(at);
+                    self.done = true;
+                }
+            }
             When::FirstStep => {
                 if sample.cur.step == 1 {
                     self.read_after_blow(sample);
@@ -405,6 +426,29 @@ impl QuestionProbe {
         match slip.closed_form(&self.facts, s) {
             Ok((t, v)) => at.analysis = Some(if which == 0 { t } else { v }),
             Err(why) => self.meter.common.inapplicable = Some(why),
+        }
+    }
+
+    /// At `Leaves`, the textbook's leaving point as the analysis of `PolarAngle` about the arc's
+    /// centre and of `Speed` (sim-free: from the state the body touched in), or why it does not
+    /// apply; other quantities keep their own.
+    fn leaving_analysis(&mut self, pair: (&str, &str), at: &mut Reading) {
+        let Some(want) = leaving::wanted(&self.facts, &self.def.quantity, pair) else {
+            return;
+        };
+        let start = self.leaving.as_ref().and_then(|l| l.start.clone());
+        let found = want.and_then(|w| {
+            let s = start.ok_or("no leaving analysis: the body never touched the other")?;
+            let b = self.facts.body_index(&s, pair.0).ok_or("no body")?;
+            let o = self.facts.body_index(&s, pair.1).ok_or("no body")?;
+            leaving::leaving_analysis(&self.facts, &s, (b, o), w)
+        });
+        match found {
+            Ok(v) => at.analysis = Some(v),
+            Err(why) => {
+                at.analysis = None;
+                self.meter.common.inapplicable = Some(why);
+            }
         }
     }
 
@@ -547,6 +591,14 @@ impl QuestionProbe {
         if !self.done {
             if let Some(p) = self.pending.take() {
                 self.value = Some(p);
+            }
+        }
+        // A body parting from the other as the run ends counts as leaving it.
+        if let (When::Leaves { body, other, .. }, false) = (self.def.at.clone(), self.done) {
+            if let Some(left) = self.leaving.as_mut().and_then(Leaving::at_run_end) {
+                let mut at = Reading::lerp(left.from, left.to, left.fraction);
+                self.leaving_analysis((&body, &other), &mut at);
+                self.value = Some(at);
             }
         }
         if self.value.is_none() && self.note.is_empty() {

@@ -81,6 +81,11 @@
 //!   than one substep, is priced at `substeps` calls a step. Measured 2026-12-06:
 //!   levels/kinetics/classic_rolling_disc splits 248 of its 252 steps (996 calls, priced 252
 //!   before), tests/newuser/curved/n7_02 (a ball rolling in a bowl) 588 of 624.
+//! - A smooth ball on an arc: rigidlab splits a step into one-substep calls while a smooth
+//!   dynamic ball rides a fixed `Arc`'s circle (sim/arc_split.rs). The estimate prices it so
+//!   from the start for a smooth dynamic `Circle` in a contact pair with a fixed smooth `Arc`,
+//!   with more than one substep. Measured 2026-12-07: tests/newuser/curved/n14_02 (a puck down a
+//!   ramp arc into a loop, 1/4800 s, 4 substeps) 0.34 s before, 1.09 s split, every step split.
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
 use crate::level::shape as shapes;
@@ -229,10 +234,11 @@ impl Work {
             steps,
             substeps: set.substeps,
             iterations: set.solver_iterations,
-            // A step with a spinning ball in contact is split as the run goes
-            // (sim/contact_points.rs): priced so from the start.
+            // A step with a spinning ball in contact, or a smooth ball on an arc's circle, is
+            // split as the run goes (sim/contact_points.rs, sim/arc_split.rs): priced so from
+            // the start.
             calls_per_step: if set.substepping == Substepping::Split
-                || (set.substeps > 1 && contacts.spinning_ball)
+                || (set.substeps > 1 && (contacts.spinning_ball || contacts.arc_rider))
             {
                 set.substeps
             } else {
@@ -376,6 +382,42 @@ struct Pairs {
     /// Whether a ball that can spin is in one: a dynamic `Circle`, free to turn, with friction
     /// on or started turning (sim/contact_points.rs splits its steps while it turns).
     spinning_ball: bool,
+    /// Whether a smooth dynamic `Circle` is in one with a fixed `Arc` (sim/arc_split.rs splits
+    /// its steps while it rides the arc's circle).
+    arc_rider: bool,
+}
+
+/// What a body may do in a pair that splits a step (see [`Pairs`]).
+#[derive(Debug, Default, Clone, Copy)]
+struct Splits {
+    may_spin: bool,
+    /// A dynamic `Circle` without friction.
+    smooth_ball: bool,
+    /// A fixed `Arc` without friction.
+    smooth_arc: bool,
+}
+
+impl Splits {
+    fn of(b: &crate::level::BodyDef, friction: bool) -> Splits {
+        let Some(shape) = b.shape.as_ref() else {
+            return Splits::default();
+        };
+        let ball =
+            b.kind == BodyKind::Dynamic && matches!(shape, crate::level::Shape::Circle { .. });
+        let smooth = !friction || b.friction.unwrap_or(0.0) == 0.0;
+        Splits {
+            may_spin: ball && !b.lock_rotation && (friction || b.omega != 0.0),
+            smooth_ball: ball && smooth,
+            smooth_arc: b.kind == BodyKind::Fixed
+                && matches!(shape, crate::level::Shape::Arc { .. })
+                && smooth,
+        }
+    }
+
+    /// Whether the pair of `self` and `other` rides the chord contact.
+    fn arc_rider(self, other: Splits) -> bool {
+        self.smooth_ball && other.smooth_arc || self.smooth_arc && other.smooth_ball
+    }
 }
 
 /// The potential contact pairs at the start: pairs of bodies with shapes, not both fixed, whose
@@ -383,7 +425,7 @@ struct Pairs {
 /// `friction`: whether the run has friction, which turns a ball that rolls.
 fn contact_pairs(level: &Level, friction: bool) -> Pairs {
     const MARGIN: f64 = 0.01;
-    let mut boxes: Vec<(Aabb, bool, bool)> = level
+    let mut boxes: Vec<(Aabb, bool, Splits)> = level
         .bodies
         .iter()
         .filter_map(|b| {
@@ -392,17 +434,14 @@ fn contact_pairs(level: &Level, friction: bool) -> Pairs {
             let finite = [bb.0 .0, bb.0 .1, bb.1 .0, bb.1 .1]
                 .iter()
                 .all(|v| v.is_finite());
-            let may_spin = b.kind == BodyKind::Dynamic
-                && matches!(shape, crate::level::Shape::Circle { .. })
-                && !b.lock_rotation
-                && (friction || b.omega != 0.0);
-            finite.then_some((bb, b.kind == BodyKind::Fixed, may_spin))
+            finite.then_some((bb, b.kind == BodyKind::Fixed, Splits::of(b, friction)))
         })
         .collect();
     boxes.sort_by(|a, b| a.0 .0 .0.total_cmp(&b.0 .0 .0));
     let mut degree = vec![0usize; boxes.len()];
     let mut pairs = 0.0;
     let mut spinning_ball = false;
+    let mut arc_rider = false;
     'sweep: for i in 0..boxes.len() {
         let (a, fixed_a, spin_a) = boxes[i];
         for j in i + 1..boxes.len() {
@@ -416,7 +455,8 @@ fn contact_pairs(level: &Level, friction: bool) -> Pairs {
             degree[i] += 1;
             degree[j] += 1;
             pairs += 1.0;
-            spinning_ball |= spin_a || spin_b;
+            spinning_ball |= spin_a.may_spin || spin_b.may_spin;
+            arc_rider |= spin_a.arc_rider(spin_b);
             if pairs >= PAIRS_COUNTED {
                 break 'sweep;
             }
@@ -427,5 +467,6 @@ fn contact_pairs(level: &Level, friction: bool) -> Pairs {
         pairs,
         degrees: degree.iter().map(|&d| (d as f64).powi(2)).sum(),
         spinning_ball,
+        arc_rider,
     }
 }

@@ -15,6 +15,7 @@ pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precis
 pub mod angles;
 mod arc_contacts;
 mod arc_curvature;
+mod arc_split;
 mod arc_track;
 mod build;
 mod contact_points;

@@ -36,8 +36,9 @@ pub enum Substepping {
 
 /// How a run's steps were really called, counted as it ran: the plan (`Settings::substepping`)
 /// is one call a step of `substeps` internal substeps where nothing needs to see inside a step,
-/// but a step in which a ball spinning in contact is split all the same
-/// (sim/contact_points.rs), and an impact cut divides a call in two (sim/impacts.rs).
+/// but a step in which a ball spinning in contact (sim/contact_points.rs) or a smooth ball on an
+/// `Arc`'s circle (sim/arc_split.rs) is split all the same, and an impact cut divides a call in
+/// two (sim/impacts.rs).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct StepCalls {
     /// Steps taken.
@@ -45,6 +46,9 @@ pub struct StepCalls {
     /// Steps split into one-substep calls for a spinning ball in contact, where the plan was
     /// one call.
     pub split_for_spin: u64,
+    /// Steps split into one-substep calls for a smooth ball riding an `Arc`'s circle (and no
+    /// spinning ball), where the plan was one call.
+    pub split_for_arc: u64,
     /// Steps whose calls an impact cut divided.
     pub cut: u64,
 }
@@ -178,24 +182,28 @@ impl Settings {
         let n = self.substeps;
         let mut s = self.clone();
         let planned_split = self.substepping == Substepping::Split;
-        s.split_steps = if planned_split {
-            calls.steps
-        } else {
-            calls.split_for_spin
-        };
+        let in_run = calls.split_for_spin + calls.split_for_arc;
+        s.split_steps = if planned_split { calls.steps } else { in_run };
         s.cut_steps = calls.cut;
         let spin = "a ball spinning with r w^2 >= 1e-3 g touched something (its contact is \
                     followed exactly only over one-substep calls, sim/contact_points.rs)";
-        if !planned_split && calls.split_for_spin > 0 {
-            if calls.split_for_spin == calls.steps {
+        let arc = "a smooth ball rode an Arc's circle (its chord contact is exact only at a \
+                   call's ends, sim/arc_split.rs)";
+        let why = match (calls.split_for_spin > 0, calls.split_for_arc > 0) {
+            (true, true) => format!("{spin}, or {arc}"),
+            (true, false) => spin.to_string(),
+            _ => arc.to_string(),
+        };
+        if !planned_split && in_run > 0 {
+            if in_run == calls.steps {
                 s.substepping = Substepping::Split;
-                s.substepping_why = format!("one rapier call per substep in every step: {spin}");
+                s.substepping_why = format!("one rapier call per substep in every step: {why}");
             } else {
                 s.substepping = Substepping::Mixed;
                 s.substepping_why = format!(
-                    "{} of {} steps in one rapier call per substep, where {spin}; the others in \
+                    "{} of {} steps in one rapier call per substep, where {why}; the others in \
                      one call with {n} substeps inside ({})",
-                    calls.split_for_spin, calls.steps, self.substepping_why
+                    in_run, calls.steps, self.substepping_why
                 );
             }
         }

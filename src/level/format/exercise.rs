@@ -316,7 +316,8 @@ pub enum Quantity {
     SlipSpeed { body: String, other: String },
     /// The polar angle of the mass center about the world point `about`: atan2(y_G - y_O,
     /// x_G - x_O), rad, counter-clockwise from +x, in (-pi, pi]. Where a body leaves a cylinder
-    /// centered at O. No analysis.
+    /// centered at O. Analysis: at `Leaves` of a smooth `Circle` from the outside of a fixed
+    /// `Arc`, about the arc's centre, the textbook's leaving angle; else none.
     PolarAngle { body: String, about: (f64, f64) },
     /// Torque (pin) or force (slider) the joint's motor applies to body2, N m or N (centered, or
     /// averaged over `window` s). Analysis: the one-degree-of-freedom power balance (RE-11):
@@ -675,6 +676,19 @@ pub enum When {
         body: String,
         #[serde(default)]
         other: Option<String>,
+    },
+    /// The instant `body` leaves `other` (at or after `after` s), by the body's path: where the
+    /// gap between the two surfaces (for an `Arc`, its true circle, not its facets) starts
+    /// growing for good, placed where the gap's acceleration, rising in a straight line after
+    /// the surfaces part, reaches zero (between steps). `body` is a `Circle`, `other` an `Arc`
+    /// on a fixed body or a `Circle`. A smooth `Circle` leaving the outside of a fixed `Arc`
+    /// under gravity alone has the textbook's analysis (`PolarAngle` about the arc's centre,
+    /// `Speed`, `Time`: docs/levels.md).
+    Leaves {
+        body: String,
+        other: String,
+        #[serde(default)]
+        after: f64,
     },
     /// The end of the step in which the named impulse event acted: the state just after the blow.
     AfterEvent(String),

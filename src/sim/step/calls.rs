@@ -144,7 +144,9 @@ impl Simulation {
     pub(super) fn close_calls(&mut self, calls: &CallQueue, dt: f64) {
         self.last_step_cuts = calls.cuts;
         self.calls.steps += 1;
-        if calls.split && calls.n > 1 && self.settings.substepping != Substepping::Split {
+        if calls.split_for_arc {
+            self.calls.split_for_arc += 1;
+        } else if calls.split && calls.n > 1 && self.settings.substepping != Substepping::Split {
             self.calls.split_for_spin += 1;
         }
         if calls.cuts > 0 {

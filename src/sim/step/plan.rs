@@ -1,9 +1,9 @@
 //! The plan of one step's rapier calls: one call of the step's n substeps, or n calls of one
 //! (split substeps), each cut in two where an impact falls in it (sim/impacts.rs).
 
-use super::super::contact_points;
 use super::super::impacts::{IMPACT_CALL, MAX_CUTS};
 use super::super::world::Simulation;
+use super::super::{arc_split, contact_points};
 use crate::sim::settings::Substepping;
 use std::collections::VecDeque;
 
@@ -16,6 +16,8 @@ pub(super) struct CallQueue {
     pub(super) n: usize,
     /// Whether the step is split into calls of one substep.
     pub(super) split: bool,
+    /// Whether it is split for a smooth ball on an `Arc`'s circle alone (sim/arc_split.rs).
+    pub(super) split_for_arc: bool,
     /// How many times the impact planner cut a call of this step.
     pub(super) cuts: usize,
     /// A blow (an impulse event) this step: its first call solves friction to convergence, as
@@ -87,10 +89,14 @@ impl Simulation {
         // contact and joint impulses are summed over the n calls into the step's snapshot.
         let n = self.substeps().max(1);
         // A spinning ball's contact is followed exactly only over one-substep calls
-        // (sim/contact_points.rs).
-        let split = self.settings.substepping == Substepping::Split
-            || (n > 1
-                && contact_points::spinning_ball_touches(&self.world, self.snapshot.step == 0));
+        // (sim/contact_points.rs), and so is a smooth ball's chord contact on an arc
+        // (sim/arc_split.rs).
+        let first_step = self.snapshot.step == 0;
+        let planned = self.settings.substepping == Substepping::Split;
+        let spin = n > 1 && contact_points::spinning_ball_touches(&self.world, first_step);
+        let split_for_arc =
+            n > 1 && !planned && !spin && arc_split::smooth_ball_rides_arc(&self.world, first_step);
+        let split = planned || spin || split_for_arc;
         let pending = if split {
             std::iter::repeat_n((dt / n as f64, 1), n).collect()
         } else {
@@ -100,6 +106,7 @@ impl Simulation {
             pending,
             n,
             split,
+            split_for_arc,
             cuts: 0,
             blow: !self.snapshot.impulses.is_empty(),
             impact_call_next: false,

@@ -13,6 +13,7 @@ mod impact_lasting;
 mod impact_moving_platform;
 mod impact_one_reading;
 mod ladder_release;
+mod leaving_cylinder;
 mod library;
 mod new_quantities;
 mod polar_angle;
