@@ -168,7 +168,11 @@ pub(crate) fn for_ball_on_arc(
             return None;
         }
         // The impact's share of the wanted separation speed (the same e as below).
-        let e_u = if resting && level_e < 1.0 { 0.0 } else { level_e } * u.max(0.0);
+        let e_u = if resting && level_e < 1.0 {
+            0.0
+        } else {
+            level_e
+        } * u.max(0.0);
         let chord = Chord {
             n_half,
             t_half,

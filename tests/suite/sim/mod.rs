@@ -5,6 +5,7 @@ mod closed_forms;
 mod contact_readings;
 mod couplings;
 mod curved_contact_exact;
+mod curved_rough_contact;
 mod determinism;
 mod eccentric_friction;
 mod energy_guard;
