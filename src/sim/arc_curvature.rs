@@ -37,11 +37,13 @@
 //!   centripetal need the rows' impulse falls to zero and the ball leaves the circle, as the
 //!   textbook's N = m g cos(theta) - m v^2 / rho < 0 says.
 //!
-//! Only a smooth pair (no friction): with friction the restitution pass acts after the
-//! substeps' friction rows, so the centripetal impulse it adds is outside their limit, and a
-//! disc rolling in a ring read its speed at the bottom 1.1e-3 low with the chord (1.5e-5 on the
-//! plane; the rolling loop's top 3.1e-3 for 2.4e-3, 2026-12-06, not traced): a rough pair keeps
-//! rapier's plane and its first-order loss (docs/known-gaps.md).
+//! A rough pair inside an arc rides the chord too ([`rough_call`], 2026-12-07): G's chord speed
+//! at the call's end takes the friction impulse the rows will give, and the call's friction
+//! coefficient is scaled so that the rows' bound is mu times the whole normal impulse, the
+//! restitution pass's push (which comes after them) included. A slow roller at coarse steps
+//! loses about 1e-3 of its speed to the chord (the library's ring at 1/240 s; not traced, and
+//! neither the restitution pass nor the friction bound: docs/known-gaps.md). A rough ball
+//! outside an arc keeps rapier's plane and its first-order loss.
 //!
 //! Only a ball on an arc of a fixed body, its centre within the arc's angles (the circle's
 //! manifold), and a dynamic ball: a moving track keeps rapier's plane.

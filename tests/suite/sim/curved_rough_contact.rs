@@ -18,8 +18,8 @@
 //!   With a = 2 mu and u(0) = 0, u = 2 g rho e^(-a theta) Int_0^theta (cos p - mu sin p)
 //!   e^(a p) dp, and Int e^(a p) cos p = e^(a p) (a cos p + sin p) / (1 + a^2),
 //!   Int e^(a p) sin p = e^(a p) (a sin p - cos p) / (1 + a^2):
-//!   u(theta) = 2 g rho e^(-a theta) ([e^(a theta)(a cos(theta) + sin(theta)) - a]
-//!              - mu [e^(a theta)(a sin(theta) - cos(theta)) + 1]) / (1 + a^2).
+//!   u(theta) = 2 g rho e^(-a theta) ([e^(a theta)(a cos(theta) + sin(theta)) - a] minus
+//!   mu [e^(a theta)(a sin(theta) - cos(theta)) + 1]) / (1 + a^2).
 //!   At the bottom of tests/newuser/curved/n7_03 (mu = 0.2, rho = 0.95 m) v = 3.1047335 m/s,
 //!   the user's RK4 to 1e-14.
 
