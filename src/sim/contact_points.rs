@@ -60,6 +60,9 @@ impl PhysicsHooks for RoundContactPoints {
             // (sim/arc_curvature.rs).
             *m.normal = call.normal;
             *m.restitution = call.restitution;
+            if let Some(mu) = call.friction {
+                *m.friction = mu;
+            }
             for sc in m.solver_contacts.iter_mut() {
                 sc.dist = call.dist;
                 if ball1 {
@@ -150,8 +153,7 @@ impl RoundContactPoints {
             return None;
         }
         let rb = context.bodies.get(ball_body?)?;
-        // A rough pair keeps rapier's plane (sim/arc_curvature.rs says why).
-        if !rb.is_dynamic() || m.friction.abs() > 0.0 {
+        if !rb.is_dynamic() {
             return None;
         }
         let center = ball_c.position().translation;
@@ -165,6 +167,12 @@ impl RoundContactPoints {
             center,
             r: ball.radius,
             w: rb.velocity_at_point(center),
+            rough: (m.friction.abs() > 0.0).then(|| super::arc_curvature::Rough {
+                mu: *m.friction,
+                inv_mass: rb.mass_properties().effective_inv_mass.x,
+                inv_inertia: rb.mass_properties().effective_world_inv_inertia,
+                omega: rb.angvel(),
+            }),
         };
         super::arc_curvature::for_ball_on_arc(
             arc,

@@ -6,6 +6,7 @@ mod compound_track;
 mod contact_readings;
 mod couplings;
 mod curved_contact_exact;
+mod curved_rough_contact;
 mod determinism;
 mod eccentric_friction;
 mod energy_guard;
