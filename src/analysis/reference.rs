@@ -30,11 +30,25 @@
 //! Integrator: Dormand-Prince 8(5,3) (`differential-equations`' `dop853`, Hairer-Norsett-Wanner's
 //! DOP853) at rtol [`RTOL`], atol [`ATOL`].
 //!
+//! Rolling contacts (`rolling`): a round body touching a fixed straight face or a fixed `Arc`
+//! at the start, with no slip and no normal speed there, rolls without slip (RK-8), held by two
+//! rows: the gap stays zero (multiplier -N) and the contact point's velocity along the face is
+//! zero (multiplier -F). Both are holonomic on a fixed surface; the gap row is projected with
+//! the joints, the tangent row at the velocity level. Every [`CONTACT_SEGMENT`] s the
+//! textbook's assumptions are checked along the trajectory (N >= 0, |F| <= mu N with the
+//! pair's mu as rapier combines it, the contact point on the face or the arc's sweep); the
+//! first failure is located by bisection and the integration stops with the reason and the
+//! time ("would slip at t = ... (needs |F|/N = ..., mu = ...)", "leaves the surface",
+//! "rolls off the end"). Reactions: [`Instant::reactions`] (joints) and
+//! [`Instant::contacts`] (rolling contacts), from the multipliers at the instant.
+//!
 //! Refused, with the reason ("not applicable: ..."): events (a blow or a weld on contact is an
 //! impact), joint limits (one-sided stops), joints that start apart, position motors, motors with
 //! a force limit, bodies without mass, more than
-//! [`MAX_MOVING_BODIES`] dynamic bodies. Contacts are not modelled: the caller must make sure
-//! none happens (the questions check that the engine's run had none before the reading).
+//! [`MAX_MOVING_BODIES`] dynamic bodies; after t = 0, a touch at the start it cannot hold (a body
+//! that is not round, a moving other body, a corner, a slip or a normal speed at the start).
+//! Contacts made later are not modelled: the caller must make sure none happens (the questions
+//! check that the engine's run had none but the rolling ones before the reading).
 
 mod rolling;
 
@@ -180,6 +194,8 @@ pub struct Reference {
     joint_count: usize,
     /// The rolling contacts found at the start (`rolling`).
     rolling: Vec<rolling::Rolling>,
+    /// Why a touch at the start is outside the reference (then only t = 0 is read).
+    untouched: Option<String>,
 }
 
 /// A body's state in the reference: G, angle and their rates.
@@ -264,8 +280,14 @@ impl Reference {
             loads: forces.loads,
             gravity: forces.gravity,
             joint_count: level.joints.len(),
-            rolling: rolling::rolling_contacts(level)?,
+            rolling: Vec::new(),
+            untouched: None,
         };
+        // A touch the reference cannot hold leaves the start itself readable (t = 0).
+        match rolling::rolling_contacts(level) {
+            Ok(found) => r.rolling = found,
+            Err(why) => r.untouched = Some(why),
+        }
         if has(Effect::Joints) {
             for (k, j) in level.joints.iter().enumerate() {
                 r.add_joint(
@@ -280,7 +302,12 @@ impl Reference {
                 r.add_coupling(c, &index)?;
             }
         }
-        r.add_rolling()?;
+        if let Err(why) = r.add_rolling() {
+            r.constraints
+                .retain(|c| !matches!(c.rule, Rule::Roll { .. }));
+            r.rolling.clear();
+            r.untouched = Some(why);
+        }
         Ok(r)
     }
 
@@ -804,6 +831,13 @@ impl Reference {
     /// start, projected onto the constraints at the start (the level's anchors meet within 0.1
     /// mm, not exactly) and at each segment's end. Err when the integrator fails.
     pub fn integrate(&self, times: &[f64]) -> Result<Trajectory, String> {
+        if let Some(why) = self
+            .untouched
+            .as_ref()
+            .filter(|_| times.iter().any(|t| *t != 0.0))
+        {
+            return Err(why.clone());
+        }
         let mut order: Vec<usize> = (0..times.len()).collect();
         order.sort_by(|&a, &b| times[a].total_cmp(&times[b]));
         let mut y = self.initial_state();

@@ -34,6 +34,8 @@ fn reference(qs: &[QuestionResult], id: &str) -> f64 {
 }
 
 fn near(a: f64, want: f64, rel: f64, what: &str) {
+    // Printed for docs/analysis-and-checks.md's table (`-- --nocapture`).
+    eprintln!("{what}: {:.1e}", (a - want).abs() / want.abs().max(1.0));
     assert!(
         (a - want).abs() <= rel * want.abs().max(1.0),
         "{what}: analysis {a} vs hand answer {want}"
@@ -298,6 +300,7 @@ fn a_disc_slips_off_a_hump_when_its_friction_runs_out() {
     let q = &after[0];
     assert_eq!(q.analysis, None, "{q:?}");
     assert!(q.note.contains("would slip on \"hump\""), "{}", q.note);
+    eprintln!("slip time: {:.1e} s off", (time_in(&q.note) - t_slip).abs());
     assert!(
         (time_in(&q.note) - t_slip).abs() < 1e-4,
         "slip at {} s, hand answer {t_slip} s: {}",
