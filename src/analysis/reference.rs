@@ -311,6 +311,12 @@ impl Reference {
         Ok(r)
     }
 
+    /// Why a reading after t = 0 is outside the reference because of a touch at the start it
+    /// cannot hold (a body that is not round, a slip at the start...), if one is.
+    pub fn refused_after_start(&self) -> Option<&str> {
+        self.untouched.as_deref()
+    }
+
     /// Whether level body i is a dynamic body of the reference (one it integrates).
     pub fn moves(&self, i: usize) -> bool {
         self.bodies.get(i).is_some_and(|b| b.slot.is_some())

@@ -245,8 +245,12 @@ pub(super) fn reference_value(m: &Meter, st: &State, t: f64) -> Result<f64, Stri
         Some(Err(why)) => return Err(why.clone()),
         None => return Err("no reference trajectory was prepared".into()),
     };
-    // A contact that pushed in a step that began before the reading (the meter follows the
-    // whole run, so a later one is seen too, and does not matter).
+    // The reference's own reason first (a touch at the start it cannot hold), then a contact
+    // that pushed in a step that began before the reading (the meter follows the whole run,
+    // so a later one is seen too, and does not matter).
+    if let Some(why) = model.refused_after_start().filter(|_| t > 0.0) {
+        return Err(why.to_string());
+    }
     if let Some((_, why)) = st.contact_seen.as_ref().filter(|(t0, _)| *t0 < t) {
         return Err(why.clone());
     }

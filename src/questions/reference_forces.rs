@@ -6,12 +6,17 @@
 use super::contact_reading::contact_component;
 use super::forces::component_of;
 use super::meter::Meter;
-use crate::analysis::reference::{ContactReaction, Instant};
+use crate::analysis::reference::{ContactReaction, Instant, Reference};
 use crate::level::Quantity;
 use glam::DVec2;
 
-/// The quantity at time t on the reference trajectory, or why the scene is outside it.
-/// `contact_seen`: the first contact of the engine's run the reference does not hold.
+/// Instants a windowed quantity's mean is taken over (the engine averages its steps over the
+/// window): the trapezoid rule on 9 instants across it, none before the start.
+const WINDOW_POINTS: usize = 9;
+
+/// The quantity at time t on the reference trajectory (its mean over the quantity's `window`,
+/// as the engine's), or why the scene is outside it. `contact_seen`: the first contact of the
+/// engine's run the reference does not hold.
 pub(super) fn reference_value(
     m: &Meter,
     contact_seen: Option<&(f64, String)>,
@@ -22,11 +27,38 @@ pub(super) fn reference_value(
         Some(Err(why)) => return Err(why.clone()),
         None => return Err("no reference trajectory was prepared".into()),
     };
-    if let Some((_, why)) = contact_seen.filter(|(t0, _)| *t0 < t) {
+    let window = m.q.averaging_window();
+    let times: Vec<f64> = if window > 0.0 {
+        (0..WINDOW_POINTS)
+            .map(|i| (t + window * (i as f64 / (WINDOW_POINTS - 1) as f64 - 0.5)).max(0.0))
+            .collect()
+    } else {
+        vec![t]
+    };
+    let last = times.iter().copied().fold(t, f64::max);
+    if let Some(why) = model.refused_after_start().filter(|_| last > 0.0) {
+        return Err(why.to_string());
+    }
+    if let Some((_, why)) = contact_seen.filter(|(t0, _)| *t0 < last) {
         return Err(why.clone());
     }
-    let tr = model.integrate(&[t])?;
-    let x = &tr.instants[0];
+    let tr = model.integrate(&times)?;
+    let values = tr
+        .instants
+        .iter()
+        .map(|x| value_at(m, model, x))
+        .collect::<Result<Vec<f64>, String>>()?;
+    let n = values.len();
+    Ok(if n == 1 {
+        values[0]
+    } else {
+        let inner: f64 = values[1..n - 1].iter().sum();
+        (inner + 0.5 * (values[0] + values[n - 1])) / (n - 1) as f64
+    })
+}
+
+/// The quantity at one instant of the reference.
+fn value_at(m: &Meter, model: &Reference, x: &Instant) -> Result<f64, String> {
     let index = |name: &str| {
         m.facts
             .level_index(name)
