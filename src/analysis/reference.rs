@@ -30,11 +30,27 @@
 //! Integrator: Dormand-Prince 8(5,3) (`differential-equations`' `dop853`, Hairer-Norsett-Wanner's
 //! DOP853) at rtol [`RTOL`], atol [`ATOL`].
 //!
+//! Rolling contacts (`rolling`): a round body touching a fixed straight face or a fixed `Arc`
+//! at the start, with no slip and no normal speed there, rolls without slip (RK-8), held by two
+//! rows: the gap stays zero (multiplier -N) and the contact point's velocity along the face is
+//! zero (multiplier -F). Both are holonomic on a fixed surface; the gap row is projected with
+//! the joints, the tangent row at the velocity level. Every [`CONTACT_SEGMENT`] s the
+//! textbook's assumptions are checked along the trajectory (N >= 0, |F| <= mu N with the
+//! pair's mu as rapier combines it, the contact point on the face or the arc's sweep); the
+//! first failure is located by bisection and the integration stops with the reason and the
+//! time ("would slip at t = ... (needs |F|/N = ..., mu = ...)", "leaves the surface",
+//! "rolls off the end"). Reactions: [`Instant::reactions`] (joints) and
+//! [`Instant::contacts`] (rolling contacts), from the multipliers at the instant.
+//!
 //! Refused, with the reason ("not applicable: ..."): events (a blow or a weld on contact is an
 //! impact), joint limits (one-sided stops), joints that start apart, position motors, motors with
 //! a force limit, bodies without mass, more than
-//! [`MAX_MOVING_BODIES`] dynamic bodies. Contacts are not modelled: the caller must make sure
-//! none happens (the questions check that the engine's run had none before the reading).
+//! [`MAX_MOVING_BODIES`] dynamic bodies; after t = 0, a touch at the start it cannot hold (a body
+//! that is not round, a moving other body, a corner, a slip or a normal speed at the start).
+//! Contacts made later are not modelled: the caller must make sure none happens (the questions
+//! check that the engine's run had none but the rolling ones before the reading).
+
+mod rolling;
 
 use crate::analysis::applied_forces::{AppliedForces, LinearSpring, Load, TorsionSpring};
 use crate::analysis::mass::of_body;
@@ -54,6 +70,9 @@ pub const RTOL: f64 = 1e-10;
 pub const ATOL: f64 = 1e-12;
 /// The longest stretch integrated between two projections onto the constraints, s.
 pub const SEGMENT: f64 = 0.05;
+/// The longest stretch between two checks of the rolling contacts' assumptions, s (a
+/// violation found at a check is then located by bisection).
+pub const CONTACT_SEGMENT: f64 = 0.01;
 /// The most dynamic bodies the reference integrates (its linear algebra is dense).
 pub const MAX_MOVING_BODIES: usize = 40;
 /// What a report calls the reference.
@@ -123,6 +142,9 @@ enum Rule {
         c0: f64,
         carrier: Carrier,
     },
+    /// Rolling contact `index` (`rolling`): its `normal` row (the gap stays zero; multiplier
+    /// -N) or its tangent row (the contact point's velocity along the face is zero; -F).
+    Roll { index: usize, normal: bool },
 }
 
 /// Who bears a coupling's reaction besides its terms' bodies (as the engine applies it,
@@ -170,6 +192,10 @@ pub struct Reference {
     loads: Vec<Load>,
     gravity: DVec2,
     joint_count: usize,
+    /// The rolling contacts found at the start (`rolling`).
+    rolling: Vec<rolling::Rolling>,
+    /// Why a touch at the start is outside the reference (then only t = 0 is read).
+    untouched: Option<String>,
 }
 
 /// A body's state in the reference: G, angle and their rates.
@@ -188,12 +214,28 @@ pub struct Reaction {
     pub couple: f64,
 }
 
-/// The reference at one instant: every level body's motion and every level joint's reaction.
+/// A rolling contact's force on its round body at an instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactReaction {
+    /// The round body's and the surface's level indices.
+    pub body: usize,
+    pub other: usize,
+    /// The unit normal from the surface into the body, and the contact point, world.
+    pub n: DVec2,
+    pub point: DVec2,
+    /// The normal force N along n (positive: a push) and the friction force F along t = k x n.
+    pub normal: f64,
+    pub tangential: f64,
+}
+
+/// The reference at one instant: every level body's motion, every level joint's reaction and
+/// every rolling contact's force.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Instant {
     pub t: f64,
     pub bodies: Vec<BodyMotion>,
     pub reactions: Vec<Reaction>,
+    pub contacts: Vec<ContactReaction>,
 }
 
 /// The states at the requested times, and the integration's bookkeeping.
@@ -238,7 +280,14 @@ impl Reference {
             loads: forces.loads,
             gravity: forces.gravity,
             joint_count: level.joints.len(),
+            rolling: Vec::new(),
+            untouched: None,
         };
+        // A touch the reference cannot hold leaves the start itself readable (t = 0).
+        match rolling::rolling_contacts(level) {
+            Ok(found) => r.rolling = found,
+            Err(why) => r.untouched = Some(why),
+        }
         if has(Effect::Joints) {
             for (k, j) in level.joints.iter().enumerate() {
                 r.add_joint(
@@ -253,7 +302,75 @@ impl Reference {
                 r.add_coupling(c, &index)?;
             }
         }
+        if let Err(why) = r.add_rolling() {
+            r.constraints
+                .retain(|c| !matches!(c.rule, Rule::Roll { .. }));
+            r.rolling.clear();
+            r.untouched = Some(why);
+        }
         Ok(r)
+    }
+
+    /// Why a reading after t = 0 is outside the reference because of a touch at the start it
+    /// cannot hold (a body that is not round, a slip at the start...), if one is.
+    pub fn refused_after_start(&self) -> Option<&str> {
+        self.untouched.as_deref()
+    }
+
+    /// Whether level body i is a dynamic body of the reference (one it integrates).
+    pub fn moves(&self, i: usize) -> bool {
+        self.bodies.get(i).is_some_and(|b| b.slot.is_some())
+    }
+
+    /// Whether the reference holds the contact of bodies a and b (level indices) as rolling.
+    pub fn rolls(&self, a: usize, b: usize) -> bool {
+        self.rolling
+            .iter()
+            .any(|c| (c.body, c.surface_body) == (a, b) || (c.body, c.surface_body) == (b, a))
+    }
+
+    /// The rolling contacts' rows, once their start is checked: the disc touches (the
+    /// projection closes the level's rounding) and neither approaches, lifts off nor slips
+    /// (slip or normal speed within 1e-6 of the disc's speed, at least 1e-6 m/s).
+    fn add_rolling(&mut self) -> Result<(), String> {
+        for (index, c) in self.rolling.iter().enumerate() {
+            for normal in [true, false] {
+                self.constraints.push(Constraint {
+                    joint: None,
+                    body1: c.surface_body,
+                    body2: c.body,
+                    anchor1: DVec2::ZERO,
+                    anchor2: c.center,
+                    rule: Rule::Roll { index, normal },
+                });
+            }
+        }
+        let y = self.initial_state();
+        let now = self.state_now(0.0, &y);
+        let rows = self.rows(&now);
+        for (row, c) in rows.iter().zip(&self.constraints) {
+            let Rule::Roll { index, normal } = c.rule else {
+                continue;
+            };
+            let x = &now[c.body2];
+            let tol = 1e-6 * x.v.length().max(1.0);
+            let pair = &self.rolling[index].pair;
+            if row.rate.abs() > tol {
+                return Err(if normal {
+                    format!(
+                        "{pair} {} at the start ({:.3e} m/s along the normal): an impact or a lift-off is outside the reference",
+                        if row.rate < 0.0 { "approaches" } else { "moves off" },
+                        row.rate.abs()
+                    )
+                } else {
+                    format!(
+                        "{pair} slips at the start (slip speed {:.3e} m/s): sliding friction is outside the reference",
+                        row.rate.abs()
+                    )
+                });
+            }
+        }
+        Ok(())
     }
 
     fn add_joint(
@@ -513,6 +630,33 @@ impl Reference {
                 }
                 (Some(value), rate, bias)
             }
+            Rule::Roll { index, normal } => {
+                let rc = &self.rolling[*index];
+                let (c_pos, v_c) = (n2.g + d2, vp2);
+                let fr = rc.surface.frame(c_pos, v_c, rc.radius);
+                let w2 = n2.omega * n2.omega;
+                if *normal {
+                    // gap'' = n . a_C + curvature, a_C = a_G + alpha k x d - omega^2 d.
+                    add(n2.slot, 0, fr.n.x);
+                    add(n2.slot, 1, fr.n.y);
+                    add(n2.slot, 2, fr.n.dot(d2.perp()));
+                    (
+                        Some(fr.gap),
+                        fr.n.dot(v_c),
+                        fr.curvature - w2 * fr.n.dot(d2),
+                    )
+                } else {
+                    // t . v_P = 0 for the material point P at d_c = d - r n from G; its rate
+                    // t . a_G + alpha t . perp(d_c) + t' . v_P - omega^2 t . d (t . perp(n') = 0).
+                    let t = fr.n.perp();
+                    let dc = d2 - rc.radius * fr.n;
+                    let vp = n2.v + k_cross(n2.omega, dc);
+                    add(n2.slot, 0, t.x);
+                    add(n2.slot, 1, t.y);
+                    add(n2.slot, 2, t.dot(dc.perp()));
+                    (None, t.dot(vp), fr.n_rate.perp().dot(vp) - w2 * t.dot(d2))
+                }
+            }
         };
         Row {
             value,
@@ -693,11 +837,26 @@ impl Reference {
     /// start, projected onto the constraints at the start (the level's anchors meet within 0.1
     /// mm, not exactly) and at each segment's end. Err when the integrator fails.
     pub fn integrate(&self, times: &[f64]) -> Result<Trajectory, String> {
+        if let Some(why) = self
+            .untouched
+            .as_ref()
+            .filter(|_| times.iter().any(|t| *t != 0.0))
+        {
+            return Err(why.clone());
+        }
         let mut order: Vec<usize> = (0..times.len()).collect();
         order.sort_by(|&a, &b| times[a].total_cmp(&times[b]));
         let mut y = self.initial_state();
         let mut t = 0.0;
         self.project(t, &mut y);
+        if let Some(why) = self.violation(t, &y) {
+            return Err(why);
+        }
+        let stretch = if self.rolling.is_empty() {
+            SEGMENT
+        } else {
+            CONTACT_SEGMENT
+        };
         let mut drift: f64 = 0.0;
         let mut evaluations = 0;
         let mut out: Vec<Option<Instant>> = vec![None; times.len()];
@@ -707,12 +866,15 @@ impl Reference {
                 return Err(format!("cannot integrate to t = {target}"));
             }
             while t < target {
-                let t1 = (t + SEGMENT).min(target);
-                let (y1, evals) = self.segment(t, t1, &y)?;
+                let t1 = (t + stretch).min(target);
+                let (mut y1, evals) = self.segment(t, t1, &y)?;
                 evaluations += evals;
+                drift = drift.max(self.project(t1, &mut y1));
+                if self.violation(t1, &y1).is_some() {
+                    return Err(self.first_violation(t, &y, t1));
+                }
                 y = y1;
                 t = t1;
-                drift = drift.max(self.project(t, &mut y));
             }
             out[i] = Some(self.instant(t, &y));
         }
@@ -721,6 +883,103 @@ impl Reference {
             drift,
             evaluations,
         })
+    }
+
+    /// Why the state y at t is outside the textbook's rolling without slip, where a rolling
+    /// contact's normal force is negative (the disc would leave the surface), its friction
+    /// exceeds mu N (it would slip), or its contact point has run off the surface's end. The
+    /// forces are the multipliers', judged within 1e-9 of the disc's weight (round-off).
+    fn violation(&self, t: f64, y: &[f64]) -> Option<String> {
+        if self.rolling.is_empty() {
+            return None;
+        }
+        let now = self.state_now(t, y);
+        let (_, _, mu) = self.accelerations(t, y);
+        for (c, rc) in self.contact_forces(&now, &mu).iter().zip(&self.rolling) {
+            let x = &now[rc.body];
+            let d = x.offset(self.bodies[rc.body].com, rc.center);
+            let on = rc.surface.frame(x.g + d, x.v, rc.radius).on_surface;
+            let (name, surface) = (
+                &self.bodies[rc.body].def.name,
+                &self.bodies[rc.surface_body].def.name,
+            );
+            let weight = self.bodies[rc.body].mass * self.gravity.length();
+            let round_off = 1e-9 * (weight + c.normal.abs()) + 1e-12;
+            if c.normal < -round_off {
+                return Some(format!(
+                    "outside the reference: \"{name}\" leaves the surface of \"{surface}\" at t = {t:.5} s (rolling on it needs a normal force of {:.4e} N, a pull)",
+                    c.normal
+                ));
+            }
+            if c.tangential.abs() > rc.mu * c.normal + round_off {
+                let ratio = if c.normal > 0.0 {
+                    format!("{:.4}", c.tangential.abs() / c.normal)
+                } else {
+                    "inf".into()
+                };
+                return Some(format!(
+                    "outside the reference: \"{name}\" would slip on \"{surface}\" at t = {t:.5} s (needs |F|/N = {ratio}, mu = {})",
+                    rc.mu
+                ));
+            }
+            if !on {
+                return Some(format!(
+                    "outside the reference: \"{name}\" rolls off the end of \"{surface}\" at t = {t:.5} s"
+                ));
+            }
+        }
+        None
+    }
+
+    /// The first violation (`violation`) between t0 (state y0, none there) and t1 (one),
+    /// located by bisection to 1e-10 of the stretch.
+    fn first_violation(&self, t0: f64, y0: &[f64], t1: f64) -> String {
+        let at = |t: f64| -> Option<(Vec<f64>, Option<String>)> {
+            let (mut y, _) = self.segment(t0, t, y0).ok()?;
+            self.project(t, &mut y);
+            let why = self.violation(t, &y);
+            Some((y, why))
+        };
+        let (mut lo, mut hi) = (t0, t1);
+        for _ in 0..34 {
+            let mid = 0.5 * (lo + hi);
+            match at(mid) {
+                Some((_, Some(_))) => hi = mid,
+                Some((_, None)) => lo = mid,
+                None => break,
+            }
+        }
+        at(hi)
+            .and_then(|(_, why)| why)
+            .unwrap_or_else(|| format!("outside the reference from t = {hi:.5} s"))
+    }
+
+    /// The rolling contacts' forces on their discs in the motion `now`, from the multipliers.
+    fn contact_forces(&self, now: &[Now], mu: &DVector<f64>) -> Vec<ContactReaction> {
+        let mut out = Vec::with_capacity(self.rolling.len());
+        for (r, c) in self.constraints.iter().enumerate() {
+            let Rule::Roll {
+                index,
+                normal: true,
+            } = c.rule
+            else {
+                continue;
+            };
+            let rc = &self.rolling[index];
+            let x = &now[rc.body];
+            let d = x.offset(self.bodies[rc.body].com, rc.center);
+            let fr = rc.surface.frame(x.g + d, x.point_velocity(d), rc.radius);
+            // The tangent row follows the normal row (`add_rolling`); reactions are -J^T mu.
+            out.push(ContactReaction {
+                body: rc.body,
+                other: rc.surface_body,
+                n: fr.n,
+                point: x.g + d - rc.radius * fr.n,
+                normal: -mu[r],
+                tangential: -mu[r + 1],
+            });
+        }
+        out
     }
 
     fn segment(&self, t0: f64, t1: f64, y: &[f64]) -> Result<(Vec<f64>, usize), String> {
@@ -768,6 +1027,7 @@ impl Reference {
                 })
                 .collect(),
             reactions,
+            contacts: self.contact_forces(&now, &mu),
         }
     }
 
@@ -802,7 +1062,7 @@ impl Reference {
             Rule::Rate {
                 axis_local: None, ..
             } => return (DVec2::ZERO, lambda),
-            Rule::Ratio { .. } => return (DVec2::ZERO, 0.0),
+            Rule::Ratio { .. } | Rule::Roll { .. } => return (DVec2::ZERO, 0.0),
         };
         (lambda * w, lambda * cross(d2, w))
     }

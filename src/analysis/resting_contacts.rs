@@ -42,7 +42,7 @@ type Piece = crate::level::shape::Piece;
 
 /// The convex pieces of a body's shape ([`crate::level::shape::pieces`]), world frame; None
 /// for a shape this model does not read (an arc track, a compound).
-fn pieces(b: &BodyDef) -> Option<Vec<Piece>> {
+pub(crate) fn pieces(b: &BodyDef) -> Option<Vec<Piece>> {
     let at = DVec2::new(b.position.0, b.position.1);
     let w = |p: DVec2| at + DVec2::from_angle(b.angle).rotate(p);
     let local = crate::level::shape::pieces(b.shape.as_ref()?)?;
@@ -58,7 +58,7 @@ fn pieces(b: &BodyDef) -> Option<Vec<Piece>> {
 }
 
 /// The edges of a core: none for a point, one for a segment, the closed loop of a polygon.
-fn edges(core: &[DVec2]) -> Vec<(DVec2, DVec2)> {
+pub(crate) fn edges(core: &[DVec2]) -> Vec<(DVec2, DVec2)> {
     match core.len() {
         0 | 1 => Vec::new(),
         2 => vec![(core[0], core[1])],
@@ -67,7 +67,7 @@ fn edges(core: &[DVec2]) -> Vec<(DVec2, DVec2)> {
 }
 
 /// Distance from p to the segment ab, and where along it (0 to 1) the nearest point is.
-fn to_segment(p: DVec2, a: DVec2, b: DVec2) -> (f64, f64) {
+pub(crate) fn to_segment(p: DVec2, a: DVec2, b: DVec2) -> (f64, f64) {
     let ab = b - a;
     let t = if ab.length_squared() > 0.0 {
         ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
@@ -90,7 +90,7 @@ fn inside(p: DVec2, core: &[DVec2]) -> bool {
 }
 
 /// The gap between two pieces (negative or zero when one's vertex is inside the other).
-fn gap(a: &Piece, b: &Piece) -> f64 {
+pub(crate) fn gap(a: &Piece, b: &Piece) -> f64 {
     let r = a.radius + b.radius;
     if a.core.iter().any(|p| inside(*p, &b.core)) || b.core.iter().any(|p| inside(*p, &a.core)) {
         return -r;

@@ -6,7 +6,9 @@
 use super::level_facts::LevelFacts;
 use super::meter::Meter;
 use super::sample::{Occasion, Reading, Sample};
-use super::{forces, impacts, linkages, motion, periods, rolling, work_and_power};
+use super::{
+    forces, impacts, linkages, motion, periods, reference_forces, rolling, work_and_power,
+};
 use crate::level::{Quantity, QuantityFamily};
 use std::sync::Arc;
 
@@ -117,10 +119,14 @@ impl FamilyMeter {
         }
     }
 
-    /// A motion quantity's value at time t on the reference trajectory, or why there is none.
+    /// A motion or force quantity's value at time t on the reference trajectory, or why there
+    /// is none.
     pub fn reference_value(&self, t: f64) -> Result<f64, String> {
         match &self.state {
             FamilyState::Motion(st) => motion::reference_value(&self.common, st, t),
+            FamilyState::Forces(st) => {
+                reference_forces::reference_value(&self.common, st.contact_seen.as_ref(), t)
+            }
             _ => Err(format!(
                 "{:?} is not read on the reference trajectory",
                 self.common.q

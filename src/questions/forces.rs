@@ -31,12 +31,17 @@ pub(super) struct State {
     /// For a joint reaction: the path work of loads and springs on the moving body since the
     /// start, J (the pivot reaction's omega from work-energy).
     pub path_work: f64,
+    /// The first contact the reference trajectory does not hold (`motion::State`'s).
+    pub contact_seen: Option<(f64, String)>,
 }
 
 /// Accumulates, for a joint reaction, the path work of loads and springs on the moving body
 /// over the step from `prev` to `s` (for the pivot reaction's omega from work-energy), and
 /// judges whether the quantity's analysis applies.
 pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
+    if st.contact_seen.is_none() {
+        st.contact_seen = super::motion::first_contact(m, s).map(|why| (prev.time, why));
+    }
     if let Quantity::ContactForceFrom {
         body,
         other,
@@ -313,7 +318,7 @@ fn contact_force_analysis(
 }
 
 /// A vector's component as `Component` names it, with G the moving body's mass center and O the anchor.
-fn component_of(c: Component, v: DVec2, g: DVec2, o: DVec2) -> f64 {
+pub(super) fn component_of(c: Component, v: DVec2, g: DVec2, o: DVec2) -> f64 {
     let toward = (o - g).normalize_or(DVec2::X);
     match c {
         Component::Magnitude => v.length(),

@@ -273,8 +273,9 @@ impl LevelFacts {
     }
 }
 
-/// The motion quantities the reference trajectory (`analysis::reference`) gives an analysis
-/// value for, read at a time (positions, angles and velocities of bodies and body points).
+/// The quantities the reference trajectory (`analysis::reference`) gives an analysis value
+/// for, read at a time: positions, angles and velocities of bodies and body points, joint
+/// reactions and rolling contacts' forces.
 pub(super) fn served_by_reference(q: &Quantity) -> bool {
     matches!(
         q,
@@ -293,5 +294,10 @@ pub(super) fn served_by_reference(q: &Quantity) -> bool {
             | Quantity::RelativeSpeed(..)
             | Quantity::RelativeAngle(..)
             | Quantity::RelativePointSpeed { .. }
+            | Quantity::JointReaction { .. }
+            | Quantity::JointForce(_)
+            | Quantity::ContactNormalForce { .. }
+            | Quantity::ContactForceFrom { .. }
+            | Quantity::ContactForce(_)
     )
 }

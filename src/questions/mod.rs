@@ -57,6 +57,7 @@ mod meter;
 mod motion;
 mod periods;
 mod probe;
+mod reference_forces;
 mod result;
 mod rolling;
 mod sample;

@@ -22,16 +22,17 @@ pub(super) struct State {
     pub engine_sum: f64,
     /// The angular impulse about the fixed point so far (`AngularMomentumAbout`'s analysis).
     pub analysis_sum: f64,
-    /// The first contact that pushed in the run: the start of the step it pushed in, and which
-    /// bodies, said for a note. The reference trajectory (`analysis::reference`) models no
-    /// contact, so it does not apply to a reading after that.
+    /// The first contact that pushed in the run that the reference trajectory does not hold
+    /// (`analysis::reference` holds rolling contacts found at the start only): the start of
+    /// the step it pushed in, and which bodies, said for a note. The reference does not apply
+    /// to a reading after that.
     pub contact_seen: Option<(f64, String)>,
 }
 
 /// Accumulates the distance travelled over the step from `prev` to `s`.
 pub(super) fn advance(m: &mut Meter, st: &mut State, prev: &Snapshot, s: &Snapshot) {
     if st.contact_seen.is_none() {
-        st.contact_seen = first_contact(s).map(|why| (prev.time, why));
+        st.contact_seen = first_contact(m, s).map(|why| (prev.time, why));
     }
     if m.inapplicable.is_none() {
         m.inapplicable = damped_free_body(m, s);
@@ -216,12 +217,20 @@ pub(super) fn read(m: &Meter, st: &State, f: &Sample, occ: Occasion) -> Option<E
     })
 }
 
-/// The first contact of `s` that pushed, said for a note.
-fn first_contact(s: &Snapshot) -> Option<String> {
-    let c = s.contacts.iter().find(|c| c.pushes())?;
+/// The first contact of `s` that pushed and that the reference trajectory does not hold as a
+/// rolling contact, said for a note.
+pub(super) fn first_contact(m: &Meter, s: &Snapshot) -> Option<String> {
+    let held = |a: usize, b: usize| match m.facts.reference.as_deref() {
+        Some(Ok(model)) => model.rolls(a, b),
+        _ => false,
+    };
+    let c = s
+        .contacts
+        .iter()
+        .find(|c| c.pushes() && !held(c.body1, c.body2))?;
     let name = |i: usize| s.bodies.get(i).map_or("?", |b| b.name.as_str());
     Some(format!(
-        "\"{}\" and \"{}\" touched at t = {:.4} s (the reference trajectory models no contact)",
+        "\"{}\" and \"{}\" touched at t = {:.4} s (the reference trajectory holds only rolling contacts found at the start)",
         name(c.body1),
         name(c.body2),
         s.time
@@ -236,8 +245,12 @@ pub(super) fn reference_value(m: &Meter, st: &State, t: f64) -> Result<f64, Stri
         Some(Err(why)) => return Err(why.clone()),
         None => return Err("no reference trajectory was prepared".into()),
     };
-    // A contact that pushed in a step that began before the reading (the meter follows the
-    // whole run, so a later one is seen too, and does not matter).
+    // The reference's own reason first (a touch at the start it cannot hold), then a contact
+    // that pushed in a step that began before the reading (the meter follows the whole run,
+    // so a later one is seen too, and does not matter).
+    if let Some(why) = model.refused_after_start().filter(|_| t > 0.0) {
+        return Err(why.to_string());
+    }
     if let Some((_, why)) = st.contact_seen.as_ref().filter(|(t0, _)| *t0 < t) {
         return Err(why.clone());
     }

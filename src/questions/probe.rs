@@ -615,29 +615,41 @@ impl QuestionProbe {
                 _ => "the quantity could not be read (too few oscillations, no contact, or a missing item)".into(),
             };
         }
+        // Where the textbook formula's assumptions fail, the general method: the reference
+        // trajectory, when the scene fits it.
+        let source = self.reference_analysis(&mut r);
         // A reading taken before the analysis stopped applying (a contact that stuck after the
         // sample) keeps its analysis.
-        if let (Some(why), None) = (&self.meter.common.inapplicable, r.analysis) {
-            let said = format!("analysis not applicable: {why}; graded on the engine alone");
-            self.note = if self.note.is_empty() {
-                said
+        if let Some(why) = &self.meter.common.inapplicable {
+            let said = if source.is_empty() {
+                r.analysis
+                    .is_none()
+                    .then(|| format!("analysis not applicable: {why}; graded on the engine alone"))
             } else {
-                format!("{}; {said}", self.note)
+                Some(format!(
+                    "the closed form does not apply ({why}): the analysis is the reference trajectory's"
+                ))
             };
+            if let Some(said) = said {
+                self.note = if self.note.is_empty() {
+                    said
+                } else {
+                    format!("{}; {said}", self.note)
+                };
+            }
         }
-        let source = self.reference_analysis(&mut r);
         let mut result = QuestionResult::new(&self.def, r, self.note, student);
         result.analysis_source = source;
         result
     }
 
-    /// A motion quantity read at a time that has no textbook formula gets the reference
-    /// trajectory's value as its analysis (`analysis::reference`); where the scene is outside the
-    /// reference, the note says why. Returns the analysis's source label ("" when not used).
+    /// A motion or force quantity read at a time that has no textbook formula, or whose
+    /// formula's assumptions fail, gets the reference trajectory's value as its analysis
+    /// (`analysis::reference`); where the scene is outside the reference, the note says why.
+    /// Returns the analysis's source label ("" when not used).
     fn reference_analysis(&mut self, r: &mut Reading) -> String {
         let m = &self.meter.common;
         if r.analysis.is_some()
-            || m.inapplicable.is_some()
             || m.configuration_event
             || !super::level_facts::served_by_reference(&m.q)
             || !r.engine.is_finite()

@@ -19,6 +19,7 @@ mod new_quantities;
 mod polar_angle;
 mod quantity_coverage;
 mod reference_applies;
+mod reference_rolling;
 mod rolling_applies;
 mod untuned_levels;
 mod virtual_work;
