@@ -91,6 +91,18 @@ const LISTED: &[(&str, &str, f64, &str)] = &[
         8.6e-3,
         "f32 rounding of a joint reaction in a loop of two soft joints",
     ),
+    // f32 rounding through a coupling's held tension (sim/coupling_tension.rs, 2026-12-07: each
+    // call starts from the last call's tension, and the projection after it takes the
+    // remainder): B's acceleration at dt/4 read 1.444e-3 off (1.016e-4 before the held
+    // tension), the analysis from the same state 1.400e-3; at the level's settings 1.02e-4, at
+    // dt/2 1.93e-4, at 16 substeps 8.65e-4; with --precision f64 2.9e-12 at dt/4. Larger than
+    // the velocity rounding bound of the row above (1.0e-4 here), not traced. 10% margin.
+    (
+        "levels/kinetics/ha_three_block_dependent_motion.ron",
+        "question a_B",
+        1.6e-3,
+        "f32 rounding through a coupling's held tension (known-gaps: f32 velocity in a step's acceleration)",
+    ),
 ];
 
 /// Checks that fail at their level's own settings: (level file, item as printed, why). None.

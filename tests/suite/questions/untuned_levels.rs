@@ -206,16 +206,10 @@ const NEWUSER_OPEN_FINDINGS: &[(&str, &str)] = &[
     // 30 degrees over 0.01 s read 4.4e-2 low at its own settings (now 6.0e-4) and n14_14's
     // leaving angle at 8 substeps 1.06e-2 off (now 8.2e-3 by `ContactEnds`, 3.1e-4 by `Leaves`).
     // The fifteenth new user (tests/newuser/*/n15_*, 2026-12-06, docs/newuser-trials/n15_REPORT.md):
-    // 88 of 92 of their own runs passed. Open, measured at 70b5b06: a loop's N at the top near
-    // the least release height comes in bursts where the puck rides 1 to 5 um off the circle
-    // (n15_01c: 0.01 s window 6.7e-2 low at own settings, 1.33e-1 at 8 substeps, while PN-2 on
-    // the engine's state is 2.8e-2 low; n15_01b at 16 substeps 4.98e-2 high), and the leaving
-    // angle off a cylinder read at `ContactEnds` after the last burst (n15_02a at 16 substeps
-    // 1.06e-2, n15_02b at 8 substeps 1.04e-2, 1e-2 allowed).
-    ("n15_01b_ramp_floor_loop_2p75rho.ron", "question N_top"),
-    ("n15_01c_ramp_floor_loop_2p6rho.ron", "question N_top"),
-    ("n15_02a_puck_off_cylinder_slow.ron", "question polar_leave"),
-    ("n15_02b_puck_off_cylinder_fast.ron", "question polar_leave"),
+    // 88 of their 92 runs passed on 70b5b06. The loop's N at the top near the least release
+    // height (n15_01c: 6.7e-2 low at own settings, 1.33e-1 at 8 substeps; n15_01b 4.98e-2 at 16)
+    // and the leaving angle read at `ContactEnds` (n15_02a/b: 1.04e-2 to 1.06e-2 at 8 and 16
+    // substeps) were fixed on 2026-12-07 by the one-substep calls on an arc (sim/arc_split.rs).
 ];
 
 /// Engine gaps the new user's levels run into, measured (docs/known-gaps.md), each a file and
