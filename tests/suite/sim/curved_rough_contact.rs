@@ -204,7 +204,10 @@ fn a_smooth_ring_pushes_a_puck_with_the_textbooks_force_over_every_window() {
         // (a few 1e-4 of v, twice that in N's v^2 share) leaves N up to 2.5e-3 off the
         // textbook's, measured 2026-12-07; allowed 3e-3 so that a larger loss fails.
         let allowed = if dt > 5e-4 { 3e-2 } else { 3e-3 };
-        assert!(n < allowed, "dt {dt:.3e}: N off by {n:.2e} of the textbook's");
+        assert!(
+            n < allowed,
+            "dt {dt:.3e}: N off by {n:.2e} of the textbook's"
+        );
     }
 }
 
