@@ -3,7 +3,7 @@
 //! expression of them and of `g` (docs/levels.md#parameters).
 //!
 //! A variant is one value per parameter. It is made by writing the level's text with every
-//! expression replaced by its number ([`expand`]), then parsing and validating that text as any
+//! expression replaced by its number (`params::expand`), then parsing and validating that text as any
 //! level, so the level format, serde and validation see only numbers and a level without
 //! parameters is read exactly as before. Errors point back at the original text. A level is
 //! valid when its nominal variant and every corner of its ranges (each parameter at its lowest
@@ -292,7 +292,7 @@ impl Parameterized {
 
     /// Checks the nominal variant and every corner of the ranges: the first that fails, as an
     /// error naming its values. A corner also fails where it puts a colliding body's center
-    /// inside another body that the nominal variant does not ([`overlap`]).
+    /// inside another body that the nominal variant does not (`params::overlap`).
     pub fn check_corners(&self, path: &Path) -> Result<(), LevelError> {
         let nominal = self.make(path, &self.indices(&Pick::Nominal))?;
         let known = overlap::inside_pairs(&nominal.level);
