@@ -327,6 +327,34 @@ impl<'a> Locator<'a> {
         self.pos(hit.unwrap_or(item))
     }
 
+    /// Line and column of the `index`-th `field:` inside the list `list:` of the item named
+    /// `name` of `section` (a question's `mistakes[index].value`), else of `list:`, else of the item.
+    pub fn list_field_pos(
+        &self,
+        section: &str,
+        name: &str,
+        list: &str,
+        index: usize,
+        field: &str,
+    ) -> (usize, usize) {
+        let Some(item) = self.item(section, name, 0) else {
+            return self.section(section);
+        };
+        let open = self.code[..item].rfind('(').unwrap_or(item);
+        let close = matching_close(&self.code, open);
+        let Some(key) = find_key(&self.code[..close], list, open) else {
+            return self.pos(item);
+        };
+        let mut at = key;
+        for _ in 0..=index {
+            match find_key(&self.code[..close], field, at + 1) {
+                Some(hit) => at = hit,
+                None => return self.pos(key),
+            }
+        }
+        self.pos(at)
+    }
+
     /// Position of the `index`-th occurrence of `Variant(` after `section:` (for unnamed items).
     /// The section's items are found in one walk, the first time it is asked about, so locating
     /// every item of a long list costs one pass (it walked the list again for every item).

@@ -53,6 +53,9 @@ pub struct StudentGrade {
     pub answer: f64,
     pub rel_error: f64,
     pub passed: bool,
+    /// The message of the question's typical mistake a wrong answer matches (its `mistakes`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mistake: Option<String>,
 }
 
 /// |x - expected| / |expected| (|x| when expected is 0); a NaN error is infinite.
@@ -70,14 +73,33 @@ fn error_against(expected: f64, x: f64) -> f64 {
 }
 
 /// Grades a student's answer to the question: against the expected answer, to the question's
-/// own student tolerance (default 1 %), not the engine's.
+/// own student tolerance (default 1 %), not the engine's. A wrong answer within that tolerance
+/// of one of the question's typical mistakes gets its message (the nearest, when two are).
 pub fn grade_answer(def: &QuestionDef, answer: f64) -> StudentGrade {
     let rel_error = error_against(def.expected, answer);
+    let passed = rel_error <= def.student_tolerance;
+    let mistake = if passed {
+        None
+    } else {
+        matching_mistake(def, answer)
+    };
     StudentGrade {
         answer,
         rel_error,
-        passed: rel_error <= def.student_tolerance,
+        passed,
+        mistake,
     }
+}
+
+/// The message of the mistake whose value the answer is nearest, among those it is within the
+/// student tolerance of (the error relative to the mistake's value, as to the expected answer's).
+fn matching_mistake(def: &QuestionDef, answer: f64) -> Option<String> {
+    def.mistakes
+        .iter()
+        .map(|m| (error_against(m.value, answer), m))
+        .filter(|(e, _)| *e <= def.student_tolerance)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, m)| m.message.clone())
 }
 
 impl QuestionResult {

@@ -215,6 +215,9 @@ fn table_text(report: &Report) -> String {
                     if s.passed { "correct" } else { "wrong" },
                     s.rel_error
                 );
+                if let Some(m) = &s.mistake {
+                    out += &format!("      typical mistake: {m}\n");
+                }
             }
         }
     }

@@ -85,7 +85,7 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
             if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {
                 let show = st.grades[k]
                     .as_ref()
-                    .is_some_and(|g| matches!(g, Ok((_, _, true))));
+                    .is_some_and(|g| g.as_ref().is_ok_and(|g| g.passed));
                 if show {
                     ui.label(rich(
                         format!(
@@ -112,8 +112,9 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
     }
 }
 
-/// A typed answer's grade: (answer, relative error, passed), or why the answer could not be read.
-pub type Grade = Result<(f64, f64, bool), String>;
+/// A typed answer's grade (answer, relative error, passed, the typical mistake it matches), or
+/// why the answer could not be read.
+pub type Grade = Result<crate::questions::StudentGrade, String>;
 
 /// What the student reads after submitting an answer, and whether it was right. The tolerance
 /// printed is the one that graded it, the question's `student_tolerance` (the level's
@@ -121,25 +122,29 @@ pub type Grade = Result<(f64, f64, bool), String>;
 pub fn grade_message(q: &crate::level::QuestionDef, g: &Grade) -> (String, bool) {
     let tolerance = q.student_tolerance;
     match g {
-        Ok((_, err, true)) => (
+        Ok(g) if g.passed => (
             format!(
                 "✔ correct: off by {:.2}% (tolerance {:.2}%)",
-                err * 100.0,
+                g.rel_error * 100.0,
                 tolerance * 100.0
             ),
             true,
         ),
-        Ok((_, err, false)) => {
+        Ok(g) => {
+            let err = g.rel_error;
             // (No ✘: the window's fonts have no glyph for it, it drew as a box.)
-            // |v - a| / |a| = 2 within tolerance: the magnitude is right, the sign is not.
-            let sign = if (err - 2.0).abs() <= tolerance {
-                "; the magnitude is right: check the sign"
-            } else {
-                ""
+            // The level's own typical mistake first (the grading found it); else |v - a| / |a|
+            // = 2 within tolerance: the magnitude is right, the sign is not.
+            let hint = match &g.mistake {
+                Some(m) => format!(": {m}"),
+                None if (err - 2.0).abs() <= tolerance => {
+                    "; the magnitude is right: check the sign".to_string()
+                }
+                None => String::new(),
             };
             (
                 format!(
-                    "not yet: off by {:.2}% (tolerance {:.2}%){sign}",
+                    "not yet: off by {:.2}% (tolerance {:.2}%){hint}",
                     err * 100.0,
                     tolerance * 100.0
                 ),
@@ -154,6 +159,5 @@ pub fn grade_message(q: &crate::level::QuestionDef, g: &Grade) -> (String, bool)
 /// after converting a unit typed with it (`523.4 in/s`) to the question's (`questions::units`).
 pub fn grade(q: &crate::level::QuestionDef, text: &str) -> Grade {
     let v = crate::questions::units::answer_in(text, &q.unit)?;
-    let g = crate::questions::grade_answer(q, v);
-    Ok((g.answer, g.rel_error, g.passed))
+    Ok(crate::questions::grade_answer(q, v))
 }

@@ -152,6 +152,7 @@ impl QuestionForm {
                 quantity,
                 at,
                 why: self.why.trim().to_string(),
+                mistakes: Vec::new(),
             },
             self.compute,
         ))

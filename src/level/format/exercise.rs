@@ -90,6 +90,22 @@ pub struct QuestionDef {
     /// Why the tolerance is what it is.
     #[serde(default)]
     pub why: String,
+    /// Typical wrong answers, each with the message a student who gives it reads
+    /// (docs/levels.md#mistakes).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub mistakes: Vec<Mistake>,
+}
+
+/// A typical wrong answer to a question (forgetting an inertia, I_G where I_O is needed, a
+/// sign): a student's answer within the question's `student_tolerance` of `value` (and not
+/// right) gets `message`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mistake {
+    /// The wrong answer, in the question's unit (a number or an expression, like `expected`).
+    pub value: f64,
+    /// What the student reads: what was probably done wrong, not the right answer.
+    pub message: String,
 }
 
 fn default_student_tolerance() -> f64 {

@@ -87,6 +87,7 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
         question_ref(v, q, kind, name, "quantity")?;
     }
     question_unit(v, q)?;
+    question_mistakes(v, q)?;
     match &q.at {
         When::Time(t) | When::Max(t) | When::Min(t) => {
             v.non_negative(*t, "question time", "s", at("at"))?
@@ -515,4 +516,49 @@ fn leaves_shapes(v: &V, q: &QuestionDef, body: &str, other: &str) -> R {
         ),
         "make `body` the Circle and `other` the fixed Arc (or Circle) it rides, or read the end of the contact's push with `at: ContactEnds(body: .., other: ..)`",
     ))
+}
+
+/// Each typical mistake: a finite value that an answer can be told apart from the right one by
+/// (a mistake within the student tolerance of the expected answer would be graded right, or the
+/// right answer given its message), and a message to show.
+fn question_mistakes(v: &V, q: &QuestionDef) -> R {
+    let tol = q.student_tolerance;
+    for (i, m) in q.mistakes.iter().enumerate() {
+        let at = v
+            .loc
+            .list_field_pos("questions", &q.id, "mistakes", i, "value");
+        let what = format!("question \"{}\" mistakes[{i}] value", q.id);
+        v.finite(m.value, &what, at)?;
+        if m.message.trim().is_empty() {
+            return Err(v.err(
+                at,
+                format!("question \"{}\" mistakes[{i}] has an empty `message`", q.id),
+                "write what the student probably did wrong: `message: \"...\"`",
+            ));
+        }
+        if indistinct(q.expected, m.value, tol) {
+            return Err(v.err(
+                at,
+                format!(
+                    "{what} {} is within the student tolerance {tol} of the expected answer {}: an answer there is graded right, so the mistake could never be told apart",
+                    m.value, q.expected
+                ),
+                "give the wrong answer the mistake leads to (derive it in a comment), or remove the mistake",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether `value` is within `tol` of `expected` by the grading rule (`questions::grade_answer`:
+/// relative, absolute against 0), measured from either one.
+fn indistinct(expected: f64, value: f64, tol: f64) -> bool {
+    let rel = |reference: f64, x: f64| {
+        if reference == 0.0 {
+            x.abs()
+        } else {
+            (x - reference).abs() / reference.abs()
+        }
+    };
+    rel(expected, value) <= tol || rel(value, expected) <= tol
 }

@@ -189,6 +189,7 @@ fn question() -> QuestionDef {
         quantity: Quantity::Omega("bar1".into()),
         at: When::Min(0.0),
         why: "rapier's energy loss on a pinned swing, first order in dt: 4.8e-3 at 1/60 s".into(),
+        mistakes: Vec::new(),
     }
 }
 

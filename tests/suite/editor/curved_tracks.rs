@@ -59,6 +59,7 @@ fn loop_edits() -> Vec<Edit> {
             quantity: Quantity::Speed("disc1".into()),
             at,
             why: "the loop's facets take energy in proportion to dt (docs/known-gaps.md)".into(),
+            mistakes: Vec::new(),
         }))
     };
     vec![

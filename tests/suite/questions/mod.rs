@@ -15,6 +15,7 @@ mod impact_one_reading;
 mod ladder_release;
 mod leaving_cylinder;
 mod library;
+mod mistakes;
 mod new_quantities;
 mod polar_angle;
 mod quantity_coverage;
