@@ -555,6 +555,16 @@ fn replace_question(
             level.questions.len()
         ));
     };
+    // The window's question form has no place for typical mistakes: a rewrite that leaves
+    // them out keeps the old ones while the question still asks for the same quantity in the
+    // same unit (their values are answers to it); a new quantity makes them meaningless.
+    let mut question = question.clone();
+    if question.mistakes.is_empty()
+        && question.quantity == slot.quantity
+        && question.unit == slot.unit
+    {
+        question.mistakes = std::mem::take(&mut slot.mistakes);
+    }
     *slot = question.clone();
     Ok(format!(
         "question {} rewritten: {}",

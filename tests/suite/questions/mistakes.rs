@@ -163,3 +163,25 @@ fn check_answer_prints_the_message_and_json_carries_it() {
         "{t}"
     );
 }
+
+/// The window's question form cannot show `mistakes`: rewriting a question through it (a new
+/// wording, the same quantity and unit) keeps them; a rewrite to another quantity drops them,
+/// since their values answered the old one.
+#[test]
+fn a_rewritten_question_keeps_its_mistakes_while_it_asks_the_same_quantity() {
+    use rigidlab::editor::{self, Edit};
+    let scene = common::load("levels/kinetics/classic_atwood_massive_pulley.ron");
+    let mut q = atwood_a();
+    q.mistakes.clear();
+    q.ask = "Acceleration of block A, y component".into();
+    let edit = |q: &QuestionDef| Edit::ReplaceQuestion {
+        index: 0,
+        question: Box::new(q.clone()),
+    };
+    let (kept, _) = editor::apply(&scene, &edit(&q)).unwrap();
+    assert_eq!(kept.level.questions[0].ask, q.ask);
+    assert_eq!(kept.level.questions[0].mistakes, atwood_a().mistakes);
+    q.quantity = level::Quantity::Ay("B".into());
+    let (other, _) = editor::apply(&scene, &edit(&q)).unwrap();
+    assert!(other.level.questions[0].mistakes.is_empty());
+}
