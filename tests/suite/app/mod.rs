@@ -10,6 +10,7 @@ mod key_chords;
 mod label_placement;
 mod measure;
 mod mouse_tools;
+mod names_overlay;
 mod playback;
 mod plot_labels;
 mod plugins;
