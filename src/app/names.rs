@@ -2,7 +2,7 @@
 //! scene says what the statement names (the cars A to F, a four-bar's O2, A, B, O4).
 //!
 //! A name's home is just outside its body, on the side away from the scene's middle (where the
-//! free space usually is), never on the body's center; the label placer (`labels.rs`) then moves
+//! free space usually is), turned toward a long body's thin side, never on the body's center; the label placer (`labels.rs`) then moves
 //! it off other labels and bodies. A joint's name is pushed from its anchor away from the mass
 //! centers of the bodies it joins, so it does not sit on the links.
 
@@ -30,8 +30,9 @@ pub fn names(
     let middle = middle(s, &shown);
     for &i in &shown {
         let b = &s.bodies[i];
-        let dir = away(b.com - middle);
-        let at = b.com + dir * reach(&outlines[i], b.position, b.angle, b.com, dir);
+        let o = &outlines[i];
+        let dir = heading(o, b.position, b.angle, b.com, away(b.com - middle));
+        let at = b.com + dir * reach(o, b.position, b.angle, b.com, dir);
         d.tip_label(at, dir, b.name.clone(), palette::TEXT);
     }
     if shown.len() > MANY {
@@ -99,6 +100,37 @@ fn away(v: DVec2) -> DVec2 {
     }
 }
 
+/// The way a body's name goes: `away`, turned toward the body's thin side in proportion to how
+/// long the body is (its corners' second moments: k = 1 - sqrt(minor / major), 0 for a square or
+/// a disc, 0.95 for a bar 20 times as long as it is thick). A link's name then sits beside it
+/// instead of past its far end (the four-bar's coupler was named 0.1 m beyond its end, as far
+/// from it as from the crank), and the way turns continuously with the body, so the name does
+/// not hop from one side to another as it swings (the pendulum's labels hold their places).
+fn heading(o: &Outline, position: DVec2, angle: f64, com: DVec2, away: DVec2) -> DVec2 {
+    let r = DVec2::from_angle(angle);
+    let (mut xx, mut xy, mut yy) = (0.0, 0.0, 0.0);
+    for p in o.filled.iter().flatten() {
+        let q = position + r.rotate(*p) - com;
+        xx += q.x * q.x;
+        xy += q.x * q.y;
+        yy += q.y * q.y;
+    }
+    let half_gap = (0.25 * (xx - yy) * (xx - yy) + xy * xy).sqrt();
+    let (major, minor) = (0.5 * (xx + yy) + half_gap, 0.5 * (xx + yy) - half_gap);
+    if major <= 0.0 || !major.is_finite() {
+        return away;
+    }
+    let k = 1.0 - (minor.max(0.0) / major).sqrt();
+    let u = DVec2::from_angle(0.5 * (2.0 * xy).atan2(xx - yy));
+    let d = away - k * away.dot(u) * u;
+    let len = d.length();
+    if len > 1e-9 {
+        d / len
+    } else {
+        away
+    }
+}
+
 /// How far the body reaches from `com` along `dir`, m: the largest projection of its outline's
 /// corners (its edge on that side), so the name starts past the body.
 fn reach(o: &Outline, position: DVec2, angle: f64, com: DVec2, dir: DVec2) -> f64 {
@@ -125,6 +157,41 @@ mod tests {
         assert_eq!(away(DVec2::new(3.0, 4.0)), DVec2::new(0.6, 0.8));
         assert_eq!(away(DVec2::ZERO), DVec2::Y);
         assert_eq!(away(DVec2::NAN), DVec2::Y);
+    }
+
+    #[test]
+    fn a_long_link_is_named_beside_its_middle() {
+        // A 2 m by 0.1 m bar turned 30 degrees, the middle straight below it. Straight up, the
+        // bar reaches 1 sin 30 + 0.05 cos 30 = 0.543 m (past its end). Its corners' moments
+        // are 4 (along) and 0.01 (across): k = 1 - 0.05 = 0.95, the way is up less 0.95 of its
+        // part along the bar, (0, 1) - 0.475 (cos 30, sin 30) = (-0.411, 0.763), unit
+        // (-0.475, 0.880); the bar reaches 1 |d.u| + 0.05 |d.n| = 0.0289 + 0.0500 = 0.0789 m.
+        let o = Outline {
+            filled: vec![vec![
+                DVec2::new(-1.0, -0.05),
+                DVec2::new(1.0, -0.05),
+                DVec2::new(1.0, 0.05),
+                DVec2::new(-1.0, 0.05),
+            ]],
+            ..Default::default()
+        };
+        let a = 30f64.to_radians();
+        let d = heading(&o, DVec2::ZERO, a, DVec2::ZERO, DVec2::Y);
+        assert!((d - DVec2::new(-0.4748, 0.8801)).length() < 1e-3, "{d}");
+        let out = reach(&o, DVec2::ZERO, a, DVec2::ZERO, d);
+        assert!((out - 0.0789).abs() < 1e-3, "{out}");
+        // A square keeps the way away from the middle.
+        let sq = Outline {
+            filled: vec![vec![
+                DVec2::new(-1.0, -1.0),
+                DVec2::new(1.0, -1.0),
+                DVec2::new(1.0, 1.0),
+                DVec2::new(-1.0, 1.0),
+            ]],
+            ..Default::default()
+        };
+        let v = DVec2::new(0.6, 0.8);
+        assert!((heading(&sq, DVec2::ZERO, 0.3, DVec2::ZERO, v) - v).length() < 1e-12);
     }
 
     #[test]
