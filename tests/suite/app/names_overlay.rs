@@ -35,9 +35,13 @@ struct Named {
     body: Vec<Vec2>,
 }
 
+/// What [`drawn`] returns: the labels (text, rectangle), the things named, the bodies on screen
+/// and the view.
+type Drawn = (Vec<(String, Rect)>, Vec<Named>, Vec<Vec<Vec2>>, Rect);
+
 /// The level `file` after `steps` steps, drawn with the student's overlays and placed: the labels'
 /// texts and rectangles, the things named, the bodies on screen and the view.
-fn drawn(file: &Path, steps: usize) -> (Vec<(String, Rect)>, Vec<Named>, Vec<Vec<Vec2>>, Rect) {
+fn drawn(file: &Path, steps: usize) -> Drawn {
     let scene = level::load(file).unwrap();
     let mut phys = Run::new(scene.clone(), Options::default());
     for _ in 0..steps {
