@@ -747,11 +747,11 @@ fn kinetic_diagram(
     }
     let to_world = geometry::place(o, b.position + shift, b.angle);
     for poly in &o.filled {
-        d.prims.push(Prim::Poly(
-            poly.iter().map(|p| to_world(*p)).collect(),
-            true,
-            palette::OUTLINE,
-        ));
+        let copy: Vec<DVec2> = poly.iter().map(|p| to_world(*p)).collect();
+        // The copy is a body to the label placer: its sums box and the other labels were laid
+        // over it (issue 42: 190 labels over a copy on the library, 11 after).
+        d.bodies.push(copy.clone());
+        d.prims.push(Prim::Poly(copy, true, palette::OUTLINE));
     }
     let g = b.com + shift;
     d.prims.push(Prim::Circle(g, 3.0 * px, palette::OUTLINE));

@@ -7,6 +7,7 @@ mod exercise_questions;
 mod help_tour;
 mod inspector_fields;
 mod key_chords;
+mod kinetic_copy;
 mod label_placement;
 mod measure;
 mod mouse_tools;
