@@ -21,6 +21,7 @@ pub mod frame_cost;
 pub mod frame_rate;
 pub mod geometry;
 pub mod labels;
+pub mod names;
 pub mod overlay_systems;
 pub mod overlays;
 #[cfg(target_arch = "wasm32")]
@@ -55,7 +56,7 @@ use std::path::Path;
 
 /// Renders `scene` at simulated time `time` into a PNG at `out`.
 ///
-/// The overlays are velocity, free-body diagram, trails and labels; `RIGIDLAB_OVERLAYS=vacfkhtl`
+/// The overlays are velocity, free-body diagram, trails and labels; `RIGIDLAB_OVERLAYS=vacfkhtln`
 /// (letters as the sandbox keys) picks others.
 pub fn render(scene: &Scene, time: f64, out: &Path) -> Result<(), String> {
     let mut opts = render::RenderOptions::default();

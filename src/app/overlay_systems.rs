@@ -20,6 +20,7 @@ impl Plugin for OverlaysPlugin {
             .add_systems(
                 Update,
                 (
+                    names.run_if(on(Overlay::Names)),
                     trails.run_if(on(Overlay::Trails)),
                     velocity.run_if(on(Overlay::Velocity)),
                     acceleration.run_if(on(Overlay::Acceleration)),
@@ -61,6 +62,10 @@ impl OverlayInput<'_> {
             &mut self.drawing,
         );
     }
+}
+
+fn names(mut input: OverlayInput) {
+    input.draw(Overlay::Names);
 }
 
 fn trails(mut input: OverlayInput) {

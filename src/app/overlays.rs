@@ -4,6 +4,7 @@
 
 use super::draw::{si, Drawing, Prim};
 use super::geometry::{self, Outline};
+use super::names;
 use super::quantities::{self, ForceKind};
 use super::run::Run;
 use super::view::palette;
@@ -34,6 +35,8 @@ pub struct Overlays {
     pub trails: bool,
     /// L: magnitudes next to the arrows.
     pub labels: bool,
+    /// N: each body's and joint's name beside it (on by default: the statement names them).
+    pub names: bool,
     /// The body the diagrams are about (None: every moving body when there are few).
     pub selected: Option<usize>,
     /// A clicked point, in the selected body's frame.
@@ -59,6 +62,7 @@ impl Default for Overlays {
             momentum: false,
             trails: true,
             labels: true,
+            names: true,
             selected: None,
             point: None,
             origin: DVec2::ZERO,
@@ -225,6 +229,7 @@ impl<'a> Frame<'a> {
 /// One overlay: what draws it and the switch that turns it on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Overlay {
+    Names,
     Trails,
     Velocity,
     Acceleration,
@@ -237,7 +242,10 @@ pub enum Overlay {
 
 impl Overlay {
     /// Every overlay in drawing order (later ones over earlier ones, their labels placed after).
-    pub const ALL: [Overlay; 8] = [
+    /// The names come first: their labels take the spots beside the bodies, the magnitudes
+    /// find room around them.
+    pub const ALL: [Overlay; 9] = [
+        Overlay::Names,
         Overlay::Trails,
         Overlay::Velocity,
         Overlay::Acceleration,
@@ -251,6 +259,7 @@ impl Overlay {
     /// Whether `ov` turns it on (the blows of the last step are always drawn).
     pub fn is_on(self, ov: &Overlays) -> bool {
         match self {
+            Overlay::Names => ov.names,
             Overlay::Trails => ov.trails,
             Overlay::Velocity => ov.velocity,
             Overlay::Acceleration => ov.acceleration,
@@ -272,6 +281,7 @@ impl Overlay {
     ) {
         let f = Frame::new(ov, phys, outlines, scales, d.m_per_px);
         match self {
+            Overlay::Names => names::names(f.s, &phys.sim.level.joints, outlines, ov.selected, d),
             Overlay::Trails => trails(&f, d),
             Overlay::Velocity => velocities(&f, d),
             Overlay::Acceleration => accelerations(&f, d),
@@ -284,7 +294,7 @@ impl Overlay {
     }
 }
 
-/// Builds every enabled overlay into `d`, in drawing order ([`Overlay::ALL`]): trails,
+/// Builds every enabled overlay into `d`, in drawing order ([`Overlay::ALL`]): names, trails,
 /// velocities, accelerations, instantaneous centers, centers of percussion, free-body and
 /// kinetic diagrams, blows, H_O. The window draws them with one system each
 /// (`overlay_systems.rs`), in the same order.
@@ -737,11 +747,11 @@ fn kinetic_diagram(
     }
     let to_world = geometry::place(o, b.position + shift, b.angle);
     for poly in &o.filled {
-        d.prims.push(Prim::Poly(
-            poly.iter().map(|p| to_world(*p)).collect(),
-            true,
-            palette::OUTLINE,
-        ));
+        let copy: Vec<DVec2> = poly.iter().map(|p| to_world(*p)).collect();
+        // The copy is a body to the label placer: its sums box and the other labels were laid
+        // over it (issue 42: 190 labels over a copy on the library, 11 after).
+        d.bodies.push(copy.clone());
+        d.prims.push(Prim::Poly(copy, true, palette::OUTLINE));
     }
     let g = b.com + shift;
     d.prims.push(Prim::Circle(g, 3.0 * px, palette::OUTLINE));
@@ -855,7 +865,7 @@ fn free_side(
     best.0
 }
 
-/// Keys: V A C F K H T L toggle the overlays.
+/// Keys: V A C F K H T L N toggle the overlays.
 pub fn overlay_keys(
     keys: Res<ButtonInput<KeyCode>>,
     mut ov: ResMut<Overlays>,
@@ -877,6 +887,7 @@ pub fn overlay_keys(
         (KeyCode::KeyH, &mut ov.momentum),
         (KeyCode::KeyT, &mut ov.trails),
         (KeyCode::KeyL, &mut ov.labels),
+        (KeyCode::KeyN, &mut ov.names),
     ] {
         if keys.just_pressed(key) {
             *flag = !*flag;

@@ -45,6 +45,7 @@ impl Default for RenderOptions {
                 free_body: true,
                 trails: true,
                 labels: true,
+                names: false,
                 ..Overlays::default()
             },
         }
@@ -52,8 +53,9 @@ impl Default for RenderOptions {
 }
 
 impl RenderOptions {
-    /// Overlays from letters as the sandbox keys name them: v a c f k h t l
-    /// (velocity, acceleration, instant center, free body, kinetic, momentum, trails, labels).
+    /// Overlays from letters as the sandbox keys name them: v a c f k h t l n
+    /// (velocity, acceleration, instant center, free body, kinetic, momentum, trails, labels,
+    /// names).
     pub fn overlays_from_letters(letters: &str) -> Result<Overlays, String> {
         let mut o = Overlays {
             velocity: false,
@@ -64,6 +66,7 @@ impl RenderOptions {
             momentum: false,
             trails: false,
             labels: false,
+            names: false,
             ..Overlays::default()
         };
         for c in letters.chars().filter(|c| !c.is_whitespace() && *c != ',') {
@@ -76,10 +79,11 @@ impl RenderOptions {
                 'h' => o.momentum = true,
                 't' => o.trails = true,
                 'l' => o.labels = true,
+                'n' => o.names = true,
                 other => {
                     return Err(format!(
-                        "unknown overlay `{other}`: use letters from vacfkhtl \
-                         (velocity, acceleration, instant center, free body, kinetic, momentum, trails, labels)"
+                        "unknown overlay `{other}`: use letters from vacfkhtln \
+                         (velocity, acceleration, instant center, free body, kinetic, momentum, trails, labels, names)"
                     ))
                 }
             }

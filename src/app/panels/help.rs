@@ -169,5 +169,6 @@ fn overlays() -> Vec<(&'static str, &'static str, bevy::color::Color)> {
         ("H", "angular momentum about O", palette::MOMENTUM),
         ("T", "trails of G", palette::TRAIL),
         ("L", "labels with magnitudes", palette::TEXT),
+        ("N", "names of bodies and joints", palette::TEXT),
     ]
 }

@@ -412,7 +412,7 @@ fn status_bar(root: &mut egui::Ui, p: &mut PanelInput) {
             }
             ui.label(
                 "Space play/pause · S step · Left back · R reset · −/= time scale · wheel zoom · right-drag pan · Home fit · \
-                 1 select/drag · 2 impulse · 3 set O · V A C F K H T L overlays · F12 screenshot · F1 help",
+                 1 select/drag · 2 impulse · 3 set O · V A C F K H T L N overlays · F12 screenshot · F1 help",
             );
         });
     });

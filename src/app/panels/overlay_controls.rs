@@ -26,6 +26,8 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
         ui.checkbox(&mut ov.trails, "trails (T)");
         ui.checkbox(&mut ov.labels, "magnitudes (L)");
         ui.end_row();
+        ui.checkbox(&mut ov.names, "names (N)");
+        ui.end_row();
     });
     // Always there, greyed while the free-body diagram is off: a row that came with F (the key
     // too) moved the tools below it.

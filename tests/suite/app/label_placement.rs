@@ -152,7 +152,9 @@ fn labels_never_cover_each_other_and_stay_in_view() {
 
 /// Levels whose bodies fill the view, so no free spot lies near their labels' points: (file,
 /// the most labels that may sit on a body, as measured on 2026-11-27: 8; 7 on 2026-11-26).
-const CROWDED: &[(&str, usize)] = &[("levels/energy/rubbing_discs_friction_work.ron", 8)];
+/// On 2026-12-07 the kinetic diagrams' copies became bodies to the placer (and to this count):
+/// 18, the 8 on bodies plus the labels over the copies, which were not counted before.
+const CROWDED: &[(&str, usize)] = &[("levels/energy/rubbing_discs_friction_work.ron", 18)];
 
 /// The placer's own rules on a constructed case: three labels wanting one spot beside a body.
 #[test]
