@@ -565,6 +565,9 @@ fn replace_question(
     {
         question.mistakes = std::mem::take(&mut slot.mistakes);
     }
+    // Nor for the student tolerance: the form writes a placeholder, and a rewrite keeps the
+    // level's (until 2026-12-07 every rewrite reset it to 1%).
+    question.student_tolerance = slot.student_tolerance;
     *slot = question.clone();
     Ok(format!(
         "question {} rewritten: {}",

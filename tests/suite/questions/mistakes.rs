@@ -164,9 +164,9 @@ fn check_answer_prints_the_message_and_json_carries_it() {
     );
 }
 
-/// The window's question form cannot show `mistakes`: rewriting a question through it (a new
-/// wording, the same quantity and unit) keeps them; a rewrite to another quantity drops them,
-/// since their values answered the old one.
+/// The window's question form cannot show `mistakes` nor the student tolerance: rewriting a
+/// question through it (a new wording, the same quantity and unit) keeps both; a rewrite to
+/// another quantity drops the mistakes, since their values answered the old one.
 #[test]
 fn a_rewritten_question_keeps_its_mistakes_while_it_asks_the_same_quantity() {
     use rigidlab::editor::{self, Edit};
@@ -174,6 +174,9 @@ fn a_rewritten_question_keeps_its_mistakes_while_it_asks_the_same_quantity() {
     let mut q = atwood_a();
     q.mistakes.clear();
     q.ask = "Acceleration of block A, y component".into();
+    // The form writes 1% as a placeholder; the level's own student tolerance stays.
+    let level_student_tolerance = q.student_tolerance;
+    q.student_tolerance = level_student_tolerance * 3.0;
     let edit = |q: &QuestionDef| Edit::ReplaceQuestion {
         index: 0,
         question: Box::new(q.clone()),
@@ -181,6 +184,10 @@ fn a_rewritten_question_keeps_its_mistakes_while_it_asks_the_same_quantity() {
     let (kept, _) = editor::apply(&scene, &edit(&q)).unwrap();
     assert_eq!(kept.level.questions[0].ask, q.ask);
     assert_eq!(kept.level.questions[0].mistakes, atwood_a().mistakes);
+    assert_eq!(
+        kept.level.questions[0].student_tolerance,
+        level_student_tolerance
+    );
     q.quantity = level::Quantity::Ay("B".into());
     let (other, _) = editor::apply(&scene, &edit(&q)).unwrap();
     assert!(other.level.questions[0].mistakes.is_empty());
