@@ -176,7 +176,7 @@ fn panels(mut p: PanelInput) -> Result {
     // What is left is the scene's viewport.
     let free = root.available_rect_before_wrap();
     p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
-    help_and_tour(&ctx, &mut p);
+    help_and_tour(&ctx, &mut p, free);
     tidy_after_frame(&ctx, &mut p);
     if load.is_none() {
         load = p.st.pending_open.take();
@@ -419,13 +419,14 @@ fn status_bar(root: &mut egui::Ui, p: &mut PanelInput) {
 }
 
 /// The help window and the tour over the scene; the preferences saved when they changed.
-fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput) {
+fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
     let st = &mut *p.st;
     help::help(ctx, &mut st.help);
     let mut t = std::mem::take(&mut st.tour);
     let answered = p.exercise.grades.iter().any(|g| g.is_some());
     let finished = tour::tour(
         ctx,
+        scene,
         &mut t,
         &p.phys,
         &p.ov,

@@ -74,6 +74,7 @@ pub fn steps(
 /// Draws the tour while it is open; returns true when the user finished or dismissed it.
 pub(super) fn tour(
     ctx: &egui::Context,
+    scene: egui::Rect,
     tour: &mut Tour,
     phys: &Run,
     ov: &Overlays,
@@ -95,8 +96,11 @@ pub(super) fn tour(
     let mut finished = false;
     egui::Window::new(format!("First steps ({done} of {})", steps.len()))
         .id(egui::Id::new("first-steps"))
-        // Top right of the scene: the status bar below wraps to a varying height.
-        .anchor(egui::Align2::RIGHT_TOP, egui::vec2(-345.0, 8.0))
+        // In the scene's bottom right corner, inside the panels: anchored to the screen's
+        // right edge it lay over the right panel's Play and overlay buttons once that panel
+        // widened (seen at 1280x800, 2026-12-07), and a scene's bodies sit mostly above it.
+        .pivot(egui::Align2::RIGHT_BOTTOM)
+        .fixed_pos(scene.right_bottom() + egui::vec2(-8.0, -8.0))
         .default_open(!cfg!(target_arch = "wasm32"))
         .resizable(false)
         .show(ctx, |ui| {
