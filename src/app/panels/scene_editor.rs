@@ -10,7 +10,7 @@ use super::super::view::palette;
 use super::number_field::{number_field, Accepts};
 use super::state::UiState;
 use crate::editor::{Edit, Property};
-use crate::level::{BodyDef, BodyKind, JointKind, Shape};
+use crate::level::{BodyDef, BodyKind, JointKind, Level, Shape};
 use bevy_egui::egui;
 use std::path::PathBuf;
 
@@ -25,6 +25,37 @@ pub(super) fn scene_editor(
     out: &mut Vec<EditorCommand>,
 ) {
     ui.heading("Build");
+    history_buttons(ui, editor, st, out);
+    tool_buttons(ui, tools, st);
+    tool_hint(ui, tools);
+    let r = egui::CollapsingHeader::new("curved track: arc, polyline")
+        .id_salt("curved track")
+        .show(ui, |ui| {
+            super::track_editor::add_tracks(ui, &mut st.buttons, out)
+        });
+    st.buttons
+        .insert("curved track".into(), r.header_response.rect);
+    edit_note(ui, editor);
+
+    let level = &phys.scene.level;
+    if let Some(b) = selected.and_then(|i| level.bodies.get(i)) {
+        ui.separator();
+        inspector(ui, b, out);
+        motors(ui, level, &b.name, out);
+    }
+
+    ui.separator();
+    exercise_section(ui, level, editor, st, out);
+    save_row(ui, st, out);
+}
+
+/// New scene, undo and redo.
+fn history_buttons(
+    ui: &mut egui::Ui,
+    editor: &Editor,
+    st: &mut UiState,
+    out: &mut Vec<EditorCommand>,
+) {
     ui.horizontal(|ui| {
         let r = ui
             .button("new scene")
@@ -48,6 +79,10 @@ pub(super) fn scene_editor(
             out.push(EditorCommand::Redo);
         }
     });
+}
+
+/// The place and join tools, each button's rect kept for the tour and the tests.
+fn tool_buttons(ui: &mut egui::Ui, tools: &mut ToolState, st: &mut UiState) {
     ui.horizontal_wrapped(|ui| {
         ui.label("place");
         for p in Placeable::ALL {
@@ -72,6 +107,10 @@ pub(super) fn scene_editor(
         let r = ui.selectable_value(&mut tools.tool, Tool::Torsion, "torsion");
         st.buttons.insert("torsion".into(), r.rect);
     });
+}
+
+/// What the chosen tool does, in rows of a fixed height.
+fn tool_hint(ui: &mut egui::Ui, tools: &ToolState) {
     let hint = match tools.tool {
         Tool::Place(_) => "click in the scene to place it (1 kg; set its mass below)",
         Tool::Join(_) => {
@@ -90,13 +129,10 @@ pub(super) fn scene_editor(
         _ => "select a body to edit it; while paused at t = 0, drag it to move it",
     };
     fixed_rows(ui, 2.0, |ui| ui.label(rich(hint, palette::OUTLINE).small()));
-    let r = egui::CollapsingHeader::new("curved track: arc, polyline")
-        .id_salt("curved track")
-        .show(ui, |ui| {
-            super::track_editor::add_tracks(ui, &mut st.buttons, out)
-        });
-    st.buttons
-        .insert("curved track".into(), r.header_response.rect);
+}
+
+/// The editor's answer to the last edit.
+fn edit_note(ui: &mut egui::Ui, editor: &Editor) {
     // The editor's answer to the last edit, in a place of its own height: it appeared with the
     // first edit and moved the inspector below it under the pointer.
     fixed_rows(ui, 2.0, |ui| {
@@ -120,15 +156,16 @@ pub(super) fn scene_editor(
             r.on_hover_text(note.as_str());
         }
     });
+}
 
-    let level = &phys.scene.level;
-    if let Some(b) = selected.and_then(|i| level.bodies.get(i)) {
-        ui.separator();
-        inspector(ui, b, out);
-        motors(ui, level, &b.name, out);
-    }
-
-    ui.separator();
+/// The level's title, statement and exercise (questions and checks).
+fn exercise_section(
+    ui: &mut egui::Ui,
+    level: &Level,
+    editor: &Editor,
+    st: &mut UiState,
+    out: &mut Vec<EditorCommand>,
+) {
     egui::CollapsingHeader::new("title, statement, exercise").show(ui, |ui| {
         if st.edit_title.is_none() {
             st.edit_title = Some((level.title.clone(), level.statement.clone()));
@@ -159,6 +196,10 @@ pub(super) fn scene_editor(
         ui.separator();
         super::questions_editor::questions(ui, level, editor, out);
     });
+}
+
+/// The save-as path and its button.
+fn save_row(ui: &mut egui::Ui, st: &mut UiState, out: &mut Vec<EditorCommand>) {
     ui.horizontal(|ui| {
         ui.label("save as");
         ui.add(egui::TextEdit::singleline(&mut st.save_path).desired_width(170.0));
