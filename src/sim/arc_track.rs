@@ -154,67 +154,80 @@ impl ArcTrack {
     }
 }
 
-impl RayCast for ArcTrack {
-    fn cast_local_ray_and_get_normal(
-        &self,
-        ray: &Ray,
-        max_time_of_impact: Real,
-        solid: bool,
-    ) -> Option<RayIntersection> {
-        self.polyline
-            .cast_local_ray_and_get_normal(ray, max_time_of_impact, solid)
-    }
+/// The queries and shape data of a curved track that rapier sees as its `polyline` field (an
+/// `Arc`, a `Track`): rays and point projections go to the polyline; its points lie on or
+/// outside its circles (level::curves), so their box holds the circles' pieces; no mass, no CCD
+/// thickness; never scaled (a scaled circle is no circle, and rigidlab never scales a collider).
+/// Only the contact with a ball differs, in sim/arc_contacts.rs.
+macro_rules! polyline_backed_shape {
+    ($shape:ty) => {
+        impl RayCast for $shape {
+            fn cast_local_ray_and_get_normal(
+                &self,
+                ray: &Ray,
+                max_time_of_impact: Real,
+                solid: bool,
+            ) -> Option<RayIntersection> {
+                self.polyline
+                    .cast_local_ray_and_get_normal(ray, max_time_of_impact, solid)
+            }
+        }
+
+        impl PointQuery for $shape {
+            fn project_local_point(&self, pt: Vector, solid: bool) -> PointProjection {
+                self.polyline.project_local_point(pt, solid)
+            }
+
+            fn project_local_point_and_get_feature(
+                &self,
+                pt: Vector,
+            ) -> (PointProjection, FeatureId) {
+                self.polyline.project_local_point_and_get_feature(pt)
+            }
+        }
+
+        impl Shape for $shape {
+            fn compute_local_aabb(&self) -> Aabb {
+                self.polyline.local_aabb()
+            }
+
+            fn compute_local_bounding_sphere(&self) -> BoundingSphere {
+                self.polyline.local_aabb().bounding_sphere()
+            }
+
+            fn clone_dyn(&self) -> Box<dyn Shape> {
+                Box::new(self.clone())
+            }
+
+            fn scale_dyn(&self, _scale: Vector, _num_subdivisions: u32) -> Option<Box<dyn Shape>> {
+                None
+            }
+
+            fn mass_properties(&self, _density: Real) -> MassProperties {
+                MassProperties::new(Vector::ZERO, 0.0, 0.0)
+            }
+
+            fn shape_type(&self) -> ShapeType {
+                ShapeType::Custom
+            }
+
+            fn as_typed_shape(&self) -> TypedShape<'_> {
+                TypedShape::Custom(self)
+            }
+
+            fn ccd_thickness(&self) -> Real {
+                0.0
+            }
+
+            fn ccd_angular_thickness(&self) -> Real {
+                self.polyline.ccd_angular_thickness()
+            }
+        }
+    };
 }
+pub(super) use polyline_backed_shape;
 
-impl PointQuery for ArcTrack {
-    fn project_local_point(&self, pt: Vector, solid: bool) -> PointProjection {
-        self.polyline.project_local_point(pt, solid)
-    }
-
-    fn project_local_point_and_get_feature(&self, pt: Vector) -> (PointProjection, FeatureId) {
-        self.polyline.project_local_point_and_get_feature(pt)
-    }
-}
-
-impl Shape for ArcTrack {
-    fn compute_local_aabb(&self) -> Aabb {
-        // The vertices lie outside the circle (level::curves::arc_points), so their box holds it.
-        self.polyline.local_aabb()
-    }
-
-    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        self.polyline.local_aabb().bounding_sphere()
-    }
-
-    fn clone_dyn(&self) -> Box<dyn Shape> {
-        Box::new(self.clone())
-    }
-
-    fn scale_dyn(&self, _scale: Vector, _num_subdivisions: u32) -> Option<Box<dyn Shape>> {
-        // A scaled circle is no circle: rigidlab never scales a collider.
-        None
-    }
-
-    fn mass_properties(&self, _density: Real) -> MassProperties {
-        MassProperties::new(Vector::ZERO, 0.0, 0.0)
-    }
-
-    fn shape_type(&self) -> ShapeType {
-        ShapeType::Custom
-    }
-
-    fn as_typed_shape(&self) -> TypedShape<'_> {
-        TypedShape::Custom(self)
-    }
-
-    fn ccd_thickness(&self) -> Real {
-        0.0
-    }
-
-    fn ccd_angular_thickness(&self) -> Real {
-        self.polyline.ccd_angular_thickness()
-    }
-}
+polyline_backed_shape!(ArcTrack);
 
 #[cfg(test)]
 mod tests {

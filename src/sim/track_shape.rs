@@ -112,68 +112,7 @@ impl<'a> Curved<'a> {
     }
 }
 
-impl RayCast for TrackShape {
-    fn cast_local_ray_and_get_normal(
-        &self,
-        ray: &Ray,
-        max_time_of_impact: Real,
-        solid: bool,
-    ) -> Option<RayIntersection> {
-        self.polyline
-            .cast_local_ray_and_get_normal(ray, max_time_of_impact, solid)
-    }
-}
-
-impl PointQuery for TrackShape {
-    fn project_local_point(&self, pt: Vector, solid: bool) -> PointProjection {
-        self.polyline.project_local_point(pt, solid)
-    }
-
-    fn project_local_point_and_get_feature(&self, pt: Vector) -> (PointProjection, FeatureId) {
-        self.polyline.project_local_point_and_get_feature(pt)
-    }
-}
-
-impl Shape for TrackShape {
-    fn compute_local_aabb(&self) -> Aabb {
-        // An arc piece's inner vertices lie outside its circle and its ends on it, so the
-        // points' box holds the circles' pieces.
-        self.polyline.local_aabb()
-    }
-
-    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        self.polyline.local_aabb().bounding_sphere()
-    }
-
-    fn clone_dyn(&self) -> Box<dyn Shape> {
-        Box::new(self.clone())
-    }
-
-    fn scale_dyn(&self, _scale: Vector, _num_subdivisions: u32) -> Option<Box<dyn Shape>> {
-        // As ArcTrack: rigidlab never scales a collider.
-        None
-    }
-
-    fn mass_properties(&self, _density: Real) -> MassProperties {
-        MassProperties::new(Vector::ZERO, 0.0, 0.0)
-    }
-
-    fn shape_type(&self) -> ShapeType {
-        ShapeType::Custom
-    }
-
-    fn as_typed_shape(&self) -> TypedShape<'_> {
-        TypedShape::Custom(self)
-    }
-
-    fn ccd_thickness(&self) -> Real {
-        0.0
-    }
-
-    fn ccd_angular_thickness(&self) -> Real {
-        self.polyline.ccd_angular_thickness()
-    }
-}
+super::arc_track::polyline_backed_shape!(TrackShape);
 
 #[cfg(test)]
 mod tests {
