@@ -109,6 +109,26 @@ pub fn failures(r: &LevelReport) -> Vec<String> {
 /// The normal contact force on body `i` over the step (the sum of its contacts' normal impulses,
 /// each along its normal into `i`, over dt), N; zero at the initial snapshot (dt = 0).
 pub fn normal_contact_force(s: &rigidlab::snapshot::Snapshot, i: usize) -> glam::DVec2 {
+    contact_force_on(s, i, |c| {
+        c.points.iter().map(|p| p.normal_impulse).sum::<f64>() * c.normal
+    })
+}
+
+/// The friction force on body `i` over the step (its contacts' tangent impulses along the
+/// normal turned +90 degrees, signed into `i` as the normal is, over dt), N; zero at dt = 0.
+pub fn friction_contact_force(s: &rigidlab::snapshot::Snapshot, i: usize) -> glam::DVec2 {
+    contact_force_on(s, i, |c| {
+        let tangent = glam::DVec2::new(-c.normal.y, c.normal.x);
+        c.points.iter().map(|p| p.tangent_impulse).sum::<f64>() * tangent
+    })
+}
+
+/// The sum over body `i`'s contacts of `impulse(contact)` (as on body2), signed for `i`, over dt.
+fn contact_force_on(
+    s: &rigidlab::snapshot::Snapshot,
+    i: usize,
+    impulse: impl Fn(&rigidlab::snapshot::ContactState) -> glam::DVec2,
+) -> glam::DVec2 {
     if s.dt <= 0.0 {
         return glam::DVec2::ZERO;
     }
@@ -122,8 +142,7 @@ pub fn normal_contact_force(s: &rigidlab::snapshot::Snapshot, i: usize) -> glam:
             } else {
                 return None;
             };
-            let j: f64 = c.points.iter().map(|p| p.normal_impulse).sum();
-            Some(sign * j / s.dt * c.normal)
+            Some(sign / s.dt * impulse(c))
         })
         .sum()
 }

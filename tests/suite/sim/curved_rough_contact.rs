@@ -44,27 +44,6 @@ struct Step {
     friction: DVec2,
 }
 
-fn friction_force(s: &rigidlab::snapshot::Snapshot, i: usize) -> DVec2 {
-    if s.dt <= 0.0 {
-        return DVec2::ZERO;
-    }
-    s.contacts
-        .iter()
-        .filter_map(|c| {
-            let sign = if c.body2 == i {
-                1.0
-            } else if c.body1 == i {
-                -1.0
-            } else {
-                return None;
-            };
-            let tangent = DVec2::new(-c.normal.y, c.normal.x);
-            let j: f64 = c.points.iter().map(|p| p.tangent_impulse).sum();
-            Some(sign * j / s.dt * tangent)
-        })
-        .sum()
-}
-
 fn run_steps(scene: &Scene, opts: &Options, body: &str) -> Vec<Step> {
     let i = common::body_index(&scene.level, body);
     let mut out = Vec::new();
@@ -75,7 +54,7 @@ fn run_steps(scene: &Scene, opts: &Options, body: &str) -> Vec<Step> {
             g: b.com,
             v: b.velocity,
             normal: common::normal_contact_force(s, i),
-            friction: friction_force(s, i),
+            friction: common::friction_contact_force(s, i),
         });
     })
     .unwrap();
