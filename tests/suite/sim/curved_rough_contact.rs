@@ -171,12 +171,14 @@ fn a_smooth_ring_pushes_a_puck_with_the_textbooks_force_over_every_window() {
         worst.push((dt, n, own));
     }
     for (dt, n, own) in worst {
-        // Open (docs/known-gaps.md, "An `Arc`'s normal force"): since the one-substep calls
-        // on an arc (sim/arc_split.rs, 2026-12-07), at 1 ms and 4 substeps one step 10.5
-        // degrees either side of the ring's top reads N 25% low, the other 25% high (steps 377
-        // and 435), so two 0.01 s windows are 2.5e-2 off; at 2 substeps, at dt/2 and at
-        // 1/4800 s no step does. Not traced. Held at its measured size so that it cannot grow
-        // unseen, and to 1e-3 at 1/4800 s.
+        // Known gap, traced (docs/known-gaps.md, "An `Arc`'s normal force"): where gravity's
+        // pull off the chord's plane over a call, g_n h, exceeds the turn's approach
+        // v^2 h / (2 rho) (10.5 degrees either side of this ring's top), rapier's restitution
+        // pass, gated on the rows having pushed, turns the ball every other call with two
+        // calls' impulse. At 1 ms and 4 substeps the pairing starts mid-step (steps 377 and
+        // 435 read N 25% low and 25% high), so two 0.01 s windows are 2.5e-2 off; at 1/4800 s
+        // no window is. Held at its measured size so that it cannot grow unseen, and to 1e-3
+        // at 1/4800 s.
         let allowed = if dt > 5e-4 { 3e-2 } else { 1e-3 };
         assert!(own < allowed, "dt {dt:.3e}: N's noise {own:.2e} of PN-2's");
         // Known gap (docs/known-gaps.md, "curved tracks"): the speed the smooth puck loses
