@@ -3,6 +3,7 @@
 //! count as ended. Questions asked at `FirstContact`/`ContactEnds`, and the impact quantities
 //! (rebound, restitution, energy lost), read these events.
 
+use super::free_flight::FlightFromStart;
 use super::impact_solution::Impact;
 use super::level_facts::LevelFacts;
 use super::sample::Sample;
@@ -83,6 +84,9 @@ pub(super) struct PairTracker {
     /// the body then rests on its partner and is not carried back at g, as the `restitution`
     /// check's bracket judges it (None until that step is seen).
     pub pushing_after_impulse: Option<bool>,
+    /// The pair's flight from the level's start, while both have flown free since it: the
+    /// impact's pre-impact state in closed form (`free_flight`).
+    flight: FlightFromStart,
 }
 
 impl PairTracker {
@@ -103,6 +107,7 @@ impl PairTracker {
             pre: None,
             impact: None,
             release: None,
+            flight: FlightFromStart::default(),
         }
     }
 
@@ -117,6 +122,9 @@ impl PairTracker {
             self.indices = Some((b, o));
         }
         let (b, o) = self.indices?;
+        if let Some(p) = f.prev.filter(|p| p.step == 0) {
+            self.flight.follow(p, (b, o), facts);
+        }
         let j = pair_normal_impulse(f.cur, b, o, None);
         // "Pushing": a normal impulse above a millionth of the largest one of this contact, so that
         // round-off and position correction between bodies left resting together do not count.
@@ -134,7 +142,8 @@ impl PairTracker {
                 self.peak = j;
                 self.pre = f.prev.cloned();
                 if let Some(pre) = f.prev {
-                    self.impact = Impact::find(facts, pre, f.cur, b, o);
+                    let exact = self.flight.exact(pre, (b, o));
+                    self.impact = Impact::find(facts, exact.as_ref().unwrap_or(pre), f.cur, b, o);
                 }
                 Some(PairEvent::Touch)
             }
@@ -199,6 +208,7 @@ impl PairTracker {
                 self.impulsive_end = f.prev.cloned();
             }
         }
+        self.flight.follow(f.cur, (b, o), facts);
         event
     }
 

@@ -47,6 +47,7 @@ mod curved_contact;
 mod dispatch;
 mod forces;
 mod free_body;
+mod free_flight;
 mod impact_solution;
 mod impacts;
 mod instants;

@@ -9,6 +9,7 @@ mod crossing_at_touch;
 mod curved_normal_force;
 mod damper_work;
 mod formula_holds;
+mod impact_from_start;
 mod impact_lasting;
 mod impact_moving_platform;
 mod impact_one_reading;
