@@ -53,9 +53,20 @@ struct PageQuery {
     level: Option<PathBuf>,
     play: bool,
     check: bool,
+    /// `?student=ID`: a level with parameters opens with this student's own numbers, the same
+    /// as `rigidlab check --student ID` gives natively.
+    student: Option<String>,
 }
 
 impl PageQuery {
+    /// The variant the URL asks for: the student's, or the nominal one.
+    fn pick(&self) -> crate::level::params::Pick {
+        self.student.clone().map_or(
+            crate::level::params::Pick::Nominal,
+            crate::level::params::Pick::Student,
+        )
+    }
+
     fn from_page() -> PageQuery {
         let mut q = PageQuery::default();
         let Some(search) = web_sys::window().and_then(|w| w.location().search().ok()) else {
@@ -71,6 +82,7 @@ impl PageQuery {
             q.level = Some(Path::new("levels").join(l));
         }
         let yes = |k: &str| params.get(k).is_some_and(|v| v != "0" && v != "false");
+        q.student = params.get("student").filter(|s| !s.trim().is_empty());
         q.play = yes("play");
         q.check = yes("check");
         q
@@ -82,7 +94,7 @@ pub fn start() {
     let query = PageQuery::from_page();
     let browser = Browser::embedded(Path::new("levels"), library());
     let (scene, note) = match &query.level {
-        Some(p) => match browser.find(p).map(|e| e.load()) {
+        Some(p) => match browser.find(p).map(|e| e.load_variant(&query.pick())) {
             Some(Ok(s)) => (s, None),
             // A level asked for and not opened: an empty scene, the reason in the status line
             // and the library beside it, never another exercise the student would take for it.

@@ -71,7 +71,13 @@ pub struct Loaded {
 pub fn load_variant(path: &Path, pick: &params::Pick) -> Result<Loaded, LevelError> {
     let bytes = read(path)?;
     let bytes = bytes.strip_prefix(BOM.as_bytes()).unwrap_or(&bytes);
-    let text = utf8(path, bytes)?;
+    parse_variant(path, utf8(path, bytes)?, pick)
+}
+
+/// [`load_variant`] from a level's text (a level compiled into the web page); `path` is only
+/// used in messages.
+pub fn parse_variant(path: &Path, text: &str, pick: &params::Pick) -> Result<Loaded, LevelError> {
+    let text = text.strip_prefix(BOM).unwrap_or(text);
     if let Some((p, made)) = params::make_checked(path, text, pick)? {
         let warnings = p.warnings(path, &made);
         return Ok(Loaded {

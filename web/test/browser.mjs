@@ -2,6 +2,7 @@
 // playwright-core) as a student would, and records what it saw into OUT (default
 // target/web-test) for tests/suite/app/web_page.rs to judge against the core:
 //   check.json      the page's own `?check=1` report of the levels in CHECK_LEVELS;
+//   check_student.json  the same for levels with parameters and a student id (`&student=`);
 //   pendulum.png    the simple pendulum played to its end (t = 0.8 s), as the page drew it;
 //   status.json     the page's status at that moment (time, view mapping, frame rate);
 //   answered.png / answered.json   after typing an answer into the first question's box;
@@ -31,6 +32,11 @@ const CHECK_LEVELS = [
   "momentum/bar_struck_at_percussion.ron",
   "virtual-work/zh_slider_crank_static_servo.ron",
   "kinetics/classic_atwood_massive_pulley.ron",
+];
+// Levels with parameters and the student ids the page checks them for (check_student.json).
+const STUDENT_LEVELS = [
+  ["energy/classic_spring_block_param.ron", "alice"],
+  ["kinetics/incline_friction_param.ron", "s-042 Ölçü"],
 ];
 const ANSWER = process.env.ANSWER ?? "3.13"; // v_bottom = sqrt(g L) = 3.1321 m/s (the level's comment)
 
@@ -90,6 +96,16 @@ try {
     checks.push(...JSON.parse(await page.textContent("#rigidlab-report")).levels);
   }
   writeFileSync(join(out, "check.json"), JSON.stringify({ passed: checks.every((l) => l.passed), levels: checks }, null, 1));
+
+  // 1b. A student's own numbers: the page's check of a level with parameters for a student id
+  //     (`&student=`), which must be the variant `rigidlab check --student ID` runs natively.
+  const variants = [];
+  for (const [level, student] of STUDENT_LEVELS) {
+    await page.goto(`${base}?check=1&level=${level}&student=${encodeURIComponent(student)}`);
+    await waitStatus(`the page's check of ${level} for ${student}`, (s) => s.check === "done", 120);
+    variants.push({ student, report: JSON.parse(await page.textContent("#rigidlab-report")).levels[0] });
+  }
+  writeFileSync(join(out, "check_student.json"), JSON.stringify(variants, null, 1));
 
   // 2. A student opens the pendulum and plays it to its end.
   const t0 = Date.now();

@@ -101,6 +101,63 @@ fn the_pages_check_report_is_the_cores() {
     );
 }
 
+/// A student id gives the same numbers in the page as natively (issue 43: "same id -> same
+/// numbers, native and wasm"): the page's check of a level with parameters for an id
+/// (`?student=`) has the expected answers of the variant `level::load_variant` picks natively for
+/// that id, to the last bits of the expression evaluator (1e-12 relative); and the id matters
+/// (the nominal variant's answers differ), so a page that ignored it would fail.
+#[test]
+fn the_page_gives_a_student_the_cores_variant() {
+    let Some(dir) = records() else { return };
+    let records = read_json(&dir.join("check_student.json"));
+    let records = records
+        .as_array()
+        .expect("a list of the page's variant checks");
+    assert!(
+        records.len() >= 2,
+        "the page checked {} variants",
+        records.len()
+    );
+    for rec in records {
+        let student = rec["student"].as_str().expect("the student id").to_string();
+        let web: rigidlab::report::LevelReport =
+            serde_json::from_value(rec["report"].clone()).unwrap();
+        let path = Path::new(&web.file);
+        let pick = level::params::Pick::Student(student.clone());
+        let native = level::load_variant(path, &pick).unwrap().scene.level;
+        let nominal = level::load(path).unwrap().level;
+        assert_eq!(web.questions.len(), native.questions.len(), "{}", web.file);
+        let mut differs = false;
+        for ((w, n), o) in web
+            .questions
+            .iter()
+            .zip(&native.questions)
+            .zip(&nominal.questions)
+        {
+            assert_eq!(w.id, n.id);
+            let d = (w.expected - n.expected).abs() / n.expected.abs().max(1e-300);
+            assert!(
+                d <= 1e-12,
+                "{} {} for {student:?}: the page expects {} where the core's variant expects {}",
+                web.file,
+                w.id,
+                w.expected,
+                n.expected
+            );
+            differs |= n.expected != o.expected;
+        }
+        assert!(
+            differs,
+            "{} for {student:?}: the variant is the nominal one; pick another id",
+            web.file
+        );
+        println!(
+            "{} for {student:?}: the page's variant is the core's",
+            web.file
+        );
+    }
+}
+
 /// The pendulum as the page drew it at the end of its run: the bob's fill, centred where the
 /// native core puts the bob at that step, through the view mapping the page reported.
 #[test]
