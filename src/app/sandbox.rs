@@ -18,6 +18,8 @@ pub fn empty_scene() -> Scene {
             title: "Empty scene".into(),
             source: Default::default(),
             statement: "No level loaded: pick one in the level browser, or build a scene with the Build panel.".into(),
+            hints: Vec::new(),
+            solution: String::new(),
             effects: vec![
                 crate::level::Effect::Gravity,
                 crate::level::Effect::Contacts,

@@ -46,6 +46,8 @@ pub fn empty_scene(file: std::path::PathBuf) -> Scene {
         title: "My scene".into(),
         source: Default::default(),
         statement: String::new(),
+        hints: Vec::new(),
+        solution: String::new(),
         effects: vec![level::Effect::Gravity, level::Effect::Contacts],
         world: level::World {
             duration: 5.0,

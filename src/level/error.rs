@@ -303,6 +303,26 @@ impl<'a> Locator<'a> {
         }
     }
 
+    /// Whether the level writes the top-level key `section` (e.g. `solution`).
+    pub fn has_section(&self, section: &str) -> bool {
+        self.section_key(section).is_some()
+    }
+
+    /// Line and column of the `index`-th string of the top-level list `section` (a level's
+    /// `hints[index]`), else of the section's key.
+    pub fn nth_string_in_section(&self, section: &str, index: usize) -> (usize, usize) {
+        let Some(s) = self.section_key(section) else {
+            return (1, 1);
+        };
+        let end = self.section_end(s);
+        // String contents are blanked, their quotes kept: every other quote opens one.
+        let opening = self.code[s..end]
+            .match_indices('"')
+            .map(|(i, _)| s + i)
+            .nth(2 * index);
+        self.pos(opening.unwrap_or(s))
+    }
+
     /// Line and column of the item named `name` in `section`.
     pub fn item_pos(&self, section: &str, name: &str) -> (usize, usize) {
         self.item(section, name, 0)

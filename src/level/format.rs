@@ -34,6 +34,13 @@ pub struct Level {
     /// The problem as the textbook states it (givens with units).
     #[serde(default)]
     pub statement: String,
+    /// Hints, shown one per wrong attempt, in order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hints: Vec<String>,
+    /// The worked solution: shown after every question is answered right, or on request
+    /// (which counts the solve as "solved with help").
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub solution: String,
     /// The physical effects the scene calls for; nothing else is simulated.
     #[serde(default)]
     pub effects: Vec<Effect>,

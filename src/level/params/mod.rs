@@ -228,8 +228,8 @@ impl Parameterized {
         Ok((level, expanded, map))
     }
 
-    /// The statement's and the questions' `{name}` placeholders filled with the variant's
-    /// values; a placeholder naming no parameter is an error at it.
+    /// The statement's, the hints', the solution's and the questions' `{name}` placeholders
+    /// filled with the variant's values; a placeholder naming no parameter is an error at it.
     fn fill_texts(
         &self,
         path: &Path,
@@ -237,7 +237,10 @@ impl Parameterized {
         own: &[f64],
         g: f64,
     ) -> Result<(), LevelError> {
-        let texts = std::iter::once(&level.statement).chain(level.questions.iter().map(|q| &q.ask));
+        let texts = std::iter::once(&level.statement)
+            .chain(level.hints.iter())
+            .chain(std::iter::once(&level.solution))
+            .chain(level.questions.iter().map(|q| &q.ask));
         for t in texts {
             if let Some((_, name)) = text::unknown_placeholders(t, &self.params).first() {
                 let at = self.text.find(&format!("{{{name}}}")).unwrap_or(0);
@@ -253,6 +256,10 @@ impl Parameterized {
             }
         }
         level.statement = text::fill(&level.statement, &self.params, own, g);
+        for h in &mut level.hints {
+            *h = text::fill(h, &self.params, own, g);
+        }
+        level.solution = text::fill(&level.solution, &self.params, own, g);
         for q in &mut level.questions {
             q.ask = text::fill(&q.ask, &self.params, own, g);
         }

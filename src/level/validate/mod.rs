@@ -12,6 +12,7 @@ mod effects;
 mod events;
 mod exercise;
 mod forces;
+mod hints;
 mod joints;
 
 use bodies::*;
@@ -19,6 +20,7 @@ use effects::*;
 use events::*;
 use exercise::*;
 use forces::*;
+use hints::*;
 use joints::*;
 
 struct V<'a> {
@@ -170,6 +172,7 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
             .collect(),
     };
     world(&v)?;
+    hints_and_solution(&v)?;
     v.unique("bodies", level.bodies.iter().map(|b| b.name.as_str()))?;
     v.unique("joints", level.joints.iter().map(|j| j.name.as_str()))?;
     // Linear and torsion springs share one name space: a quantity names either.
