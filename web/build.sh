@@ -35,5 +35,16 @@ cp web/index.html "$out/"
 
 wasm="$out/rigidlab_bg.wasm"
 raw=$(stat -c %s "$wasm")
-gz=$(gzip -9 -c "$wasm" | wc -c)
-echo "web/build.sh: $out ready; rigidlab_bg.wasm $((raw / 1024)) KiB, $((gz / 1024)) KiB gzipped"
+# The page shows how much of the wasm has come (its size, decompressed, is written in).
+sed -i "s/__WASM_BYTES__/$raw/" "$out/index.html"
+
+# Compressed copies for web/serve.py (and any static host that serves precompressed files):
+# zstd at level 19 (Chromium and Firefox accept it; its window stays within the 8 MB that
+# HTTP's zstd coding allows), gzip for every browser, brotli where the command exists.
+for f in "$wasm" "$out/rigidlab.js"; do
+  gzip -9 -k -f "$f"
+  if command -v zstd >/dev/null 2>&1; then zstd -19 -q -f "$f" -o "$f.zst"; fi
+  if command -v brotli >/dev/null 2>&1; then brotli -q 11 -f -k "$f"; fi
+done
+size() { if [ -f "$1" ]; then echo "$(( $(stat -c %s "$1") / 1024 )) KiB"; else echo "none"; fi; }
+echo "web/build.sh: $out ready; rigidlab_bg.wasm $((raw / 1024)) KiB, gzip $(size "$wasm.gz"), zstd $(size "$wasm.zst"), brotli $(size "$wasm.br")"

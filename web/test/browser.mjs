@@ -9,7 +9,8 @@
 //   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
 //   unknown.png / unknown.json   the page opened with a ?level= the library does not have;
-//   browser.json    timings: page open to first frame, frame rates while playing, the CPU a
+//   browser.json    how the wasm came (its Content-Encoding and size on the wire), timings: page
+//                   open to first frame, frame rates while playing, the CPU a
 //                   paused page takes over 10 s (paused_10s).
 // Usage: node web/test/browser.mjs [OUT]   (exit 1 with the reason when a step fails)
 import { chromium } from "playwright-core";
@@ -73,6 +74,12 @@ try {
   const logs = [];
   page.on("console", (m) => logs.push(`${m.type()}: ${m.text()}`));
   page.on("pageerror", (e) => logs.push(`pageerror: ${e}`));
+  // How the wasm came: its Content-Encoding and the bytes on the wire (the first load only).
+  page.on("response", async (r) => {
+    if (!r.url().endsWith("rigidlab_bg.wasm") || summary.wasm) return;
+    const h = r.headers();
+    summary.wasm = { encoding: h["content-encoding"] ?? "identity", bytes_sent: Number(h["content-length"] ?? -1) };
+  });
   const status = async () => JSON.parse((await page.textContent("#rigidlab-status")) || "null");
   const waitStatus = async (what, ok, seconds) => {
     const t0 = Date.now();
