@@ -49,9 +49,10 @@ if (!existsSync(join(dist, "index.html"))) fail(`no ${dist}/index.html: run web/
 if (!existsSync(chromiumPath)) fail(`no Chromium at ${chromiumPath} (apt-get install chromium, or set CHROMIUM)`);
 mkdirSync(out, { recursive: true });
 
-// Python's server sends .wasm as application/wasm (what WebAssembly.instantiateStreaming needs).
+// web/serve.py, as docs/web.md tells a teacher to serve the page: .wasm as application/wasm (what
+// WebAssembly.instantiateStreaming needs), compressed as the browser accepts.
 const port = 8000 + Math.floor(Math.random() * 1000);
-const server = spawn("python3", ["-m", "http.server", "--bind", "127.0.0.1", "--directory", dist, String(port)], { stdio: "ignore" });
+const server = spawn("python3", [join(root, "web/serve.py"), "--quiet", "--port", String(port), "--dir", dist], { stdio: "ignore" });
 const base = `http://127.0.0.1:${port}/`;
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
@@ -77,7 +78,7 @@ try {
   // How the wasm came: its Content-Encoding and the bytes on the wire (the first load only).
   page.on("response", async (r) => {
     if (!r.url().endsWith("rigidlab_bg.wasm") || summary.wasm) return;
-    const h = r.headers();
+    const h = await r.allHeaders();
     summary.wasm = { encoding: h["content-encoding"] ?? "identity", bytes_sent: Number(h["content-length"] ?? -1) };
   });
   const status = async () => JSON.parse((await page.textContent("#rigidlab-status")) || "null");
