@@ -14,8 +14,7 @@ use std::path::{Path, PathBuf};
 /// alike (both use them): what a level's hints and solution may use. Arrows (→ ⇒) and primes
 /// (′ ″) are not among them: they draw as boxes; write `->` and `'`. `tests/suite/app/hints.rs`
 /// checks each against the fonts, and every level's text against them; docs/levels.md lists them.
-pub const SAFE_GLYPHS: &str =
-    "αβγδεζηθικλμνξπρστυφχψωΓΔΘΛΞΠΣΦΨΩ²³¹⁰·×÷−±≈≠≤≥√∞∫∑∂½¼¾°…–—’“”";
+pub const SAFE_GLYPHS: &str = "αβγδεζηθικλμνξπρστυφχψωΓΔΘΛΞΠΣΦΨΩ²³¹⁰·×÷−±≈≠≤≥√∞∫∑∂½¼¾°…–—’“”";
 
 /// Where the student is with the level's hints and solution. It follows the level (by file):
 /// a run started over keeps it; another level starts it afresh.
