@@ -39,6 +39,9 @@ pub enum Command {
         /// (repeatable).
         #[arg(long = "answer", value_parser = parse_answer)]
         answers: Vec<(String, String)>,
+        /// Print each level's worked solution under its questions (the JSON's `solution`).
+        #[arg(long)]
+        solution: bool,
         /// Do not search finer settings for a failing level (by default the cheapest settings
         /// that pass, up to 32x the level's cost and 2 s of estimated runs, are reported under
         /// it as its advice).
@@ -261,13 +264,14 @@ pub fn main() -> ExitCode {
             paths,
             json,
             answers,
+            solution,
             no_advice,
             advice_cost,
             student,
             solver,
         }) => check(
             &paths,
-            json,
+            (json, solution),
             answers,
             (!no_advice).then_some(advice_cost),
             &pick(student),
@@ -318,7 +322,7 @@ fn bad(e: impl std::fmt::Display) -> ExitCode {
 
 fn check(
     paths: &[PathBuf],
-    json: bool,
+    (json, solution): (bool, bool),
     answer_list: Vec<(String, String)>,
     advice: Option<f64>,
     pick: &level::params::Pick,
@@ -369,6 +373,7 @@ fn check(
                 if let Some(b) = bar {
                     b.finish_and_clear();
                 }
+                let r = r.map(|report| with_help(report, &scene.level, solution));
                 let Some(cost_s) = advice else {
                     return r;
                 };
@@ -445,6 +450,22 @@ fn check(
         report::table(&report)
     };
     report::print(&text, code)
+}
+
+/// A level's report with its first hint, when a student's answer to it was wrong, and its
+/// worked solution, when asked for (`solution`).
+fn with_help(mut report: LevelReport, level: &level::Level, solution: bool) -> LevelReport {
+    let wrong = report
+        .questions
+        .iter()
+        .any(|q| q.student.as_ref().is_some_and(|s| !s.passed));
+    if wrong {
+        report.hint = level.hints.first().cloned();
+    }
+    if solution && !level.solution.trim().is_empty() {
+        report.solution = Some(level.solution.clone());
+    }
+    report
 }
 
 /// Loads a level (the picked variant of a level with parameters) and prints its warnings (legal

@@ -165,5 +165,7 @@ fn run_with(
         questions,
         error: None,
         advice: None,
+        hint: None,
+        solution: None,
     })
 }

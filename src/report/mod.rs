@@ -39,6 +39,12 @@ pub struct LevelReport {
     /// search's bound does (`study::advice`; `rigidlab check --no-advice` leaves it out).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub advice: Option<Advice>,
+    /// The level's first hint, when a student's answer (`--answer`) to it was wrong.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hint: Option<String>,
+    /// The level's worked solution, when `check --solution` asked for it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solution: Option<String>,
 }
 
 /// What a failing level's settings search found (`study::advice`).
@@ -131,6 +137,8 @@ impl LevelReport {
             questions: Vec::new(),
             error: Some(error.to_string()),
             advice: None,
+            hint: None,
+            solution: None,
         }
     }
 }
@@ -220,11 +228,26 @@ fn table_text(report: &Report) -> String {
                 }
             }
         }
+        help_lines(&mut out, l);
     }
     let n = report.levels.len();
     let p = report.levels.iter().filter(|l| l.passed).count();
     out += &format!("{p}/{n} levels passed\n");
     out
+}
+
+/// The level's hint and worked solution under its questions, one step per line, when the
+/// report carries them.
+fn help_lines(out: &mut String, l: &LevelReport) {
+    if let Some(h) = &l.hint {
+        *out += &format!("    hint 1: {}\n", h.trim());
+    }
+    if let Some(s) = &l.solution {
+        *out += "    worked solution:\n";
+        for line in s.lines().map(str::trim).filter(|l| !l.is_empty()) {
+            *out += &format!("      {line}\n");
+        }
+    }
 }
 
 /// Writes the per-step snapshots as CSV: bodies to `path`, and joints, contacts and springs

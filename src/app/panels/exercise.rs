@@ -6,6 +6,7 @@ use super::super::physics::LiveChecks;
 use super::super::run::Run;
 use super::super::ui::{fmt, rich};
 use super::super::view::palette;
+use super::hints::{hints, HintState};
 use bevy::prelude::Resource;
 use bevy_egui::egui;
 
@@ -19,6 +20,11 @@ pub struct Exercise {
     /// Where each answer box was drawn last frame (egui points = CSS pixels in the page; the web
     /// page publishes them so a browser test can click into a box and type).
     pub answer_boxes: Vec<Option<egui::Rect>>,
+    /// The worked solution was shown before every question was answered right: a solve now
+    /// counts as "solved with help".
+    pub help_used: bool,
+    /// The hints shown and the solution's state (`hints.rs`).
+    pub hints: HintState,
 }
 
 impl Exercise {
@@ -71,6 +77,11 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
                 st.answer_boxes[k] = Some(edit.rect);
                 if submit {
                     st.grades[k] = Some(grade(q, &st.answers[k]));
+                    let right = st.grades[k]
+                        .as_ref()
+                        .and_then(|g| g.as_ref().ok())
+                        .map(|g| g.passed);
+                    st.hints.graded(right, &st.grades);
                 }
             });
             if let Some(g) = &st.grades[k] {
@@ -110,6 +121,13 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
             }
         });
     }
+    hints(
+        ui,
+        level,
+        &phys.scene.file,
+        &mut st.hints,
+        &mut st.help_used,
+    );
 }
 
 /// A typed answer's grade (answer, relative error, passed, the typical mistake it matches), or

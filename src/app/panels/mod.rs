@@ -10,6 +10,7 @@
 pub mod checks;
 mod exercise;
 pub mod help;
+pub mod hints;
 mod level_browser;
 pub mod measure;
 pub mod number_field;

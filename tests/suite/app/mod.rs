@@ -5,6 +5,7 @@ mod editor_commands;
 mod editor_core;
 mod exercise_questions;
 mod help_tour;
+mod hints;
 mod inspector_fields;
 mod key_chords;
 mod kinetic_copy;

@@ -4,6 +4,7 @@ mod bad_input;
 mod curved_geometry;
 mod f32_increments;
 mod fuzz;
+mod hints;
 mod joint_anchors;
 mod parameters;
 mod quantity_forms;
