@@ -1,4 +1,4 @@
-//! The command line: `rigidlab [check|run|verify|play|render|study]`.
+//! The command line: `rigidlab [check|run|verify|grade|play|render|study]`.
 
 use crate::level::{self, LevelError};
 use crate::report::{self, CsvWriter, LevelReport, Report};
@@ -11,6 +11,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod grade;
 mod verify;
 
 #[derive(Parser, Debug)]
@@ -78,6 +79,26 @@ pub enum Command {
         advice_cost: f64,
         #[command(flatten)]
         solver: SolverArgs,
+    },
+    /// Grade a class's answers (answers.csv: student,level,question,answer), each against the
+    /// student's own variant; write grades.csv and a gradebook to import (exit 0: every row
+    /// graded, 1: some rows bad, reported by line, the rest graded, 2: nothing written).
+    Grade {
+        /// A level file or a folder of levels (its *.ron files, sorted).
+        assignment: PathBuf,
+        /// The answers: a CSV file whose header names student, level, question and answer.
+        answers: PathBuf,
+        /// grades.csv to write, one row per answer; never over an existing file.
+        #[arg(long)]
+        out: PathBuf,
+        /// The gradebook to write (a row per student, a column per level and the total);
+        /// default: beside --out, NAME_gradebook.csv; never over an existing file.
+        #[arg(long)]
+        gradebook: Option<PathBuf>,
+        /// Do not run each variant (by default each is run once, and a variant the engine
+        /// fails is warned about; the grades do not depend on the run).
+        #[arg(long)]
+        no_run: bool,
     },
     /// Run one level and write its per-step snapshots.
     Run {
@@ -226,10 +247,7 @@ fn answers_for(
     let mut out = HashMap::new();
     for q in &scene.level.questions {
         if let Some(text) = answers.get(&q.id) {
-            // Converted to the quantity's SI unit, the question's unit up to notation (validation
-            // holds it there): a question in `1/s` still takes an answer in rad/s.
-            let si = q.quantity.si_unit(&scene.level);
-            let v = crate::questions::units::answer_in(text, si).map_err(|e| {
+            let v = crate::questions::units::answer_to(q, &scene.level, text).map_err(|e| {
                 format!(
                     "error: --answer {}={text}: {e}\n  help: give the answer in {} or a unit of the same kind",
                     q.id, q.unit
@@ -288,6 +306,19 @@ pub fn main() -> ExitCode {
             json,
             advice: (!no_advice).then_some(advice_cost),
             solver: &solver,
+        }),
+        Some(Command::Grade {
+            assignment,
+            answers,
+            out,
+            gradebook,
+            no_run,
+        }) => grade::grade(grade::GradeArgs {
+            assignment: &assignment,
+            answers: &answers,
+            out: &out,
+            gradebook: gradebook.as_deref(),
+            no_run,
         }),
         Some(Command::Run {
             level,
