@@ -158,7 +158,10 @@ fn claim_upto(tmp: &Path, dest: &Path, max: u32) -> io::Result<PathBuf> {
     let what = if max <= 1 {
         format!("{} exists", dest.display())
     } else {
-        format!("{} and {max} numbered names after it are taken", dest.display())
+        format!(
+            "{} and {max} numbered names after it are taken",
+            dest.display()
+        )
     };
     Err(io::Error::new(io::ErrorKind::AlreadyExists, what))
 }

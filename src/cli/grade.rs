@@ -114,11 +114,7 @@ fn report(
         if a.no_run { "" } else { " and run" }
     );
     s += &output::summary(&class.levels, graded);
-    s += &format!(
-        "wrote {} and {}\n",
-        a.out.display(),
-        gradebook.display()
-    );
+    s += &format!("wrote {} and {}\n", a.out.display(), gradebook.display());
     if bad_rows > 0 {
         s += &format!("{bad_rows} rows could not be graded (above, on stderr, by line)\n");
     }

@@ -47,7 +47,10 @@ impl Layout {
 pub fn read(file: &str, bytes: &[u8]) -> Result<(Layout, Vec<Row>, Vec<BadRow>), String> {
     let bytes = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
     if let Err(e) = std::str::from_utf8(bytes) {
-        let line = 1 + bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count();
+        let line = 1 + bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
         return Err(format!(
             "{file}:{line}: error: the answers file is not UTF-8 text\n  help: save it as CSV UTF-8 (a spreadsheet's \"CSV UTF-8\" format)"
         ));
@@ -162,7 +165,10 @@ mod tests {
     #[test]
     fn a_missing_column_is_an_error_of_the_file() {
         let e = read("a.csv", b"student,level,answer\ns1,x,1\n").unwrap_err();
-        assert!(e.starts_with("a.csv:1: error: the header has no column question"), "{e}");
+        assert!(
+            e.starts_with("a.csv:1: error: the header has no column question"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -25,8 +25,7 @@ impl Assigned {
     /// Loads a level of the assignment (every corner checked, as `check` does); the error is
     /// the level's own, located.
     pub fn load(name: String, path: &Path) -> Result<Assigned, String> {
-        let loaded =
-            level::load_variant(path, &Pick::Nominal).map_err(|e| e.to_string())?;
+        let loaded = level::load_variant(path, &Pick::Nominal).map_err(|e| e.to_string())?;
         let params = if loaded.variant.is_some() {
             let text = level::read_text(path).map_err(|e| e.to_string())?;
             Parameterized::read(path, &text).map_err(|e| e.to_string())?
