@@ -158,10 +158,30 @@ fn write_fresh(dest: &Path, bytes: &[u8]) -> Result<(), String> {
         .map_err(|e| format!("{}: error: cannot write: {e}", dest.display()))
 }
 
-/// The assignment's levels: a level file, or a folder's `*.ron` files (recursively, sorted),
-/// each named by its path from the folder without `.ron`.
+/// The assignment's levels: an assignment manifest (`assignment.ron`, or a folder holding one)
+/// in its order; a level file; or a folder's `*.ron` files (recursively, sorted). Each is named
+/// by its path from the folder without `.ron`.
 fn assignment_levels(path: &Path) -> Result<Vec<Assigned>, String> {
-    let files = level::collect_files(&[path.to_path_buf()]).map_err(|e| e.to_string())?;
+    use level::assignment::{Assignment, MANIFEST};
+    let manifest = if path.is_dir() {
+        path.join(MANIFEST).is_file().then(|| path.join(MANIFEST))
+    } else {
+        (path.file_name().is_some_and(|n| n == MANIFEST)).then(|| path.to_path_buf())
+    };
+    let (folder, files) = match manifest {
+        Some(m) => {
+            let a = Assignment::load(&m).map_err(|e| e.to_string())?;
+            let folder = match a.folder() {
+                f if f.as_os_str().is_empty() => PathBuf::from("."),
+                f => f.to_path_buf(),
+            };
+            (folder, a.levels)
+        }
+        None => {
+            let files = level::collect_files(&[path.to_path_buf()]).map_err(|e| e.to_string())?;
+            (path.to_path_buf(), files)
+        }
+    };
     if files.is_empty() {
         return Err(format!(
             "{}: error: no level files (*.ron) found\n  help: give a level file or a folder of levels",
@@ -171,8 +191,8 @@ fn assignment_levels(path: &Path) -> Result<Vec<Assigned>, String> {
     let mut errors = Vec::new();
     let mut levels = Vec::new();
     for f in &files {
-        let name = if path.is_dir() {
-            f.strip_prefix(path).unwrap_or(f).with_extension("")
+        let name = if folder.is_dir() {
+            f.strip_prefix(&folder).unwrap_or(f).with_extension("")
         } else {
             PathBuf::from(f.file_stem().unwrap_or_default())
         };

@@ -323,3 +323,28 @@ fn grade_never_writes_over_a_file() {
     assert_eq!(grade(&dir, "new.csv").0, 2);
     assert_eq!(std::fs::read(dir.join("new.csv")).unwrap(), first);
 }
+
+#[test]
+fn an_assignment_manifest_orders_the_gradebook() {
+    let dir = assignment("manifest");
+    // The manifest lists the incline first (a folder alone would sort the Atwood machine first).
+    std::fs::write(
+        dir.join("levels/assignment.ron"),
+        format!("Assignment(title: \"Week 3\", levels: [\"{INCLINE}.ron\", \"{ATWOOD}.ron\"])"),
+    )
+    .unwrap();
+    let v = values(INCLINE, "bob");
+    let right = answers(INCLINE, &v)[0].1;
+    std::fs::write(
+        dir.join("answers.csv"),
+        format!("student,level,question,answer\nbob,{INCLINE}.ron,speed,{right}\n"),
+    )
+    .unwrap();
+    let (code, stdout, stderr) = grade(&dir, "grades.csv");
+    assert_eq!(code, 0, "{stdout}\n{stderr}");
+    let book = std::fs::read_to_string(dir.join("grades_gradebook.csv")).unwrap();
+    assert_eq!(
+        book,
+        format!("Student,ID,SIS User ID,SIS Login ID,Section,{INCLINE},{ATWOOD},rigidlab total\nbob,,bob,,,1,0,1\n")
+    );
+}
