@@ -379,8 +379,15 @@ fn check(
     // Questions of levels not run because an answer to them could not be read.
     let mut asked_elsewhere: Vec<String> = Vec::new();
     let mut levels = Vec::new();
+    // The variant each level ran (a level with parameters), for the JSON report.
+    let mut variants = Vec::new();
     for f in &files {
+        let mut picked = None;
         let run = load_warned(f, pick)
+            .map(|(scene, variant)| {
+                picked = variant;
+                scene
+            })
             .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
             .map_err(RunError::Level)
             .and_then(|scene| {
@@ -426,6 +433,7 @@ fn check(
                     other => other,
                 }
             });
+        variants.push(picked);
         match run {
             Ok(r) => levels.push(r),
             Err(RunError::Level(e)) => {
@@ -471,11 +479,44 @@ fn check(
         ExitCode::from(1)
     };
     let text = if json {
-        report::json(&report)
+        json_with_variants(&report, &variants, pick)
     } else {
         report::table(&report)
     };
     report::print(&text, code)
+}
+
+/// The JSON report with, in each level with parameters, the variant it ran: `"variant":
+/// {"student", "values": [{"name", "value", "unit"}], "shown"}` (`student` absent for the nominal
+/// variant), so a script grading a student's `--answer`s knows the numbers they were given.
+fn json_with_variants(
+    report: &Report,
+    variants: &[Option<level::params::Variant>],
+    pick: &level::params::Pick,
+) -> String {
+    let mut v = serde_json::to_value(report).expect("reports serialize");
+    let student = match pick {
+        level::params::Pick::Student(id) => Some(id.trim().to_string()),
+        _ => None,
+    };
+    if let Some(levels) = v["levels"].as_array_mut() {
+        for (l, variant) in levels.iter_mut().zip(variants) {
+            let Some(variant) = variant else { continue };
+            let values: Vec<serde_json::Value> = variant
+                .values
+                .iter()
+                .map(|(name, value, unit)| {
+                    serde_json::json!({"name": name, "value": value, "unit": unit})
+                })
+                .collect();
+            let mut picked = serde_json::json!({"values": values, "shown": variant.shown});
+            if let Some(id) = &student {
+                picked["student"] = serde_json::Value::from(id.clone());
+            }
+            l["variant"] = picked;
+        }
+    }
+    report::json(&v)
 }
 
 /// Loads a level (the picked variant of a level with parameters) and prints its warnings (legal
@@ -483,7 +524,7 @@ fn check(
 fn load_warned(
     path: &std::path::Path,
     pick: &level::params::Pick,
-) -> Result<level::Scene, LevelError> {
+) -> Result<(level::Scene, Option<level::params::Variant>), LevelError> {
     let loaded = level::load_variant(path, pick)?;
     for w in loaded.warnings {
         stderr!("{w}");
@@ -498,7 +539,7 @@ fn load_warned(
             loaded.scene.level.statement
         );
     }
-    Ok(loaded.scene)
+    Ok((loaded.scene, loaded.variant))
 }
 
 /// Runs estimated to take longer than this many seconds (runner::budget) show a progress bar.
@@ -543,10 +584,11 @@ fn run(
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let scene = match load_warned(path, pick).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
-        Ok(s) => s,
-        Err(e) => return bad(e),
-    };
+    let scene =
+        match load_warned(path, pick).and_then(|(s, _)| solver.budget(&s, &opts).map(|()| s)) {
+            Ok(s) => s,
+            Err(e) => return bad(e),
+        };
     if let Some(out) = csv.as_deref() {
         if let Err(e) = csv_out(path, out) {
             return bad(e);

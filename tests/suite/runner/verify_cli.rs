@@ -132,3 +132,54 @@ fn verify_refuses_a_level_without_parameters() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("declares no parameters"), "{err}");
 }
+
+#[test]
+fn check_student_json_carries_the_variant_picked() {
+    // The published vector (docs/levels.md#variants-from-a-student-id): incline_friction_param
+    // for s1234567 is m = 1.5 kg, theta = 35 deg, mu = 0.1.
+    let (_, stdout, stderr) = out(&[
+        "check",
+        "levels/kinetics/incline_friction_param.ron",
+        "levels/kinetics/incline_friction.ron",
+        "--student",
+        " s1234567 ",
+        "--json",
+        "--no-advice",
+    ]);
+    let v: serde_json::Value =
+        serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("{e}: {stderr}"));
+    let levels = v["levels"].as_array().unwrap();
+    let param = levels
+        .iter()
+        .find(|l| l["file"].as_str().unwrap().ends_with("_param.ron"))
+        .unwrap();
+    let variant = &param["variant"];
+    assert_eq!(variant["student"], "s1234567");
+    let values: Vec<(String, f64, String)> = variant["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| {
+            (
+                x["name"].as_str().unwrap().to_string(),
+                x["value"].as_f64().unwrap(),
+                x["unit"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        values,
+        [
+            ("m".to_string(), 1.5, "kg".to_string()),
+            ("theta".to_string(), 35.0, "deg".to_string()),
+            ("mu".to_string(), 0.1, String::new()),
+        ]
+    );
+    assert_eq!(variant["shown"], "m = 1.5 kg, theta = 35 deg, mu = 0.1");
+    // A level without parameters ran as written: no variant.
+    let fixed = levels
+        .iter()
+        .find(|l| !l["file"].as_str().unwrap().ends_with("_param.ron"))
+        .unwrap();
+    assert!(fixed.get("variant").is_none(), "{fixed}");
+}
