@@ -107,11 +107,14 @@ impl Verdict {
     }
 }
 
+/// Runs a variant: whether the engine passed its checks and questions, or why it did not run.
+pub type RunVariant<'a> = &'a dyn Fn(&Scene) -> Result<bool, String>;
+
 /// The assignment's levels and the variants made so far.
 pub struct Class<'a> {
     pub levels: Vec<Assigned>,
     /// Run each variant (its engine verdict in the outputs), or only make it.
-    run: Option<&'a dyn Fn(&Scene) -> Result<bool, String>>,
+    run: Option<RunVariant<'a>>,
     made: HashMap<(usize, Vec<u64>), Result<Rc<Made>, String>>,
     /// (student, level, question) -> the line of the first answer.
     seen: HashMap<(String, usize, String), u64>,
@@ -120,10 +123,7 @@ pub struct Class<'a> {
 }
 
 impl<'a> Class<'a> {
-    pub fn new(
-        levels: Vec<Assigned>,
-        run: Option<&'a dyn Fn(&Scene) -> Result<bool, String>>,
-    ) -> Self {
+    pub fn new(levels: Vec<Assigned>, run: Option<RunVariant<'a>>) -> Self {
         Class {
             levels,
             run,
