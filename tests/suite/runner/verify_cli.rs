@@ -66,13 +66,14 @@ fn verify_finds_the_broken_variant_and_names_its_values() {
 
 #[test]
 fn verify_passes_the_library_exercises() {
-    for f in [
-        "levels/kinetics/incline_friction_param.ron",
-        "levels/kinetics/classic_atwood_massive_pulley_param.ron",
-        "levels/kinetics/simple_pendulum_param.ron",
-        "levels/impact/central_impact_param.ron",
-        "levels/energy/classic_spring_block_param.ron",
-    ] {
+    // Every parameterized exercise of the library (8 on 2026-12-07), so a new one is covered.
+    let files: Vec<PathBuf> = common::ron_files("levels", &[])
+        .into_iter()
+        .filter(|f| f.to_string_lossy().ends_with("_param.ron"))
+        .collect();
+    assert!(files.len() >= 8, "{files:?}");
+    for f in &files {
+        let f = f.to_str().unwrap();
         let (code, text, err) = out(&["verify", f, "--variants", "20"]);
         assert_eq!(code, 0, "{f}:\n{text}{err}");
         assert!(text.contains(", 0 fail"), "{text}");
