@@ -1,4 +1,4 @@
-//! The command line: `rigidlab [check|run|verify|play|render|study]`.
+//! The command line: `rigidlab [check|run|verify|grade|play|render|study]`.
 
 use crate::level::{self, LevelError};
 use crate::report::{self, CsvWriter, LevelReport, Report};
@@ -11,6 +11,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+mod grade;
 mod verify;
 
 #[derive(Parser, Debug)]
@@ -81,6 +82,26 @@ pub enum Command {
         advice_cost: f64,
         #[command(flatten)]
         solver: SolverArgs,
+    },
+    /// Grade a class's answers (answers.csv: student,level,question,answer), each against the
+    /// student's own variant; write grades.csv and a gradebook to import (exit 0: every row
+    /// graded, 1: some rows bad, reported by line, the rest graded, 2: nothing written).
+    Grade {
+        /// A level file or a folder of levels (its *.ron files, sorted).
+        assignment: PathBuf,
+        /// The answers: a CSV file whose header names student, level, question and answer.
+        answers: PathBuf,
+        /// grades.csv to write, one row per answer; never over an existing file.
+        #[arg(long)]
+        out: PathBuf,
+        /// The gradebook to write (a row per student, a column per level and the total);
+        /// default: beside --out, NAME_gradebook.csv; never over an existing file.
+        #[arg(long)]
+        gradebook: Option<PathBuf>,
+        /// Do not run each variant (by default each is run once, and a variant the engine
+        /// fails is warned about; the grades do not depend on the run).
+        #[arg(long)]
+        no_run: bool,
     },
     /// Run one level and write its per-step snapshots.
     Run {
@@ -229,10 +250,7 @@ fn answers_for(
     let mut out = HashMap::new();
     for q in &scene.level.questions {
         if let Some(text) = answers.get(&q.id) {
-            // Converted to the quantity's SI unit, the question's unit up to notation (validation
-            // holds it there): a question in `1/s` still takes an answer in rad/s.
-            let si = q.quantity.si_unit(&scene.level);
-            let v = crate::questions::units::answer_in(text, si).map_err(|e| {
+            let v = crate::questions::units::answer_to(q, &scene.level, text).map_err(|e| {
                 format!(
                     "error: --answer {}={text}: {e}\n  help: give the answer in {} or a unit of the same kind",
                     q.id, q.unit
@@ -293,6 +311,19 @@ pub fn main() -> ExitCode {
             advice: (!no_advice).then_some(advice_cost),
             solver: &solver,
         }),
+        Some(Command::Grade {
+            assignment,
+            answers,
+            out,
+            gradebook,
+            no_run,
+        }) => grade::grade(grade::GradeArgs {
+            assignment: &assignment,
+            answers: &answers,
+            out: &out,
+            gradebook: gradebook.as_deref(),
+            no_run,
+        }),
         Some(Command::Run {
             level,
             student,
@@ -352,8 +383,15 @@ fn check(
     // Questions of levels not run because an answer to them could not be read.
     let mut asked_elsewhere: Vec<String> = Vec::new();
     let mut levels = Vec::new();
+    // The variant each level ran (a level with parameters), for the JSON report.
+    let mut variants = Vec::new();
     for f in &files {
+        let mut picked = None;
         let run = load_warned(f, pick)
+            .map(|(scene, variant)| {
+                picked = variant;
+                scene
+            })
             .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
             .map_err(RunError::Level)
             .and_then(|scene| {
@@ -400,6 +438,7 @@ fn check(
                     other => other,
                 }
             });
+        variants.push(picked);
         match run {
             Ok(r) => levels.push(r),
             Err(RunError::Level(e)) => {
@@ -445,7 +484,7 @@ fn check(
         ExitCode::from(1)
     };
     let text = if json {
-        report::json(&report)
+        json_with_variants(&report, &variants, pick)
     } else {
         report::table(&report)
     };
@@ -468,12 +507,45 @@ fn with_help(mut report: LevelReport, level: &level::Level, solution: bool) -> L
     report
 }
 
+/// The JSON report with, in each level with parameters, the variant it ran: `"variant":
+/// {"student", "values": [{"name", "value", "unit"}], "shown"}` (`student` absent for the nominal
+/// variant), so a script grading a student's `--answer`s knows the numbers they were given.
+fn json_with_variants(
+    report: &Report,
+    variants: &[Option<level::params::Variant>],
+    pick: &level::params::Pick,
+) -> String {
+    let mut v = serde_json::to_value(report).expect("reports serialize");
+    let student = match pick {
+        level::params::Pick::Student(id) => Some(id.trim().to_string()),
+        _ => None,
+    };
+    if let Some(levels) = v["levels"].as_array_mut() {
+        for (l, variant) in levels.iter_mut().zip(variants) {
+            let Some(variant) = variant else { continue };
+            let values: Vec<serde_json::Value> = variant
+                .values
+                .iter()
+                .map(|(name, value, unit)| {
+                    serde_json::json!({"name": name, "value": value, "unit": unit})
+                })
+                .collect();
+            let mut picked = serde_json::json!({"values": values, "shown": variant.shown});
+            if let Some(id) = &student {
+                picked["student"] = serde_json::Value::from(id.clone());
+            }
+            l["variant"] = picked;
+        }
+    }
+    report::json(&v)
+}
+
 /// Loads a level (the picked variant of a level with parameters) and prints its warnings (legal
 /// but probably not meant) to stderr, and a student's variant: its values and statement.
 fn load_warned(
     path: &std::path::Path,
     pick: &level::params::Pick,
-) -> Result<level::Scene, LevelError> {
+) -> Result<(level::Scene, Option<level::params::Variant>), LevelError> {
     let loaded = level::load_variant(path, pick)?;
     for w in loaded.warnings {
         stderr!("{w}");
@@ -488,7 +560,7 @@ fn load_warned(
             loaded.scene.level.statement
         );
     }
-    Ok(loaded.scene)
+    Ok((loaded.scene, loaded.variant))
 }
 
 /// Runs estimated to take longer than this many seconds (runner::budget) show a progress bar.
@@ -533,10 +605,11 @@ fn run(
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let scene = match load_warned(path, pick).and_then(|s| solver.budget(&s, &opts).map(|()| s)) {
-        Ok(s) => s,
-        Err(e) => return bad(e),
-    };
+    let scene =
+        match load_warned(path, pick).and_then(|(s, _)| solver.budget(&s, &opts).map(|()| s)) {
+            Ok(s) => s,
+            Err(e) => return bad(e),
+        };
     if let Some(out) = csv.as_deref() {
         if let Err(e) = csv_out(path, out) {
             return bad(e);

@@ -98,6 +98,27 @@ impl Pending {
     }
 }
 
+impl Pending {
+    /// Commits to `dest` only if no file has that name, else fails with `AlreadyExists` and
+    /// leaves the file there as it was: for an output the user named that must never replace
+    /// anything (`grade --out`), even a file made between a check and the write.
+    pub fn commit_fresh(mut self) -> io::Result<()> {
+        let file = self
+            .file
+            .take()
+            .expect("a pending file has its file until committed");
+        let file = file.into_inner().map_err(|e| e.into_error())?;
+        let Some(tmp) = self.tmp.take() else {
+            return Ok(());
+        };
+        file.sync_all()?;
+        drop(file);
+        let result = claim_upto(&tmp, &self.dest, 1);
+        let _ = fs::remove_file(&tmp);
+        result.map(|_| ())
+    }
+}
+
 /// Renames `from` onto `name` if no file has that name: the name is reserved first
 /// (`create_new`), so an earlier file is never renamed over. None when it is taken.
 fn rename_onto_new(from: &Path, name: &Path) -> io::Result<Option<PathBuf>> {
@@ -118,7 +139,12 @@ fn rename_onto_new(from: &Path, name: &Path) -> io::Result<Option<PathBuf>> {
 /// is taken, so no file is replaced); where the file system has no hard links, the name is
 /// reserved with an empty file made with `create_new` and the temporary file renamed over it.
 fn claim(tmp: &Path, dest: &Path) -> io::Result<PathBuf> {
-    for n in 1..=MAX_COUNTER {
+    claim_upto(tmp, dest, MAX_COUNTER)
+}
+
+/// [`claim`] over the first `max` names (1: `dest` only).
+fn claim_upto(tmp: &Path, dest: &Path, max: u32) -> io::Result<PathBuf> {
+    for n in 1..=max {
         let name = numbered(dest, n);
         match fs::hard_link(tmp, &name) {
             Ok(()) => return Ok(name),
@@ -129,13 +155,15 @@ fn claim(tmp: &Path, dest: &Path) -> io::Result<PathBuf> {
             return Ok(name);
         }
     }
-    Err(io::Error::new(
-        io::ErrorKind::AlreadyExists,
+    let what = if max <= 1 {
+        format!("{} exists", dest.display())
+    } else {
         format!(
-            "{} and {MAX_COUNTER} numbered names after it are taken",
+            "{} and {max} numbered names after it are taken",
             dest.display()
-        ),
-    ))
+        )
+    };
+    Err(io::Error::new(io::ErrorKind::AlreadyExists, what))
 }
 
 impl Write for Pending {

@@ -4,6 +4,7 @@
 //! line:col) and then `validate`s the meaning (each semantic error points at
 //! the line of the offending item and says how to fix it).
 
+pub mod assignment;
 pub mod curves;
 mod error;
 pub mod format;

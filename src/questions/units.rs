@@ -38,6 +38,17 @@ pub fn answer_in(text: &str, asked: &str) -> Result<f64, String> {
     Ok(value * given.factor / want.factor)
 }
 
+/// A student's typed answer to question `q` of `level`, converted to the quantity's SI unit, the
+/// question's unit up to notation (validation holds it there): a question in `1/s` still takes an
+/// answer in rad/s. `check --answer` and `grade` read answers this way.
+pub fn answer_to(
+    q: &crate::level::QuestionDef,
+    level: &crate::level::Level,
+    text: &str,
+) -> Result<f64, String> {
+    answer_in(text, q.quantity.si_unit(level))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

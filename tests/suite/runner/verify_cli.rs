@@ -66,13 +66,14 @@ fn verify_finds_the_broken_variant_and_names_its_values() {
 
 #[test]
 fn verify_passes_the_library_exercises() {
-    for f in [
-        "levels/kinetics/incline_friction_param.ron",
-        "levels/kinetics/classic_atwood_massive_pulley_param.ron",
-        "levels/kinetics/simple_pendulum_param.ron",
-        "levels/impact/central_impact_param.ron",
-        "levels/energy/classic_spring_block_param.ron",
-    ] {
+    // Every parameterized exercise of the library (8 on 2026-12-07), so a new one is covered.
+    let files: Vec<PathBuf> = common::ron_files("levels", &[])
+        .into_iter()
+        .filter(|f| f.to_string_lossy().ends_with("_param.ron"))
+        .collect();
+    assert!(files.len() >= 8, "{files:?}");
+    for f in &files {
+        let f = f.to_str().unwrap();
         let (code, text, err) = out(&["verify", f, "--variants", "20"]);
         assert_eq!(code, 0, "{f}:\n{text}{err}");
         assert!(text.contains(", 0 fail"), "{text}");
@@ -131,4 +132,55 @@ fn verify_refuses_a_level_without_parameters() {
     let (code, _, err) = out(&["verify", "levels/kinetics/incline_friction.ron"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("declares no parameters"), "{err}");
+}
+
+#[test]
+fn check_student_json_carries_the_variant_picked() {
+    // The published vector (docs/levels.md#variants-from-a-student-id): incline_friction_param
+    // for s1234567 is m = 1.5 kg, theta = 35 deg, mu = 0.1.
+    let (_, stdout, stderr) = out(&[
+        "check",
+        "levels/kinetics/incline_friction_param.ron",
+        "levels/kinetics/incline_friction.ron",
+        "--student",
+        " s1234567 ",
+        "--json",
+        "--no-advice",
+    ]);
+    let v: serde_json::Value =
+        serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("{e}: {stderr}"));
+    let levels = v["levels"].as_array().unwrap();
+    let param = levels
+        .iter()
+        .find(|l| l["file"].as_str().unwrap().ends_with("_param.ron"))
+        .unwrap();
+    let variant = &param["variant"];
+    assert_eq!(variant["student"], "s1234567");
+    let values: Vec<(String, f64, String)> = variant["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| {
+            (
+                x["name"].as_str().unwrap().to_string(),
+                x["value"].as_f64().unwrap(),
+                x["unit"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        values,
+        [
+            ("m".to_string(), 1.5, "kg".to_string()),
+            ("theta".to_string(), 35.0, "deg".to_string()),
+            ("mu".to_string(), 0.1, String::new()),
+        ]
+    );
+    assert_eq!(variant["shown"], "m = 1.5 kg, theta = 35 deg, mu = 0.1");
+    // A level without parameters ran as written: no variant.
+    let fixed = levels
+        .iter()
+        .find(|l| !l["file"].as_str().unwrap().ends_with("_param.ron"))
+        .unwrap();
+    assert!(fixed.get("variant").is_none(), "{fixed}");
 }
