@@ -238,7 +238,8 @@ fn position_verdict(
         Goal::Reaches { point, .. } => *point,
         _ => (at.x, at.y),
     });
-    if !(path > STILL) {
+    // A NaN path (a body whose state was not finite) counts as not moved.
+    if path.is_nan() || path <= STILL {
         r.note = format!(
             "the body never moved (its mass center travelled {path:.1e} m): a goal is met by a motion"
         );

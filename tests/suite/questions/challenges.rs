@@ -20,8 +20,11 @@ fn closed_forms() -> Vec<(&'static str, f64)> {
             "strike_at_percussion.ron",
             0.6 + (1.2f64.powi(2) + 0.04f64.powi(2)) / (12.0 * 0.6),
         ),
-        // (m_A - m_B) g / (m_A + m_B + M/2) = g/5 with m_B = 2 kg, M = 2 kg
-        ("atwood_at_g_over_5.ron", (6.0 * 2.0 + 2.0 / 2.0) / 4.0),
+        // (m_A - m_B) g / (m_A + m_B + M/2) = g/5: m_A = (6 m_B + M/2) / 4, m_B = M = 2 kg
+        ("atwood_at_g_over_5.ron", {
+            let (m_b, m) = (2.0, 2.0);
+            (6.0 * m_b + m / 2.0) / 4.0
+        }),
         // 1/2 m v0^2 = 1/2 k d^2 with m = 2 kg, v0 = 2 m/s, d = 0.5 m
         ("spring_stops_at_mark.ron", 2.0 * 4.0 / 0.25),
         // h = 2.5 rho, rho = 0.9 m
