@@ -4,8 +4,8 @@
 //! never success on what it could not measure: a reading that is not finite, or a body that
 //! never moved.
 
+use super::level_facts::LevelFacts;
 use super::probe::QuestionProbe;
-use super::LevelFacts;
 use crate::level::{blow_size, ChallengeDef, Goal, Level, V2};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -207,7 +207,7 @@ impl ChallengeProbe {
 
 /// Why a goal's reading is missing (the question's note), or nothing when it was read: the
 /// question's notes on its analysis do not concern a goal, judged on the engine alone.
-fn unread(read: &super::QuestionResult) -> String {
+fn unread(read: &super::result::QuestionResult) -> String {
     if read.engine.is_finite() {
         String::new()
     } else {
