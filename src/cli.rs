@@ -386,13 +386,14 @@ fn check(
     // The variant each level ran (a level with parameters), for the JSON report.
     let mut variants = Vec::new();
     for f in &files {
+        let mut played = None;
         let mut picked = None;
-        let run = load_warned(f, pick)
-            .map(|(scene, variant)| {
+        let run = load_played(f, pick, &answers, &mut bad_answer)
+            .and_then(|(scene, control, variant)| {
+                played = control;
                 picked = variant;
-                scene
+                solver.budget(&scene, &opts).map(|()| scene)
             })
-            .and_then(|scene| solver.budget(&scene, &opts).map(|()| scene))
             .map_err(RunError::Level)
             .and_then(|scene| {
                 let graded = match answers_for(&scene, &answers) {
@@ -440,7 +441,16 @@ fn check(
             });
         variants.push(picked);
         match run {
-            Ok(r) => levels.push(r),
+            Ok(mut r) => {
+                if let (Some(c), Some((control, value, student))) = (r.challenge.as_mut(), &played)
+                {
+                    c.set_control(control, *value, *student);
+                }
+                if let Some((control, ..)) = &played {
+                    asked_elsewhere.push(control.name.clone());
+                }
+                levels.push(r);
+            }
             Err(RunError::Level(e)) => {
                 stderr!("{e}");
                 bad_input = true;
@@ -538,6 +548,61 @@ fn json_with_variants(
         }
     }
     report::json(&v)
+}
+
+/// The control of a challenge as a run was made with it: the control, its value in its unit,
+/// and whether that value is the student's (`--answer NAME=VALUE`) or the worked one.
+type Played = (level::params::Control, f64, bool);
+
+/// [`load_warned`], and for a level with a challenge the variant with its control set: to the
+/// student's value when `--answer` names the control (converted to its unit; one that cannot be
+/// read sets `bad_answer` and is an error), else to the worked value.
+fn load_played(
+    path: &std::path::Path,
+    pick: &level::params::Pick,
+    answers: &HashMap<String, String>,
+    bad_answer: &mut bool,
+) -> Result<(level::Scene, Option<Played>, Option<level::params::Variant>), LevelError> {
+    let probe = level::load_variant(path, pick)?;
+    let Some((control, _)) = probe.control else {
+        return load_warned(path, pick).map(|(s, v)| (s, None, v));
+    };
+    let given = match answers.get(&control.name) {
+        None => None,
+        Some(text) => {
+            let unit = if control.unit.is_empty() {
+                "1"
+            } else {
+                control.unit.as_str()
+            };
+            let v = crate::questions::units::answer_in(text, unit).map_err(|e| {
+                *bad_answer = true;
+                LevelError::new(
+                    path,
+                    (0, 0),
+                    format!("--answer {}={text}: {e}", control.name),
+                    format!(
+                        "give the control in {} or a unit of the same kind",
+                        if control.unit.is_empty() {
+                            "a plain number"
+                        } else {
+                            control.unit.as_str()
+                        }
+                    ),
+                )
+            })?;
+            Some(v)
+        }
+    };
+    let loaded = level::load_challenge(path, pick, given)?;
+    for w in &loaded.warnings {
+        stderr!("{w}");
+    }
+    if let (level::params::Pick::Student(id), Some(v)) = (pick, &loaded.variant) {
+        stderr!("{}: student {}: {}", path.display(), id.trim(), v.shown);
+    }
+    let played = loaded.control.map(|(c, v)| (c, v, given.is_some()));
+    Ok((loaded.scene, played, loaded.variant))
 }
 
 /// Loads a level (the picked variant of a level with parameters) and prints its warnings (legal

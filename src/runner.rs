@@ -7,7 +7,9 @@
 use crate::checks::{CheckResult, CheckSet};
 use crate::clock::Instant;
 use crate::level::{self, Level, LevelError, Scene};
-use crate::questions::{initial_in_f64, LevelFacts, QuestionProbe, QuestionResult};
+use crate::questions::{
+    initial_in_f64, ChallengeProbe, ChallengeResult, LevelFacts, QuestionProbe, QuestionResult,
+};
 use crate::report::LevelReport;
 use crate::sim::{Options, SimError};
 use crate::simulation::AnySimulation;
@@ -48,6 +50,8 @@ pub fn run_file(
 pub struct Observers {
     checks: CheckSet,
     questions: Vec<QuestionProbe>,
+    /// The level's challenge, judged on the same snapshots.
+    challenge: Option<ChallengeProbe>,
 }
 
 impl Observers {
@@ -60,18 +64,24 @@ impl Observers {
                 .iter()
                 .map(|q| QuestionProbe::sharing(Arc::clone(&facts), q))
                 .collect(),
+            challenge: level
+                .challenge
+                .as_ref()
+                .map(|c| ChallengeProbe::new(level, Arc::clone(&facts), c)),
         }
     }
 
     /// Whether a check or a question reads the snapshots' contacts (every question is taken to).
     pub fn reads_contacts(&self) -> bool {
-        self.checks.reads_contacts() || !self.questions.is_empty()
+        self.checks.reads_contacts() || !self.questions.is_empty() || self.challenge.is_some()
     }
 
     pub fn observe(&mut self, s: &Snapshot) {
         self.checks.observe(s);
         // Questions read for good need no more snapshots: no copy once all are.
-        if self.questions.iter().all(QuestionProbe::is_done) {
+        if self.questions.iter().all(QuestionProbe::is_done)
+            && self.challenge.as_ref().is_none_or(ChallengeProbe::is_done)
+        {
             return;
         }
         let shared = Arc::new(if s.is_initial() {
@@ -82,10 +92,27 @@ impl Observers {
         for q in self.questions.iter_mut() {
             q.observe_shared(&shared);
         }
+        if let Some(c) = self.challenge.as_mut() {
+            c.observe_shared(&shared);
+        }
     }
 
     /// The results, grading the students' answers given by question id.
     pub fn finish(self, answers: &HashMap<String, f64>) -> (Vec<CheckResult>, Vec<QuestionResult>) {
+        let (checks, questions, _) = self.finish_all(answers);
+        (checks, questions)
+    }
+
+    /// [`Observers::finish`], with the challenge's verdict (None without a challenge).
+    pub fn finish_all(
+        self,
+        answers: &HashMap<String, f64>,
+    ) -> (
+        Vec<CheckResult>,
+        Vec<QuestionResult>,
+        Option<ChallengeResult>,
+    ) {
+        let challenge = self.challenge.map(ChallengeProbe::finish);
         let checks = self.checks.finish();
         let questions = self
             .questions
@@ -95,7 +122,7 @@ impl Observers {
                 q.finish(answer)
             })
             .collect();
-        (checks, questions)
+        (checks, questions, challenge)
     }
 }
 
@@ -146,12 +173,14 @@ fn run_with(
         file: scene.file.display().to_string(),
         source,
     })?;
-    let (checks, questions) = observers.finish(answers);
-    // A student's wrong answer fails the level as a wrong engine value would: graders read the exit code.
+    let (checks, questions, challenge) = observers.finish_all(answers);
+    // A student's wrong answer fails the level as a wrong engine value would: graders read the
+    // exit code. So does a challenge's missed goal, the worked value's or the student's.
     let passed = checks.iter().all(|c| c.passed)
         && questions
             .iter()
-            .all(|q| q.passed && q.student.as_ref().is_none_or(|s| s.passed));
+            .all(|q| q.passed && q.student.as_ref().is_none_or(|s| s.passed))
+        && challenge.as_ref().is_none_or(|c| c.success);
     Ok(LevelReport {
         file: scene.file.display().to_string(),
         title: sim.level.title.clone(),
@@ -163,6 +192,7 @@ fn run_with(
         settings: Some(sim.settings_as_run()),
         checks,
         questions,
+        challenge,
         error: None,
         advice: None,
         hint: None,

@@ -237,6 +237,8 @@ pub struct LiveChecks {
     /// Set at the level's end: the same results `rigidlab check` prints.
     pub checks: Option<Vec<CheckResult>>,
     pub answers: Option<Vec<QuestionResult>>,
+    /// The level's challenge: its goal's verdict, at the level's end.
+    pub challenge: Option<crate::questions::ChallengeResult>,
 }
 
 impl LiveChecks {
@@ -248,6 +250,7 @@ impl LiveChecks {
             observers: Some(Observers::new(level)),
             checks: None,
             answers: None,
+            challenge: None,
         };
         if let Some(o) = live.observers.as_mut() {
             o.observe(&phys.initial);
@@ -270,9 +273,10 @@ impl LiveChecks {
         }
         if phys.at_end() {
             if let Some(o) = self.observers.take() {
-                let (checks, answers) = o.finish(&Default::default());
+                let (checks, answers, challenge) = o.finish_all(&Default::default());
                 self.checks = Some(checks);
                 self.answers = Some(answers);
+                self.challenge = challenge;
             }
         }
     }

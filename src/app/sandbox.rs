@@ -32,6 +32,7 @@ pub fn empty_scene() -> Scene {
             couplings: Vec::new(),
             loads: Vec::new(),
             events: Vec::new(),
+            challenge: None,
             checks: Vec::new(),
             questions: Vec::new(),
         },

@@ -60,6 +60,7 @@ pub fn empty_scene(file: std::path::PathBuf) -> Scene {
         couplings: vec![],
         loads: vec![],
         events: vec![],
+        challenge: None,
         checks: vec![],
         questions: vec![],
     };

@@ -5,7 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
+mod challenge;
 mod exercise;
+pub use challenge::*;
 pub use exercise::*;
 pub mod units;
 
@@ -61,6 +63,9 @@ pub struct Level {
     pub loads: Vec<LoadDef>,
     #[serde(default)]
     pub events: Vec<EventDef>,
+    /// A control the student sets and a goal the run must meet (docs/levels.md#challenges).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub challenge: Option<ChallengeDef>,
     /// Theory-against-engine checks evaluated every step.
     #[serde(default)]
     pub checks: Vec<CheckDef>,

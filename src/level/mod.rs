@@ -65,6 +65,9 @@ pub struct Loaded {
     pub scene: Scene,
     pub variant: Option<params::Variant>,
     pub warnings: Vec<LevelWarning>,
+    /// The challenge's control, with the value the scene was made with (a level with a
+    /// challenge; see [`load_challenge`]).
+    pub control: Option<(params::Control, f64)>,
 }
 
 /// [`load_with_warnings`] for one variant of a level with parameters (`check --student`); a
@@ -81,6 +84,10 @@ pub fn parse_variant(path: &Path, text: &str, pick: &params::Pick) -> Result<Loa
     let text = text.strip_prefix(BOM).unwrap_or(text);
     if let Some((p, made)) = params::make_checked(path, text, pick)? {
         let warnings = p.warnings(path, &made);
+        let control = p.control(path, &made)?.map(|c| {
+            let v = made.variant.values[c.index].1;
+            (c, v)
+        });
         return Ok(Loaded {
             scene: Scene {
                 file: path.to_path_buf(),
@@ -88,6 +95,7 @@ pub fn parse_variant(path: &Path, text: &str, pick: &params::Pick) -> Result<Loa
             },
             variant: Some(made.variant),
             warnings,
+            control,
         });
     }
     let scene = parse(path, text)?;
@@ -96,7 +104,57 @@ pub fn parse_variant(path: &Path, text: &str, pick: &params::Pick) -> Result<Loa
         scene,
         variant: None,
         warnings,
+        control: None,
     })
+}
+
+/// A level with a challenge, made to be run: the picked variant with the challenge's control
+/// set to `value` (in the control's unit, the student's) or, when None, to its worked value.
+/// A level without a challenge loads as [`load_variant`] loads it.
+pub fn load_challenge(
+    path: &Path,
+    pick: &params::Pick,
+    value: Option<f64>,
+) -> Result<Loaded, LevelError> {
+    let plain = load_variant(path, pick)?;
+    if plain.control.is_none() {
+        return Ok(plain);
+    }
+    let text = read_text(path)?;
+    let Some(p) = params::Parameterized::read(path, &text)? else {
+        return Ok(plain);
+    };
+    let (made, control) = p.make_control(path, &p.indices(pick), value)?;
+    let warnings = p.warnings(path, &made);
+    let control = control.map(|c| {
+        let v = made.variant.values[c.index].1;
+        (c, v)
+    });
+    Ok(Loaded {
+        scene: Scene {
+            file: path.to_path_buf(),
+            level: made.level,
+        },
+        variant: Some(made.variant),
+        warnings,
+        control,
+    })
+}
+
+/// A challenge in a level without parameters: its control can name none.
+fn control_without_parameters(path: &Path, text: &str, level: &Level) -> Result<(), LevelError> {
+    let Some(c) = &level.challenge else {
+        return Ok(());
+    };
+    Err(LevelError::new(
+        path,
+        Locator::new(text).section_field("challenge", "control"),
+        format!(
+            "the challenge's control \"{}\" names no parameter: the level declares none",
+            c.control
+        ),
+        "declare the control in `parameters: [(name: ..., range: (min, max), step: ..., unit: ...)]` and write the scene's values that depend on it as expressions of it (docs/levels.md#challenges)",
+    ))
 }
 
 /// A level file's text (UTF-8, without a byte-order mark), read as [`load`] reads it.
@@ -248,6 +306,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, LevelError> {
         .from_str(text)
         .map_err(|e| syntax_error(path, text, &e))?;
     validate::validate(path, text, &level)?;
+    control_without_parameters(path, text, &level)?;
     Ok(Scene {
         file: path.to_path_buf(),
         level,

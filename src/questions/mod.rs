@@ -41,6 +41,7 @@
 //!
 //! [`QuantityFamily`]: crate::level::QuantityFamily
 
+pub mod challenge;
 mod contact_events;
 mod contact_reading;
 mod curved_contact;
@@ -67,6 +68,7 @@ mod step_work;
 pub mod units;
 mod work_and_power;
 
+pub use challenge::{ChallengeProbe, ChallengeResult};
 pub use level_facts::LevelFacts;
 pub use probe::{initial_in_f64, QuestionProbe};
 pub use result::{grade_answer, QuestionResult, StudentGrade, CANNOT_BE_READ};

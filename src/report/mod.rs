@@ -2,7 +2,7 @@
 
 use crate::checks::CheckResult;
 use crate::files::Pending;
-use crate::questions::QuestionResult;
+use crate::questions::{ChallengeResult, QuestionResult};
 use crate::snapshot::Snapshot;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
@@ -32,6 +32,9 @@ pub struct LevelReport {
     pub settings: Option<crate::sim::Settings>,
     pub checks: Vec<CheckResult>,
     pub questions: Vec<QuestionResult>,
+    /// A level with a challenge: its goal's verdict for the value run (docs/cli.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub challenge: Option<ChallengeResult>,
     /// Set when the run stopped early (explosion, non-finite state).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
@@ -135,6 +138,7 @@ impl LevelReport {
             settings: None,
             checks: Vec::new(),
             questions: Vec::new(),
+            challenge: None,
             error: Some(error.to_string()),
             advice: None,
             hint: None,
@@ -229,6 +233,9 @@ fn table_text(report: &Report) -> String {
             }
         }
         help_lines(&mut out, l);
+        if let Some(c) = &l.challenge {
+            out += &challenge_line(c);
+        }
     }
     let n = report.levels.len();
     let p = report.levels.iter().filter(|l| l.passed).count();
@@ -248,6 +255,30 @@ fn help_lines(out: &mut String, l: &LevelReport) {
             *out += &format!("      {line}\n");
         }
     }
+}
+
+/// A challenge's lines in the table: the control's value and whose it is, the goal, the verdict.
+fn challenge_line(c: &ChallengeResult) -> String {
+    use crate::terminal::field;
+    let unit = if c.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", field(&c.unit))
+    };
+    let mut out = format!(
+        "    {} challenge {} = {}{unit} ({}; worked {}{unit}): {} -> {}\n",
+        if c.success { " " } else { "!" },
+        field(&c.control),
+        c.value,
+        if c.student { "student" } else { "worked value" },
+        c.worked,
+        field(&c.goal),
+        c.verdict()
+    );
+    if !c.note.is_empty() {
+        out += &format!("      note: {}\n", c.note);
+    }
+    out
 }
 
 /// Writes the per-step snapshots as CSV: bodies to `path`, and joints, contacts and springs

@@ -244,18 +244,29 @@ fn reads_joint_impulses(level: &Level) -> bool {
                 | K::WorkEnergy
                 | K::VirtualWork
         )
-    }) || level.questions.iter().any(|q| {
-        matches!(
-            q.quantity,
-            Q::JointForce(_)
-                | Q::JointReaction { .. }
-                | Q::JointImpulse { .. }
-                | Q::MotorTorque { .. }
-                | Q::Ax(_)
-                | Q::Ay(_)
-                | Q::Accel(_)
-                | Q::Alpha(_)
-                | Q::PointAccel { .. }
+    }) || level
+        .questions
+        .iter()
+        .cloned()
+        // A challenge's goal read as a question reads as one.
+        .chain(
+            level
+                .challenge
+                .iter()
+                .filter_map(|c| c.goal.as_question(level)),
         )
-    })
+        .any(|q| {
+            matches!(
+                q.quantity,
+                Q::JointForce(_)
+                    | Q::JointReaction { .. }
+                    | Q::JointImpulse { .. }
+                    | Q::MotorTorque { .. }
+                    | Q::Ax(_)
+                    | Q::Ay(_)
+                    | Q::Accel(_)
+                    | Q::Alpha(_)
+                    | Q::PointAccel { .. }
+            )
+        })
 }

@@ -7,6 +7,7 @@
 //! shows. Panels read the run and ask for changes to it with [`PhysicsCommand`]s, which this
 //! system writes; they import from beside and below them, never from this file.
 
+mod challenge;
 pub mod checks;
 mod exercise;
 pub mod help;
@@ -87,6 +88,7 @@ impl Plugin for PanelsPlugin {
                 ),
             )
             .add_systems(EguiPrimaryContextPass, panels);
+        challenge::plugin(app);
     }
 }
 
@@ -178,6 +180,9 @@ fn panels(mut p: PanelInput) -> Result {
     let free = root.available_rect_before_wrap();
     p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
     help_and_tour(&ctx, &mut p, free);
+    for c in challenge::window(&ctx, &p.phys, &p.live, free) {
+        p.run_commands.write(c);
+    }
     tidy_after_frame(&ctx, &mut p);
     if load.is_none() {
         load = p.st.pending_open.take();

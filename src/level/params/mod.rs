@@ -9,6 +9,7 @@
 //! valid when its nominal variant and every corner of its ranges (each parameter at its lowest
 //! and its highest value) are.
 
+mod challenge;
 mod decl;
 mod expand;
 pub mod expr;
@@ -16,6 +17,7 @@ mod overlap;
 pub mod seed;
 mod text;
 
+pub use challenge::Control;
 pub use decl::{Parameter, Values, MAX_PARAMETERS};
 pub use text::textbook;
 
@@ -141,18 +143,33 @@ impl Parameterized {
             .zip(idx)
             .map(|(p, &k)| (p.name.clone(), p.values.at(k), p.unit.clone()))
             .collect();
-        let shown = self
-            .params
+        let shown = self.shown(&values);
+        Variant { values, shown }
+    }
+
+    /// The values as shown: "m = 2.5 kg, theta = 30 deg".
+    fn shown(&self, values: &[(String, f64, String)]) -> String {
+        self.params
             .iter()
-            .zip(&values)
+            .zip(values)
             .map(|(p, (n, v, _))| format!("{n} = {}", text::with_unit(p, *v)))
             .collect::<Vec<_>>()
-            .join(", ");
-        Variant { values, shown }
+            .join(", ")
     }
 
     /// Makes, parses and validates one variant; an error names its values.
     pub fn make(&self, path: &Path, idx: &[u64]) -> Result<Made, LevelError> {
+        self.make_set(path, idx, None)
+    }
+
+    /// [`Parameterized::make`] with one parameter set to a value of its own (in its unit, any
+    /// number: a challenge's control as the student sets it, `params::challenge`).
+    pub fn make_set(
+        &self,
+        path: &Path,
+        idx: &[u64],
+        set: Option<(usize, f64)>,
+    ) -> Result<Made, LevelError> {
         let fits = idx.len() == self.params.len()
             && self
                 .params
@@ -170,7 +187,11 @@ impl Parameterized {
                 "give one value index per parameter, each below its number of values",
             ));
         }
-        let variant = self.variant(idx);
+        let mut variant = self.variant(idx);
+        if let Some((k, v)) = set.filter(|(k, _)| *k < self.params.len()) {
+            variant.values[k].1 = v;
+            variant.shown = self.shown(&variant.values);
+        }
         let own: Vec<f64> = variant.values.iter().map(|v| v.1).collect();
         let si: Vec<f64> = self
             .params
@@ -303,8 +324,10 @@ impl Parameterized {
     pub fn check_corners(&self, path: &Path) -> Result<(), LevelError> {
         let nominal = self.make(path, &self.indices(&Pick::Nominal))?;
         let known = overlap::inside_pairs(&nominal.level);
+        self.control(path, &nominal)?;
         for c in self.corners() {
             let made = self.make(path, &c)?;
+            self.control(path, &made)?;
             let new = overlap::inside_pairs(&made.level)
                 .into_iter()
                 .find(|pair| !known.contains(pair));

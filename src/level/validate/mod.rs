@@ -8,6 +8,7 @@ use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 mod bodies;
+mod challenge;
 mod effects;
 mod events;
 mod exercise;
@@ -16,6 +17,7 @@ mod hints;
 mod joints;
 
 use bodies::*;
+use challenge::*;
 use effects::*;
 use events::*;
 use exercise::*;
@@ -215,6 +217,9 @@ pub fn validate(file: &Path, text: &str, level: &Level) -> R {
     }
     for e in &level.events {
         event(&v, e)?;
+    }
+    if let Some(c) = &level.challenge {
+        challenge(&v, c)?;
     }
     for (i, c) in level.checks.iter().enumerate() {
         check(&v, i, c)?;

@@ -1,6 +1,7 @@
 //! Level files: parsing, validation and its errors, geometry, fuzzing of the parser (src/level).
 
 mod bad_input;
+mod challenges;
 mod curved_geometry;
 mod f32_increments;
 mod fuzz;

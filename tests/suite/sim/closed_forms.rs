@@ -259,6 +259,11 @@ fn every_level_round_trips_through_save_and_load() {
     assert!(files.len() >= 5);
     for f in files {
         let scene = level::load(&f).unwrap_or_else(|e| panic!("{e}"));
+        if scene.level.challenge.is_some() {
+            // A challenge's control is a parameter, and a variant is saved without its
+            // parameters: such a save is refused (docs/levels.md#challenges), tested there.
+            continue;
+        }
         let saved = to_ron(&scene.level);
         let back = parse(&f, &saved).unwrap_or_else(|e| {
             panic!(

@@ -1,0 +1,265 @@
+//! A challenge in the window (issue 42, docs/student.md#playing-a-challenge): the control's field
+//! with its unit and range, a Launch button that rebuilds the run with the value set, the goal's
+//! region or point drawn in the scene, and after the run "success" or "missed by ..." drawn at
+//! the miss, with stars: 3 for a success in one or two launches, 2 in three or four, 1 after.
+
+use super::super::draw::{DrawStep, Drawing, Prim};
+use super::super::physics::{LiveChecks, PhysicsCommand};
+use super::super::run::Run;
+use super::super::ui::rich;
+use super::super::view::palette;
+use crate::level::params::{Control, Pick};
+use crate::level::{self, Goal, Region};
+use crate::questions::ChallengeResult;
+use bevy::prelude::*;
+use bevy_egui::egui;
+use glam::DVec2;
+use std::path::PathBuf;
+
+/// What the panel keeps between frames, in egui's memory, for the level file on screen.
+#[derive(Clone, Default)]
+struct Play {
+    file: PathBuf,
+    /// The control as the level declares it, or why it could not be read.
+    control: Option<Result<Control, String>>,
+    /// The value in the field, in the control's unit.
+    value: f64,
+    /// Launches whose run has ended, and the generation of the run a launch replaced (its
+    /// own run is the next one).
+    tries: u32,
+    launched: Option<u64>,
+    last: Option<ChallengeResult>,
+    stars: Option<u8>,
+    /// Why the last launch could not be made.
+    error: Option<String>,
+}
+
+/// Stars for a success at the `tries`-th launch.
+pub fn stars(tries: u32) -> u8 {
+    match tries {
+        0..=2 => 3,
+        3..=4 => 2,
+        _ => 1,
+    }
+}
+
+/// The challenge's window over the scene (`scene`: the scene's viewport), when the level on
+/// screen has a challenge; what it asks of the run.
+pub fn window(
+    ctx: &egui::Context,
+    phys: &Run,
+    live: &LiveChecks,
+    scene: egui::Rect,
+) -> Vec<PhysicsCommand> {
+    let mut asked = Vec::new();
+    let Some(c) = &phys.sim.level.challenge else {
+        return asked;
+    };
+    let id = egui::Id::new("challenge play");
+    let mut play: Play = ctx.data(|d| d.get_temp(id)).unwrap_or_default();
+    if play.file != phys.scene.file || play.control.is_none() {
+        play = start(&phys.scene.file);
+    }
+    tally(&mut play, phys, live);
+    egui::Window::new("Challenge")
+        .default_pos(scene.left_top() + egui::vec2(12.0, 12.0))
+        .resizable(false)
+        .collapsible(true)
+        .show(ctx, |ui| {
+            if !c.ask.is_empty() {
+                ui.label(&c.ask);
+            }
+            match play.control.clone() {
+                Some(Ok(control)) => controls(ui, &mut play, &control, phys.generation, &mut asked),
+                Some(Err(why)) => {
+                    ui.label(rich(why, palette::NORMAL));
+                }
+                None => {}
+            }
+            verdict(ui, &play);
+        });
+    ctx.data_mut(|d| d.insert_temp(id, play));
+    asked
+}
+
+/// A new level's play: its control read from its file.
+fn start(file: &std::path::Path) -> Play {
+    // The field starts at the value of the scene on screen, the control's nominal one.
+    let (control, value) = match level::load_variant(file, &Pick::Nominal) {
+        Ok(l) => match l.control {
+            Some((c, v)) => (Ok(c), v),
+            None => (
+                Err("this level's challenge has no control".to_string()),
+                0.0,
+            ),
+        },
+        Err(e) => (
+            Err(format!(
+                "the level's file cannot be read for its control: {e}"
+            )),
+            0.0,
+        ),
+    };
+    Play {
+        file: file.to_path_buf(),
+        control: Some(control),
+        value,
+        ..Default::default()
+    }
+}
+
+/// Counts a launched run once it has ended, and its stars on the first success.
+fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) {
+    let Some(from) = play.launched else {
+        return;
+    };
+    let Some(result) = live.challenge.as_ref() else {
+        return;
+    };
+    if phys.generation == from {
+        return;
+    }
+    play.launched = None;
+    play.tries += 1;
+    if result.success && play.stars.is_none() {
+        play.stars = Some(stars(play.tries));
+    }
+    play.last = Some(result.clone());
+}
+
+/// The control's field with its unit and range, and the Launch button.
+fn controls(
+    ui: &mut egui::Ui,
+    play: &mut Play,
+    c: &Control,
+    generation: u64,
+    asked: &mut Vec<PhysicsCommand>,
+) {
+    ui.horizontal(|ui| {
+        ui.label(&c.name);
+        ui.add(
+            egui::DragValue::new(&mut play.value)
+                .range(c.min..=c.max)
+                .speed(c.step)
+                .max_decimals(c.decimals.max(3)),
+        );
+        ui.label(&c.unit);
+    });
+    ui.label(egui::RichText::new(format!("from {} to {}", c.show(c.min), c.show(c.max))).small());
+    let launch = ui
+        .add_enabled(play.launched.is_none(), egui::Button::new("Launch"))
+        .on_hover_text("run the scene from the start with this value");
+    if launch.clicked() {
+        match level::load_challenge(&play.file, &Pick::Nominal, Some(play.value)) {
+            Ok(l) => {
+                asked.push(PhysicsCommand::Edited {
+                    scene: Box::new(l.scene),
+                    refit: false,
+                });
+                asked.push(PhysicsCommand::TogglePlay);
+                play.last = None;
+                play.error = None;
+                play.launched = Some(generation);
+            }
+            Err(e) => play.error = Some(e.to_string()),
+        }
+    }
+}
+
+/// The last launch's verdict, the tries and the stars.
+fn verdict(ui: &mut egui::Ui, play: &Play) {
+    if play.launched.is_some() {
+        ui.label("running...");
+    }
+    if let Some(e) = &play.error {
+        ui.label(rich(e, palette::NORMAL).small());
+    }
+    if let Some(r) = &play.last {
+        let color = if r.success {
+            palette::GRAVITY
+        } else {
+            palette::NORMAL
+        };
+        ui.label(rich(r.verdict(), color).strong());
+        if !r.note.is_empty() {
+            ui.label(egui::RichText::new(&r.note).small());
+        }
+    }
+    let stars = play
+        .stars
+        .map_or(String::new(), |s| format!("  {}", "*".repeat(s as usize)));
+    ui.label(format!("launches: {}{stars}", play.tries));
+}
+
+/// Draws the goal's region or point in the scene, and after a run its verdict at the miss.
+pub fn draw(phys: Res<Run>, live: NonSend<LiveChecks>, mut d: ResMut<Drawing>) {
+    let Some(c) = &phys.sim.level.challenge else {
+        return;
+    };
+    let color = palette::GRAVITY;
+    match &c.goal {
+        Goal::EndsInside { region, .. } | Goal::StaysInside { region, .. } => {
+            region_prims(region, color, &mut d.prims);
+        }
+        Goal::Reaches { point, radius, .. } => {
+            let p = DVec2::new(point.0, point.1);
+            d.prims.push(Prim::Circle(p, *radius, color));
+            d.prims.push(Prim::Dot(p, 3.0, color));
+        }
+        _ => {}
+    }
+    let Some(r) = live.challenge.as_ref() else {
+        return;
+    };
+    let text = r.verdict();
+    let shade = if r.success { color } else { palette::NORMAL };
+    match (r.at, r.target) {
+        (Some(a), Some(t)) => {
+            let (a, t) = (DVec2::new(a.0, a.1), DVec2::new(t.0, t.1));
+            if !r.success {
+                d.prims.push(Prim::Dashed(a, t, shade));
+            }
+            d.label((a + t) / 2.0, Vec2::new(0.0, -14.0), text, shade);
+        }
+        _ => {
+            // A reading: at the first moving body.
+            let s = phys.snapshot();
+            if let Some(b) = s.bodies.iter().find(|b| b.mass > 0.0) {
+                d.label(b.com, Vec2::new(0.0, -24.0), text, shade);
+            }
+        }
+    }
+}
+
+/// A region's outline.
+fn region_prims(region: &Region, color: Color, out: &mut Vec<Prim>) {
+    match *region {
+        Region::Rect { min, max } => out.push(Prim::Poly(
+            vec![
+                DVec2::new(min.0, min.1),
+                DVec2::new(max.0, min.1),
+                DVec2::new(max.0, max.1),
+                DVec2::new(min.0, max.1),
+            ],
+            true,
+            color,
+        )),
+        Region::Circle { center, radius } => {
+            out.push(Prim::Circle(DVec2::new(center.0, center.1), radius, color));
+        }
+        Region::Ring {
+            center,
+            inner,
+            outer,
+        } => {
+            let c = DVec2::new(center.0, center.1);
+            out.push(Prim::Circle(c, inner, color));
+            out.push(Prim::Circle(c, outer, color));
+        }
+    }
+}
+
+/// The drawing system's place: with the tools' marks, after the scene's lines.
+pub fn plugin(app: &mut App) {
+    app.add_systems(Update, draw.in_set(DrawStep::Marks));
+}
