@@ -19,6 +19,9 @@ pub struct Exercise {
     /// Where each answer box was drawn last frame (egui points = CSS pixels in the page; the web
     /// page publishes them so a browser test can click into a box and type).
     pub answer_boxes: Vec<Option<egui::Rect>>,
+    /// The worked solution was shown before every question was answered right: a solve now
+    /// counts as "solved with help".
+    pub help_used: bool,
 }
 
 impl Exercise {

@@ -8,6 +8,7 @@
 //! system writes; they import from beside and below them, never from this file.
 
 pub mod checks;
+pub mod course;
 mod exercise;
 pub mod help;
 mod level_browser;
@@ -25,6 +26,7 @@ mod tool_controls;
 pub mod tour;
 mod track_editor;
 
+pub use course::Course;
 pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
 pub use playback::{energy_drift_note, DRIFT_WARNING};
@@ -71,6 +73,7 @@ impl Plugin for PanelsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<UiState>()
             .init_resource::<Exercise>()
+            .init_resource::<Course>()
             .init_resource::<shortcuts::EguiKeys>()
             .init_resource::<Typing>()
             .add_systems(
@@ -85,7 +88,10 @@ impl Plugin for PanelsPlugin {
                     super::overlays::overlay_keys,
                 ),
             )
-            .add_systems(EguiPrimaryContextPass, panels);
+            .add_systems(
+                EguiPrimaryContextPass,
+                (panels, course::track_progress).chain(),
+            );
     }
 }
 
@@ -151,6 +157,7 @@ struct FileInput<'w, 's> {
     prefs: Option<ResMut<'w, Prefs>>,
     prefs_file: Option<Res<'w, PrefsFile>>,
     unsaved: Option<ResMut<'w, Unsaved>>,
+    course: ResMut<'w, Course>,
     commands: Commands<'w, 's>,
     advice: Option<Res<'w, WindowAdvice>>,
 }
@@ -238,20 +245,28 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
         .default_size(300.0)
         .size_range(200.0..=520.0)
         .show(root, |ui| {
-            load = left_column(ui, &mut p.browser, (&p.phys, &p.live), &mut p.exercise);
+            load = left_column(
+                ui,
+                &mut p.browser,
+                (&p.phys, &p.live),
+                &mut p.exercise,
+                &mut p.files.course,
+            );
         });
     load
 }
 
 /// The left panel's column: the open exercise first, its statement and questions where a
-/// student looks first (they sat below the whole level list: 30 titles to scroll past), then
-/// every level, folded while a level is open. A level opened (or another one) folds the list
-/// and brings the column back to its top. The level the browser asked for, if any.
+/// student looks first (they sat below the whole level list: 30 titles to scroll past), with
+/// the *Next level* button under them, then the course, folded while a level is open. A level
+/// opened (or another one) folds the course and brings the column back to its top. The level
+/// the browser or the course asked for, if any.
 pub fn left_column(
     ui: &mut egui::Ui,
     browser: &mut Browser,
     (phys, live): (&Run, &LiveChecks),
     ex: &mut Exercise,
+    progress: &mut Course,
 ) -> Option<Scene> {
     let mut load: Option<Scene> = None;
     let shown = egui::Id::new("left column: level shown");
@@ -265,17 +280,21 @@ pub fn left_column(
     }
     scroll.show(ui, |ui| {
         exercise(ui, phys, live, ex);
+        course::next_level(ui, (browser, phys, ex), progress, &mut load);
         ui.separator();
-        let count: usize = browser.groups.values().map(Vec::len).sum();
+        let (solved, total) = course::solved_count(browser, progress);
         let mut list = egui::CollapsingHeader::new(
-            egui::RichText::new(format!("Levels ({count}): open another")).heading(),
+            egui::RichText::new(format!("Course: {solved}/{total} solved")).heading(),
         )
         .id_salt("all levels")
         .default_open(nothing_open);
         if new_level {
             list = list.open(Some(nothing_open));
         }
-        list.show(ui, |ui| level_browser(ui, browser, phys, &mut load));
+        list.show(ui, |ui| {
+            level_browser(ui, browser);
+            course::course(ui, browser, phys, progress, &mut load);
+        });
     });
     load
 }
