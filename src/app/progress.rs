@@ -148,8 +148,7 @@ impl Record {
 
     /// The worst question's best relative error, once every question was answered right.
     pub fn best_error(&self) -> Option<f64> {
-        if self.questions.is_empty() || !self.questions.iter().all(|q| q.is_some_and(|q| q.right))
-        {
+        if self.questions.is_empty() || !self.questions.iter().all(|q| q.is_some_and(|q| q.right)) {
             return None;
         }
         self.questions
@@ -162,8 +161,8 @@ impl Record {
     /// The status the questions' best answers show on their own.
     fn status_of_questions(&self) -> Status {
         let graded = self.questions.iter().any(Option::is_some);
-        let all_right = !self.questions.is_empty()
-            && self.questions.iter().all(|q| q.is_some_and(|q| q.right));
+        let all_right =
+            !self.questions.is_empty() && self.questions.iter().all(|q| q.is_some_and(|q| q.right));
         match (all_right, graded) {
             (true, _) if self.questions.iter().flatten().any(|q| q.help) => Status::SolvedWithHelp,
             (true, _) => Status::Solved,
@@ -380,7 +379,16 @@ mod tests {
         assert_eq!(p.status(&k), Status::Tried);
         p.grade(&k, 2, 0, RIGHT, false);
         assert_eq!(p.status(&k), Status::Tried, "one question of two is right");
-        p.grade(&k, 2, 1, Graded { error: 0.001, right: true }, false);
+        p.grade(
+            &k,
+            2,
+            1,
+            Graded {
+                error: 0.001,
+                right: true,
+            },
+            false,
+        );
         assert_eq!(p.status(&k), Status::Solved);
         let r = p.get(&k).unwrap();
         assert_eq!((r.attempts, r.right()), (1, (2, 2)));
@@ -413,7 +421,16 @@ mod tests {
         p.grade(&k, 1, 0, RIGHT, false);
         assert_eq!(p.status(&k), Status::Solved);
         // Then right again with help, and wrong: still solved, the clean answer kept.
-        p.grade(&k, 1, 0, Graded { error: 0.0, right: true }, true);
+        p.grade(
+            &k,
+            1,
+            0,
+            Graded {
+                error: 0.0,
+                right: true,
+            },
+            true,
+        );
         p.grade(&k, 1, 0, WRONG, false);
         assert_eq!(p.status(&k), Status::Solved);
         assert!(!p.get(&k).unwrap().questions[0].unwrap().help);
@@ -450,7 +467,10 @@ mod tests {
         p.grade(&k, 1, 0, RIGHT, false);
         p.begin_attempt(&k, 2);
         let r = p.get(&k).unwrap();
-        assert_eq!((r.status, r.right(), r.attempts), (Status::Solved, (0, 2), 2));
+        assert_eq!(
+            (r.status, r.right(), r.attempts),
+            (Status::Solved, (0, 2), 2)
+        );
     }
 
     #[test]

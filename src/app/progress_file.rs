@@ -78,7 +78,9 @@ pub fn parse(name: &str, text: &str) -> Result<Parsed, String> {
         return Ok(Parsed::Newer(v.version));
     }
     if v.version == 0 {
-        return Err(format!("{name}: version 0 does not exist (this rigidlab writes {VERSION})"));
+        return Err(format!(
+            "{name}: version 0 does not exist (this rigidlab writes {VERSION})"
+        ));
     }
     let t: ProgressText = ron::from_str(text).map_err(at)?;
     let mut seen = std::collections::BTreeSet::new();
@@ -314,7 +316,10 @@ impl Store {
                 note = Some(why);
             }
         }
-        let b = self.backend.as_ref().expect("a store with a name has a backend");
+        let b = self
+            .backend
+            .as_ref()
+            .expect("a store with a name has a backend");
         b.write(&to_text(progress))
             .map_err(|e| format!("progress not saved: {e}"))?;
         Ok(note)
@@ -323,7 +328,9 @@ impl Store {
 
 /// An in-memory store, for tests of what the page's storage does: its keys and texts.
 #[derive(Default, Clone)]
-pub struct MemoryBackend(pub std::sync::Arc<std::sync::Mutex<std::collections::BTreeMap<String, String>>>);
+pub struct MemoryBackend(
+    pub std::sync::Arc<std::sync::Mutex<std::collections::BTreeMap<String, String>>>,
+);
 
 /// The key progress is kept under in the page's localStorage (and in [`MemoryBackend`]).
 pub const STORAGE_KEY: &str = "rigidlab.progress";
@@ -343,7 +350,12 @@ impl Backend for MemoryBackend {
         format!("storage key {STORAGE_KEY}")
     }
     fn read(&self) -> Result<Option<String>, ReadFailure> {
-        Ok(self.0.lock().map_err(|e| ReadFailure::Unreadable(e.to_string()))?.get(STORAGE_KEY).cloned())
+        Ok(self
+            .0
+            .lock()
+            .map_err(|e| ReadFailure::Unreadable(e.to_string()))?
+            .get(STORAGE_KEY)
+            .cloned())
     }
     fn move_aside(&self) -> Result<String, String> {
         let mut m = self.0.lock().map_err(|e| e.to_string())?;
@@ -435,7 +447,16 @@ mod tests {
         };
         let mut p = Progress::default();
         p.begin_attempt(&k, 1);
-        p.grade(&k, 1, 0, Graded { error: 0.002, right: true }, false);
+        p.grade(
+            &k,
+            1,
+            0,
+            Graded {
+                error: 0.002,
+                right: true,
+            },
+            false,
+        );
         (p, k)
     }
 
@@ -461,15 +482,25 @@ mod tests {
     fn a_bad_stored_text_is_kept_under_a_key_of_its_own() {
         let m = MemoryBackend::default();
         m.write("not ( progress").unwrap();
-        m.0.lock().unwrap().insert(format!("{STORAGE_KEY}.bad"), "older".into());
+        m.0.lock()
+            .unwrap()
+            .insert(format!("{STORAGE_KEY}.bad"), "older".into());
         let (p, store) = Store::open(Some(Box::new(m.clone())));
         assert_eq!(p, Progress::default());
         let why = store.problem.clone().unwrap();
         let aside = format!("{STORAGE_KEY}-2.bad");
         assert!(why.contains(&aside), "{why}");
         let stored = m.0.lock().unwrap().clone();
-        assert_eq!(stored.get(&aside).map(String::as_str), Some("not ( progress"));
-        assert_eq!(stored.get(&format!("{STORAGE_KEY}.bad")).map(String::as_str), Some("older"));
+        assert_eq!(
+            stored.get(&aside).map(String::as_str),
+            Some("not ( progress")
+        );
+        assert_eq!(
+            stored
+                .get(&format!("{STORAGE_KEY}.bad"))
+                .map(String::as_str),
+            Some("older")
+        );
         assert!(!stored.contains_key(STORAGE_KEY));
         assert!(store.can_save);
     }

@@ -83,11 +83,15 @@ pub fn level_key(root: &Path, file: &Path, title: &str) -> LevelKey {
             .collect()
     };
     let (root, file) = (plain(root), plain(file));
-    let rel = file.strip_prefix(&root).map(Path::to_path_buf).ok().or_else(|| {
-        // `rigidlab play /abs/levels/x.ron` beside a relative root: compare real paths.
-        let (r, f) = (root.canonicalize().ok()?, file.canonicalize().ok()?);
-        f.strip_prefix(r).map(Path::to_path_buf).ok()
-    });
+    let rel = file
+        .strip_prefix(&root)
+        .map(Path::to_path_buf)
+        .ok()
+        .or_else(|| {
+            // `rigidlab play /abs/levels/x.ron` beside a relative root: compare real paths.
+            let (r, f) = (root.canonicalize().ok()?, file.canonicalize().ok()?);
+            f.strip_prefix(r).map(Path::to_path_buf).ok()
+        });
     let shown = rel.unwrap_or(file);
     let parts: Vec<String> = shown
         .components()
@@ -213,7 +217,7 @@ pub fn solved_count(browser: &Browser, course: &Course) -> (usize, usize) {
 /// has been answered right (now, or in an earlier attempt), it opens the next level of the
 /// course not solved yet. Its row is there whenever the level asks a question, so nothing below
 /// moves when it turns on.
-pub(super) fn next_level(
+pub fn next_level(
     ui: &mut egui::Ui,
     (browser, phys, ex): (&Browser, &Run, &Exercise),
     course: &mut Course,
@@ -239,7 +243,10 @@ pub(super) fn next_level(
         Some(e) => {
             course.next = Some(e.path.clone());
             let b = ui
-                .add_enabled(done, egui::Button::new(format!("Next level ▶ {}", e.title)).truncate())
+                .add_enabled(
+                    done,
+                    egui::Button::new(format!("Next level ▶ {}", e.title)).truncate(),
+                )
                 .on_disabled_hover_text("answer every question right first");
             if b.clicked() {
                 match e.load() {
@@ -251,17 +258,23 @@ pub(super) fn next_level(
             }
         }
         None if done => {
-            ui.label(rich("✔ every exercise of the course is solved", palette::GRAVITY));
+            ui.label(rich(
+                "✔ every exercise of the course is solved",
+                palette::GRAVITY,
+            ));
         }
         None => {
-            ui.label(rich("the last exercise of the course left to solve", palette::OUTLINE));
+            ui.label(rich(
+                "the last exercise of the course left to solve",
+                palette::OUTLINE,
+            ));
         }
     });
 }
 
 /// The course's body: where progress is kept and what went wrong with it, then each topic with
 /// its levels. A clicked level that loads is put in `load`.
-pub(super) fn course(
+pub fn course(
     ui: &mut egui::Ui,
     browser: &Browser,
     phys: &Run,

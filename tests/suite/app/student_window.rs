@@ -321,6 +321,7 @@ fn saved_versions_show_their_file_and_date() {
         title: "My scene".into(),
         statement: String::new(),
         error: None,
+        questions: 0,
         source: None,
         modified: Some(at(s)),
     };
