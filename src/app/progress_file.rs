@@ -59,7 +59,9 @@ pub fn to_text(p: &Progress) -> String {
         version: VERSION,
         levels: p.records.clone(),
     };
-    let body = ron::ser::to_string_pretty(&text, ron::ser::PrettyConfig::default())
+    // A level a line or so: its questions' answers on its `questions:` line.
+    let pretty = ron::ser::PrettyConfig::default().depth_limit(3);
+    let body = ron::ser::to_string_pretty(&text, pretty)
         .unwrap_or_else(|e| format!("// not written: {e}"));
     format!("{HEADER}\n{body}\n")
 }

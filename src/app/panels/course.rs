@@ -32,6 +32,8 @@ pub struct Course {
     pub rows: Vec<DrawnRow>,
     /// The level the *Next level* button opens, as drawn last frame.
     pub next: Option<PathBuf>,
+    /// The level on screen when the course was drawn last (its topic unfolds when it changes).
+    shown: Option<PathBuf>,
 }
 
 /// A level's row as drawn.
@@ -242,11 +244,17 @@ pub fn next_level(
     ui.horizontal(|ui| match next {
         Some(e) => {
             course.next = Some(e.path.clone());
+            let file = e.path.file_name().unwrap_or_default().to_string_lossy();
+            let label = if e.title == level.title {
+                // A variant of this level (simple_pendulum_param.ron): the title alone reads as
+                // this one.
+                format!("Next level ▶ {} ({file})", e.title)
+            } else {
+                format!("Next level ▶ {}", e.title)
+            };
             let b = ui
-                .add_enabled(
-                    done,
-                    egui::Button::new(format!("Next level ▶ {}", e.title)).truncate(),
-                )
+                .add_enabled(done, egui::Button::new(label).truncate())
+                .on_hover_text(format!("{}\n\n{}", e.path.display(), e.statement))
                 .on_disabled_hover_text("answer every question right first");
             if b.clicked() {
                 match e.load() {
@@ -282,6 +290,8 @@ pub fn course(
     load: &mut Option<Scene>,
 ) {
     course.rows.clear();
+    let new_level = course.shown.as_ref() != Some(&phys.scene.file);
+    course.shown = Some(phys.scene.file.clone());
     if let Some(p) = &course.store.problem {
         ui.label(rich(p.clone(), palette::NORMAL).small());
     }
@@ -304,11 +314,15 @@ pub fn course(
                 format!("{topic}   {solved}/{} solved", keys.len())
             }
         };
-        let open = entries.iter().any(|e| e.path == phys.scene.file) || !many;
-        egui::CollapsingHeader::new(title)
+        let here = entries.iter().any(|e| e.path == phys.scene.file);
+        let mut header = egui::CollapsingHeader::new(title)
             .id_salt(("course topic", topic))
-            .default_open(open)
-            .show(ui, |ui| {
+            .default_open(here || !many);
+        if here && new_level {
+            // A level opened from elsewhere (Next level into the next topic): its topic shows.
+            header = header.open(Some(true));
+        }
+        header.show(ui, |ui| {
                 if kind == TopicKind::Stress {
                     ui.label(
                         rich(

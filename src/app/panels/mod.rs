@@ -258,9 +258,9 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
 
 /// The left panel's column: the open exercise first, its statement and questions where a
 /// student looks first (they sat below the whole level list: 30 titles to scroll past), with
-/// the *Next level* button under them, then the course, folded while a level is open. A level
-/// opened (or another one) folds the course and brings the column back to its top. The level
-/// the browser or the course asked for, if any.
+/// the *Next level* button under them, then the course (open: it sits below the exercise, which
+/// it no longer pushes down). A level opened brings the column back to its top. The level the
+/// browser or the course asked for, if any.
 pub fn left_column(
     ui: &mut egui::Ui,
     browser: &mut Browser,
@@ -272,8 +272,6 @@ pub fn left_column(
     let shown = egui::Id::new("left column: level shown");
     let new_level = ui.data(|d| d.get_temp::<PathBuf>(shown)) != Some(phys.scene.file.clone());
     ui.data_mut(|d| d.insert_temp(shown, phys.scene.file.clone()));
-    // No exercise to read (the empty scene): the list is what there is to see.
-    let nothing_open = phys.sim.level.bodies.is_empty() && phys.sim.level.questions.is_empty();
     let mut scroll = egui::ScrollArea::vertical().id_salt("left column");
     if new_level {
         scroll = scroll.vertical_scroll_offset(0.0);
@@ -283,14 +281,11 @@ pub fn left_column(
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
         ui.separator();
         let (solved, total) = course::solved_count(browser, progress);
-        let mut list = egui::CollapsingHeader::new(
+        let list = egui::CollapsingHeader::new(
             egui::RichText::new(format!("Course: {solved}/{total} solved")).heading(),
         )
         .id_salt("all levels")
-        .default_open(nothing_open);
-        if new_level {
-            list = list.open(Some(nothing_open));
-        }
+        .default_open(true);
         list.show(ui, |ui| {
             level_browser(ui, browser);
             course::course(ui, browser, phys, progress, &mut load);
