@@ -87,7 +87,12 @@ pub fn parse(name: &str, text: &str) -> Result<Parsed, String> {
     let t: ProgressText = ron::from_str(text).map_err(at)?;
     let mut seen = std::collections::BTreeSet::new();
     for r in &t.levels {
-        if let Some(q) = r.questions.iter().flatten().find(|q| !(q.error >= 0.0)) {
+        if let Some(q) = r
+            .questions
+            .iter()
+            .flatten()
+            .find(|q| q.error.is_nan() || q.error < 0.0)
+        {
             return Err(format!(
                 "{name}: {}: an error of {} is not a relative error (0 or more)",
                 r.path, q.error
@@ -464,7 +469,24 @@ mod tests {
 
     #[test]
     fn the_text_reads_back_as_written() {
-        let (p, _) = solved();
+        let (mut p, _) = solved();
+        // An answer to a question whose answer is 0 can be infinitely off.
+        let k = LevelKey {
+            path: "impact/x.ron".into(),
+            title: "x".into(),
+        };
+        p.begin_attempt(&k, 1);
+        p.grade(
+            &k,
+            1,
+            0,
+            Graded {
+                error: f64::INFINITY,
+                right: false,
+            },
+            false,
+        );
+        assert!(to_text(&p).contains("inf"));
         let text = to_text(&p);
         assert_eq!(parse("t", &text), Ok(Parsed::Progress(p)));
     }
