@@ -31,6 +31,8 @@ pub mod physics;
 pub mod playback;
 pub mod power;
 pub mod prefs;
+pub mod progress;
+pub mod progress_file;
 pub mod quantities;
 pub mod render;
 pub mod run;

@@ -172,6 +172,9 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
     // frame) and moved aside, never fatal (prefs.rs).
     let (prefs, prefs_file) = prefs::Prefs::load();
     app.insert_resource(prefs).insert_resource(prefs_file);
+    // The course's progress, the same way: progress.ron beside prefs.ron, localStorage in the
+    // page (progress_file.rs).
+    app.insert_resource(panels::Course::load());
     app.add_plugins((
         panels::PanelsPlugin,
         tools::ToolsPlugin,

@@ -1,7 +1,7 @@
-//! The level browser (left panel, top): the levels folder grouped by topic, each level with its
-//! title and statement on hover; a level that does not load shows why instead of opening.
+//! The level browser (left panel, under the exercise): the levels folder grouped by topic (a
+//! sub-folder each), each level with its title, statement and number of questions, or why it
+//! does not load; the course (`course.rs`) draws them.
 
-use super::super::run::Run;
 use super::super::ui::rich;
 use super::super::view::palette;
 use crate::level::{self, Scene};
@@ -19,6 +19,8 @@ pub struct Entry {
     pub statement: String,
     /// Why it does not load (shown instead of opening it).
     pub error: Option<String>,
+    /// How many questions it asks (0 where it does not load).
+    pub questions: usize,
     /// The file's text when it is compiled in (the web page has no file system).
     pub source: Option<Arc<str>>,
     /// When the file was last written (a file on disk; the listing shows it for saved levels,
@@ -137,6 +139,7 @@ impl Entry {
         match loaded {
             Ok(s) => Entry {
                 path,
+                questions: s.level.questions.len(),
                 title: s.level.title,
                 statement: s.level.statement,
                 error: None,
@@ -151,6 +154,7 @@ impl Entry {
                 path,
                 statement: String::new(),
                 error: Some(e.to_string()),
+                questions: 0,
                 source,
                 modified,
             },
@@ -202,13 +206,9 @@ fn group_of(root: &Path, f: &Path) -> String {
         .unwrap_or_else(|| "(top)".into())
 }
 
-/// Draws the panel; a clicked level that loads is put in `load` for the layout to open.
-pub(super) fn level_browser(
-    ui: &mut egui::Ui,
-    browser: &mut Browser,
-    phys: &Run,
-    load: &mut Option<Scene>,
-) {
+/// Draws the browser's controls (rescan, open a file) and why the folder could not be listed;
+/// the levels themselves are the course's rows (`course.rs`), drawn under this.
+pub(super) fn level_browser(ui: &mut egui::Ui, browser: &mut Browser) {
     ui.horizontal(|ui| {
         if !browser.embedded
             && ui
@@ -232,43 +232,5 @@ pub(super) fn level_browser(
     }
     if browser.groups.is_empty() && browser.error.is_none() {
         ui.label(format!("no *.ron levels under {}", browser.root.display()));
-    }
-    for (group, entries) in &browser.groups {
-        // The user's saved levels: versions of one level share its title.
-        let versions = group.starts_with("saved");
-        egui::CollapsingHeader::new(group.as_str())
-            .default_open(
-                entries.iter().any(|e| e.path == phys.scene.file) || browser.groups.len() <= 6,
-            )
-            .show(ui, |ui| {
-                for e in entries {
-                    let current = e.path == phys.scene.file;
-                    // A saved version shows its file and when it was written under the title.
-                    let title = if versions {
-                        format!("{}\n    {}", e.title, version_line(e))
-                    } else {
-                        e.title.clone()
-                    };
-                    let text = if e.error.is_some() {
-                        rich(format!("⚠ {title}"), palette::NORMAL)
-                    } else {
-                        egui::RichText::new(title)
-                    };
-                    let r = ui.selectable_label(current, text);
-                    let r = match &e.error {
-                        Some(err) => r.on_hover_text(err),
-                        None if !e.statement.is_empty() => r.on_hover_text(&e.statement),
-                        None => r,
-                    };
-                    if r.clicked() && e.error.is_none() {
-                        match e.load() {
-                            Ok(s) => *load = Some(s),
-                            Err(err) => {
-                                ui.label(rich(err.to_string(), palette::NORMAL));
-                            }
-                        }
-                    }
-                }
-            });
     }
 }

@@ -9,6 +9,7 @@
 
 mod challenge;
 pub mod checks;
+pub mod course;
 mod exercise;
 pub mod help;
 pub mod hints;
@@ -27,6 +28,7 @@ mod tool_controls;
 pub mod tour;
 mod track_editor;
 
+pub use course::Course;
 pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
 pub use playback::{energy_drift_note, DRIFT_WARNING};
@@ -73,6 +75,7 @@ impl Plugin for PanelsPlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<UiState>()
             .init_resource::<Exercise>()
+            .init_resource::<Course>()
             .init_resource::<shortcuts::EguiKeys>()
             .init_resource::<Typing>()
             .add_systems(
@@ -87,7 +90,10 @@ impl Plugin for PanelsPlugin {
                     super::overlays::overlay_keys,
                 ),
             )
-            .add_systems(EguiPrimaryContextPass, panels);
+            .add_systems(
+                EguiPrimaryContextPass,
+                (panels, course::track_progress).chain(),
+            );
         challenge::plugin(app);
     }
 }
@@ -154,6 +160,7 @@ struct FileInput<'w, 's> {
     prefs: Option<ResMut<'w, Prefs>>,
     prefs_file: Option<Res<'w, PrefsFile>>,
     unsaved: Option<ResMut<'w, Unsaved>>,
+    course: ResMut<'w, Course>,
     commands: Commands<'w, 's>,
     advice: Option<Res<'w, WindowAdvice>>,
 }
@@ -244,44 +251,51 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
         .default_size(300.0)
         .size_range(200.0..=520.0)
         .show(root, |ui| {
-            load = left_column(ui, &mut p.browser, (&p.phys, &p.live), &mut p.exercise);
+            load = left_column(
+                ui,
+                &mut p.browser,
+                (&p.phys, &p.live),
+                &mut p.exercise,
+                &mut p.files.course,
+            );
         });
     load
 }
 
 /// The left panel's column: the open exercise first, its statement and questions where a
-/// student looks first (they sat below the whole level list: 30 titles to scroll past), then
-/// every level, folded while a level is open. A level opened (or another one) folds the list
-/// and brings the column back to its top. The level the browser asked for, if any.
+/// student looks first (they sat below the whole level list: 30 titles to scroll past), with
+/// the *Next level* button under them, then the course (open: it sits below the exercise, which
+/// it no longer pushes down). A level opened brings the column back to its top. The level the
+/// browser or the course asked for, if any.
 pub fn left_column(
     ui: &mut egui::Ui,
     browser: &mut Browser,
     (phys, live): (&Run, &LiveChecks),
     ex: &mut Exercise,
+    progress: &mut Course,
 ) -> Option<Scene> {
     let mut load: Option<Scene> = None;
     let shown = egui::Id::new("left column: level shown");
     let new_level = ui.data(|d| d.get_temp::<PathBuf>(shown)) != Some(phys.scene.file.clone());
     ui.data_mut(|d| d.insert_temp(shown, phys.scene.file.clone()));
-    // No exercise to read (the empty scene): the list is what there is to see.
-    let nothing_open = phys.sim.level.bodies.is_empty() && phys.sim.level.questions.is_empty();
     let mut scroll = egui::ScrollArea::vertical().id_salt("left column");
     if new_level {
         scroll = scroll.vertical_scroll_offset(0.0);
     }
     scroll.show(ui, |ui| {
         exercise(ui, phys, live, ex);
+        course::next_level(ui, (browser, phys, ex), progress, &mut load);
         ui.separator();
-        let count: usize = browser.groups.values().map(Vec::len).sum();
-        let mut list = egui::CollapsingHeader::new(
-            egui::RichText::new(format!("Levels ({count}): open another")).heading(),
+        let (solved, total) = course::solved_count(browser, progress);
+        let list = egui::CollapsingHeader::new(
+            egui::RichText::new(format!("Course: {solved}/{total} solved")).heading(),
         )
         .id_salt("all levels")
-        .default_open(nothing_open);
-        if new_level {
-            list = list.open(Some(nothing_open));
-        }
-        list.show(ui, |ui| level_browser(ui, browser, phys, &mut load));
+        .default_open(true);
+        list.show(ui, |ui| {
+            level_browser(ui, browser);
+            course::course(ui, browser, phys, progress, &mut load);
+        });
     });
     load
 }

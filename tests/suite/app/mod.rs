@@ -1,6 +1,7 @@
 //! The Bevy sandbox (src/app), headless: the window, editor, inspector, playback and the web page.
 
 mod blows;
+mod course_progress;
 mod editor_commands;
 mod editor_core;
 mod exercise_questions;

@@ -100,7 +100,13 @@ fn the_open_exercise_comes_before_the_level_list() {
         egui::Panel::left("levels")
             .default_size(300.0)
             .show(ui, |ui| {
-                asked = panels::left_column(ui, &mut browser, (&phys, &live), &mut ex);
+                asked = panels::left_column(
+                    ui,
+                    &mut browser,
+                    (&phys, &live),
+                    &mut ex,
+                    &mut panels::Course::default(),
+                );
             });
     });
     assert!(asked.is_none());
@@ -315,6 +321,7 @@ fn saved_versions_show_their_file_and_date() {
         title: "My scene".into(),
         statement: String::new(),
         error: None,
+        questions: 0,
         source: None,
         modified: Some(at(s)),
     };
