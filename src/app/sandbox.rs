@@ -32,6 +32,7 @@ pub fn empty_scene() -> Scene {
             events: Vec::new(),
             checks: Vec::new(),
             questions: Vec::new(),
+            predict_first: false,
         },
     }
 }

@@ -60,6 +60,7 @@ pub fn empty_scene(file: std::path::PathBuf) -> Scene {
         events: vec![],
         checks: vec![],
         questions: vec![],
+        predict_first: false,
     };
     Scene { file, level }
 }
