@@ -13,6 +13,9 @@ use bevy_egui::egui;
 /// (emptied when the run starts over).
 #[derive(Resource, Debug, Clone, Default)]
 pub struct Exercise {
+    /// Predict first (panels/predict.rs): a grade is held back until the motion has been seen,
+    /// so an answer is not tried until it is right before the motion runs.
+    pub hold_grades: bool,
     pub answers: Vec<String>,
     /// A student's grade per question.
     pub grades: Vec<Option<Grade>>,
@@ -73,7 +76,9 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
                     st.grades[k] = Some(grade(q, &st.answers[k]));
                 }
             });
-            if let Some(g) = &st.grades[k] {
+            if st.hold_grades && st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {
+                super::predict::recorded(ui);
+            } else if let Some(g) = &st.grades[k] {
                 let (text, right) = grade_message(q, g);
                 let color = if right {
                     palette::GRAVITY
