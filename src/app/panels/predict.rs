@@ -173,7 +173,8 @@ pub fn follow(
     if start_motion && play.paused {
         out.write(PhysicsCommand::TogglePlay);
     }
-    ex.hold_grades = hold;
+    // The grades show with the results, at the end of the motion.
+    ex.hold_grades = matches!(pred.phase, Phase::Predicting | Phase::Watching);
 }
 
 /// What explains a quantity: one of the window's overlays.
@@ -326,14 +327,23 @@ pub(super) fn predict(
         pred.refused_seen = play.refused;
         *message = Some((ANSWER_FIRST.to_string(), false));
     }
-    let mut on = pred.phase != Phase::Off;
-    let switch = ui.checkbox(&mut on, "Predict first").on_hover_text(
-        "Answer the questions before you see the motion: the scene waits at t = 0, then \
-             plays, and your answers show beside the run's values.",
-    );
-    if switch.changed() {
-        pred.switch = Some(on);
+    if pred.phase != Phase::Predicting && message.as_ref().is_some_and(|m| m.0 == ANSWER_FIRST) {
+        // Answered: the note no longer holds.
+        *message = None;
     }
+    let mut on = pred.phase != Phase::Off;
+    ui.horizontal_wrapped(|ui| {
+        let switch = ui.checkbox(&mut on, "Predict first").on_hover_text(
+            "Answer the questions before you see the motion: the scene waits at t = 0, then \
+             plays, and your answers show beside the run's values.",
+        );
+        if switch.changed() {
+            pred.switch = Some(on);
+        }
+        if level.predict_first {
+            ui.label(rich("(this exercise asks for it)", palette::OUTLINE).small());
+        }
+    });
     match pred.phase {
         Phase::Off => {}
         Phase::Predicting => predicting(ui, level, pred),
@@ -349,7 +359,14 @@ pub(super) fn predict(
                 ui.label(rich(e.clone(), palette::NORMAL));
             }
         }
-        Phase::Revealed => results(ui, level, ex, pred),
+        Phase::Revealed => {
+            // Beside the exercise, never over all of it: a long list scrolls.
+            let height = 0.55 * ui.available_height();
+            egui::ScrollArea::vertical()
+                .id_salt("predictions")
+                .max_height(height)
+                .show(ui, |ui| results(ui, level, ex, pred));
+        }
     }
     ui.separator();
 }
@@ -380,6 +397,14 @@ fn predicting(ui: &mut egui::Ui, level: &Level, pred: &mut Predict) {
 /// textbook's values, whether the answer changed since, and the button that shows it.
 fn results(ui: &mut egui::Ui, level: &Level, ex: &Exercise, pred: &mut Predict) {
     ui.strong("Your predictions against the run");
+    ui.label(
+        rich(
+            "engine: what the simulation did · analysis: the textbook's formula applied to the \
+             engine's state · textbook: the exercise's answer",
+            palette::OUTLINE,
+        )
+        .small(),
+    );
     for (k, q) in level.questions.iter().enumerate() {
         let r = pred.results.get(k).cloned();
         ui.group(|ui| {
@@ -392,7 +417,10 @@ fn results(ui: &mut egui::Ui, level: &Level, ex: &Exercise, pred: &mut Predict) 
                     } else {
                         palette::NORMAL
                     };
-                    ui.label(rich(format!("you: {} {}  {text}", p.typed, q.unit), color));
+                    ui.label(rich(
+                        format!("your prediction {} {}: {text}", p.typed, q.unit),
+                        color,
+                    ));
                     let now = ex.answers.get(k).map(|a| a.trim()).unwrap_or_default();
                     if now != p.typed {
                         ui.label(rich(
@@ -404,7 +432,7 @@ fn results(ui: &mut egui::Ui, level: &Level, ex: &Exercise, pred: &mut Predict) 
                 }
                 None => {
                     let why = if pred.gave_up { " (you gave up)" } else { "" };
-                    ui.label(rich(format!("you: no prediction{why}"), palette::OUTLINE));
+                    ui.label(rich(format!("no prediction{why}"), palette::OUTLINE));
                 }
             }
             if let Some(r) = &r {
@@ -441,7 +469,12 @@ fn explain_button(ui: &mut egui::Ui, level: &Level, k: usize, pred: &mut Predict
     let what = format!("{}{body}", explain.name());
     ui.horizontal_wrapped(|ui| {
         if pred.shown == Some(k) {
-            ui.label(rich(format!("shown: the {what}"), palette::VELOCITY));
+            let at = pred
+                .results
+                .get(k)
+                .map(|r| format!(" at t = {:.3} s", r.time))
+                .unwrap_or_default();
+            ui.label(rich(format!("shown{at}: the {what}"), palette::VELOCITY));
         } else if ui
             .button(format!("show the {what}"))
             .on_hover_text("the overlay that explains this answer, at the instant it was read")

@@ -124,12 +124,14 @@ fn a_predict_first_level_waits_at_t0_until_every_question_is_answered() {
         step >= 19,
         "the run is at step {step} after 20 frames of play"
     );
-    assert!(!app.world().resource::<Exercise>().hold_grades);
+    // The grades show with the results, at the end.
+    assert!(app.world().resource::<Exercise>().hold_grades);
 
     // To the end (252 steps): the results are the run's, equal to the core's bit for bit (the
     // window computes what `rigidlab check` computes, tests/suite/app/plugins.rs).
     frames(&mut app, 260);
     assert_eq!(phase(&app), Phase::Revealed);
+    assert!(!app.world().resource::<Exercise>().hold_grades);
     let scene = level::load(Path::new(HOOP)).unwrap();
     let core =
         rigidlab::runner::run_graded(&scene, &Options::default(), &HashMap::new(), |_| {}).unwrap();
