@@ -77,7 +77,11 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
                 }
             });
             if st.hold_grades && st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {
-                super::predict::recorded(ui);
+                // Predict first (predict.rs): the grade comes with the results, after the motion.
+                ui.label(rich(
+                    "prediction taken: graded after the motion",
+                    palette::VELOCITY,
+                ));
             } else if let Some(g) = &st.grades[k] {
                 let (text, right) = grade_message(q, g);
                 let color = if right {

@@ -303,14 +303,6 @@ fn show(
 pub const ANSWER_FIRST: &str =
     "answer first: the motion plays once every question has an answer (or press \"I give up / show me\" at the top left)";
 
-/// Under an answer box while predicting: the answer is taken, its grade comes after the motion.
-pub(super) fn recorded(ui: &mut egui::Ui) {
-    ui.label(rich(
-        "prediction taken: graded after the motion",
-        palette::VELOCITY,
-    ));
-}
-
 /// The top of the left panel: the switch, then what to do now (predict, watch) or the results.
 pub(super) fn predict(
     ui: &mut egui::Ui,
