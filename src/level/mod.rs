@@ -18,7 +18,7 @@ mod warnings;
 
 pub use error::{LevelError, LevelWarning, Locator};
 pub use format::*;
-pub(crate) use validate::quantity_refs;
+pub use validate::quantity_refs;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};

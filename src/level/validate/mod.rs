@@ -18,7 +18,7 @@ use bodies::*;
 use effects::*;
 use events::*;
 /// The named items a question's quantity refers to (the window's predict-first mode shows the body).
-pub(crate) use exercise::quantity_refs;
+pub use exercise::quantity_refs;
 use exercise::*;
 use forces::*;
 use joints::*;
