@@ -64,6 +64,9 @@ pub enum PhysicsCommand {
     Hold(Option<Hold>),
     /// The body whose plots are kept whatever the scene's size (the selected one).
     Track(Option<usize>),
+    /// Hold the run at t = 0 until the student's answers are in (predict first), paused and
+    /// from the start; or let it run again. Held, [`refused_now`] says what is refused.
+    AnswerFirst(bool),
 }
 
 /// Runs a scene: inserts [`Run`], [`Playback`] and [`LiveChecks`] and steps in `FixedUpdate`.
@@ -117,8 +120,28 @@ pub fn apply_commands(
     }
 }
 
-/// What one command does to the run and its playback.
+/// What would run a run held at t = 0 for the student's answers: play (pausing is allowed),
+/// single steps either way, the timeline, and the impulse tool's pushes, which would change the
+/// motion to be predicted.
+pub fn refused_now(c: &PhysicsCommand, playback: &Playback) -> bool {
+    playback.answer_first
+        && match c {
+            PhysicsCommand::TogglePlay => playback.paused,
+            PhysicsCommand::Step
+            | PhysicsCommand::StepBack
+            | PhysicsCommand::Seek(_)
+            | PhysicsCommand::Impulse { .. } => true,
+            _ => false,
+        }
+}
+
+/// What one command does to the run and its playback (nothing, counted in `refused`, when
+/// the run is held for the answers and the command would run it).
 pub fn apply(c: PhysicsCommand, run: &mut Run, playback: &mut Playback) {
+    if refused_now(&c, playback) {
+        playback.refused += 1;
+        return;
+    }
     match c {
         PhysicsCommand::TogglePlay => playback::toggle_play(run, playback),
         PhysicsCommand::Step => {
@@ -155,6 +178,16 @@ pub fn apply(c: PhysicsCommand, run: &mut Run, playback: &mut Playback) {
         }
         PhysicsCommand::Hold(h) => run.held = h,
         PhysicsCommand::Track(body) => run.track(body),
+        PhysicsCommand::AnswerFirst(hold) => {
+            playback.answer_first = hold;
+            if hold {
+                playback.paused = true;
+                playback.steps_requested = 0;
+                if run.snapshot().step > 0 || run.interfered || run.seek.is_some() {
+                    playback::restart(run, playback);
+                }
+            }
+        }
     }
 }
 

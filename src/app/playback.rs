@@ -25,6 +25,13 @@ pub struct Playback {
     pub frame_ms: f64,
     /// Steps were dropped recently to keep the window responsive.
     pub behind: bool,
+    /// Predict first (`panels/predict.rs`): the run is held at t = 0 until the student has
+    /// answered; whatever would run it (play, step, seek, a push) is refused
+    /// (`physics::refused_now`).
+    pub answer_first: bool,
+    /// How many asks the hold at t = 0 has refused so far (the panel says "answer first" when
+    /// this grows).
+    pub refused: u32,
 }
 
 impl Playback {
@@ -36,6 +43,8 @@ impl Playback {
             frame_budget_ms: 30.0,
             frame_ms: 0.0,
             behind: false,
+            answer_first: false,
+            refused: 0,
         }
     }
 }

@@ -1,5 +1,5 @@
 //! Preferences the window remembers between sessions: whether the first-steps tour was finished,
-//! the arrow scale, the time scale, labels and trails. A small RON file in the user's config
+//! the arrow scale, the time scale, labels, trails and predict first. A small RON file in the user's config
 //! folder (`$XDG_CONFIG_HOME/rigidlab/prefs.ron`, else `~/.config/rigidlab/prefs.ron`;
 //! `RIGIDLAB_PREFS` names another file); the page in a browser keeps nothing.
 //!
@@ -33,6 +33,8 @@ pub struct Prefs {
     pub time_scale: f64,
     pub labels: bool,
     pub trails: bool,
+    /// Predict first in every level (the switch at the top of the left panel).
+    pub predict_first: bool,
 }
 
 impl Default for Prefs {
@@ -43,6 +45,7 @@ impl Default for Prefs {
             time_scale: 1.0,
             labels: true,
             trails: true,
+            predict_first: false,
         }
     }
 }

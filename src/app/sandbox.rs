@@ -35,6 +35,7 @@ pub fn empty_scene() -> Scene {
             challenge: None,
             checks: Vec::new(),
             questions: Vec::new(),
+            predict_first: false,
         },
     }
 }

@@ -5,13 +5,15 @@
 //! The page's URL chooses what opens (`web/index.html` documents it):
 //! - `?level=kinetics/simple_pendulum.ron` opens that library level (default: the first one);
 //! - `&play=1` starts it running (default: paused, as the native window opens);
+//! - `&predict=1` opens it in predict-first mode: the motion waits for the student's answers
+//!   (`panels/predict.rs`), for every level opened in the page;
 //! - `?check=1` runs the checks and questions headless instead of opening the window, the level's
 //!   or the whole library's, and writes the report `rigidlab check --json` writes into
 //!   `<pre id="rigidlab-report">`: the numbers in the page are the core's.
 //!
 //! Every frame the app writes its state as JSON into `<pre id="rigidlab-status">` (level, time,
 //! paused, frame rate, the view's mapping from metres to CSS pixels, each question's answer box
-//! and grade): what a screen reader, a teacher's script or the browser test reads.
+//! and grade, the predict-first phase): what a screen reader, a teacher's script or the browser test reads.
 
 use super::frame_rate::FrameRate;
 use super::panels::{self, Browser, Exercise, UiState};
@@ -56,6 +58,7 @@ struct PageQuery {
     /// `?student=ID`: a level with parameters opens with this student's own numbers, the same
     /// as `rigidlab check --student ID` gives natively.
     student: Option<String>,
+    predict: bool,
 }
 
 impl PageQuery {
@@ -85,6 +88,7 @@ impl PageQuery {
         q.student = params.get("student").filter(|s| !s.trim().is_empty());
         q.play = yes("play");
         q.check = yes("check");
+        q.predict = yes("predict");
         q
     }
 }
@@ -134,7 +138,10 @@ pub fn start() {
         }),
         ..default()
     }));
-    super::sandbox::add_sandbox(&mut app, scene, browser, !query.play);
+    super::sandbox::add_sandbox(&mut app, scene, browser, !query.play || query.predict);
+    if query.predict {
+        app.world_mut().resource_mut::<panels::Predict>().switch = Some(true);
+    }
     app.insert_resource(PageState { note });
     app.add_systems(Update, (show_page_note, open_picked_file));
     app.add_systems(Last, publish_status);
@@ -199,6 +206,7 @@ fn publish_status(
     rate: Res<FrameRate>,
     page: Res<PageState>,
     editor: Res<super::editor::Editor>,
+    predict: Res<panels::Predict>,
 ) {
     let s = phys.snapshot();
     let answers: Vec<serde_json::Value> = phys
@@ -209,7 +217,13 @@ fn publish_status(
         .enumerate()
         .map(|(k, q)| {
             let rect = ex.answer_boxes.get(k).copied().flatten();
-            let grade = ex.grades.get(k).cloned().flatten();
+            // A grade held back while predicting is not on the screen: not here either.
+            let grade = ex
+                .grades
+                .get(k)
+                .cloned()
+                .flatten()
+                .filter(|g| !(ex.hold_grades && g.is_ok()));
             let (message, right) = match &grade {
                 Some(g) => {
                     let (m, r) = panels::grade_message(q, g);
@@ -242,6 +256,7 @@ fn publish_status(
             "viewport": [view.viewport.min.x, view.viewport.min.y, view.viewport.max.x, view.viewport.max.y],
         },
         "answers": answers,
+        "predict": predict.phase.name(),
         "bodies": phys.scene.level.bodies.len(),
         "joints": phys.scene.level.joints.len(),
         "buttons": st

@@ -63,6 +63,7 @@ pub fn empty_scene(file: std::path::PathBuf) -> Scene {
         challenge: None,
         checks: vec![],
         questions: vec![],
+        predict_first: false,
     };
     Scene { file, level }
 }

@@ -72,6 +72,11 @@ pub struct Level {
     /// The exercise's questions with their expected answers.
     #[serde(default)]
     pub questions: Vec<QuestionDef>,
+    /// Predict first: the window and the page hold the scene at t = 0 until the student has
+    /// answered every question (or given up), then play the motion and show each answer beside
+    /// the engine's and the analysis's values (docs/levels.md#predict-first).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub predict_first: bool,
 }
 
 /// Where the exercise comes from.

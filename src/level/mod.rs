@@ -19,6 +19,7 @@ mod warnings;
 
 pub use error::{LevelError, LevelWarning, Locator};
 pub use format::*;
+pub use validate::quantity_refs;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};

@@ -9,6 +9,9 @@
 //   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
 //   unknown.png / unknown.json   the page opened with a ?level= the library does not have;
+//   predict_held.png / predict_revealed.png / predict.json   the pendulum opened with
+//                   &predict=1&play=1: held at t = 0 through Space and 3 s, then, its two
+//                   answers typed, played to its end with the predictions beside the run's values;
 //   browser.json    how the wasm came (its Content-Encoding and size on the wire), timings: page
 //                   open to first frame, frame rates while playing, the CPU a
 //                   paused page takes over 10 s (paused_10s).
@@ -129,23 +132,26 @@ try {
 
   // 3. The student types an answer into the first question's box and presses Enter.
   // The questions sit under the statement in the left panel: scroll it until the box shows.
-  let q = still.answers[0];
-  for (let i = 0; i < 20 && q && q.box && q.box[1] + q.box[3] > 780; i++) {
-    await page.mouse.move(150, 600);
-    await page.mouse.wheel(0, 200);
-    const f = (await status()).frames;
-    await waitStatus("a frame after scrolling", (s) => s.frames >= f + 2, 30);
-    q = (await status()).answers[0];
-  }
-  if (!q || !q.box) fail(`no answer box in the status: ${JSON.stringify(still.answers)}`);
-  const [x, y, w, h] = q.box;
-  if (y + h > 800) fail(`the answer box stays below the page (${q.box}) after scrolling`);
-  await page.mouse.click(x + w / 2, y + h / 2);
-  // Keys typed before egui has seen the click would go nowhere: let it focus the box first.
-  const f0 = (await status()).frames;
-  await waitStatus("two frames after the click", (s) => s.frames >= f0 + 2, 30);
-  await page.keyboard.type(ANSWER, { delay: 100 });
-  await page.keyboard.press("Enter");
+  const typeAnswer = async (k, text) => {
+    let q = (await status()).answers[k];
+    for (let i = 0; i < 20 && q && q.box && q.box[1] + q.box[3] > 780; i++) {
+      await page.mouse.move(150, 600);
+      await page.mouse.wheel(0, 200);
+      const f = (await status()).frames;
+      await waitStatus("a frame after scrolling", (s) => s.frames >= f + 2, 30);
+      q = (await status()).answers[k];
+    }
+    if (!q || !q.box) fail(`no answer box ${k} in the status: ${JSON.stringify((await status()).answers)}`);
+    const [x, y, w, h] = q.box;
+    if (y + h > 800) fail(`the answer box stays below the page (${q.box}) after scrolling`);
+    await page.mouse.click(x + w / 2, y + h / 2);
+    // Keys typed before egui has seen the click would go nowhere: let it focus the box first.
+    const f0 = (await status()).frames;
+    await waitStatus("two frames after the click", (s) => s.frames >= f0 + 2, 30);
+    await page.keyboard.type(text, { delay: 100 });
+    await page.keyboard.press("Enter");
+  };
+  await typeAnswer(0, ANSWER);
   const graded = await waitStatus("the grade of the typed answer", (s) => s.answers[0].grade, 30);
   writeFileSync(join(out, "answered.json"), JSON.stringify(graded, null, 1));
   await page.screenshot({ path: join(out, "answered.png") });
@@ -245,7 +251,29 @@ try {
   writeFileSync(join(out, "unknown.json"), JSON.stringify(unknown, null, 1));
   summary.unknown = { title: unknown.title, bodies: unknown.bodies, message: unknown.message };
 
-  // 8. A paused page leaves the CPU alone: the CPU time of every Chromium process (/proc,
+  // 8. Predict first, by the link: the pendulum waits at t = 0 (even with &play=1 and Space
+  //    pressed) until both questions have an answer, then plays to its end and shows them.
+  await page.goto(`${base}?level=kinetics/simple_pendulum.ron&predict=1&play=1`);
+  await waitStatus("the predict-first page's first frames", (s) => s.frames >= 2 && s.predict === "predicting", 60);
+  await page.mouse.click(450, 700); // focus the canvas (an empty spot of the scene)
+  await page.keyboard.press(" ");
+  await sleep(3000);
+  const held = await status();
+  if (held.t !== 0 || held.step !== 0 || !held.paused) fail(`the predict-first run moved before the answers: t = ${held.t}, step ${held.step}`);
+  if (!held.message || !/answer first/.test(held.message.text)) fail(`Space was not refused with "answer first": ${JSON.stringify(held.message)}`);
+  await page.screenshot({ path: join(out, "predict_held.png") });
+  await typeAnswer(0, ANSWER);
+  const between = await status();
+  if (between.t !== 0 || between.answers[0].grade !== null) fail(`one answer of two: the run moved or the grade showed: ${JSON.stringify(between)}`);
+  await typeAnswer(1, "19.62"); // the rod's tension at the bottom, m g (3 - 2 cos 60) = 2 m g = 19.62 N
+  const moving = await waitStatus("the motion after the answers", (s) => s.t > 0 && s.predict !== "predicting", 30);
+  const revealed = await waitStatus("the predictions beside the run's values", (s) => s.predict === "revealed", 120);
+  await sleep(300);
+  await page.screenshot({ path: join(out, "predict_revealed.png") });
+  summary.predict = { held: { t: held.t, step: held.step, message: held.message.text }, moving: { t: moving.t, predict: moving.predict }, revealed: { t: revealed.t } };
+  writeFileSync(join(out, "predict.json"), JSON.stringify({ held, revealed }, null, 1));
+
+  // 9. A paused page leaves the CPU alone: the CPU time of every Chromium process (/proc,
   //    utime + stime) over 10 s with the simple pendulum open and paused, after 3 s to settle.
   const cpuSeconds = () => {
     const tick = 100; // USER_HZ on Linux

@@ -14,6 +14,9 @@ use bevy_egui::egui;
 /// (emptied when the run starts over).
 #[derive(Resource, Debug, Clone, Default)]
 pub struct Exercise {
+    /// Predict first (panels/predict.rs): a grade is held back until the motion has been seen,
+    /// so an answer is not tried until it is right before the motion runs.
+    pub hold_grades: bool,
     pub answers: Vec<String>,
     /// A student's grade per question.
     pub grades: Vec<Option<Grade>>,
@@ -84,7 +87,13 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
                     st.hints.graded(right, &st.grades);
                 }
             });
-            if let Some(g) = &st.grades[k] {
+            if st.hold_grades && st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {
+                // Predict first (predict.rs): the grade comes with the results, after the motion.
+                ui.label(rich(
+                    "prediction taken: graded after the motion",
+                    palette::VELOCITY,
+                ));
+            } else if let Some(g) = &st.grades[k] {
                 let (text, right) = grade_message(q, g);
                 let color = if right {
                     palette::GRAVITY

@@ -19,6 +19,7 @@ pub mod number_field;
 mod overlay_controls;
 mod playback;
 pub mod plots;
+pub mod predict;
 pub mod questions_editor;
 mod scene_editor;
 pub mod shortcuts;
@@ -32,6 +33,7 @@ pub use course::Course;
 pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
 pub use playback::{energy_drift_note, DRIFT_WARNING};
+pub use predict::Predict;
 pub use solver::study_error;
 pub use state::UiState;
 
@@ -78,6 +80,7 @@ impl Plugin for PanelsPlugin {
             .init_resource::<Course>()
             .init_resource::<shortcuts::EguiKeys>()
             .init_resource::<Typing>()
+            .init_resource::<Predict>()
             .add_systems(
                 PreUpdate,
                 shortcuts::keys_to_egui.in_set(bevy_egui::EguiInputSet::ReadBevyMessages),
@@ -86,6 +89,7 @@ impl Plugin for PanelsPlugin {
                 Update,
                 (
                     keys.before(super::physics::PhysicsStep),
+                    predict::follow.before(super::physics::PhysicsStep),
                     super::view::pan_zoom,
                     super::overlays::overlay_keys,
                 ),
@@ -141,6 +145,7 @@ struct PanelInput<'w, 's> {
     run_commands: MessageWriter<'w, PhysicsCommand>,
     live: NonSend<'w, LiveChecks>,
     exercise: ResMut<'w, Exercise>,
+    predict: ResMut<'w, Predict>,
     view: ResMut<'w, View>,
     ov: ResMut<'w, Overlays>,
     tools: ResMut<'w, ToolState>,
@@ -214,6 +219,9 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
             p.ov.arrow_scale = prefs.arrow_scale;
             p.ov.labels = prefs.labels;
             p.ov.trails = prefs.trails;
+            if prefs.predict_first {
+                p.predict.switch = Some(true);
+            }
         }
         if let Some(problem) = p
             .files
@@ -251,6 +259,14 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
         .default_size(300.0)
         .size_range(200.0..=520.0)
         .show(root, |ui| {
+            let (phys, play) = (&*p.phys, &*p.play);
+            predict::predict(
+                ui,
+                (phys, play),
+                &p.exercise,
+                &mut p.predict,
+                &mut p.st.message,
+            );
             load = left_column(
                 ui,
                 &mut p.browser,
@@ -461,6 +477,7 @@ fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
             time_scale: st.time_scale,
             labels: p.ov.labels,
             trails: p.ov.trails,
+            predict_first: p.predict.everywhere,
         };
         if now != *prefs {
             *prefs = now;

@@ -234,8 +234,15 @@ pub fn energy_drift_note(phys: &Run) -> Option<String> {
     })
 }
 
-/// Why the run stopped, runs slowed, or is no longer the exercise's, or its energy drifted.
+/// Why the run waits (predict first), stopped, runs slowed, or is no longer the exercise's, or
+/// its energy drifted.
 fn warnings(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
+    if play.answer_first {
+        ui.label(rich(
+            "Predict first: the motion waits at t = 0 for your answers (left).",
+            palette::VELOCITY,
+        ));
+    }
     if let Some(e) = &phys.error {
         ui.label(rich(e.clone(), palette::NORMAL));
     }

@@ -320,7 +320,7 @@ fn question_unit(v: &V, q: &QuestionDef) -> R {
 }
 
 /// The named items a quantity refers to, as (kind, name).
-pub(super) fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
+pub fn quantity_refs(q: &Quantity) -> Vec<(&'static str, &String)> {
     use Quantity as Q;
     match q {
         Q::X(b)

@@ -20,6 +20,8 @@ use bodies::*;
 use challenge::*;
 use effects::*;
 use events::*;
+/// The named items a question's quantity refers to (the window's predict-first mode shows the body).
+pub use exercise::quantity_refs;
 use exercise::*;
 use forces::*;
 use hints::*;

@@ -17,6 +17,7 @@ mod names_overlay;
 mod playback;
 mod plot_labels;
 mod plugins;
+mod predict_first;
 mod student_window;
 mod unsaved_work;
 mod web_page;
