@@ -5,6 +5,7 @@ mod budget;
 mod cli_io;
 mod cli_memory;
 mod fuzz_campaign;
+mod link_cli;
 mod report_step_calls;
 mod user_files_kept;
 mod verify_cli;
