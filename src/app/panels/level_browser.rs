@@ -44,6 +44,8 @@ pub struct Browser {
     pub error: Option<String>,
     /// The levels are compiled in (the web page): nothing to rescan.
     pub embedded: bool,
+    /// The assignment opened, listed above the library (`assignment_list.rs`).
+    pub assignment: Option<super::assignment_list::AssignmentList>,
 }
 
 impl Browser {
@@ -115,7 +117,7 @@ impl Browser {
 }
 
 impl Entry {
-    fn from_load(
+    pub(super) fn from_load(
         path: PathBuf,
         loaded: Result<Scene, level::LevelError>,
         source: Option<Arc<str>>,
@@ -206,7 +208,7 @@ pub(super) fn level_browser(
                 .on_hover_text("rescan the levels folder")
                 .clicked()
         {
-            *browser = Browser::scan(&browser.root.clone());
+            browser.rescan();
         }
         #[cfg(target_arch = "wasm32")]
         if ui

@@ -7,6 +7,7 @@
 //! shows. Panels read the run and ask for changes to it with [`PhysicsCommand`]s, which this
 //! system writes; they import from beside and below them, never from this file.
 
+pub mod assignment_list;
 pub mod checks;
 mod exercise;
 pub mod help;
@@ -266,6 +267,7 @@ pub fn left_column(
     scroll.show(ui, |ui| {
         exercise(ui, phys, live, ex);
         ui.separator();
+        assignment_list::assignment_list(ui, browser, phys, &mut load);
         let count: usize = browser.groups.values().map(Vec::len).sum();
         let mut list = egui::CollapsingHeader::new(
             egui::RichText::new(format!("Levels ({count}): open another")).heading(),
@@ -485,7 +487,7 @@ fn tidy_after_frame(ctx: &egui::Context, p: &mut PanelInput) {
         // A level saved into the folder the browser lists shows there at once. The save field
         // keeps the name asked for: saving again keeps both files (the next numbered name).
         if !p.browser.embedded {
-            *p.browser = Browser::scan(&p.browser.root.clone());
+            p.browser.rescan();
         }
     }
 }
@@ -531,7 +533,7 @@ fn settle_leaving(ctx: &egui::Context, p: &mut PanelInput, load: Option<Scene>) 
     }
     if f.editor.just_saved.take().is_some() && !p.browser.embedded {
         // Saved from the question: the browser lists it at once.
-        *p.browser = Browser::scan(&p.browser.root.clone());
+        p.browser.rescan();
     }
     load
 }
