@@ -69,9 +69,7 @@ impl PageQuery {
         q.link = hash
             .as_deref()
             .and_then(crate::level::link::open_fragment)
-            .map(|r| {
-                r.map_err(|e| format!("the link's level did not open: {e}\n  help: {}", e.help()))
-            });
+            .map(|r| r.map_err(|e| format!("the link did not open: {e}\n  help: {}", e.help())));
         let Some(search) = web_sys::window().and_then(|w| w.location().search().ok()) else {
             return q;
         };

@@ -27,17 +27,17 @@ const LEVEL: u8 = 10;
 /// Why a link's level could not be read out of it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LinkError {
-    #[error("the link has no level in it (no #{LEVEL_KEY}=...)")]
+    #[error("there is no level in it (no #{LEVEL_KEY}=...)")]
     Missing,
-    #[error("the link's level is not valid base64url at character {position} of its data: {why}")]
+    #[error("its data is not valid base64url at character {position}: {why}")]
     Base64 { position: usize, why: String },
-    #[error("the link's level does not decompress (its data is damaged or cut short): {0}")]
+    #[error("its data does not decompress (damaged or cut short): {0}")]
     Deflate(String),
-    #[error("the link's level is larger than {} MiB, the limit for a level", MAX_LEVEL_BYTES >> 20)]
+    #[error("its level is larger than {} MiB, the limit for a level", MAX_LEVEL_BYTES >> 20)]
     TooLarge,
-    #[error("the link's level is not UTF-8 text")]
+    #[error("its level is not UTF-8 text")]
     NotUtf8,
-    #[error("the link's level has an error: {0}")]
+    #[error("{0}")]
     Level(Box<LevelError>),
 }
 
@@ -75,6 +75,9 @@ pub fn decode(data: &str) -> Result<String, LinkError> {
         miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_LEVEL_BYTES as usize)
             .map_err(|e| match e.status {
                 miniz_oxide::inflate::TINFLStatus::HasMoreOutput => LinkError::TooLarge,
+                miniz_oxide::inflate::TINFLStatus::FailedCannotMakeProgress => {
+                    LinkError::Deflate("the data ends before the level does".into())
+                }
                 s => LinkError::Deflate(format!("{s:?}")),
             })?;
     String::from_utf8(bytes).map_err(|_| LinkError::NotUtf8)
