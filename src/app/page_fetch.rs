@@ -19,7 +19,7 @@ use wasm_bindgen_futures::JsFuture;
 
 /// What a fetch opened.
 enum Opened {
-    Level(Scene),
+    Level(Box<Scene>),
     Assignment(AssignmentList),
 }
 
@@ -68,7 +68,7 @@ pub fn receive(
     match r {
         Ok(Opened::Level(s)) => {
             st.message = None;
-            st.pending_open = Some(s);
+            st.pending_open = Some(*s);
         }
         Ok(Opened::Assignment(list)) => {
             st.message = Some((format!("assignment: {}", list.title), true));
@@ -113,7 +113,7 @@ async fn open(path: &str) -> Result<Opened, String> {
     let text = fetch_text(&path).await?;
     if !is_assignment {
         return level::parse(Path::new(&path), &text)
-            .map(Opened::Level)
+            .map(|s| Opened::Level(Box::new(s)))
             .map_err(|e| format!("{path} did not open:\n{e}"));
     }
     let a = Assignment::parse(Path::new(&path), &text)

@@ -1,7 +1,7 @@
 //! A level carried whole in a web address, so that any static host serves the page and the link
 //! is the exercise: `PAGE#level=DATA&name=FILE.ron`, DATA the level file's text compressed with
-//! raw DEFLATE and written in base64url without padding (RFC 4648 section 5: only `A-Z a-z 0-9
-//! - _`, which no URL escapes). It sits in the fragment (after `#`), which a browser never sends
+//! raw DEFLATE and written in base64url without padding (RFC 4648 section 5: only letters,
+//! digits, `-` and `_`, which no URL escapes). It sits in the fragment (after `#`), which a browser never sends
 //! to the server: no server limit on the request line applies and no server log keeps the level.
 //! `name` keeps the file's name, which a level with parameters needs (a student's numbers
 //! depend on it, docs/levels.md).
