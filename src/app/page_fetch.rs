@@ -4,11 +4,10 @@
 //! browser. Only the page's own origin: a teacher's files on the same host, never a third
 //! party's address put into a link.
 //!
-//! The fetch is asynchronous; the app starts on the empty scene, with "opening PATH…" in the
-//! status line, and [`receive`] opens what arrived (or says why it did not) on the frame after.
+//! The fetch is asynchronous: the app starts on the empty scene, and `web.rs` opens what arrived
+//! (or says why it did not) on the frame after. Below the panels: it hands over a level or an
+//! assignment and the texts of its levels, which `web.rs` puts in the panels.
 
-use super::panels::assignment_list::AssignmentList;
-use super::panels::{Browser, UiState};
 use crate::level::assignment::{Assignment, MANIFEST};
 use crate::level::{self, Scene};
 use bevy::prelude::*;
@@ -17,17 +16,25 @@ use std::sync::{Arc, Mutex};
 use wasm_bindgen::JsCast;
 use wasm_bindgen_futures::JsFuture;
 
-/// What a fetch opened.
-enum Opened {
+/// What a fetch brought: a level, or an assignment with each of its levels' text (`Err`: why
+/// that level could not be fetched).
+pub enum Fetched {
     Level(Box<Scene>),
-    Assignment(AssignmentList),
+    Assignment(Assignment, Vec<Result<Arc<str>, String>>),
 }
 
 /// The fetch under way: its result once it arrived (`Err`: why nothing opened).
 #[derive(Resource, Clone)]
 pub struct PageFetch {
-    asked: String,
-    slot: Arc<Mutex<Option<Result<Opened, String>>>>,
+    pub asked: String,
+    slot: Arc<Mutex<Option<Result<Fetched, String>>>>,
+}
+
+impl PageFetch {
+    /// What arrived, once (`None` while it is under way, and after it was taken).
+    pub fn take(&self) -> Option<Result<Fetched, String>> {
+        self.slot.lock().expect("one thread").take()
+    }
 }
 
 /// Starts fetching `asked` (the URL's `url=` value); refused at once when it is not the page's
@@ -46,42 +53,6 @@ pub fn start(asked: String) -> PageFetch {
         *slot.lock().expect("one thread") = Some(r);
     });
     fetch
-}
-
-/// The status line while it is under way, and what arrived once: a level opened, an assignment
-/// listed and its first level that loads opened, or why not (red), never another exercise.
-pub fn receive(
-    fetch: Res<PageFetch>,
-    mut st: ResMut<UiState>,
-    mut browser: ResMut<Browser>,
-    mut done: Local<bool>,
-) {
-    if *done || st.generation.is_none() {
-        // Before the panels' first frame they set their own state up.
-        return;
-    }
-    let Some(r) = fetch.slot.lock().expect("one thread").take() else {
-        st.message = Some((format!("opening {}…", fetch.asked), true));
-        return;
-    };
-    *done = true;
-    match r {
-        Ok(Opened::Level(s)) => {
-            st.message = None;
-            st.pending_open = Some(*s);
-        }
-        Ok(Opened::Assignment(list)) => {
-            st.message = Some((format!("assignment: {}", list.title), true));
-            st.pending_open = list.first_loadable();
-            browser.assignment = Some(list);
-        }
-        Err(why) => {
-            st.message = Some((
-                format!("{why}; pick a level in the library on the left"),
-                false,
-            ))
-        }
-    }
 }
 
 /// The path of `asked` on the page's origin (path and query kept), or why it is refused.
@@ -103,7 +74,7 @@ fn same_origin_path(asked: &str) -> Result<String, String> {
 }
 
 /// The level or the assignment at `path` (a path on the page's origin).
-async fn open(path: &str) -> Result<Opened, String> {
+async fn open(path: &str) -> Result<Fetched, String> {
     let is_assignment = path.ends_with('/') || path.ends_with(MANIFEST);
     let path = if path.ends_with('/') {
         format!("{path}{MANIFEST}")
@@ -113,7 +84,7 @@ async fn open(path: &str) -> Result<Opened, String> {
     let text = fetch_text(&path).await?;
     if !is_assignment {
         return level::parse(Path::new(&path), &text)
-            .map(|s| Opened::Level(Box::new(s)))
+            .map(|s| Fetched::Level(Box::new(s)))
             .map_err(|e| format!("{path} did not open:\n{e}"));
     }
     let a = Assignment::parse(Path::new(&path), &text)
@@ -122,7 +93,7 @@ async fn open(path: &str) -> Result<Opened, String> {
     for p in &a.levels {
         texts.push(fetch_text(&p.to_string_lossy()).await.map(Arc::from));
     }
-    Ok(Opened::Assignment(AssignmentList::from_texts(&a, texts)))
+    Ok(Fetched::Assignment(a, texts))
 }
 
 /// The text of the file at `path` on the page's origin, or why not (not found, not text).

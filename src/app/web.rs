@@ -146,7 +146,7 @@ pub fn start() {
     app.add_systems(Update, (show_page_note, open_picked_file));
     if let Some(url) = query.url {
         app.insert_resource(super::page_fetch::start(url));
-        app.add_systems(Update, super::page_fetch::receive);
+        app.add_systems(Update, receive_fetched);
     }
     app.add_systems(Last, publish_status);
     app.run();
@@ -162,6 +162,45 @@ fn show_page_note(page: Res<PageState>, mut st: ResMut<UiState>, mut shown: Loca
                 format!("{n}; pick a level in the library on the left"),
                 false,
             ));
+        }
+    }
+}
+
+/// The `?url=` fetch's status line while it is under way, and what arrived once: a level opened,
+/// an assignment listed and its first level that loads opened, or why not (red), never another
+/// exercise.
+fn receive_fetched(
+    fetch: Res<super::page_fetch::PageFetch>,
+    mut st: ResMut<UiState>,
+    mut browser: ResMut<Browser>,
+    mut done: Local<bool>,
+) {
+    use super::page_fetch::Fetched;
+    if *done || st.generation.is_none() {
+        // Before the panels' first frame they set their own state up.
+        return;
+    }
+    let Some(r) = fetch.take() else {
+        st.message = Some((format!("opening {}…", fetch.asked), true));
+        return;
+    };
+    *done = true;
+    match r {
+        Ok(Fetched::Level(s)) => {
+            st.message = None;
+            st.pending_open = Some(*s);
+        }
+        Ok(Fetched::Assignment(a, texts)) => {
+            let list = panels::assignment_list::AssignmentList::from_texts(&a, texts);
+            st.message = Some((format!("assignment: {}", list.title), true));
+            st.pending_open = list.first_loadable();
+            browser.assignment = Some(list);
+        }
+        Err(why) => {
+            st.message = Some((
+                format!("{why}; pick a level in the library on the left"),
+                false,
+            ))
         }
     }
 }

@@ -5,7 +5,6 @@
 use super::super::run::Run;
 use super::super::ui::rich;
 use super::super::view::palette;
-use super::level_browser::{Browser, Entry};
 use crate::level::assignment::Assignment;
 use crate::level::{self, Scene};
 use bevy_egui::egui;
@@ -18,7 +17,55 @@ pub struct AssignmentList {
     pub file: PathBuf,
     pub title: String,
     pub due: Option<String>,
-    pub entries: Vec<Entry>,
+    pub entries: Vec<Row>,
+}
+
+/// One level of the assignment: its title and statement, or why it does not load.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub path: PathBuf,
+    pub title: String,
+    pub statement: String,
+    /// Why it does not load (shown instead of opening it).
+    pub error: Option<String>,
+    /// The file's text when it was fetched (the web page has no file system).
+    pub source: Option<Arc<str>>,
+}
+
+impl Row {
+    fn from_load(
+        path: PathBuf,
+        loaded: Result<Scene, level::LevelError>,
+        source: Option<Arc<str>>,
+    ) -> Row {
+        match loaded {
+            Ok(s) => Row {
+                path,
+                title: s.level.title,
+                statement: s.level.statement,
+                error: None,
+                source,
+            },
+            Err(e) => Row {
+                title: path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().to_string())
+                    .unwrap_or_default(),
+                path,
+                statement: String::new(),
+                error: Some(e.to_string()),
+                source,
+            },
+        }
+    }
+
+    /// The level: parsed from the fetched text, or read from its file.
+    pub fn load(&self) -> Result<Scene, level::LevelError> {
+        match &self.source {
+            Some(text) => level::parse(&self.path, text),
+            None => level::load(&self.path),
+        }
+    }
 }
 
 impl AssignmentList {
@@ -27,7 +74,7 @@ impl AssignmentList {
         let entries = a
             .levels
             .iter()
-            .map(|p| Entry::from_load(p.clone(), level::load(p), None))
+            .map(|p| Row::from_load(p.clone(), level::load(p), None))
             .collect();
         AssignmentList::with(a, entries)
     }
@@ -40,8 +87,8 @@ impl AssignmentList {
             .iter()
             .zip(texts)
             .map(|(p, text)| match text {
-                Ok(t) => Entry::from_load(p.clone(), level::parse(p, &t), Some(t)),
-                Err(why) => Entry::from_load(
+                Ok(t) => Row::from_load(p.clone(), level::parse(p, &t), Some(t)),
+                Err(why) => Row::from_load(
                     p.clone(),
                     Err(level::LevelError::new(p, (0, 0), why, "")),
                     None,
@@ -51,7 +98,7 @@ impl AssignmentList {
         AssignmentList::with(a, entries)
     }
 
-    fn with(a: &Assignment, entries: Vec<Entry>) -> AssignmentList {
+    fn with(a: &Assignment, entries: Vec<Row>) -> AssignmentList {
         AssignmentList {
             file: a.file.clone(),
             title: a.title.clone(),
@@ -74,21 +121,17 @@ impl AssignmentList {
     }
 }
 
-impl Browser {
-    /// Reads the levels folder again (and the assignment's levels, when they are files), keeping
-    /// the assignment listed.
-    pub fn rescan(&mut self) {
-        let assignment = self.assignment.take().map(|a| {
-            if a.entries.iter().any(|e| e.source.is_some()) {
-                return a;
-            }
-            match Assignment::load(&a.file) {
-                Ok(fresh) => AssignmentList::read(&fresh),
-                Err(_) => a,
-            }
-        });
-        *self = Browser::scan(&self.root.clone());
-        self.assignment = assignment;
+impl AssignmentList {
+    /// The assignment read again from its files (the browser's rescan: a teacher fixed a level
+    /// or the manifest); as it was when it was fetched, or when its manifest no longer reads.
+    pub fn reread(self) -> AssignmentList {
+        if self.entries.iter().any(|e| e.source.is_some()) {
+            return self;
+        }
+        match Assignment::load(&self.file) {
+            Ok(fresh) => AssignmentList::read(&fresh),
+            Err(_) => self,
+        }
     }
 }
 
@@ -96,11 +139,11 @@ impl Browser {
 /// in `load`.
 pub(super) fn assignment_list(
     ui: &mut egui::Ui,
-    browser: &Browser,
+    assignment: Option<&AssignmentList>,
     phys: &Run,
     load: &mut Option<Scene>,
 ) {
-    let Some(a) = &browser.assignment else {
+    let Some(a) = assignment else {
         return;
     };
     ui.label(egui::RichText::new(format!("Assignment: {}", a.title)).strong())

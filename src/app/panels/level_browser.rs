@@ -107,6 +107,13 @@ impl Browser {
         b
     }
 
+    /// Reads the levels folder again, and the assignment's levels, keeping the assignment listed.
+    pub fn rescan(&mut self) {
+        let assignment = self.assignment.take().map(|a| a.reread());
+        *self = Browser::scan(&self.root.clone());
+        self.assignment = assignment;
+    }
+
     pub fn first_loadable(&self) -> Option<Scene> {
         self.groups
             .values()
@@ -117,7 +124,7 @@ impl Browser {
 }
 
 impl Entry {
-    pub(super) fn from_load(
+    fn from_load(
         path: PathBuf,
         loaded: Result<Scene, level::LevelError>,
         source: Option<Arc<str>>,

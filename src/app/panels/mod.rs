@@ -267,7 +267,7 @@ pub fn left_column(
     scroll.show(ui, |ui| {
         exercise(ui, phys, live, ex);
         ui.separator();
-        assignment_list::assignment_list(ui, browser, phys, &mut load);
+        assignment_list::assignment_list(ui, browser.assignment.as_ref(), phys, &mut load);
         let count: usize = browser.groups.values().map(Vec::len).sum();
         let mut list = egui::CollapsingHeader::new(
             egui::RichText::new(format!("Levels ({count}): open another")).heading(),
