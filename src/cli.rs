@@ -12,6 +12,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 mod grade;
+mod link;
 mod verify;
 
 #[derive(Parser, Debug)]
@@ -116,8 +117,17 @@ pub enum Command {
         #[command(flatten)]
         solver: SolverArgs,
     },
-    /// Open one level in the sandbox window.
+    /// Open one level, or an assignment (its folder or its assignment.ron), in the sandbox
+    /// window.
     Play { level: PathBuf },
+    /// Print the web page's address that carries LEVEL whole (#level=...), to hand out; exit 2
+    /// when the level does not load.
+    Link {
+        level: PathBuf,
+        /// The page's address (where web/dist is served).
+        #[arg(long, default_value = link::DEFAULT_BASE)]
+        base: String,
+    },
     /// Studies: what accuracy costs (`accuracy`), whether hard cases stay stable (`stability`).
     Study {
         #[command(subcommand)]
@@ -331,6 +341,7 @@ pub fn main() -> ExitCode {
             solver,
         }) => run(&level, &pick(student), csv, &solver),
         Some(Command::Play { level }) => play(level),
+        Some(Command::Link { level, base }) => link::link(&level, &base),
         Some(Command::Study { study }) => crate::study::main(study),
         Some(Command::Render {
             level,
@@ -789,6 +800,9 @@ fn sandbox() -> ExitCode {
 
 #[cfg(feature = "app")]
 fn play(level: PathBuf) -> ExitCode {
+    if level::assignment::is_assignment(&level) {
+        return play_assignment(&level);
+    }
     if let Err(e) = level::load(&level) {
         return bad(e);
     }
@@ -797,6 +811,28 @@ fn play(level: PathBuf) -> ExitCode {
         return ExitCode::from(BAD_INPUT);
     }
     match crate::app::sandbox(PathBuf::from("levels"), Some(level)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => bad(e),
+    }
+}
+
+/// `play ASSIGNMENT`: the assignment must read (exit 2 otherwise); a level of it that does not
+/// load is said on stderr and listed in the window with why.
+#[cfg(feature = "app")]
+fn play_assignment(path: &std::path::Path) -> ExitCode {
+    let a = match level::assignment::Assignment::load(path) {
+        Ok(a) => a,
+        Err(e) => return bad(e),
+    };
+    let list = crate::app::panels::assignment_list::AssignmentList::read(&a);
+    for e in list.errors() {
+        stderr!("warning: a level of the assignment does not load:\n{e}");
+    }
+    if !has_display() {
+        stderr!("{}", no_display_message());
+        return ExitCode::from(BAD_INPUT);
+    }
+    match crate::app::sandbox_assignment(PathBuf::from("levels"), list) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => bad(e),
     }
@@ -868,7 +904,13 @@ fn sandbox() -> ExitCode {
 }
 
 #[cfg(not(feature = "app"))]
-fn play(_: PathBuf) -> ExitCode {
+fn play(level: PathBuf) -> ExitCode {
+    // Bad input is bad input, with or without the window.
+    if level::assignment::is_assignment(&level) {
+        if let Err(e) = level::assignment::Assignment::load(&level) {
+            return bad(e);
+        }
+    }
     no_app()
 }
 

@@ -25,6 +25,8 @@ pub mod names;
 pub mod overlay_systems;
 pub mod overlays;
 #[cfg(target_arch = "wasm32")]
+pub mod page_fetch;
+#[cfg(target_arch = "wasm32")]
 pub mod page_files;
 pub mod panels;
 pub mod physics;
@@ -50,7 +52,7 @@ pub mod web;
 pub use physics::{LiveChecks, PhysicsCommand, PhysicsPlugin, PhysicsStep};
 pub use playback::Playback;
 pub use run::Run;
-pub use sandbox::{add_sandbox, sandbox, FIRST_LEVEL};
+pub use sandbox::{add_sandbox, sandbox, sandbox_assignment, FIRST_LEVEL};
 pub use scene::{label_want, screen_bodies, SceneDraw, ScenePlugin, ScenePlugins};
 
 use crate::level::Scene;

@@ -55,6 +55,24 @@ pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
             .or_else(|| browser.first_loadable())
             .unwrap_or_else(empty_scene),
     };
+    open_window(scene, browser)
+}
+
+/// Opens the sandbox window on an assignment: its levels listed in order above the library over
+/// `levels`, the first that loads open (none loads: the empty scene, each level's error listed).
+pub fn sandbox_assignment(
+    levels: PathBuf,
+    assignment: panels::assignment_list::AssignmentList,
+) -> Result<(), String> {
+    render::vulkan_check()?;
+    let mut browser = panels::Browser::scan(&levels);
+    let scene = assignment.first_loadable().unwrap_or_else(empty_scene);
+    browser.assignment = Some(assignment);
+    open_window(scene, browser)
+}
+
+/// The window opened on `scene` with the level browser, run until it closes.
+fn open_window(scene: Scene, browser: panels::Browser) -> Result<(), String> {
     let mut app = App::new();
     // winit panics when it cannot reach the display (DISPLAY set to a dead X server, a Wayland-only
     // session: this build speaks X11): catch that and say what to do instead of a backtrace.

@@ -3,6 +3,9 @@
 //! compiled in (a page has no file system).
 //!
 //! The page's URL chooses what opens (`web/index.html` documents it):
+//! - `#level=DATA&name=FILE.ron` opens the level carried in the link itself (`level::link`, made by
+//!   `rigidlab link`); a link that does not decode says why and opens no other exercise;
+//! - `?url=PATH` fetches a level or an assignment served beside the page (`page_fetch.rs`);
 //! - `?level=kinetics/simple_pendulum.ron` opens that library level (default: the first one);
 //! - `&play=1` starts it running (default: paused, as the native window opens);
 //! - `&predict=1` opens it in predict-first mode: the motion waits for the student's answers
@@ -53,6 +56,10 @@ pub fn library() -> Vec<(PathBuf, Arc<str>)> {
 #[derive(Debug, Default, Clone)]
 struct PageQuery {
     level: Option<PathBuf>,
+    /// The level the link carries (`#level=`), or why it does not decode.
+    link: Option<Result<Scene, String>>,
+    /// A level or an assignment to fetch from the page's origin (`?url=`).
+    url: Option<String>,
     play: bool,
     check: bool,
     /// `?student=ID`: a level with parameters opens with this student's own numbers, the same
@@ -72,6 +79,11 @@ impl PageQuery {
 
     fn from_page() -> PageQuery {
         let mut q = PageQuery::default();
+        let hash = web_sys::window().and_then(|w| w.location().hash().ok());
+        q.link = hash
+            .as_deref()
+            .and_then(crate::level::link::open_fragment)
+            .map(|r| r.map_err(|e| format!("the link did not open: {e}\n  help: {}", e.help())));
         let Some(search) = web_sys::window().and_then(|w| w.location().search().ok()) else {
             return q;
         };
@@ -84,6 +96,7 @@ impl PageQuery {
             let l = l.strip_prefix("levels/").unwrap_or(l);
             q.level = Some(Path::new("levels").join(l));
         }
+        q.url = params.get("url").filter(|u| !u.is_empty());
         let yes = |k: &str| params.get(k).is_some_and(|v| v != "0" && v != "false");
         q.student = params.get("student").filter(|s| !s.trim().is_empty());
         q.play = yes("play");
@@ -97,8 +110,14 @@ impl PageQuery {
 pub fn start() {
     let query = PageQuery::from_page();
     let browser = Browser::embedded(Path::new("levels"), library());
-    let (scene, note) = match &query.level {
-        Some(p) => match browser.find(p).map(|e| e.load_variant(&query.pick())) {
+    let asked = query.level.is_some() || query.link.is_some();
+    let (scene, note) = match (&query.link, &query.level) {
+        // A link carries its level whole: it comes before a library level.
+        (Some(Ok(s)), _) => (s.clone(), None),
+        (Some(Err(why)), _) => (super::sandbox::empty_scene(), Some(why.clone())),
+        // The fetched level or assignment opens when it arrives.
+        _ if query.url.is_some() => (super::sandbox::empty_scene(), None),
+        (None, Some(p)) => match browser.find(p).map(|e| e.load_variant(&query.pick())) {
             Some(Ok(s)) => (s, None),
             // A level asked for and not opened: an empty scene, the reason in the status line
             // and the library beside it, never another exercise the student would take for it.
@@ -111,11 +130,11 @@ pub fn start() {
                 )),
             ),
         },
-        None => (first_or_empty(&browser), None),
+        (None, None) => (first_or_empty(&browser), None),
     };
     if query.check {
-        let scenes: Vec<Scene> = match (&query.level, note.is_none()) {
-            (Some(_), true) => vec![scene],
+        let scenes: Vec<Scene> = match (asked, note.is_none()) {
+            (true, true) => vec![scene],
             _ => browser
                 .groups
                 .values()
@@ -144,6 +163,10 @@ pub fn start() {
     }
     app.insert_resource(PageState { note });
     app.add_systems(Update, (show_page_note, open_picked_file));
+    if let Some(url) = query.url {
+        app.insert_resource(super::page_fetch::start(url));
+        app.add_systems(Update, receive_fetched);
+    }
     app.add_systems(Last, publish_status);
     app.run();
 }
@@ -158,6 +181,45 @@ fn show_page_note(page: Res<PageState>, mut st: ResMut<UiState>, mut shown: Loca
                 format!("{n}; pick a level in the library on the left"),
                 false,
             ));
+        }
+    }
+}
+
+/// The `?url=` fetch's status line while it is under way, and what arrived once: a level opened,
+/// an assignment listed and its first level that loads opened, or why not (red), never another
+/// exercise.
+fn receive_fetched(
+    fetch: Res<super::page_fetch::PageFetch>,
+    mut st: ResMut<UiState>,
+    mut browser: ResMut<Browser>,
+    mut done: Local<bool>,
+) {
+    use super::page_fetch::Fetched;
+    if *done || st.generation.is_none() {
+        // Before the panels' first frame they set their own state up.
+        return;
+    }
+    let Some(r) = fetch.take() else {
+        st.message = Some((format!("opening {}…", fetch.asked), true));
+        return;
+    };
+    *done = true;
+    match r {
+        Ok(Fetched::Level(s)) => {
+            st.message = None;
+            st.pending_open = Some(*s);
+        }
+        Ok(Fetched::Assignment(a, texts)) => {
+            let list = panels::assignment_list::AssignmentList::from_texts(&a, texts);
+            st.message = Some((format!("assignment: {}", list.title), true));
+            st.pending_open = list.first_loadable();
+            browser.assignment = Some(list);
+        }
+        Err(why) => {
+            st.message = Some((
+                format!("{why}; pick a level in the library on the left"),
+                false,
+            ))
         }
     }
 }
@@ -207,6 +269,7 @@ fn publish_status(
     page: Res<PageState>,
     editor: Res<super::editor::Editor>,
     predict: Res<panels::Predict>,
+    browser: Res<Browser>,
 ) {
     let s = phys.snapshot();
     let answers: Vec<serde_json::Value> = phys
@@ -268,6 +331,15 @@ fn publish_status(
         "message": st.message.as_ref().map(|(m, ok)| serde_json::json!({"text": m, "ok": ok})),
         "error": phys.error,
         "note": page.note,
+        "assignment": browser.assignment.as_ref().map(|a| serde_json::json!({
+            "title": a.title,
+            "due": a.due,
+            "levels": a.entries.iter().map(|e| serde_json::json!({
+                "path": e.path.display().to_string(),
+                "title": e.title,
+                "error": e.error,
+            })).collect::<Vec<_>>(),
+        })),
     });
     set_text("rigidlab-status", &status.to_string());
 }

@@ -8,6 +8,7 @@ pub mod assignment;
 pub mod curves;
 mod error;
 pub mod format;
+pub mod link;
 pub mod motion;
 pub mod params;
 pub mod profiles;

@@ -56,6 +56,8 @@ pub struct Browser {
     pub error: Option<String>,
     /// The levels are compiled in (the web page): nothing to rescan.
     pub embedded: bool,
+    /// The assignment opened, listed above the library (`assignment_list.rs`).
+    pub assignment: Option<super::assignment_list::AssignmentList>,
 }
 
 impl Browser {
@@ -115,6 +117,13 @@ impl Browser {
             }
         }
         b
+    }
+
+    /// Reads the levels folder again, and the assignment's levels, keeping the assignment listed.
+    pub fn rescan(&mut self) {
+        let assignment = self.assignment.take().map(|a| a.reread());
+        *self = Browser::scan(&self.root.clone());
+        self.assignment = assignment;
     }
 
     pub fn first_loadable(&self) -> Option<Scene> {
@@ -216,7 +225,7 @@ pub(super) fn level_browser(ui: &mut egui::Ui, browser: &mut Browser) {
                 .on_hover_text("rescan the levels folder")
                 .clicked()
         {
-            *browser = Browser::scan(&browser.root.clone());
+            browser.rescan();
         }
         #[cfg(target_arch = "wasm32")]
         if ui

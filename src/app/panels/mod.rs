@@ -7,6 +7,7 @@
 //! shows. Panels read the run and ask for changes to it with [`PhysicsCommand`]s, which this
 //! system writes; they import from beside and below them, never from this file.
 
+pub mod assignment_list;
 mod challenge;
 pub mod checks;
 pub mod course;
@@ -302,6 +303,7 @@ pub fn left_column(
         exercise(ui, phys, live, ex);
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
         ui.separator();
+        assignment_list::assignment_list(ui, browser.assignment.as_ref(), phys, &mut load);
         let (solved, total) = course::solved_count(browser, progress);
         let list = egui::CollapsingHeader::new(
             egui::RichText::new(format!("Course: {solved}/{total} solved")).heading(),
@@ -522,7 +524,7 @@ fn tidy_after_frame(ctx: &egui::Context, p: &mut PanelInput) {
         // A level saved into the folder the browser lists shows there at once. The save field
         // keeps the name asked for: saving again keeps both files (the next numbered name).
         if !p.browser.embedded {
-            *p.browser = Browser::scan(&p.browser.root.clone());
+            p.browser.rescan();
         }
     }
 }
@@ -568,7 +570,7 @@ fn settle_leaving(ctx: &egui::Context, p: &mut PanelInput, load: Option<Scene>) 
     }
     if f.editor.just_saved.take().is_some() && !p.browser.embedded {
         // Saved from the question: the browser lists it at once.
-        *p.browser = Browser::scan(&p.browser.root.clone());
+        p.browser.rescan();
     }
     load
 }

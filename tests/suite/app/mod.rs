@@ -1,5 +1,6 @@
 //! The Bevy sandbox (src/app), headless: the window, editor, inspector, playback and the web page.
 
+mod assignment_list;
 mod blows;
 mod course_progress;
 mod editor_commands;
