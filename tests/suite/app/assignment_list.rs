@@ -29,7 +29,13 @@ fn left_column_texts(browser: &mut Browser, phys: &Run) -> Vec<String> {
             egui::Panel::left("levels")
                 .default_size(300.0)
                 .show(ui, |ui| {
-                    panels::left_column(ui, browser, (phys, &live), &mut ex);
+                    panels::left_column(
+                        ui,
+                        browser,
+                        (phys, &live),
+                        &mut ex,
+                        &mut panels::Course::default(),
+                    );
                 });
         });
         texts = out

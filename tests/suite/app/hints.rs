@@ -61,7 +61,13 @@ impl Window {
                 egui::Panel::left("levels")
                     .default_size(300.0)
                     .show(ui, |ui| {
-                        panels::left_column(ui, browser, (phys, live), ex);
+                        panels::left_column(
+                            ui,
+                            browser,
+                            (phys, live),
+                            ex,
+                            &mut panels::Course::default(),
+                        );
                     });
             });
             self.texts.clear();
