@@ -66,15 +66,28 @@ pub fn read(file: &str, bytes: &[u8]) -> Result<(Layout, Vec<Row>, Vec<BadRow>),
     let layout = layout(file, &header)?;
     let mut rows = Vec::new();
     let mut bad = Vec::new();
+    // The csv crate's own line count is one short after CRLF line ends (csv 1.4: a spreadsheet's
+    // export numbered 8 for its line 9): lines are counted here from the record's byte offset.
+    let line_at = |p: Option<&csv::Position>| {
+        p.map_or(0, |p| {
+            // A record's offset may sit on the line end before it (after CRLF): its first
+            // character is past any line ends there.
+            let mut end = (p.byte() as usize).min(bytes.len());
+            while end < bytes.len() && matches!(bytes[end], b'\r' | b'\n') {
+                end += 1;
+            }
+            1 + bytes[..end].iter().filter(|&&b| b == b'\n').count() as u64
+        })
+    };
     for record in reader.records() {
         match record {
-            Ok(r) => match row(&layout, &r) {
+            Ok(r) => match row(&layout, &r, line_at(r.position())) {
                 Ok(Some(row)) => rows.push(row),
                 Ok(None) => {}
                 Err(b) => bad.push(b),
             },
             Err(e) => bad.push(BadRow {
-                line: e.position().map_or(0, |p| p.line()),
+                line: line_at(e.position()),
                 column: None,
                 message: format!("the row cannot be read: {e}"),
             }),
@@ -105,8 +118,7 @@ fn layout(file: &str, header: &csv::StringRecord) -> Result<Layout, String> {
 }
 
 /// One record as a row; None for a blank line; a bad row when a field is missing or empty.
-fn row(layout: &Layout, r: &csv::StringRecord) -> Result<Option<Row>, BadRow> {
-    let line = r.position().map_or(0, |p| p.line());
+fn row(layout: &Layout, r: &csv::StringRecord, line: u64) -> Result<Option<Row>, BadRow> {
     if r.iter().all(str::is_empty) {
         return Ok(None);
     }
