@@ -142,8 +142,16 @@ impl PairTracker {
                 self.peak = j;
                 self.pre = f.prev.cloned();
                 if let Some(pre) = f.prev {
+                    self.impact = Impact::find(facts, pre, f.cur, b, o);
+                    // The solution's states from the flight's closed form where there is one;
+                    // the touching instant, point and normal stay the engine's, which its own
+                    // e and impulses are read at.
                     let exact = self.flight.exact(pre, (b, o));
-                    self.impact = Impact::find(facts, exact.as_ref().unwrap_or(pre), f.cur, b, o);
+                    let solved = exact.and_then(|x| Impact::find(facts, &x, f.cur, b, o));
+                    if let (Some(imp), Some(x)) = (self.impact.as_mut(), solved) {
+                        imp.pre = x.pre;
+                        imp.post = x.post;
+                    }
                 }
                 Some(PairEvent::Touch)
             }

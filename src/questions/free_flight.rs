@@ -7,9 +7,10 @@
 //! (h the substep, t the time flown), so the engine meets the surface early and slow: a disc
 //! dropped 5.8 mm onto an incline at 1/240 s and 4 substeps (tests/newuser, n3_11) lands at
 //! 0.3316 for 0.33657 m/s, and an impact solution from that state took 2.95e-2 less energy than
-//! the textbook's landing. From the start the flight is a parabola with a steady spin (RK-1,
-//! PK-5), so the pre-impact state is exact and the analysis answers the textbook's question;
-//! the engine's value keeps its own landing.
+//! the textbook's landing. From the start the flight is a parabola with a steady spin (PK-8),
+//! so the pre-impact state is exact and the analysis answers the textbook's question; the
+//! engine's value keeps its own landing (its touching instant, point and normal are the
+//! engine's, `contact_events`).
 //!
 //! Only while each body of the pair that moves is dynamic, neither jointed, coupled, sprung,
 //! loaded nor damped, touched by no contact that pushed, and its velocity and position are
