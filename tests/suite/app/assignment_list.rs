@@ -77,7 +77,7 @@ fn the_assignment_is_listed_in_order_above_the_library() {
         .enumerate()
         .map(|(k, t)| at(&format!("{}. {t}", k + 1)))
         .collect();
-    let library = at("open another");
+    let library = at("Course:");
     assert!(heading < due && due < rows[0], "{texts:?}");
     assert!(rows.windows(2).all(|w| w[0] < w[1]), "in order: {rows:?}");
     assert!(rows[2] < library, "above the library: {texts:?}");

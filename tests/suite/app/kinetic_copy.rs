@@ -142,9 +142,11 @@ fn labels_stay_off_the_kinetic_copy() {
     // rubbing_discs_friction_work, whose discs and copies fill the view; one each on the two
     // struck bars and the two rotors, where no free spot lay within four label sizes). Held
     // there; the copies over other bodies (9) and leaving the view (5) are printed, not yet
-    // fixed (free_side's four sides at one gap).
+    // fixed (free_side's four sides at one gap). On 110 levels (the challenges and three more
+    // parameterized copies, 147 copy parts), 12: the struck bar's parameterized copy has the
+    // struck bar's one.
     assert!(
-        on_copies <= 11,
-        "{on_copies} labels laid over a kinetic copy (11 on 2026-12-07)"
+        on_copies <= 12,
+        "{on_copies} labels laid over a kinetic copy (12 on 110 levels, 2026-12-07)"
     );
 }

@@ -41,7 +41,7 @@ fn f32_warnings(text: &str) -> Vec<String> {
         .collect()
 }
 
-/// Warned at the fine settings, located at world.dt (line 7 of the file), naming the fix; and
+/// Warned at the fine settings, located at world.dt (its line of the file), naming the fix; and
 /// the warning is right: the speed question (v = g t = 9.81 m/s, exact for symplectic Euler
 /// under constant force, tolerance 1e-4) fails in f32 and passes in f64 there. Per substep,
 /// h = 1.6e-5 s, the ball's height changes by v h, 8e-5 m on average, on 10 m: about 45 ulps
@@ -53,7 +53,16 @@ fn the_fine_free_fall_is_warned_and_fails_in_f32_only() {
     let text = fine_free_fall();
     let w = f32_warnings(&text);
     assert_eq!(w.len(), 1, "{w:?}");
-    assert!(w[0].contains("level.ron:7:"), "at world.dt: {}", w[0]);
+    // The `world` line of the file (7 before the level's hints were written, 13 after).
+    let world = 1 + text
+        .lines()
+        .position(|l| l.trim_start().starts_with("world:"))
+        .expect("a world line");
+    assert!(
+        w[0].contains(&format!("level.ron:{world}:")),
+        "at world.dt (line {world}): {}",
+        w[0]
+    );
     assert!(w[0].contains("precision: f64"), "names the fix: {}", w[0]);
     let scene = parse(Path::new("fine.ron"), &text).unwrap();
     let speed = |p: Precision| {
