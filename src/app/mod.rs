@@ -41,6 +41,7 @@ pub mod run;
 pub mod sandbox;
 pub mod scene;
 pub mod scene_lines;
+pub mod student;
 pub mod tools;
 pub mod ui;
 pub mod unsaved;

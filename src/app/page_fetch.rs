@@ -83,8 +83,8 @@ async fn open(path: &str) -> Result<Fetched, String> {
     };
     let text = fetch_text(&path).await?;
     if !is_assignment {
-        return level::parse(Path::new(&path), &text)
-            .map(|s| Fetched::Level(Box::new(s)))
+        return level::parse_variant(Path::new(&path), &text, &super::student::pick())
+            .map(|l| Fetched::Level(Box::new(l.scene)))
             .map_err(|e| format!("{path} did not open:\n{e}"));
     }
     let a = Assignment::parse(Path::new(&path), &text)

@@ -79,15 +79,21 @@ impl PageQuery {
 
     fn from_page() -> PageQuery {
         let mut q = PageQuery::default();
+        let search = web_sys::window().and_then(|w| w.location().search().ok());
+        let params = search.and_then(|s| web_sys::UrlSearchParams::new_with_str(&s).ok());
+        // The student first: every way a level opens (a link, a fetched file, the library) gives
+        // their own numbers (`app/student.rs`).
+        q.student = params
+            .as_ref()
+            .and_then(|p| p.get("student"))
+            .filter(|s| !s.trim().is_empty());
+        super::student::set(q.student.clone());
         let hash = web_sys::window().and_then(|w| w.location().hash().ok());
         q.link = hash
             .as_deref()
-            .and_then(crate::level::link::open_fragment)
+            .and_then(|h| crate::level::link::open_fragment_as(h, &q.pick()))
             .map(|r| r.map_err(|e| format!("the link did not open: {e}\n  help: {}", e.help())));
-        let Some(search) = web_sys::window().and_then(|w| w.location().search().ok()) else {
-            return q;
-        };
-        let Ok(params) = web_sys::UrlSearchParams::new_with_str(&search) else {
+        let Some(params) = params else {
             return q;
         };
         if let Some(l) = params.get("level").filter(|l| !l.is_empty()) {
@@ -98,7 +104,6 @@ impl PageQuery {
         }
         q.url = params.get("url").filter(|u| !u.is_empty());
         let yes = |k: &str| params.get(k).is_some_and(|v| v != "0" && v != "false");
-        q.student = params.get("student").filter(|s| !s.trim().is_empty());
         q.play = yes("play");
         q.check = yes("check");
         q.predict = yes("predict");

@@ -117,9 +117,20 @@ pub fn fragment_parts(fragment: &str) -> Option<(String, String)> {
 /// The level a fragment carries, parsed and validated as a file of its name would be; `None`
 /// when the fragment names no level.
 pub fn open_fragment(fragment: &str) -> Option<Result<Scene, LinkError>> {
+    open_fragment_as(fragment, &super::params::Pick::Nominal)
+}
+
+/// [`open_fragment`] as `pick` makes a level with parameters (a student's own numbers, by the
+/// link's file name as `check --student` makes them by the file's).
+pub fn open_fragment_as(
+    fragment: &str,
+    pick: &super::params::Pick,
+) -> Option<Result<Scene, LinkError>> {
     let (data, name) = fragment_parts(fragment)?;
     Some(decode(&data).and_then(|text| {
-        super::parse(Path::new(&name), &text).map_err(|e| LinkError::Level(Box::new(e)))
+        super::parse_variant(Path::new(&name), &text, pick)
+            .map(|l| l.scene)
+            .map_err(|e| LinkError::Level(Box::new(e)))
     }))
 }
 

@@ -118,12 +118,23 @@ pub fn load_challenge(
     pick: &params::Pick,
     value: Option<f64>,
 ) -> Result<Loaded, LevelError> {
-    let plain = load_variant(path, pick)?;
+    parse_challenge(path, &read_text(path)?, pick, value)
+}
+
+/// [`load_challenge`] from a level's text (a level compiled into the web page); `path` is only
+/// used in messages.
+pub fn parse_challenge(
+    path: &Path,
+    text: &str,
+    pick: &params::Pick,
+    value: Option<f64>,
+) -> Result<Loaded, LevelError> {
+    let text = text.strip_prefix(BOM).unwrap_or(text);
+    let plain = parse_variant(path, text, pick)?;
     if plain.control.is_none() {
         return Ok(plain);
     }
-    let text = read_text(path)?;
-    let Some(p) = params::Parameterized::read(path, &text)? else {
+    let Some(p) = params::Parameterized::read(path, text)? else {
         return Ok(plain);
     };
     let (made, control) = p.make_control(path, &p.indices(pick), value)?;

@@ -6,9 +6,11 @@
 use super::super::draw::{DrawStep, Drawing, Prim};
 use super::super::physics::{LiveChecks, PhysicsCommand};
 use super::super::run::Run;
+use super::super::student;
 use super::super::ui::rich;
 use super::super::view::palette;
-use crate::level::params::{Control, Pick};
+use super::level_browser::Browser;
+use crate::level::params::Control;
 use crate::level::{self, Goal, Region};
 use crate::questions::ChallengeResult;
 use bevy::prelude::*;
@@ -20,6 +22,8 @@ use std::path::PathBuf;
 #[derive(Clone, Default)]
 struct Play {
     file: PathBuf,
+    /// The level's text (compiled into the page or fetched there; read from the file natively).
+    text: String,
     /// The control as the level declares it, or why it could not be read.
     control: Option<Result<Control, String>>,
     /// The value in the field, in the control's unit.
@@ -47,7 +51,7 @@ pub fn stars(tries: u32) -> u8 {
 /// screen has a challenge; what it asks of the run.
 pub fn window(
     ctx: &egui::Context,
-    phys: &Run,
+    (phys, browser): (&Run, &Browser),
     live: &LiveChecks,
     scene: egui::Rect,
 ) -> Vec<PhysicsCommand> {
@@ -58,7 +62,7 @@ pub fn window(
     let id = egui::Id::new("challenge play");
     let mut play: Play = ctx.data(|d| d.get_temp(id)).unwrap_or_default();
     if play.file != phys.scene.file || play.control.is_none() {
-        play = start(&phys.scene.file);
+        play = start(&phys.scene.file, level_text(browser, &phys.scene.file));
     }
     tally(&mut play, phys, live);
     egui::Window::new("Challenge")
@@ -82,10 +86,37 @@ pub fn window(
     asked
 }
 
-/// A new level's play: its control read from its file.
-fn start(file: &std::path::Path) -> Play {
+/// The level's text: compiled into the page or fetched there (the browser's entry), else read
+/// from its file. Before 2026-12-07 the file only, so in the page every challenge showed "the
+/// level's file cannot be read" instead of Launch.
+fn level_text(browser: &Browser, file: &std::path::Path) -> Result<String, String> {
+    let listed = browser
+        .groups
+        .values()
+        .flatten()
+        .find(|e| e.path == file)
+        .and_then(|e| e.source.clone());
+    let fetched = || {
+        browser
+            .assignment
+            .iter()
+            .flat_map(|a| a.entries.iter())
+            .find(|e| e.path == file)
+            .and_then(|e| e.source.clone())
+    };
+    match listed.or_else(fetched) {
+        Some(text) => Ok(text.to_string()),
+        None => level::read_text(file).map_err(|e| e.to_string()),
+    }
+}
+
+/// A new level's play: its control read from its text.
+fn start(file: &std::path::Path, text: Result<String, String>) -> Play {
     // The field starts at the value of the scene on screen, the control's nominal one.
-    let (control, value) = match level::load_variant(file, &Pick::Nominal) {
+    let loaded = text
+        .clone()
+        .and_then(|t| level::parse_variant(file, &t, &student::pick()).map_err(|e| e.to_string()));
+    let (control, value) = match loaded {
         Ok(l) => match l.control {
             Some((c, v)) => (Ok(c), v),
             None => (
@@ -94,14 +125,13 @@ fn start(file: &std::path::Path) -> Play {
             ),
         },
         Err(e) => (
-            Err(format!(
-                "the level's file cannot be read for its control: {e}"
-            )),
+            Err(format!("the level cannot be read for its control: {e}")),
             0.0,
         ),
     };
     Play {
         file: file.to_path_buf(),
+        text: text.unwrap_or_default(),
         control: Some(control),
         value,
         ..Default::default()
@@ -150,7 +180,7 @@ fn controls(
         .add_enabled(play.launched.is_none(), egui::Button::new("Launch"))
         .on_hover_text("run the scene from the start with this value");
     if launch.clicked() {
-        match level::load_challenge(&play.file, &Pick::Nominal, Some(play.value)) {
+        match level::parse_challenge(&play.file, &play.text, &student::pick(), Some(play.value)) {
             Ok(l) => {
                 asked.push(PhysicsCommand::Edited {
                     scene: Box::new(l.scene),

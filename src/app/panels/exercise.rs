@@ -28,6 +28,9 @@ pub struct Exercise {
     pub help_used: bool,
     /// The hints shown and the solution's state (`hints.rs`).
     pub hints: HintState,
+    /// The level the answers were typed for: its file and its statement (a student's own
+    /// numbers are in the statement).
+    pub typed_for: Option<(std::path::PathBuf, String)>,
 }
 
 impl Exercise {
@@ -39,6 +42,19 @@ impl Exercise {
         }
         self.grades = vec![None; n];
         self.answer_boxes = vec![None; n];
+    }
+
+    /// [`Exercise::start`] of the level in `file` with `statement`: answers typed for another
+    /// level, or for the same one with other numbers (another student's variant), go. Before
+    /// 2026-12-07 they stayed while the number of questions did, so *Next level* from a pendulum
+    /// to its parameterized copy showed the answers just typed, graded right without any work.
+    pub fn start_level(&mut self, file: &std::path::Path, statement: &str, n: usize) {
+        let key = (file.to_path_buf(), statement.to_string());
+        if self.typed_for.as_ref() != Some(&key) {
+            self.answers = vec![String::new(); n];
+            self.typed_for = Some(key);
+        }
+        self.start(n);
     }
 }
 
@@ -84,7 +100,11 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
                         .as_ref()
                         .and_then(|g| g.as_ref().ok())
                         .map(|g| g.passed);
-                    st.hints.graded(right, &st.grades);
+                    // A prediction's verdict waits for the motion (predict.rs): a hint now
+                    // would tell the student it is wrong before they have seen the run.
+                    if !st.hold_grades {
+                        st.hints.graded(right, &st.grades);
+                    }
                 }
             });
             if st.hold_grades && st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {

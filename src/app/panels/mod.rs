@@ -26,6 +26,7 @@ mod scene_editor;
 pub mod shortcuts;
 mod solver;
 pub mod state;
+mod student_id;
 mod tool_controls;
 pub mod tour;
 mod track_editor;
@@ -193,7 +194,7 @@ fn panels(mut p: PanelInput) -> Result {
     let free = root.available_rect_before_wrap();
     p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
     help_and_tour(&ctx, &mut p, free);
-    for c in challenge::window(&ctx, &p.phys, &p.live, free) {
+    for c in challenge::window(&ctx, (&p.phys, &p.browser), &p.live, free) {
         p.run_commands.write(c);
     }
     tidy_after_frame(&ctx, &mut p);
@@ -240,7 +241,11 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
     }
     if st.generation != Some(phys.generation) {
         st.generation = Some(phys.generation);
-        p.exercise.start(phys.sim.level.questions.len());
+        p.exercise.start_level(
+            &phys.scene.file,
+            &phys.sim.level.statement,
+            phys.sim.level.questions.len(),
+        );
         st.edit_title = None;
         if st.save_path.is_empty() {
             st.save_path = default_save_path(&phys.scene);
@@ -304,6 +309,7 @@ pub fn left_column(
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
         ui.separator();
         assignment_list::assignment_list(ui, browser.assignment.as_ref(), phys, &mut load);
+        student_id::student_id(ui, browser, phys, &mut load);
         let (solved, total) = course::solved_count(browser, progress);
         let list = egui::CollapsingHeader::new(
             egui::RichText::new(format!("Course: {solved}/{total} solved")).heading(),

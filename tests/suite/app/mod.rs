@@ -15,6 +15,7 @@ mod label_placement;
 mod measure;
 mod mouse_tools;
 mod names_overlay;
+mod own_numbers;
 mod playback;
 mod plot_labels;
 mod plugins;
