@@ -7,7 +7,7 @@
 //!
 //! A level asks for it with `predict_first: true`; the switch at the top of the left panel
 //! turns it on for any level (and is remembered). [`follow`] moves the phases on and holds the
-//! run; [`predict`] draws the switch and the results. The answers checked before the motion
+//! run; `predict` draws the switch and the results. The answers checked before the motion
 //! are the predictions, graded with the level's student rule; their grades are held back until
 //! the motion has run (`Exercise::hold_grades`), so an answer cannot be tried until it is right
 //! first. An answer changed after the motion is graded as usual but is no prediction.
@@ -207,7 +207,7 @@ const EXPLAINS: [(&str, Explain); 11] = [
 ];
 
 impl Explain {
-    /// The overlay for `q` ([`EXPLAINS`]); a link's speed read through its instantaneous
+    /// The overlay for `q` (the table `EXPLAINS`); a link's speed read through its instantaneous
     /// center shows that center.
     pub fn of(q: &Quantity, level: &Level) -> Explain {
         if matches!(q, Quantity::LinkOmega { .. } | Quantity::PinSpeed { .. }) {
