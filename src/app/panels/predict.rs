@@ -409,10 +409,14 @@ fn results(ui: &mut egui::Ui, level: &Level, ex: &Exercise, pred: &mut Predict) 
                     } else {
                         palette::NORMAL
                     };
-                    ui.label(rich(
-                        format!("your prediction {} {}: {text}", p.typed, q.unit),
-                        color,
-                    ));
+                    // The unit only after a bare number: "0.067 m" typed with its unit read
+                    // "0.067 m m" (the student trial, 2026-12-07).
+                    let shown = if p.typed.trim().parse::<f64>().is_ok() {
+                        format!("{} {}", p.typed, q.unit)
+                    } else {
+                        p.typed.clone()
+                    };
+                    ui.label(rich(format!("your prediction {shown}: {text}"), color));
                     let now = ex.answers.get(k).map(|a| a.trim()).unwrap_or_default();
                     if now != p.typed {
                         ui.label(rich(
