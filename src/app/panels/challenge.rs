@@ -8,7 +8,7 @@ use super::super::physics::{LiveChecks, PhysicsCommand};
 use super::super::run::Run;
 use super::super::student;
 use super::super::ui::rich;
-use super::super::view::palette;
+use super::super::view::{palette, View};
 use super::level_browser::Browser;
 use crate::level::params::Control;
 use crate::level::{self, Goal, Region};
@@ -51,7 +51,7 @@ pub fn stars(tries: u32) -> u8 {
 /// screen has a challenge; what it asks of the run.
 pub fn window(
     ctx: &egui::Context,
-    (phys, browser): (&Run, &Browser),
+    (phys, browser, view): (&Run, &Browser, &View),
     live: &LiveChecks,
     scene: egui::Rect,
 ) -> Vec<PhysicsCommand> {
@@ -65,8 +65,19 @@ pub fn window(
         play = start(&phys.scene.file, level_text(browser, &phys.scene.file));
     }
     tally(&mut play, phys, live);
+    let bodies: Vec<egui::Pos2> = phys
+        .snapshot()
+        .bodies
+        .iter()
+        .map(|b| {
+            let p = view.to_screen(b.com);
+            egui::pos2(p.x, p.y)
+        })
+        .collect();
+    // One window per level, so that each opens at its own scene's free corner.
     egui::Window::new("Challenge")
-        .default_pos(scene.left_top() + egui::vec2(12.0, 12.0))
+        .id(egui::Id::new(("challenge", &phys.scene.file)))
+        .default_pos(box_corner(scene, BOX_SIZE, &bodies))
         .resizable(false)
         .collapsible(true)
         .show(ctx, |ui| {
@@ -108,6 +119,39 @@ fn level_text(browser: &Browser, file: &std::path::Path) -> Result<String, Strin
         Some(text) => Ok(text.to_string()),
         None => level::read_text(file).map_err(|e| e.to_string()),
     }
+}
+
+/// About the size the Challenge box draws at (measured on screenshots of the library's ten).
+pub const BOX_SIZE: egui::Vec2 = egui::vec2(340.0, 175.0);
+
+/// Where the Challenge box opens (its top-left corner): the corner of the scene (top-left,
+/// top-right or bottom-left; the tour has the fourth) whose box lies farthest from the bodies'
+/// mass centers on screen. At the scene's top-left corner, always,
+/// it hid the cylinder of "leave at 30 degrees" and the pulley of the Atwood challenge (the
+/// student trial of 2026-12-07).
+pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) -> egui::Pos2 {
+    let gap = egui::vec2(12.0, 12.0);
+    // Not the bottom-right corner: the first-steps tour sits there (tour.rs).
+    let corners = [
+        scene.left_top() + gap,
+        egui::pos2(scene.right() - size.x - gap.x, scene.top() + gap.y),
+        egui::pos2(scene.left() + gap.x, scene.bottom() - size.y - gap.y),
+    ];
+    let clearance = |at: &egui::Pos2| {
+        let r = egui::Rect::from_min_size(*at, size);
+        bodies
+            .iter()
+            .map(|b| r.distance_to_pos(*b))
+            .fold(f32::INFINITY, f32::min)
+    };
+    // The first corner of the farthest (top-left on a tie, as before).
+    let mut best = corners[0];
+    for c in &corners[1..] {
+        if clearance(c) > clearance(&best) {
+            best = *c;
+        }
+    }
+    best
 }
 
 /// A new level's play: its control read from its text.

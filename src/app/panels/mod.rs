@@ -8,7 +8,7 @@
 //! system writes; they import from beside and below them, never from this file.
 
 pub mod assignment_list;
-mod challenge;
+pub mod challenge;
 pub mod checks;
 pub mod course;
 mod exercise;
@@ -194,7 +194,7 @@ fn panels(mut p: PanelInput) -> Result {
     let free = root.available_rect_before_wrap();
     p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
     help_and_tour(&ctx, &mut p, free);
-    for c in challenge::window(&ctx, (&p.phys, &p.browser), &p.live, free) {
+    for c in challenge::window(&ctx, (&p.phys, &p.browser, &p.view), &p.live, free) {
         p.run_commands.write(c);
     }
     tidy_after_frame(&ctx, &mut p);

@@ -2,6 +2,7 @@
 
 mod assignment_list;
 mod blows;
+mod challenge_box;
 mod course_progress;
 mod editor_commands;
 mod editor_core;
