@@ -66,10 +66,8 @@ pub(super) fn check(v: &V, i: usize, c: &CheckDef) -> R {
     Ok(())
 }
 
-// A match over every quantity's references to validate, one arm per quantity family, in the
-// order of the `Quantity` enum: split, each arm would be a function called once, away from the
-// neighbours a new quantity is written beside (CONTRIBUTING's "where to add").
-#[allow(clippy::too_many_lines)]
+/// A question: its answer and tolerance, the references of its quantity, its unit, its
+/// mistakes, when it is read ([`question_at`]), and what its quantity needs of the scene.
 pub(super) fn question(v: &V, q: &QuestionDef) -> R {
     let at = |f: &str| v.loc.field_pos("questions", &q.id, f);
     v.finite(
@@ -88,80 +86,7 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
     }
     question_unit(v, q)?;
     question_mistakes(v, q)?;
-    match &q.at {
-        When::Time(t) | When::Max(t) | When::Min(t) => {
-            v.non_negative(*t, "question time", "s", at("at"))?
-        }
-        When::End => {}
-        When::Angle { body, angle } => {
-            question_ref(v, q, "body", body, "at")?;
-            v.finite(*angle, "question angle", at("at"))?;
-        }
-        When::Crossing { of, value, after } => {
-            for (kind, name) in quantity_refs(of) {
-                question_ref(v, q, kind, name, "at")?;
-            }
-            if matches!(of, Quantity::Time) {
-                return Err(v.err(
-                    at("at"),
-                    format!("question \"{}\" waits for `Time` to cross a value", q.id),
-                    "use `at: Time(t)` to read at a time",
-                ));
-            }
-            v.finite(*value, "crossing value", at("at"))?;
-            v.non_negative(*after, "crossing `after`", "s", at("at"))?;
-        }
-        When::MaxOf { of, after } | When::MinOf { of, after } => {
-            for (kind, name) in quantity_refs(of) {
-                question_ref(v, q, kind, name, "at")?;
-            }
-            if matches!(of, Quantity::Time) {
-                return Err(v.err(
-                    at("at"),
-                    format!("question \"{}\" waits for the extreme of `Time`", q.id),
-                    "name the quantity whose extreme you mean: `at: MaxOf(of: Y(\"ball\"))`",
-                ));
-            }
-            v.non_negative(*after, "extreme's `after`", "s", at("at"))?;
-        }
-        When::SlipEnds { body, other, after } | When::SlipStarts { body, other, after } => {
-            v.need(
-                Effect::Contacts,
-                at("at"),
-                &format!(
-                    "question \"{}\" waits for a contact to slip or stop slipping",
-                    q.id
-                ),
-            )?;
-            question_ref(v, q, "body", body, "at")?;
-            question_ref(v, q, "body", other, "at")?;
-            v.non_negative(*after, "slip event's `after`", "s", at("at"))?;
-        }
-        When::FirstContact { body, other } | When::ContactEnds { body, other } => {
-            v.need(
-                Effect::Contacts,
-                at("at"),
-                &format!("question \"{}\" waits for a contact", q.id),
-            )?;
-            question_ref(v, q, "body", body, "at")?;
-            if let Some(o) = other {
-                question_ref(v, q, "body", o, "at")?;
-            }
-        }
-        When::Leaves { body, other, after } => {
-            v.need(
-                Effect::Contacts,
-                at("at"),
-                &format!("question \"{}\" waits for a body to leave another", q.id),
-            )?;
-            question_ref(v, q, "body", body, "at")?;
-            question_ref(v, q, "body", other, "at")?;
-            v.non_negative(*after, "`Leaves`'s `after`", "s", at("at"))?;
-            leaves_shapes(v, q, body, other)?;
-        }
-        When::AfterEvent(e) => question_ref(v, q, "event", e, "at")?,
-        When::FirstStep => {}
-    }
+    question_at(v, q)?;
     if matches!(q.quantity, Quantity::Time)
         && matches!(q.at, When::End | When::Max(_) | When::Min(_))
     {
@@ -267,6 +192,87 @@ pub(super) fn question(v: &V, q: &QuestionDef) -> R {
                 "give the joint a `motor`, or ask for its reaction",
             ));
         }
+    }
+    Ok(())
+}
+
+/// When a question is read (`at`): a time, an angle, a crossing, an extreme, a slip or contact
+/// event, each with the bodies and values it names.
+fn question_at(v: &V, q: &QuestionDef) -> R {
+    let at = |f: &str| v.loc.field_pos("questions", &q.id, f);
+    match &q.at {
+        When::Time(t) | When::Max(t) | When::Min(t) => {
+            v.non_negative(*t, "question time", "s", at("at"))?
+        }
+        When::End => {}
+        When::Angle { body, angle } => {
+            question_ref(v, q, "body", body, "at")?;
+            v.finite(*angle, "question angle", at("at"))?;
+        }
+        When::Crossing { of, value, after } => {
+            for (kind, name) in quantity_refs(of) {
+                question_ref(v, q, kind, name, "at")?;
+            }
+            if matches!(of, Quantity::Time) {
+                return Err(v.err(
+                    at("at"),
+                    format!("question \"{}\" waits for `Time` to cross a value", q.id),
+                    "use `at: Time(t)` to read at a time",
+                ));
+            }
+            v.finite(*value, "crossing value", at("at"))?;
+            v.non_negative(*after, "crossing `after`", "s", at("at"))?;
+        }
+        When::MaxOf { of, after } | When::MinOf { of, after } => {
+            for (kind, name) in quantity_refs(of) {
+                question_ref(v, q, kind, name, "at")?;
+            }
+            if matches!(of, Quantity::Time) {
+                return Err(v.err(
+                    at("at"),
+                    format!("question \"{}\" waits for the extreme of `Time`", q.id),
+                    "name the quantity whose extreme you mean: `at: MaxOf(of: Y(\"ball\"))`",
+                ));
+            }
+            v.non_negative(*after, "extreme's `after`", "s", at("at"))?;
+        }
+        When::SlipEnds { body, other, after } | When::SlipStarts { body, other, after } => {
+            v.need(
+                Effect::Contacts,
+                at("at"),
+                &format!(
+                    "question \"{}\" waits for a contact to slip or stop slipping",
+                    q.id
+                ),
+            )?;
+            question_ref(v, q, "body", body, "at")?;
+            question_ref(v, q, "body", other, "at")?;
+            v.non_negative(*after, "slip event's `after`", "s", at("at"))?;
+        }
+        When::FirstContact { body, other } | When::ContactEnds { body, other } => {
+            v.need(
+                Effect::Contacts,
+                at("at"),
+                &format!("question \"{}\" waits for a contact", q.id),
+            )?;
+            question_ref(v, q, "body", body, "at")?;
+            if let Some(o) = other {
+                question_ref(v, q, "body", o, "at")?;
+            }
+        }
+        When::Leaves { body, other, after } => {
+            v.need(
+                Effect::Contacts,
+                at("at"),
+                &format!("question \"{}\" waits for a body to leave another", q.id),
+            )?;
+            question_ref(v, q, "body", body, "at")?;
+            question_ref(v, q, "body", other, "at")?;
+            v.non_negative(*after, "`Leaves`'s `after`", "s", at("at"))?;
+            leaves_shapes(v, q, body, other)?;
+        }
+        When::AfterEvent(e) => question_ref(v, q, "event", e, "at")?,
+        When::FirstStep => {}
     }
     Ok(())
 }
