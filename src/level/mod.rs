@@ -80,6 +80,21 @@ pub fn load_variant(path: &Path, pick: &params::Pick) -> Result<Loaded, LevelErr
     parse_variant(path, utf8(path, bytes)?, pick)
 }
 
+/// The picked variant of a level listed with its text (`source`: compiled into the web page or
+/// fetched there) or, without one, read from its file: the window's and the page's lists open
+/// their levels through this.
+pub fn variant_of(
+    path: &Path,
+    source: Option<&str>,
+    pick: &params::Pick,
+) -> Result<Scene, LevelError> {
+    match source {
+        Some(text) => parse_variant(path, text, pick),
+        None => load_variant(path, pick),
+    }
+    .map(|l| l.scene)
+}
+
 /// [`load_variant`] from a level's text (a level compiled into the web page); `path` is only
 /// used in messages.
 pub fn parse_variant(path: &Path, text: &str, pick: &params::Pick) -> Result<Loaded, LevelError> {

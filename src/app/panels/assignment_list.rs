@@ -61,12 +61,11 @@ impl Row {
 
     /// The level: parsed from the fetched text, or read from its file.
     pub fn load(&self) -> Result<Scene, level::LevelError> {
-        let pick = super::super::student::pick();
-        match &self.source {
-            Some(text) => level::parse_variant(&self.path, text, &pick),
-            None => level::load_variant(&self.path, &pick),
-        }
-        .map(|l| l.scene)
+        level::variant_of(
+            &self.path,
+            self.source.as_deref(),
+            &super::super::student::pick(),
+        )
     }
 }
 

@@ -38,11 +38,7 @@ impl Entry {
     /// The level as `pick` makes it (a student's own numbers for a level with parameters; the
     /// same level for every pick otherwise).
     pub fn load_variant(&self, pick: &level::params::Pick) -> Result<Scene, level::LevelError> {
-        match &self.source {
-            Some(text) => level::parse_variant(&self.path, text, pick),
-            None => level::load_variant(&self.path, pick),
-        }
-        .map(|l| l.scene)
+        level::variant_of(&self.path, self.source.as_deref(), pick)
     }
 }
 
