@@ -4,13 +4,17 @@
 //! A name's home is just outside its body, on the side away from the scene's middle (where the
 //! free space usually is), turned toward a long body's thin side, never on the body's center; the label placer (`labels.rs`) then moves
 //! it off other labels and bodies. A joint's name is pushed from its anchor away from the mass
-//! centers of the bodies it joins, so it does not sit on the links.
+//! centers of the bodies it joins, so it does not sit on the links. When that side is taken by
+//! another body (a row of touching balls, as Newton's cradle's), the name turns to the nearest
+//! side where it lies clear of the others and nearer its own body than any other ([`Others`]).
 
 use super::draw::Drawing;
 use super::geometry::Outline;
+use super::labels::rect_hits_polygon;
 use super::view::palette;
 use crate::level::JointDef;
 use crate::snapshot::{BodyKind, Snapshot};
+use bevy::math::{Rect, Vec2};
 use glam::DVec2;
 
 /// Beyond this many named bodies, only the selected one is named (a pile of 30 boxes named box1
@@ -28,10 +32,16 @@ pub fn names(
 ) {
     let shown = shown_bodies(s, outlines, selected);
     let middle = middle(s, &shown);
+    let others = if shown.is_empty() {
+        Others::default_for(s)
+    } else {
+        Others::of(s, outlines)
+    };
     for &i in &shown {
         let b = &s.bodies[i];
         let o = &outlines[i];
-        let dir = heading(o, b.position, b.angle, b.com, away(b.com - middle));
+        let wanted = heading(o, b.position, b.angle, b.com, away(b.com - middle));
+        let dir = others.free_side(i, &b.name, wanted, d.m_per_px);
         let at = b.com + dir * reach(o, b.position, b.angle, b.com, dir);
         d.tip_label(at, dir, b.name.clone(), palette::TEXT);
     }
@@ -67,6 +77,181 @@ pub fn names(
             palette::REACTION,
         );
     }
+}
+
+/// A name's estimated size, px: 7.2 px a character of the 13 px font, 16 px a line (what the
+/// label placer's tests assume; the placer then measures the real text).
+const CHAR_PX: f64 = 7.2;
+const LINE_PX: f64 = 16.0;
+/// How far out `label_want` (scene.rs) pushes a tip label past its point, px, before half its
+/// size along the way.
+const PUSH_PX: f64 = 5.0;
+
+/// Every body's outline in the world, for finding the side of a body where its name is clear of
+/// the others.
+struct Others<'a> {
+    s: &'a Snapshot,
+    polygons: Vec<Vec<Vec<DVec2>>>,
+    /// Each body's farthest outline point from its mass center, m: a body whose circle of
+    /// that radius is farther from a name than its own body is skipped unmeasured.
+    radii: Vec<f64>,
+}
+
+impl<'a> Others<'a> {
+    /// No outlines read: nothing is named (a crowded scene with no body selected).
+    fn default_for(s: &'a Snapshot) -> Self {
+        Others {
+            s,
+            polygons: Vec::new(),
+            radii: Vec::new(),
+        }
+    }
+
+    fn of(s: &'a Snapshot, outlines: &[Outline]) -> Self {
+        let polygons = s
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                outlines.get(i).map_or_else(Vec::new, |o| {
+                    o.filled
+                        .iter()
+                        .map(|poly| poly.iter().map(|p| b.world_point(*p)).collect())
+                        .collect()
+                })
+            })
+            .collect::<Vec<Vec<Vec<DVec2>>>>();
+        let radii = s
+            .bodies
+            .iter()
+            .zip(&polygons)
+            .map(|(b, polys)| {
+                polys
+                    .iter()
+                    .flatten()
+                    .map(|p| (*p - b.com).length())
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        Others { s, polygons, radii }
+    }
+
+    /// The way body `i`'s name goes: `wanted` when the name there lies clear of every other body
+    /// and nearer its own than any other, else the nearest such way in steps of 22.5 degrees
+    /// (down before up at equal turns: a hanging body's string is above it), else `wanted`.
+    /// Newton's cradle's balls touch side by side: away from the middle, ball 3's name landed on
+    /// ball 4 and the placer moved it under ball 4 (seen in the page, 2026-12-07); it now goes
+    /// under ball 3. `m_per_px` (the drawing's scale) sizes the name; without one, `wanted`.
+    fn free_side(&self, i: usize, text: &str, wanted: DVec2, m_per_px: f64) -> DVec2 {
+        if !(m_per_px > 0.0 && m_per_px.is_finite())
+            || self.polygons.get(i).is_none_or(Vec::is_empty)
+        {
+            return wanted;
+        }
+        let chars = text.chars().count() as f64;
+        let size = DVec2::new(CHAR_PX * chars, LINE_PX);
+        let step = std::f64::consts::PI / 8.0;
+        let turns = (0..=8).flat_map(|k| {
+            let a = k as f64 * step;
+            // At equal turns, the one whose way points lower first.
+            let (p, q) = (rotated(wanted, -a), rotated(wanted, a));
+            if k == 0 || k == 8 {
+                vec![p]
+            } else if p.y <= q.y {
+                vec![p, q]
+            } else {
+                vec![q, p]
+            }
+        });
+        for dir in turns {
+            if self.clear(i, dir, size, m_per_px) {
+                return dir;
+            }
+        }
+        wanted
+    }
+
+    /// Whether body `i`'s name of `size` px, out along `dir`, touches no other body and lies
+    /// nearer body `i` than any other (px, in the world's orientation around `i`'s center).
+    fn clear(&self, i: usize, dir: DVec2, size: DVec2, m_per_px: f64) -> bool {
+        let b = &self.s.bodies[i];
+        let px = |p: DVec2| screen_vec((p - b.com) / m_per_px);
+        let out = self.polygons[i]
+            .iter()
+            .flatten()
+            .map(|p| (*p - b.com).dot(dir) / m_per_px)
+            .fold(0.0, f64::max);
+        let push = out + PUSH_PX + 0.5 * (dir.x.abs() * size.x + dir.y.abs() * size.y);
+        let center = screen_vec(dir * push);
+        let half = screen_vec(0.5 * size);
+        let r = Rect::from_corners(center - half, center + half);
+        let gap = |k: usize| {
+            self.polygons[k]
+                .iter()
+                .map(|poly| gap_px(&r, &poly.iter().map(|p| px(*p)).collect::<Vec<_>>()))
+                .fold(f32::INFINITY, f32::min)
+        };
+        let own = gap(i);
+        // A body whose bounding circle lies farther than `own` from the name's box cannot be
+        // nearer it than its own body: only the near ones are measured (a pile of thousands).
+        let reach = f64::from(half.length()) + f64::from(own);
+        let center = b.com + dir * push * m_per_px;
+        (0..self.polygons.len())
+            .filter(|&k| k != i)
+            .filter(|&k| {
+                (self.s.bodies[k].com - center).length() - self.radii[k] <= reach * m_per_px
+            })
+            .all(|k| gap(k) > own)
+    }
+}
+
+/// `v` as the label placer's f32 vector (bevy's glam, not the physics' one).
+fn screen_vec(v: DVec2) -> Vec2 {
+    Vec2::new(v.x as f32, v.y as f32)
+}
+
+/// `v` turned by `a` rad.
+fn rotated(v: DVec2, a: f64) -> DVec2 {
+    DVec2::from_angle(a).rotate(v)
+}
+
+/// The distance between rectangle `r` and convex polygon `poly`, px: 0 when they overlap, else
+/// the least distance from a corner of one to an edge of the other.
+fn gap_px(r: &Rect, poly: &[Vec2]) -> f32 {
+    if poly.is_empty() {
+        return f32::INFINITY;
+    }
+    if rect_hits_polygon(r, poly) {
+        return 0.0;
+    }
+    let corners = [
+        r.min,
+        Vec2::new(r.max.x, r.min.y),
+        r.max,
+        Vec2::new(r.min.x, r.max.y),
+    ];
+    let to_rect = poly
+        .iter()
+        .map(|p| (p.clamp(r.min, r.max) - *p).length())
+        .fold(f32::INFINITY, f32::min);
+    let to_poly = corners
+        .iter()
+        .flat_map(|c| {
+            (0..poly.len()).map(move |k| segment_distance(*c, poly[k], poly[(k + 1) % poly.len()]))
+        })
+        .fold(f32::INFINITY, f32::min);
+    to_rect.min(to_poly)
+}
+
+/// The distance from `p` to the segment from `a` to `b`.
+fn segment_distance(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+    let e = b - a;
+    let t = if e.length_squared() > 0.0 {
+        ((p - a).dot(e) / e.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + e * t - p).length()
 }
 
 /// The bodies to name: those with a filled outline (a fixed point body such as a four-bar's
