@@ -1,10 +1,11 @@
 //! The scene as lines, textbook style: body outlines with rotation spokes, pins and their
-//! supports, joints, springs, ground hatching, the scale bar, and the selected body's highlight.
+//! supports, joints, springs, couplings (an unwinding string as its cord), ground hatching, the
+//! scale bar, and the selected body's highlight.
 
 use super::draw::{si, Drawing, Prim};
 use super::geometry::{self, Outline};
 use super::view::{palette, SceneIndex, View};
-use crate::level::{JointKind, Level};
+use crate::level::{Coordinate, CouplingDef, JointKind, Level};
 use crate::snapshot::{BodyKind, Snapshot};
 use bevy::prelude::*;
 use glam::DVec2;
@@ -135,8 +136,13 @@ pub fn scene_lines(
             }
         }
     }
-    // Couplings (pulleys, cables, gears) have no drawn path: a dashed line joins their bodies.
+    // Couplings (pulleys, cables, gears) have no drawn path: a dashed line joins their bodies;
+    // a string unwinding from one body (a yo-yo's) is drawn as the cord it is.
     for (def, bodies) in level.couplings.iter().zip(&index.couplings) {
+        if let Some((i, side)) = unwinding(def, bodies) {
+            unwinding_string(level, outlines, s, (i, side), &def.name, m_per_px, d);
+            continue;
+        }
         for w in bodies.windows(2) {
             d.prims.push(Prim::Dashed(
                 s.bodies[w[0]].com,
@@ -163,6 +169,69 @@ pub fn scene_lines(
             pin_support(sp.point2, m_per_px, d);
         }
     }
+}
+
+/// A coupling that is a string unwinding from one body: a y term and an angle term of the same
+/// body, a y + b theta = const (the yo-yo's y - r theta = const). Then a v_y + b omega = 0, and
+/// the point at (s, 0) from G, moving up at v_y + omega s, is at rest for s = b / a: the string
+/// leaves there and runs straight up (r to the left of the yo-yo's axle for b / a = -r).
+/// Returns the body and s. An x term with an angle term is a rolling contact or a rack, not a
+/// string, and keeps its dashed line.
+fn unwinding(def: &CouplingDef, bodies: &[usize]) -> Option<(usize, f64)> {
+    // One body index per term: the same body in both.
+    let (&body, rest) = bodies.split_first()?;
+    if rest.iter().any(|&k| k != body) {
+        return None;
+    }
+    let [t1, t2] = def.terms.as_slice() else {
+        return None;
+    };
+    let (y, angle) = match (t1.coordinate, t2.coordinate) {
+        (Coordinate::Y, Coordinate::Angle) => (t1, t2),
+        (Coordinate::Angle, Coordinate::Y) => (t2, t1),
+        _ => return None,
+    };
+    let side = angle.ratio / y.ratio;
+    (side.is_finite() && side != 0.0).then_some((body, side))
+}
+
+/// The unwinding string of body `i` (leaving at `side` m beside its center): the axle it winds
+/// on, and the cord from there straight up to its fixed end, a support four body radii above
+/// where the body started (the level gives the string's top no place of its own; fixed, so the
+/// string pays out as the body falls).
+fn unwinding_string(
+    level: &Level,
+    outlines: &[Outline],
+    s: &Snapshot,
+    (i, side): (usize, f64),
+    name: &str,
+    m_per_px: f64,
+    d: &mut Drawing,
+) {
+    let (Some(b), Some(def)) = (s.bodies.get(i), level.bodies.get(i)) else {
+        return;
+    };
+    let reach = outlines
+        .get(i)
+        .into_iter()
+        .flat_map(|o| o.filled.iter().flatten())
+        .map(|p| p.length())
+        .fold(0.0, f64::max);
+    let leaves = b.com + DVec2::new(side, 0.0);
+    let top = DVec2::new(leaves.x, def.position.1 + 4.0 * reach.max(side.abs()));
+    if top.y <= leaves.y {
+        return;
+    }
+    d.prims
+        .push(Prim::Circle(b.com, side.abs(), palette::COUPLING));
+    d.prims.push(Prim::Line(leaves, top, palette::COUPLING));
+    pin_support(top, m_per_px, d);
+    d.label(
+        0.5 * (leaves + top),
+        Vec2::ZERO,
+        name.to_string(),
+        palette::COUPLING,
+    );
 }
 
 /// A light rod between two points: a narrow outlined bar.

@@ -27,3 +27,4 @@ mod web_page;
 mod window;
 mod window_advice;
 mod window_diagram;
+mod yoyo_string;
