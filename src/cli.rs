@@ -382,20 +382,26 @@ fn check(
             ));
         }
     }
-    let files = match level::collect_files(paths) {
+    let (files, bad_manifests) = match level::collect_levels(paths) {
         Ok(f) => f,
         Err(e) => return bad(e),
     };
-    if files.is_empty() {
+    if files.is_empty() && bad_manifests.is_empty() {
         return bad("no level files (*.ron) found in the given paths");
     }
-    let mut bad_input = false;
+    // An assignment's manifest that does not read is bad input, reported as a row of its own.
+    let mut bad_input = !bad_manifests.is_empty();
     let mut bad_answer = false;
     // Questions of levels not run because an answer to them could not be read.
     let mut asked_elsewhere: Vec<String> = Vec::new();
     let mut levels = Vec::new();
     // The variant each level ran (a level with parameters), for the JSON report.
     let mut variants = Vec::new();
+    for e in &bad_manifests {
+        stderr!("{e}");
+        levels.push(failed(&e.file, &e.to_string()));
+        variants.push(None);
+    }
     for f in &files {
         let mut played = None;
         let mut picked = None;

@@ -151,6 +151,11 @@ pub fn is_assignment(path: &Path) -> bool {
     path.is_dir() || path.file_name().is_some_and(|n| n == MANIFEST)
 }
 
+/// Whether `path` is an assignment's manifest: a file named `assignment.ron`.
+pub fn is_manifest(path: &Path) -> bool {
+    path.file_name().is_some_and(|n| n == MANIFEST) && path.is_file()
+}
+
 /// The manifest's text; `given` is the path the user gave (a folder or the file).
 fn read_manifest(file: &Path, given: &Path) -> Result<String, LevelError> {
     let bytes = super::read_regular(file, MAX_MANIFEST_BYTES).map_err(|e| {

@@ -410,13 +410,27 @@ fn byte_offset(text: &str, line: usize, col: usize) -> usize {
 }
 
 /// Every `*.ron` file under the given files and folders (recursively), sorted. Warnings about
-/// what the search skipped go to stderr (see [`find_files`]).
+/// what the search skipped go to stderr (see [`find_files`]), and an assignment manifest that
+/// does not read is a warning here (`rigidlab check` makes it an error: [`collect_levels`]).
 pub fn collect_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, LevelError> {
+    let (files, bad) = collect_levels(paths)?;
+    for e in &bad {
+        stderr!("warning: {e}");
+    }
+    Ok(files)
+}
+
+/// [`find_files`] with its skips (warnings) and notes written to stderr: the level files, and
+/// the assignment manifests met that do not read, with their located errors.
+pub fn collect_levels(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<LevelError>), LevelError> {
     let found = find_files(paths)?;
     for w in &found.skipped {
         stderr!("warning: {w}");
     }
-    Ok(found.files)
+    for n in &found.notes {
+        stderr!("note: {n}");
+    }
+    Ok((found.files, found.bad_manifests))
 }
 
 /// The level files a search found, and what it skipped (with why).
@@ -424,12 +438,22 @@ pub fn collect_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, LevelError> {
 pub struct Found {
     pub files: Vec<PathBuf>,
     pub skipped: Vec<String>,
+    /// What each assignment manifest met stood for (it is read as a manifest, not as a level).
+    pub notes: Vec<String>,
+    /// The manifests met that do not read.
+    pub bad_manifests: Vec<LevelError>,
 }
 
 /// Every `*.ron` file under the given files and folders (recursively), sorted. Paths given
 /// directly are kept as they are (`load` refuses what is not a regular file); inside folders, a
 /// `*.ron` that is not a regular file (a FIFO, a device, a broken link) is skipped, and a folder
 /// reached twice (a symlink loop, or given twice) is searched once.
+///
+/// An assignment's manifest (`assignment.ron`, docs/teacher.md) is not a level: given by name,
+/// it stands for its levels in its order; met in a folder, it is read (a manifest that does not
+/// read goes to `bad_manifests`) and left out with a note, its levels being files of that
+/// folder and found with them. (It was read as a level that does not load: "Expected struct
+/// `Level` but found `Assignment`".)
 pub fn find_files(paths: &[PathBuf]) -> Result<Found, LevelError> {
     let mut found = Found::default();
     let mut seen = std::collections::HashSet::new();
@@ -443,6 +467,8 @@ pub fn find_files(paths: &[PathBuf]) -> Result<Found, LevelError> {
                     "check the path",
                 )
             })?;
+        } else if assignment::is_manifest(p) {
+            manifest(p, true, &mut found);
         } else if p.exists() {
             found.files.push(p.clone());
         } else {
@@ -455,6 +481,27 @@ pub fn find_files(paths: &[PathBuf]) -> Result<Found, LevelError> {
         }
     }
     Ok(found)
+}
+
+/// An assignment manifest met by the search: read; `given` (named by the user), its levels join
+/// the files in its order; met in a folder, a note (its levels are that folder's files).
+fn manifest(p: &Path, given: bool, found: &mut Found) {
+    match assignment::Assignment::load(p) {
+        Ok(a) if given => {
+            found.notes.push(format!(
+                "{}: an assignment; its {} levels in its order",
+                p.display(),
+                a.levels.len()
+            ));
+            found.files.extend(a.levels);
+        }
+        Ok(a) => found.notes.push(format!(
+            "{}: an assignment's manifest ({} levels), read as one and not as a level; its levels are files of its folder",
+            p.display(),
+            a.levels.len()
+        )),
+        Err(e) => found.bad_manifests.push(e),
+    }
 }
 
 fn walk(
@@ -475,6 +522,8 @@ fn walk(
         let p = e.path();
         if p.is_dir() {
             walk(&p, seen, found)?;
+        } else if assignment::is_manifest(&p) {
+            manifest(&p, false, found);
         } else if p.extension().is_some_and(|x| x == "ron") {
             match std::fs::metadata(&p) {
                 Ok(m) if m.is_file() => found.files.push(p),

@@ -2,6 +2,7 @@
 //! fuzz campaign (src/runner, src/cli.rs).
 
 mod budget;
+mod check_assignment;
 mod cli_io;
 mod cli_memory;
 mod fuzz_campaign;
