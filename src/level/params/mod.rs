@@ -109,9 +109,38 @@ impl Parameterized {
     pub fn indices(&self, pick: &Pick) -> Vec<u64> {
         match pick {
             Pick::Nominal => self.params.iter().map(|p| p.nominal).collect(),
-            Pick::Student(id) => seed::student_indices(&self.file_name, id, &self.params),
+            Pick::Student(id) => self.student_indices(id),
             Pick::Indices(i) => i.clone(),
         }
+    }
+
+    /// Student `id`'s value indices: the seeded draw, drawn again while a typical mistake equals
+    /// its answer at the draw (`seed`'s step 4). Such a variant does not validate, and every
+    /// answer of the student whose pick landed there was ungradable ("student X's variant
+    /// cannot be made"); `verify` finds such variants only where its sample hits one.
+    fn student_indices(&self, id: &str) -> Vec<u64> {
+        let mut draws = seed::student_draws(&self.file_name, id, &self.params);
+        let first = draws.next().unwrap_or_default();
+        std::iter::once(first.clone())
+            .chain(draws)
+            .take(seed::MAX_DRAWS)
+            .find(|idx| !self.mistake_is_answer(idx))
+            .unwrap_or(first)
+    }
+
+    /// Whether at the values `idx` a question's typical mistake is within the student tolerance
+    /// of its expected answer (false where the variant does not read: its own error shows
+    /// where it is made).
+    fn mistake_is_answer(&self, idx: &[u64]) -> bool {
+        let values: Vec<f64> = self.variant(idx).values.iter().map(|v| v.1).collect();
+        let path = Path::new(&self.file_name);
+        self.read_with_g(path, &self.si(&values))
+            .is_ok_and(|((level, ..), _)| {
+                level
+                    .questions
+                    .iter()
+                    .any(super::validate::mistake_is_answer)
+            })
     }
 
     /// Every corner of the ranges: each parameter at its lowest or its highest value (a
@@ -193,28 +222,12 @@ impl Parameterized {
             variant.shown = self.shown(&variant.values);
         }
         let own: Vec<f64> = variant.values.iter().map(|v| v.1).collect();
-        let si: Vec<f64> = self
-            .params
-            .iter()
-            .zip(&own)
-            .map(|(p, v)| v * p.factor)
-            .collect();
-        let names: Vec<String> = self.params.iter().map(|p| p.name.clone()).collect();
         let with = |e: LevelError| LevelError {
             message: format!("{} [variant: {}]", e.message, variant.shown),
             ..e
         };
-        // g is the level's gravity: read the level with the default, then again with its own.
-        let mut g = DEFAULT_G;
-        let mut made = self.once(path, &names, &si, g).map_err(with)?;
-        if let Some((gx, gy)) = made.0.world.gravity {
-            let own_g = gx.hypot(gy);
-            if own_g != g && own_g.is_finite() {
-                g = own_g;
-                made = self.once(path, &names, &si, g).map_err(with)?;
-            }
-        }
-        let (mut level, expanded, map) = made;
+        let ((mut level, expanded, map), g) =
+            self.read_with_g(path, &self.si(&own)).map_err(with)?;
         self.fill_texts(path, &mut level, &own, g)?;
         super::validate::validate(path, &expanded, &level)
             .map_err(|e| self.remap(&expanded, &map, e))
@@ -225,6 +238,35 @@ impl Parameterized {
             expanded,
             map,
         })
+    }
+
+    /// Values in the parameters' units, in SI (degrees to radians).
+    fn si(&self, own: &[f64]) -> Vec<f64> {
+        self.params
+            .iter()
+            .zip(own)
+            .map(|(p, v)| v * p.factor)
+            .collect()
+    }
+
+    /// The variant of SI values `si`, expanded and parsed (not validated), and the g it was
+    /// read with: the level's gravity, so read with the default, then again with its own.
+    fn read_with_g(
+        &self,
+        path: &Path,
+        si: &[f64],
+    ) -> Result<((Level, String, OffsetMap), f64), LevelError> {
+        let names: Vec<String> = self.params.iter().map(|p| p.name.clone()).collect();
+        let mut g = DEFAULT_G;
+        let mut made = self.once(path, &names, si, g)?;
+        if let Some((gx, gy)) = made.0.world.gravity {
+            let own_g = gx.hypot(gy);
+            if own_g != g && own_g.is_finite() {
+                g = own_g;
+                made = self.once(path, &names, si, g)?;
+            }
+        }
+        Ok((made, g))
     }
 
     /// The level text of one variant, parsed (not validated).

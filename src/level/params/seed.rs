@@ -11,6 +11,12 @@
 //!    its values (grid points min, min + step, ... up to max; or the list's length); the
 //!    value is min + index * step (in f64) or the list's entry. The modulo's bias is below
 //!    n / 2^64, nothing at classroom sizes.
+//! 4. If at the values drawn one of the level's typical mistakes is within the question's
+//!    student tolerance of its expected answer (the mistake could not be told from the right
+//!    answer, and the variant does not validate), draw again: the same generator's next calls,
+//!    one per parameter, as in 3. At most [`MAX_DRAWS`] draws; if each is such, the first (its
+//!    error is then reported where the variant is made). A level whose mistakes are told apart
+//!    at every value gives every student the first draw.
 
 use super::decl::Parameter;
 
@@ -42,11 +48,29 @@ pub fn seed_text(file_name: &str, id: &str) -> String {
     format!("{file_name}|{}", id.trim())
 }
 
-/// Each parameter's value index for student `id` of the level file named `file_name`.
+/// The most draws for one student (step 4): a quarter of the variants refused would leave a
+/// student on a refused one after 16 draws once in 4^16, 4e9.
+pub const MAX_DRAWS: usize = 16;
+
+/// Each parameter's value index for student `id` of the level file named `file_name`: the
+/// first draw (steps 1 to 3).
 pub fn student_indices(file_name: &str, id: &str, params: &[Parameter]) -> Vec<u64> {
+    student_draws(file_name, id, params)
+        .next()
+        .unwrap_or_default()
+}
+
+/// The draws of student `id` in order (steps 1 to 3, then 4's draws again), endless.
+pub fn student_draws<'a>(
+    file_name: &str,
+    id: &str,
+    params: &'a [Parameter],
+) -> impl Iterator<Item = Vec<u64>> + 'a {
     let mut rng = SplitMix64(fnv1a64(seed_text(file_name, id).as_bytes()));
-    params
-        .iter()
-        .map(|p| rng.next_u64() % p.values.count())
-        .collect()
+    std::iter::repeat_with(move || {
+        params
+            .iter()
+            .map(|p| rng.next_u64() % p.values.count())
+            .collect()
+    })
 }

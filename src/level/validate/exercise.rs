@@ -556,6 +556,15 @@ fn question_mistakes(v: &V, q: &QuestionDef) -> R {
     Ok(())
 }
 
+/// Whether one of the question's typical mistakes is within the student tolerance of its
+/// expected answer ([`question_mistakes`] refuses such a level): a student's variant is drawn
+/// again where this holds (`params::Parameterized::indices`).
+pub(crate) fn mistake_is_answer(q: &QuestionDef) -> bool {
+    q.mistakes
+        .iter()
+        .any(|m| indistinct(q.expected, m.value, q.student_tolerance))
+}
+
 /// Whether `value` is within `tol` of `expected` by the grading rule (`questions::grade_answer`:
 /// relative, absolute against 0), measured from either one.
 fn indistinct(expected: f64, value: f64, tol: f64) -> bool {

@@ -20,6 +20,7 @@ use bodies::*;
 use challenge::*;
 use effects::*;
 use events::*;
+pub(crate) use exercise::mistake_is_answer;
 /// The named items a question's quantity refers to (the window's predict-first mode shows the body).
 pub use exercise::quantity_refs;
 use exercise::*;

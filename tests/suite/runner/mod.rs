@@ -7,6 +7,7 @@ mod cli_io;
 mod cli_memory;
 mod fuzz_campaign;
 mod grade_cli;
+mod grade_variants;
 mod link_cli;
 mod report_step_calls;
 mod user_files_kept;
