@@ -54,9 +54,13 @@ pub const GRADEBOOK_IDS: [&str; 5] = ["Student", "ID", "SIS User ID", "SIS Login
 /// The gradebook's last column: the points of every level.
 pub const TOTAL: &str = "rigidlab total";
 
-/// The gradebook: a row per student named in answers.csv (sorted by id; one whose every row was
-/// bad scores 0), their points per level (one per question answered right; a question not
-/// answered scores 0) and their total.
+/// The `Student` cell of the gradebook's second row, the points possible of each level (its
+/// question count) and of the total.
+pub const POINTS_POSSIBLE: &str = "Points Possible";
+
+/// The gradebook: the points possible of each level and of the total, then a row per student
+/// named in answers.csv (sorted by id; one whose every row was bad scores 0), their points per
+/// level (one per question answered right; a question not answered scores 0) and their total.
 pub fn gradebook_csv(
     levels: &[Assigned],
     students: &[&str],
@@ -80,6 +84,14 @@ pub fn gradebook_csv(
     header.extend(levels.iter().map(level_column));
     header.push(TOTAL.to_string());
     w.write_record(&header).map_err(err)?;
+    // The points possible, as a Canvas export's second row writes them (Canvas's import reads
+    // the row whose first cell is "Points Possible" as each new assignment's points).
+    let possible: Vec<usize> = levels.iter().map(|l| l.nominal.questions.len()).collect();
+    let mut row = vec![POINTS_POSSIBLE.to_string()];
+    row.extend(std::iter::repeat_n(String::new(), GRADEBOOK_IDS.len() - 1));
+    row.extend(possible.iter().map(usize::to_string));
+    row.push(possible.iter().sum::<usize>().to_string());
+    w.write_record(&row).map_err(err)?;
     for (student, pts) in &points {
         let mut rec = vec![
             student.to_string(),

@@ -296,6 +296,8 @@ fn a_class_of_30_is_graded_against_each_students_own_variant() {
         lines.next().unwrap(),
         format!("Student,ID,SIS User ID,SIS Login ID,Section,{ATWOOD},{INCLINE},rigidlab total")
     );
+    // The points possible: the questions of each level (6 and 2), 8 in all.
+    assert_eq!(lines.next().unwrap(), "Points Possible,,,,,6,2,8");
     assert!(book.contains("s2400000,,s2400000,,,6,2,8"), "{book}");
     assert_eq!(lines.count(), 30);
 }
@@ -345,6 +347,6 @@ fn an_assignment_manifest_orders_the_gradebook() {
     let book = std::fs::read_to_string(dir.join("grades_gradebook.csv")).unwrap();
     assert_eq!(
         book,
-        format!("Student,ID,SIS User ID,SIS Login ID,Section,{INCLINE},{ATWOOD},rigidlab total\nbob,,bob,,,1,0,1\n")
+        format!("Student,ID,SIS User ID,SIS Login ID,Section,{INCLINE},{ATWOOD},rigidlab total\nPoints Possible,,,,,2,6,8\nbob,,bob,,,1,0,1\n")
     );
 }

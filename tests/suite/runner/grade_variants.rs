@@ -1,5 +1,5 @@
 //! `rigidlab grade` when a level's typical mistake equals its answer at some variant in its
-//! ranges.
+//! ranges, and the gradebook's points-possible row.
 //!
 //! The level: the library's incline (a = g (sin theta - mu cos theta)) with theta from the list
 //! 25, 35, 45, 55 deg and the typical mistake "sine and cosine swapped", g (cos theta -
@@ -129,5 +129,30 @@ fn a_student_whose_draw_makes_a_mistake_the_answer_is_still_graded() {
         assert_eq!(&rec[col("verdict")], "correct", "{rec:?}");
         assert!(!rec[col("variant")].contains("theta = 45"), "{rec:?}");
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The gradebook's second row gives each level's points possible (its question count) and the
+/// total's, in the `Student` column "Points Possible" as a Canvas export writes it (Canvas's
+/// import reads that row for new assignments' points).
+#[test]
+fn the_gradebook_has_a_points_possible_row() {
+    let dir = folder("points");
+    let v = speed(draws("ann").take(16).find(|d| d[1] != 2).unwrap());
+    std::fs::write(
+        dir.join("answers.csv"),
+        format!("student,level,question,answer\nann,{NAME},speed,{v}\n"),
+    )
+    .unwrap();
+    let (code, stdout, stderr) = grade(&dir);
+    assert_eq!(code, 0, "{stdout}\n{stderr}");
+    let book = std::fs::read_to_string(dir.join("grades_gradebook.csv")).unwrap();
+    // Two questions (speed, distance): 2 points possible, ann has 1.
+    assert_eq!(
+        book,
+        format!(
+            "Student,ID,SIS User ID,SIS Login ID,Section,{NAME},rigidlab total\nPoints Possible,,,,,2,2\nann,,ann,,,1,1\n"
+        )
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
