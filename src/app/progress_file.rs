@@ -333,6 +333,24 @@ impl Store {
     }
 }
 
+/// The course's progress as the page's status publishes it: each level tried (its path, status
+/// and attempts, as the course lists them) and what was wrong with what was stored (the
+/// browser test reloads the page, and corrupts the store, and reads them).
+pub fn status_json(progress: &Progress, store: &Store) -> serde_json::Value {
+    let levels: Vec<serde_json::Value> = progress
+        .records
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "path": r.path,
+                "status": r.status,
+                "attempts": r.attempts,
+            })
+        })
+        .collect();
+    serde_json::json!({ "levels": levels, "problem": store.problem })
+}
+
 /// An in-memory store, for tests of what the page's storage does: its keys and texts.
 #[derive(Default, Clone)]
 pub struct MemoryBackend(

@@ -275,6 +275,7 @@ fn publish_status(
     editor: Res<super::editor::Editor>,
     predict: Res<panels::Predict>,
     browser: Res<Browser>,
+    course: Res<panels::Course>,
 ) {
     let s = phys.snapshot();
     let answers: Vec<serde_json::Value> = phys
@@ -336,6 +337,7 @@ fn publish_status(
         "message": st.message.as_ref().map(|(m, ok)| serde_json::json!({"text": m, "ok": ok})),
         "error": phys.error,
         "note": page.note,
+        "course": super::progress_file::status_json(&course.progress, &course.store),
         "assignment": browser.assignment.as_ref().map(|a| serde_json::json!({
             "title": a.title,
             "due": a.due,

@@ -6,6 +6,8 @@
 //   pendulum.png    the simple pendulum played to its end (t = 0.8 s), as the page drew it;
 //   status.json     the page's status at that moment (time, view mapping, frame rate);
 //   answered.png / answered.json   after typing an answer into the first question's box;
+//   progress.json   the course's progress in localStorage: saved after that answer, shown again
+//                   after a reload; a corrupt value reported, kept aside, never overwritten;
 //   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
 //   unknown.png / unknown.json   the page opened with a ?level= the library does not have;
@@ -160,6 +162,28 @@ try {
   await page.screenshot({ path: join(out, "answered.png") });
   summary.grade = graded.answers[0].grade;
   summary.typed = graded.answers[0].typed;
+
+  // 3b. Progress in the browser's localStorage: the graded answer is stored, a reload shows it in
+  //     the course; a corrupt value is reported, kept aside under rigidlab.progress.bad and not
+  //     overwritten when the next answer saves progress afresh (progress.json).
+  const KEY = "rigidlab.progress";
+  const stored = () => page.evaluate(() => Object.fromEntries(Object.keys(localStorage).map((k) => [k, localStorage.getItem(k)])));
+  const progress = { saved: (await stored())[KEY] ?? null };
+  await page.reload();
+  const reloaded = await waitStatus("the course after a reload", (s) => s.frames >= 2 && s.course, 60);
+  progress.after_reload = reloaded.course;
+  const CORRUPT = "Progress(levels: [ this is not progress";
+  await page.evaluate(([k, v]) => localStorage.setItem(k, v), [KEY, CORRUPT]);
+  await page.reload();
+  const refusedProgress = await waitStatus("the corrupt progress reported", (s) => s.frames >= 2 && s.course && s.course.problem, 60);
+  progress.corrupt = { course: refusedProgress.course, message: refusedProgress.message, stored: await stored() };
+  await typeAnswer(0, ANSWER);
+  await waitStatus("the grade after the corrupt progress", (s) => s.answers[0].grade, 30);
+  progress.corrupt.after_answer = await stored();
+  progress.corrupt_text = CORRUPT;
+  writeFileSync(join(out, "progress.json"), JSON.stringify(progress, null, 1));
+  // The later steps start with no progress stored, as before this step.
+  await page.evaluate(() => localStorage.clear());
 
   // 4. The student opens level files from their computer: a good one opens, a broken one says
   //    where it is broken and leaves the open level alone.

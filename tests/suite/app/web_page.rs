@@ -309,3 +309,45 @@ fn a_paused_page_leaves_the_cpu_alone() {
         .expect("paused_10s in browser.json");
     assert!(cpu < 2.0, "a paused page took {cpu} CPU-s in 10 s: {b}");
 }
+
+/// Progress in the page's localStorage (web/test/browser.mjs step 3b): the answer graded in step
+/// 3 is stored under `rigidlab.progress`, and after a reload the course shows the pendulum
+/// tried once; a corrupt stored value is reported, kept aside as `rigidlab.progress.bad`, the
+/// course starts afresh, and the next answer saves progress without touching the kept value.
+#[test]
+fn progress_in_local_storage_survives_a_reload_and_a_corrupt_one_is_kept() {
+    let Some(dir) = records() else { return };
+    let p = read_json(&dir.join("progress.json"));
+    let saved = p["saved"]
+        .as_str()
+        .unwrap_or_else(|| panic!("nothing saved: {p}"));
+    assert!(saved.contains("simple_pendulum.ron"), "{saved}");
+    let levels = p["after_reload"]["levels"].as_array().unwrap();
+    let pendulum = levels
+        .iter()
+        .find(|l| l["path"].as_str().unwrap().ends_with("simple_pendulum.ron"))
+        .unwrap_or_else(|| panic!("the reloaded course lost the pendulum: {p}"));
+    // One of its two questions answered right: tried, in one attempt.
+    assert_eq!(pendulum["status"], "tried", "{p}");
+    assert_eq!(pendulum["attempts"], 1, "{p}");
+    assert!(p["after_reload"]["problem"].is_null(), "{p}");
+    let corrupt = p["corrupt_text"].as_str().unwrap();
+    let problem = p["corrupt"]["course"]["problem"].as_str().unwrap();
+    assert!(problem.contains("rigidlab.progress.bad"), "{problem}");
+    assert_eq!(
+        p["corrupt"]["course"]["levels"],
+        serde_json::json!([]),
+        "{p}"
+    );
+    assert_eq!(
+        p["corrupt"]["stored"]["rigidlab.progress.bad"], corrupt,
+        "{p}"
+    );
+    let after = &p["corrupt"]["after_answer"];
+    assert_eq!(after["rigidlab.progress.bad"], corrupt, "overwritten: {p}");
+    let fresh = after["rigidlab.progress"].as_str().unwrap();
+    assert!(
+        fresh.contains("simple_pendulum.ron") && fresh != corrupt,
+        "{fresh}"
+    );
+}
