@@ -90,6 +90,9 @@ impl Plugin for PanelsPlugin {
             .add_systems(
                 Update,
                 (
+                    shortcuts::follow_presses
+                        .before(keys)
+                        .before(super::overlays::overlay_keys),
                     keys.before(super::physics::PhysicsStep),
                     predict::follow.before(super::physics::PhysicsStep),
                     super::view::pan_zoom,
@@ -307,6 +310,7 @@ pub fn left_column(
     scroll.show(ui, |ui| {
         exercise(ui, phys, live, ex);
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
+        exercise::exercise_help(ui, phys, ex);
         ui.separator();
         assignment_list::assignment_list(ui, browser.assignment.as_ref(), phys, &mut load);
         student_id::student_id(ui, browser, phys, &mut load);
@@ -517,9 +521,14 @@ fn tidy_after_frame(ctx: &egui::Context, p: &mut PanelInput) {
     if !ctx.text_edit_focused() && !ctx.is_pointer_over_egui() {
         ctx.memory_mut(|m| m.stop_text_input());
     }
-    // The keyboard stays the text field's after it loses the focus, until a click in the scene
-    // or Esc (ui::Typing): the shortcuts read this next frame.
-    let scene_click = ctx.input(|i| i.pointer.any_pressed()) && !ctx.is_pointer_over_egui();
+    // The keyboard stays the text field's after it loses the focus, and is the panels' after a
+    // press on one (a click that missed a box), until a click in the scene or Esc (ui::Typing):
+    // the shortcuts read this next frame.
+    let pressed = ctx.input(|i| i.pointer.any_pressed());
+    if pressed && ctx.is_pointer_over_egui() {
+        p.typing.active = true;
+    }
+    let scene_click = pressed && !ctx.is_pointer_over_egui();
     let escape = ctx.input(|i| i.key_pressed(egui::Key::Escape));
     p.typing
         .follow(ctx.text_edit_focused(), scene_click, escape);

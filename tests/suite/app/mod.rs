@@ -11,6 +11,7 @@ mod help_tour;
 mod hints;
 mod inspector_fields;
 mod key_chords;
+mod keyboard_owner;
 mod kinetic_copy;
 mod label_placement;
 mod measure;
