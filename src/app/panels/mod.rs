@@ -34,7 +34,7 @@ mod track_editor;
 pub use course::Course;
 pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
-pub use playback::{energy_drift_note, DRIFT_WARNING};
+pub use playback::{energy_drift_note, finer_step, DRIFT_WARNING, FINER_STEP};
 pub use predict::Predict;
 pub use solver::study_error;
 pub use state::UiState;

@@ -4,6 +4,7 @@ mod assignment_list;
 mod blows;
 mod challenge_box;
 mod course_progress;
+mod drift_button;
 mod editor_commands;
 mod editor_core;
 mod exercise_questions;
