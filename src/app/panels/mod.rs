@@ -490,6 +490,7 @@ fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
             labels: p.ov.labels,
             trails: p.ov.trails,
             predict_first: p.predict.everywhere,
+            student_id: super::student::id().unwrap_or_default(),
         };
         if now != *prefs {
             *prefs = now;

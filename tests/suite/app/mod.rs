@@ -23,6 +23,7 @@ mod playback;
 mod plot_labels;
 mod plugins;
 mod predict_first;
+mod student_id_kept;
 mod student_window;
 mod unsaved_work;
 mod web_page;
