@@ -11,6 +11,7 @@ use super::super::progress_file::{self, Store};
 use super::super::run::Run;
 use super::super::ui::{color32, rich};
 use super::super::view::palette;
+use super::assignment_list::{self, AssignmentList};
 use super::exercise::Exercise;
 use super::level_browser::{version_line, Browser, Entry};
 use super::state::UiState;
@@ -237,6 +238,14 @@ pub fn next_level(
             .iter()
             .all(|g| matches!(g, Some(Ok(g)) if g.passed));
     let done = right_now || course.progress.status(&key).is_solved();
+    if let Some(a) = browser.assignment.as_ref() {
+        if a.entries.iter().any(|e| e.path == phys.scene.file) {
+            // Inside an assignment the next level is the assignment's, in the teacher's order:
+            // it went to the library's next, out of the assignment.
+            assignment_next(ui, (browser, a, phys), done, course, load);
+            return;
+        }
+    }
     let order = exercises(browser);
     let keys: Vec<LevelKey> = order.iter().map(|(k, _)| k.clone()).collect();
     let here = order.iter().position(|(_, e)| e.path == phys.scene.file);
@@ -274,6 +283,70 @@ pub fn next_level(
         None => {
             ui.label(rich(
                 "the last exercise of the course left to solve",
+                palette::OUTLINE,
+            ));
+        }
+    });
+}
+
+/// *Next level* for a level of the assignment: the next one of it not solved yet, in the
+/// teacher's order after this one (round to its start), or, once every level of it is solved,
+/// that the assignment is finished. A level of it that does not load is not offered.
+fn assignment_next(
+    ui: &mut egui::Ui,
+    (browser, a, phys): (&Browser, &AssignmentList, &Run),
+    done: bool,
+    course: &mut Course,
+    load: &mut Option<Scene>,
+) {
+    let rows: Vec<&assignment_list::Row> = a.entries.iter().filter(|e| e.error.is_none()).collect();
+    let keys: Vec<LevelKey> = rows
+        .iter()
+        .map(|e| level_key(&browser.root, &e.path, &e.title))
+        .collect();
+    let here = rows.iter().position(|e| e.path == phys.scene.file);
+    let next = progress::next_unsolved(&keys, here, &course.progress).map(|i| rows[i]);
+    ui.horizontal(|ui| match next {
+        Some(e) => {
+            course.next = Some(e.path.clone());
+            let n = a
+                .entries
+                .iter()
+                .position(|r| r.path == e.path)
+                .map_or(0, |k| k + 1);
+            let b = ui
+                .add_enabled(
+                    done,
+                    egui::Button::new(format!("Next level ▶ {n}. {}", e.title)).truncate(),
+                )
+                .on_hover_text(format!(
+                    "level {n} of the assignment “{}”\n{}\n\n{}",
+                    a.title,
+                    e.path.display(),
+                    e.statement
+                ))
+                .on_disabled_hover_text("answer every question right first");
+            if b.clicked() {
+                match e.load() {
+                    Ok(s) => *load = Some(s),
+                    Err(err) => {
+                        ui.label(rich(err.to_string(), palette::NORMAL));
+                    }
+                }
+            }
+        }
+        None if done => {
+            ui.label(rich(
+                format!(
+                    "✔ the assignment “{}” is finished: every level of it is solved",
+                    a.title
+                ),
+                palette::GRAVITY,
+            ));
+        }
+        None => {
+            ui.label(rich(
+                "the last level of the assignment left to solve",
                 palette::OUTLINE,
             ));
         }

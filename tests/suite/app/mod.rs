@@ -1,6 +1,7 @@
 //! The Bevy sandbox (src/app), headless: the window, editor, inspector, playback and the web page.
 
 mod assignment_list;
+mod assignment_next;
 mod blows;
 mod challenge_box;
 mod course_progress;
