@@ -9,6 +9,7 @@ use super::super::run::Run;
 use super::super::student;
 use super::super::ui::rich;
 use super::super::view::{palette, View};
+use super::course::{self, Course};
 use super::level_browser::Browser;
 use crate::level::params::Control;
 use crate::level::{self, Goal, Region};
@@ -38,21 +39,15 @@ struct Play {
     error: Option<String>,
 }
 
-/// Stars for a success at the `tries`-th launch.
-pub fn stars(tries: u32) -> u8 {
-    match tries {
-        0..=2 => 3,
-        3..=4 => 2,
-        _ => 1,
-    }
-}
+/// Stars for a success at the `tries`-th launch (`progress.rs`: the course gives the same).
+pub use super::super::progress::stars;
 
 /// The challenge's window over the scene (`scene`: the scene's viewport), when the level on
 /// screen has a challenge; what it asks of the run.
 pub fn window(
     ctx: &egui::Context,
-    (phys, browser, view): (&Run, &Browser, &View),
-    live: &LiveChecks,
+    (phys, browser, view, tour_open): (&Run, &Browser, &View, bool),
+    (live, course, message): (&LiveChecks, &mut Course, &mut Option<(String, bool)>),
     scene: egui::Rect,
 ) -> Vec<PhysicsCommand> {
     let mut asked = Vec::new();
@@ -63,8 +58,15 @@ pub fn window(
     let mut play: Play = ctx.data(|d| d.get_temp(id)).unwrap_or_default();
     if play.file != phys.scene.file || play.control.is_none() {
         play = start(&phys.scene.file, level_text(browser, &phys.scene.file));
+        // The launches and stars the course has for it, so both say the same.
+        let (launches, stars) = course::challenge_record(course, browser, phys);
+        (play.tries, play.stars) = (launches, stars);
     }
-    tally(&mut play, phys, live);
+    if let Some((met, error)) = tally(&mut play, phys, live) {
+        if let Some(note) = course::record_launch(course, browser, phys, met, error) {
+            *message = Some((note, false));
+        }
+    }
     let bodies: Vec<egui::Pos2> = phys
         .snapshot()
         .bodies
@@ -182,16 +184,19 @@ fn start(file: &std::path::Path, text: Result<String, String>) -> Play {
     }
 }
 
-/// Counts a launched run once it has ended, and its stars on the first success.
-fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) {
-    let Some(from) = play.launched else {
-        return;
-    };
-    let Some(result) = live.challenge.as_ref() else {
-        return;
-    };
+/// Counts a launched run once it has ended, and its stars on the first success: whether it
+/// met the goal, and the control's relative distance from the worked value, for the course.
+fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) -> Option<(bool, f64)> {
+    let from = play.launched?;
+    let result = live.challenge.as_ref()?;
     if phys.generation == from {
-        return;
+        return None;
+    }
+    // The control and the value launched, as `check --answer` sets them: the verdict says
+    // which way the value was off (the run's result carries neither).
+    let mut result = result.clone();
+    if let Some(Ok(c)) = &play.control {
+        result.set_control(c, play.value, true);
     }
     play.launched = None;
     play.tries += 1;
@@ -199,6 +204,11 @@ fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) {
         play.stars = Some(stars(play.tries));
     }
     play.last = Some(result.clone());
+    let error = ((result.value - result.worked) / result.worked).abs();
+    Some((
+        result.success,
+        if error.is_nan() { f64::INFINITY } else { error },
+    ))
 }
 
 /// The control's field with its unit and range, and the Launch button.

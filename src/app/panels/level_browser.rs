@@ -21,6 +21,9 @@ pub struct Entry {
     pub error: Option<String>,
     /// How many questions it asks (0 where it does not load).
     pub questions: usize,
+    /// It is a challenge (a control the student sets and a goal judged on the run): the course
+    /// counts it, met as solved.
+    pub challenge: bool,
     /// The file's text when it is compiled in (the web page has no file system).
     pub source: Option<Arc<str>>,
     /// When the file was last written (a file on disk; the listing shows it for saved levels,
@@ -29,6 +32,11 @@ pub struct Entry {
 }
 
 impl Entry {
+    /// It is an exercise of the course: it loads, and asks a question or sets a challenge.
+    pub fn is_exercise(&self) -> bool {
+        self.error.is_none() && (self.questions > 0 || self.challenge)
+    }
+
     /// The level as the student opens it (`app/student.rs`: their own numbers for a level with
     /// parameters): parsed from the compiled-in text, or read from its file.
     pub fn load(&self) -> Result<Scene, level::LevelError> {
@@ -143,6 +151,7 @@ impl Entry {
             Ok(s) => Entry {
                 path,
                 questions: s.level.questions.len(),
+                challenge: s.level.challenge.is_some(),
                 title: s.level.title,
                 statement: s.level.statement,
                 error: None,
@@ -158,6 +167,7 @@ impl Entry {
                 statement: String::new(),
                 error: Some(e.to_string()),
                 questions: 0,
+                challenge: false,
                 source,
                 modified,
             },

@@ -197,7 +197,13 @@ fn panels(mut p: PanelInput) -> Result {
     let free = root.available_rect_before_wrap();
     p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
     help_and_tour(&ctx, &mut p, free);
-    for c in challenge::window(&ctx, (&p.phys, &p.browser, &p.view), &p.live, free) {
+    let asked = challenge::window(
+        &ctx,
+        (&p.phys, &p.browser, &p.view, p.st.tour.open),
+        (&p.live, &mut p.files.course, &mut p.st.message),
+        free,
+    );
+    for c in asked {
         p.run_commands.write(c);
     }
     tidy_after_frame(&ctx, &mut p);
