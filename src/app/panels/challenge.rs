@@ -76,25 +76,38 @@ pub fn window(
             egui::pos2(p.x, p.y)
         })
         .collect();
-    // One window per level, so that each opens at its own scene's free corner.
-    egui::Window::new("Challenge")
-        .id(egui::Id::new(("challenge", &phys.scene.file)))
-        .default_pos(box_corner(scene, BOX_SIZE, &bodies))
-        .resizable(false)
-        .collapsible(true)
-        .show(ctx, |ui| {
-            if !c.ask.is_empty() {
-                ui.label(&c.ask);
+    // One window per level, so that each opens at its own scene's free corner, off the
+    // first-steps tour (open over the scene's bottom-right corner); a box that grew onto the
+    // tour (a verdict and a note after a launch) or was dragged onto it goes to a free corner.
+    let win = window_id(&phys.scene.file);
+    let tour = ctx.memory(|m| m.area_rect(egui::Id::new(super::tour::TOUR_ID)));
+    let tour = tour.filter(|_| tour_open);
+    let last = ctx.memory(|m| m.area_rect(win));
+    let size = last.map_or(BOX_SIZE, |r| r.size().max(BOX_SIZE));
+    let avoid: Vec<egui::Rect> = tour.into_iter().collect();
+    let corner = box_corner_avoiding(scene, size, &bodies, &avoid);
+    let mut w = egui::Window::new("Challenge")
+        .id(win)
+        .default_pos(corner)
+        .max_width(BOX_SIZE.x - 16.0);
+    if let (Some(r), Some(t)) = (last, tour) {
+        if r.intersects(t) {
+            w = w.current_pos(corner);
+        }
+    }
+    w.resizable(false).collapsible(true).show(ctx, |ui| {
+        if !c.ask.is_empty() {
+            ui.label(&c.ask);
+        }
+        match play.control.clone() {
+            Some(Ok(control)) => controls(ui, &mut play, &control, phys.generation, &mut asked),
+            Some(Err(why)) => {
+                ui.label(rich(why, palette::NORMAL));
             }
-            match play.control.clone() {
-                Some(Ok(control)) => controls(ui, &mut play, &control, phys.generation, &mut asked),
-                Some(Err(why)) => {
-                    ui.label(rich(why, palette::NORMAL));
-                }
-                None => {}
-            }
-            verdict(ui, &play);
-        });
+            None => {}
+        }
+        verdict(ui, &play);
+    });
     ctx.data_mut(|d| d.insert_temp(id, play));
     asked
 }
@@ -123,6 +136,11 @@ fn level_text(browser: &Browser, file: &std::path::Path) -> Result<String, Strin
     }
 }
 
+/// The Challenge box's egui id for the level in `file` (its area's, where egui keeps its rect).
+pub fn window_id(file: &std::path::Path) -> egui::Id {
+    egui::Id::new(("challenge", file))
+}
+
 /// About the size the Challenge box draws at (measured on screenshots of the library's ten).
 pub const BOX_SIZE: egui::Vec2 = egui::vec2(340.0, 175.0);
 
@@ -132,6 +150,18 @@ pub const BOX_SIZE: egui::Vec2 = egui::vec2(340.0, 175.0);
 /// it hid the cylinder of "leave at 30 degrees" and the pulley of the Atwood challenge (the
 /// student trial of 2026-12-07).
 pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) -> egui::Pos2 {
+    box_corner_avoiding(scene, size, bodies, &[])
+}
+
+/// [`box_corner`] among the corners whose box overlaps none of `avoid` (the first-steps tour's
+/// rect: at 1280x800 the tour, 450 px wide, reached under the bottom-left corner's box, and the
+/// box covered its steps); where every corner overlaps one, the corner that overlaps least.
+pub fn box_corner_avoiding(
+    scene: egui::Rect,
+    size: egui::Vec2,
+    bodies: &[egui::Pos2],
+    avoid: &[egui::Rect],
+) -> egui::Pos2 {
     let gap = egui::vec2(12.0, 12.0);
     // Not the bottom-right corner: the first-steps tour sits there (tour.rs).
     let corners = [
@@ -139,6 +169,20 @@ pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) ->
         egui::pos2(scene.right() - size.x - gap.x, scene.top() + gap.y),
         egui::pos2(scene.left() + gap.x, scene.bottom() - size.y - gap.y),
     ];
+    let overlap = |at: &egui::Pos2| {
+        let r = egui::Rect::from_min_size(*at, size);
+        avoid
+            .iter()
+            .map(|a| {
+                let i = r.intersect(*a);
+                if i.is_positive() {
+                    i.area()
+                } else {
+                    0.0
+                }
+            })
+            .sum::<f32>()
+    };
     let clearance = |at: &egui::Pos2| {
         let r = egui::Rect::from_min_size(*at, size);
         bodies
@@ -146,10 +190,12 @@ pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) ->
             .map(|b| r.distance_to_pos(*b))
             .fold(f32::INFINITY, f32::min)
     };
-    // The first corner of the farthest (top-left on a tie, as before).
+    // Least overlap with what it must avoid first, then the farthest from the bodies (the
+    // first corner on a tie: top-left, as before).
     let mut best = corners[0];
     for c in &corners[1..] {
-        if clearance(c) > clearance(&best) {
+        let (oc, ob) = (overlap(c), overlap(&best));
+        if oc < ob || (oc == ob && clearance(c) > clearance(&best)) {
             best = *c;
         }
     }

@@ -4,6 +4,7 @@ mod assignment_list;
 mod assignment_next;
 mod blows;
 mod challenge_box;
+mod challenge_tour;
 mod course_challenges;
 mod course_progress;
 mod drift_button;
