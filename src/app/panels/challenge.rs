@@ -116,21 +116,7 @@ pub fn window(
 /// from its file. Before 2026-12-07 the file only, so in the page every challenge showed "the
 /// level's file cannot be read" instead of Launch.
 fn level_text(browser: &Browser, file: &std::path::Path) -> Result<String, String> {
-    let listed = browser
-        .groups
-        .values()
-        .flatten()
-        .find(|e| e.path == file)
-        .and_then(|e| e.source.clone());
-    let fetched = || {
-        browser
-            .assignment
-            .iter()
-            .flat_map(|a| a.entries.iter())
-            .find(|e| e.path == file)
-            .and_then(|e| e.source.clone())
-    };
-    match listed.or_else(fetched) {
+    match browser.listed_text(file) {
         Some(text) => Ok(text.to_string()),
         None => level::read_text(file).map_err(|e| e.to_string()),
     }

@@ -88,6 +88,38 @@ impl Browser {
         self.groups.values().flatten().find(|e| e.path == path)
     }
 
+    /// The text of the level listed for `file`, where the list holds it (compiled into the
+    /// page, or fetched there): the library's entry first, then the assignment's row.
+    pub fn listed_text(&self, file: &Path) -> Option<Arc<str>> {
+        let assigned = || {
+            self.assignment
+                .iter()
+                .flat_map(|a| a.entries.iter())
+                .find(|e| e.path == file)
+                .and_then(|e| e.source.clone())
+        };
+        self.find(file)
+            .and_then(|e| e.source.clone())
+            .or_else(assigned)
+    }
+
+    /// The level listed for `file`, opened again as the student opens it (their own numbers):
+    /// the library's entry, else the assignment's row; None where neither lists it as loading.
+    pub fn open_listed(&self, file: &Path) -> Option<Result<Scene, level::LevelError>> {
+        let listed = self
+            .find(file)
+            .filter(|e| e.error.is_none())
+            .map(Entry::load);
+        let assigned = || {
+            self.assignment
+                .iter()
+                .flat_map(|a| a.entries.iter())
+                .find(|e| e.path == file && e.error.is_none())
+                .map(|e| e.load())
+        };
+        listed.or_else(assigned)
+    }
+
     pub fn scan(root: &Path) -> Browser {
         let mut b = Browser {
             root: root.to_path_buf(),
