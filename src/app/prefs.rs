@@ -1,5 +1,6 @@
 //! Preferences the window remembers between sessions: whether the first-steps tour was finished,
-//! the arrow scale, the time scale, labels, trails and predict first. A small RON file in the user's config
+//! the arrow scale, the time scale, labels, trails, predict first and the student's id ("Your
+//! id", so that levels with parameters open with the student's own numbers again). A small RON file in the user's config
 //! folder (`$XDG_CONFIG_HOME/rigidlab/prefs.ron`, else `~/.config/rigidlab/prefs.ron`;
 //! `RIGIDLAB_PREFS` names another file); the page in a browser keeps nothing.
 //!
@@ -35,6 +36,10 @@ pub struct Prefs {
     pub trails: bool,
     /// Predict first in every level (the switch at the top of the left panel).
     pub predict_first: bool,
+    /// The id typed in "Your id" (`app/student.rs`), empty for none. Not written while empty,
+    /// so a file without an id reads in a rigidlab from before 2026-12-07 too.
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub student_id: String,
 }
 
 impl Default for Prefs {
@@ -46,6 +51,7 @@ impl Default for Prefs {
             labels: true,
             trails: true,
             predict_first: false,
+            student_id: String::new(),
         }
     }
 }
@@ -112,6 +118,14 @@ impl Prefs {
                     path.display()
                 ));
             }
+        }
+        if let Some(c) = p.student_id.chars().find(|c| c.is_control()) {
+            let (line, col) = position_of(text, "student_id");
+            return Err(format!(
+                "{}:{line}:{col}: student_id holds the control character {:?}: an id is one line of text",
+                path.display(),
+                c
+            ));
         }
         Ok(p)
     }

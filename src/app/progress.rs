@@ -281,6 +281,36 @@ impl Progress {
     }
 }
 
+/// Stars for a challenge met at its `launches`-th launch: 3 in one or two, 2 in three or four,
+/// 1 after (the Challenge box and the course give the same).
+pub fn stars(launches: u32) -> u8 {
+    match launches {
+        0..=2 => 3,
+        3..=4 => 2,
+        _ => 1,
+    }
+}
+
+/// A challenge as the course records it: one goal, a launch an attempt while it is not met
+/// (a launch after it is met is play, not an attempt: the stars stay those it was met with).
+/// Whether anything changed.
+pub fn launch(progress: &mut Progress, key: &LevelKey, met: bool, error: f64) -> bool {
+    if progress.status(key).is_solved() {
+        return false;
+    }
+    progress.begin_attempt(key, 1);
+    progress.grade(key, 1, 0, Graded { error, right: met }, false);
+    true
+}
+
+/// A challenge's stars as recorded: those of the launch that met it, None while it is not met.
+pub fn challenge_stars(progress: &Progress, key: &LevelKey) -> Option<u8> {
+    progress
+        .get(key)
+        .filter(|r| r.status.is_solved())
+        .map(|r| stars(r.attempts))
+}
+
 /// The course's topics in teaching order (the levels folder's sub-folders).
 pub const TEACHING_ORDER: [&str; 6] = [
     "kinematics",

@@ -178,6 +178,11 @@ fn fit_to_monitor(
 /// The sandbox over an app that has its window: egui, the physics of `scene`, the drawing, the
 /// panels and tools, and the level browser. The native window and the web page share this.
 pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused: bool) {
+    // A preferences file that is wrong is reported (stderr now, the status line at the first
+    // frame) and moved aside, never fatal (prefs.rs). The student's id kept there opens the
+    // first level with their numbers.
+    let (prefs, prefs_file) = prefs::Prefs::load();
+    let scene = super::student::resume(&prefs.student_id, scene);
     app.add_plugins(bevy_egui::EguiPlugin::default());
     app.insert_resource(ClearColor(palette::BACKGROUND));
     app.add_plugins(PhysicsPlugin {
@@ -187,9 +192,6 @@ pub fn add_sandbox(app: &mut App, scene: Scene, browser: panels::Browser, paused
     });
     app.add_plugins(ScenePlugins { legend: false });
     app.insert_resource(browser);
-    // A preferences file that is wrong is reported (stderr now, the status line at the first
-    // frame) and moved aside, never fatal (prefs.rs).
-    let (prefs, prefs_file) = prefs::Prefs::load();
     app.insert_resource(prefs).insert_resource(prefs_file);
     // The course's progress, the same way: progress.ron beside prefs.ron, localStorage in the
     // page (progress_file.rs).

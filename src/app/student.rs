@@ -28,3 +28,23 @@ pub fn id() -> Option<String> {
 pub fn pick() -> Pick {
     id().map_or(Pick::Nominal, Pick::Student)
 }
+
+/// The window starts with the id kept in the preferences (`kept`, empty for none) unless one is
+/// set already (the page's `&student=`): the level it opens with, `scene`, opens again with the
+/// student's own numbers ([`kept_variant`]). Before 2026-12-07 the id was not kept, and each
+/// session opened with the nominal numbers until the student typed it again.
+pub fn resume(kept: &str, scene: crate::level::Scene) -> crate::level::Scene {
+    if id().is_some() || kept.trim().is_empty() {
+        return scene;
+    }
+    set(Some(kept.to_string()));
+    kept_variant(kept, scene)
+}
+
+/// `scene` as the student `kept` opens it: read again from its file as their variant where it
+/// has parameters (the same level where it has none); as it is where its file cannot be read
+/// again (a scene with no file).
+pub fn kept_variant(kept: &str, scene: crate::level::Scene) -> crate::level::Scene {
+    let pick = Pick::Student(kept.trim().to_string());
+    crate::level::variant_of(&scene.file, None, &pick).unwrap_or(scene)
+}

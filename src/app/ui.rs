@@ -44,14 +44,31 @@ pub fn legible(style: &mut egui::Style) {
 /// so a click aimed at a button lands on it (rows appearing above the Build tools moved them
 /// under the pointer).
 pub fn fixed_rows<R>(ui: &mut egui::Ui, rows: f32, add: impl FnOnce(&mut egui::Ui) -> R) -> R {
+    let row = row_height(ui);
+    fixed_height(ui, rows * row, add)
+}
+
+/// Draws `add` in at least `height` points ([`fixed_rows`] in points).
+pub fn fixed_height<R>(ui: &mut egui::Ui, height: f32, add: impl FnOnce(&mut egui::Ui) -> R) -> R {
     let top = ui.cursor().min.y;
     let r = add(ui);
-    let row = row_height(ui);
     let used = ui.cursor().min.y - top;
-    if used < rows * row {
-        ui.add_space(rows * row - used);
+    if used < height {
+        ui.add_space(height - used);
     }
     r
+}
+
+/// The height `text` takes in `style`, wrapped to the ui's width, with the space after it: what
+/// a label of it adds to a column.
+pub fn text_height(ui: &egui::Ui, text: &str, style: egui::TextStyle) -> f32 {
+    let galley = egui::WidgetText::from(text).into_galley(
+        ui,
+        Some(egui::TextWrapMode::Wrap),
+        ui.available_width(),
+        style,
+    );
+    galley.size().y + ui.spacing().item_spacing.y
 }
 
 /// The height of a row of body text or of buttons, whichever is taller, with the space
@@ -62,14 +79,19 @@ pub fn row_height(ui: &egui::Ui) -> f32 {
         + ui.spacing().item_spacing.y
 }
 
-/// Whether the keyboard belongs to a text field: from the frame one takes the focus until the
-/// user clicks in the scene or presses Esc. While it does, no key is a shortcut: keys typed
-/// into a box that had lost its focus (Enter pressed, a click on a button) went to the
-/// shortcuts, so an answer with an r in it reset the run and erased its grades, and a typed
-/// path toggled overlays that were then saved in the preferences.
+/// Whether the keyboard belongs to the panels rather than the scene: from a press on a panel
+/// (or a window over the scene: the Challenge box, the tour) or the frame a text field takes the
+/// focus, until the user clicks in the scene or presses Esc. While it does, no key is a
+/// shortcut. Keys typed into a box that had lost its focus (Enter pressed, a click on a button)
+/// went to the shortcuts, so an answer with an r in it reset the run and erased its grades, and
+/// a typed path toggled overlays that were then saved in the preferences; a click that missed a
+/// box (it had moved down after *Check*) left the keys with the shortcuts, and the typed answer
+/// played and reset the run; in the page at 3-6 fps a click into a box and the first key came in
+/// one frame, before egui had given the box the focus, and the key chose the impulse tool.
 #[derive(bevy::prelude::Resource, Debug, Clone, Default, PartialEq, Eq)]
 pub struct Typing {
-    /// A text field has or had the keyboard, and no click in the scene or Esc has come since.
+    /// The keyboard is the panels': a text field has or had it, or the last press was on a
+    /// panel, and no click in the scene or Esc has come since.
     pub active: bool,
 }
 
@@ -82,6 +104,24 @@ impl Typing {
         } else if scene_click || escape {
             self.active = false;
         }
+    }
+
+    /// A press of a mouse button (`pressed`, this frame) at `cursor` (window logical pixels;
+    /// None: off the window) with the scene's viewport `scene`, `over_egui` when egui drew a
+    /// panel or a window under the pointer: a press anywhere but the bare scene gives the
+    /// keyboard to the panels at once, in the frame of the press, before any key of that frame
+    /// is read as a shortcut; a press in the bare scene gives it back to the shortcuts.
+    pub fn press(
+        &mut self,
+        pressed: bool,
+        cursor: Option<bevy::prelude::Vec2>,
+        scene: bevy::prelude::Rect,
+        over_egui: bool,
+    ) {
+        if !pressed {
+            return;
+        }
+        self.active = !(cursor.is_some_and(|c| scene.contains(c)) && !over_egui);
     }
 
     /// Whether a key may be a shortcut now (`egui_wants`: egui asked for the keyboard).

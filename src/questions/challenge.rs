@@ -49,10 +49,17 @@ pub struct ChallengeResult {
     /// Why nothing could be measured, or what else the reading says.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub note: String,
+    /// Which way a missed run went, where the goal's kind has a way ([`miss_way`]): "past the
+    /// goal", "short of the goal", "above the point", "below the goal's value"; empty where it
+    /// has none (a body that left a region, a pin's share of a blow) or the run was met. The
+    /// window's verdict; not in the JSON report.
+    #[serde(skip)]
+    pub way: String,
 }
 
 impl ChallengeResult {
-    /// The verdict in words: "success" or "missed by 0.12 m".
+    /// The verdict in words: "success", or "missed by 0.12 m" with which way the run went and
+    /// which way the control was off ("missed by 0.085 m, passed above the point: v0 too high").
     pub fn verdict(&self) -> String {
         if self.success {
             "success".into()
@@ -62,13 +69,35 @@ impl ChallengeResult {
             } else {
                 format!(" {}", self.miss_unit)
             };
+            let way = if self.way.is_empty() {
+                String::new()
+            } else {
+                format!(", {}", self.way)
+            };
+            let control = self
+                .control_way()
+                .map_or(String::new(), |w| format!(": {} too {w}", self.control));
             format!(
-                "missed by {}{unit}",
+                "missed by {}{unit}{way}{control}",
                 crate::level::params::textbook(self.miss.abs(), 0)
             )
         } else {
             "missed: nothing could be measured".into()
         }
+    }
+
+    /// Which way the control was off, "high" or "low": the worked value meets the goal (`check`
+    /// of the level alone runs it and must pass), so a run that missed with a value above it
+    /// had it too high. None where the value is the worked one or either is not a number.
+    pub fn control_way(&self) -> Option<&'static str> {
+        if !(self.value.is_finite() && self.worked.is_finite()) || self.value == self.worked {
+            return None;
+        }
+        Some(if self.value > self.worked {
+            "high"
+        } else {
+            "low"
+        })
     }
 }
 
@@ -84,6 +113,8 @@ pub struct ChallengeProbe {
     last: Option<(f64, DVec2)>,
     /// The goal's measure so far: (distance, time, G there).
     best: Option<(f64, f64, DVec2)>,
+    /// A position goal's body's G at the first snapshot (which way it went, for "past").
+    start: Option<DVec2>,
 }
 
 impl ChallengeProbe {
@@ -104,6 +135,7 @@ impl ChallengeProbe {
             path: 0.0,
             last: None,
             best: None,
+            start: None,
         }
     }
 
@@ -127,6 +159,7 @@ impl ChallengeProbe {
         let Some(g) = self.body.and_then(|i| s.bodies.get(i)).map(|b| b.com) else {
             return;
         };
+        self.start.get_or_insert(g);
         let from = self.last.map(|(_, p)| p);
         if let Some(p) = from {
             self.path += (g - p).length();
@@ -175,6 +208,7 @@ impl ChallengeProbe {
             at: None,
             target: None,
             note: String::new(),
+            way: String::new(),
         };
         match (self.question, &self.def.goal) {
             (Some(q), Goal::PinFeelsNoBlow { tolerance, .. }) => {
@@ -198,6 +232,7 @@ impl ChallengeProbe {
             }
             (None, goal) => position_verdict(&mut r, goal, self.best, self.path),
         }
+        r.way = miss_way(&r, &self.def.goal, self.start);
         if r.note.is_empty() && !r.measured.is_finite() {
             r.note = format!("the reading is {}: not measured, so not met", r.measured);
         }
@@ -246,6 +281,55 @@ fn position_verdict(
         return;
     }
     r.success = d == 0.0;
+}
+
+/// Which way a missed run went, where the goal's kind has one: a body that ends outside a
+/// region went past it or stopped short of it (the miss along its travel from where it
+/// started); a body that missed a point passed above or below it (or beside it, left or right,
+/// where the miss is more across than up); a reading was above or below the goal's value.
+/// Empty for a body that left the region it had to stay in (it may leave on any side) and a
+/// pin's share of a blow (a size, no sign), and for a run met or not measured.
+pub fn miss_way(r: &ChallengeResult, goal: &Goal, start: Option<DVec2>) -> String {
+    if r.success || !r.miss.is_finite() || r.miss == 0.0 {
+        return String::new();
+    }
+    let off = match (r.at, r.target) {
+        (Some(a), Some(t)) => Some((DVec2::new(a.0, a.1), DVec2::new(t.0, t.1))),
+        _ => None,
+    };
+    match (goal, off) {
+        (Goal::EndsInside { .. }, Some((at, target))) => {
+            let travel = start.map_or(DVec2::ZERO, |s| at - s);
+            if (at - target).dot(travel) > 0.0 {
+                "ended past the goal".into()
+            } else {
+                "ended short of the goal".into()
+            }
+        }
+        (Goal::Reaches { .. }, Some((at, target))) => {
+            let d = at - target;
+            let side = if d.y.abs() >= d.x.abs() {
+                if d.y > 0.0 {
+                    "above"
+                } else {
+                    "below"
+                }
+            } else if d.x > 0.0 {
+                "right of"
+            } else {
+                "left of"
+            };
+            format!("passed {side} the point")
+        }
+        (Goal::Reads { .. }, _) => {
+            if r.miss > 0.0 {
+                "read above the goal's value".into()
+            } else {
+                "read below the goal's value".into()
+            }
+        }
+        _ => String::new(),
+    }
 }
 
 /// The point of the segment a-b nearest p.

@@ -9,6 +9,7 @@ use super::super::run::Run;
 use super::super::student;
 use super::super::ui::rich;
 use super::super::view::{palette, View};
+use super::course::{self, Course};
 use super::level_browser::Browser;
 use crate::level::params::Control;
 use crate::level::{self, Goal, Region};
@@ -38,21 +39,15 @@ struct Play {
     error: Option<String>,
 }
 
-/// Stars for a success at the `tries`-th launch.
-pub fn stars(tries: u32) -> u8 {
-    match tries {
-        0..=2 => 3,
-        3..=4 => 2,
-        _ => 1,
-    }
-}
+/// Stars for a success at the `tries`-th launch (`progress.rs`: the course gives the same).
+pub use super::super::progress::stars;
 
 /// The challenge's window over the scene (`scene`: the scene's viewport), when the level on
 /// screen has a challenge; what it asks of the run.
 pub fn window(
     ctx: &egui::Context,
-    (phys, browser, view): (&Run, &Browser, &View),
-    live: &LiveChecks,
+    (phys, browser, view, tour_open): (&Run, &Browser, &View, bool),
+    (live, course, message): (&LiveChecks, &mut Course, &mut Option<(String, bool)>),
     scene: egui::Rect,
 ) -> Vec<PhysicsCommand> {
     let mut asked = Vec::new();
@@ -63,8 +58,15 @@ pub fn window(
     let mut play: Play = ctx.data(|d| d.get_temp(id)).unwrap_or_default();
     if play.file != phys.scene.file || play.control.is_none() {
         play = start(&phys.scene.file, level_text(browser, &phys.scene.file));
+        // The launches and stars the course has for it, so both say the same.
+        let (launches, stars) = course::challenge_record(course, browser, phys);
+        (play.tries, play.stars) = (launches, stars);
     }
-    tally(&mut play, phys, live);
+    if let Some((met, error)) = tally(&mut play, phys, live) {
+        if let Some(note) = course::record_launch(course, browser, phys, met, error) {
+            *message = Some((note, false));
+        }
+    }
     let bodies: Vec<egui::Pos2> = phys
         .snapshot()
         .bodies
@@ -74,25 +76,38 @@ pub fn window(
             egui::pos2(p.x, p.y)
         })
         .collect();
-    // One window per level, so that each opens at its own scene's free corner.
-    egui::Window::new("Challenge")
-        .id(egui::Id::new(("challenge", &phys.scene.file)))
-        .default_pos(box_corner(scene, BOX_SIZE, &bodies))
-        .resizable(false)
-        .collapsible(true)
-        .show(ctx, |ui| {
-            if !c.ask.is_empty() {
-                ui.label(&c.ask);
+    // One window per level, so that each opens at its own scene's free corner, off the
+    // first-steps tour (open over the scene's bottom-right corner); a box that grew onto the
+    // tour (a verdict and a note after a launch) or was dragged onto it goes to a free corner.
+    let win = window_id(&phys.scene.file);
+    let tour = ctx.memory(|m| m.area_rect(egui::Id::new(super::tour::TOUR_ID)));
+    let tour = tour.filter(|_| tour_open);
+    let last = ctx.memory(|m| m.area_rect(win));
+    let size = last.map_or(BOX_SIZE, |r| r.size().max(BOX_SIZE));
+    let avoid: Vec<egui::Rect> = tour.into_iter().collect();
+    let corner = box_corner_avoiding(scene, size, &bodies, &avoid);
+    let mut w = egui::Window::new("Challenge")
+        .id(win)
+        .default_pos(corner)
+        .max_width(BOX_SIZE.x - 16.0);
+    if let (Some(r), Some(t)) = (last, tour) {
+        if r.intersects(t) {
+            w = w.current_pos(corner);
+        }
+    }
+    w.resizable(false).collapsible(true).show(ctx, |ui| {
+        if !c.ask.is_empty() {
+            ui.label(&c.ask);
+        }
+        match play.control.clone() {
+            Some(Ok(control)) => controls(ui, &mut play, &control, phys.generation, &mut asked),
+            Some(Err(why)) => {
+                ui.label(rich(why, palette::NORMAL));
             }
-            match play.control.clone() {
-                Some(Ok(control)) => controls(ui, &mut play, &control, phys.generation, &mut asked),
-                Some(Err(why)) => {
-                    ui.label(rich(why, palette::NORMAL));
-                }
-                None => {}
-            }
-            verdict(ui, &play);
-        });
+            None => {}
+        }
+        verdict(ui, &play);
+    });
     ctx.data_mut(|d| d.insert_temp(id, play));
     asked
 }
@@ -101,24 +116,15 @@ pub fn window(
 /// from its file. Before 2026-12-07 the file only, so in the page every challenge showed "the
 /// level's file cannot be read" instead of Launch.
 fn level_text(browser: &Browser, file: &std::path::Path) -> Result<String, String> {
-    let listed = browser
-        .groups
-        .values()
-        .flatten()
-        .find(|e| e.path == file)
-        .and_then(|e| e.source.clone());
-    let fetched = || {
-        browser
-            .assignment
-            .iter()
-            .flat_map(|a| a.entries.iter())
-            .find(|e| e.path == file)
-            .and_then(|e| e.source.clone())
-    };
-    match listed.or_else(fetched) {
+    match browser.listed_text(file) {
         Some(text) => Ok(text.to_string()),
         None => level::read_text(file).map_err(|e| e.to_string()),
     }
+}
+
+/// The Challenge box's egui id for the level in `file` (its area's, where egui keeps its rect).
+pub fn window_id(file: &std::path::Path) -> egui::Id {
+    egui::Id::new(("challenge", file))
 }
 
 /// About the size the Challenge box draws at (measured on screenshots of the library's ten).
@@ -130,6 +136,18 @@ pub const BOX_SIZE: egui::Vec2 = egui::vec2(340.0, 175.0);
 /// it hid the cylinder of "leave at 30 degrees" and the pulley of the Atwood challenge (the
 /// student trial of 2026-12-07).
 pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) -> egui::Pos2 {
+    box_corner_avoiding(scene, size, bodies, &[])
+}
+
+/// [`box_corner`] among the corners whose box overlaps none of `avoid` (the first-steps tour's
+/// rect: at 1280x800 the tour, 450 px wide, reached under the bottom-left corner's box, and the
+/// box covered its steps); where every corner overlaps one, the corner that overlaps least.
+pub fn box_corner_avoiding(
+    scene: egui::Rect,
+    size: egui::Vec2,
+    bodies: &[egui::Pos2],
+    avoid: &[egui::Rect],
+) -> egui::Pos2 {
     let gap = egui::vec2(12.0, 12.0);
     // Not the bottom-right corner: the first-steps tour sits there (tour.rs).
     let corners = [
@@ -137,6 +155,20 @@ pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) ->
         egui::pos2(scene.right() - size.x - gap.x, scene.top() + gap.y),
         egui::pos2(scene.left() + gap.x, scene.bottom() - size.y - gap.y),
     ];
+    let overlap = |at: &egui::Pos2| {
+        let r = egui::Rect::from_min_size(*at, size);
+        avoid
+            .iter()
+            .map(|a| {
+                let i = r.intersect(*a);
+                if i.is_positive() {
+                    i.area()
+                } else {
+                    0.0
+                }
+            })
+            .sum::<f32>()
+    };
     let clearance = |at: &egui::Pos2| {
         let r = egui::Rect::from_min_size(*at, size);
         bodies
@@ -144,10 +176,12 @@ pub fn box_corner(scene: egui::Rect, size: egui::Vec2, bodies: &[egui::Pos2]) ->
             .map(|b| r.distance_to_pos(*b))
             .fold(f32::INFINITY, f32::min)
     };
-    // The first corner of the farthest (top-left on a tie, as before).
+    // Least overlap with what it must avoid first, then the farthest from the bodies (the
+    // first corner on a tie: top-left, as before).
     let mut best = corners[0];
     for c in &corners[1..] {
-        if clearance(c) > clearance(&best) {
+        let (oc, ob) = (overlap(c), overlap(&best));
+        if oc < ob || (oc == ob && clearance(c) > clearance(&best)) {
             best = *c;
         }
     }
@@ -182,16 +216,19 @@ fn start(file: &std::path::Path, text: Result<String, String>) -> Play {
     }
 }
 
-/// Counts a launched run once it has ended, and its stars on the first success.
-fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) {
-    let Some(from) = play.launched else {
-        return;
-    };
-    let Some(result) = live.challenge.as_ref() else {
-        return;
-    };
+/// Counts a launched run once it has ended, and its stars on the first success: whether it
+/// met the goal, and the control's relative distance from the worked value, for the course.
+fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) -> Option<(bool, f64)> {
+    let from = play.launched?;
+    let result = live.challenge.as_ref()?;
     if phys.generation == from {
-        return;
+        return None;
+    }
+    // The control and the value launched, as `check --answer` sets them: the verdict says
+    // which way the value was off (the run's result carries neither).
+    let mut result = result.clone();
+    if let Some(Ok(c)) = &play.control {
+        result.set_control(c, play.value, true);
     }
     play.launched = None;
     play.tries += 1;
@@ -199,6 +236,11 @@ fn tally(play: &mut Play, phys: &Run, live: &LiveChecks) {
         play.stars = Some(stars(play.tries));
     }
     play.last = Some(result.clone());
+    let error = ((result.value - result.worked) / result.worked).abs();
+    Some((
+        result.success,
+        if error.is_nan() { f64::INFINITY } else { error },
+    ))
 }
 
 /// The control's field with its unit and range, and the Launch button.

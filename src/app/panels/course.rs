@@ -11,6 +11,7 @@ use super::super::progress_file::{self, Store};
 use super::super::run::Run;
 use super::super::ui::{color32, rich};
 use super::super::view::palette;
+use super::assignment_list::{self, AssignmentList};
 use super::exercise::Exercise;
 use super::level_browser::{version_line, Browser, Entry};
 use super::state::UiState;
@@ -189,7 +190,7 @@ fn exercises(browser: &Browser) -> Vec<(LevelKey, &Entry)> {
         .into_iter()
         .filter(|(t, _)| TopicKind::of(t).is_course())
         .flat_map(|(_, entries)| entries)
-        .filter(|e| e.error.is_none() && e.questions > 0)
+        .filter(|e| e.is_exercise())
         .map(|e| (level_key(&browser.root, &e.path, &e.title), e))
         .collect()
 }
@@ -227,16 +228,25 @@ pub fn next_level(
 ) {
     course.next = None;
     let level = &phys.scene.level;
-    if level.questions.is_empty() {
+    if level.questions.is_empty() && level.challenge.is_none() {
         return;
     }
     let key = level_key(&browser.root, &phys.scene.file, &level.title);
-    let right_now = ex.grades.len() == level.questions.len()
+    let right_now = !level.questions.is_empty()
+        && ex.grades.len() == level.questions.len()
         && ex
             .grades
             .iter()
             .all(|g| matches!(g, Some(Ok(g)) if g.passed));
     let done = right_now || course.progress.status(&key).is_solved();
+    if let Some(a) = browser.assignment.as_ref() {
+        if a.entries.iter().any(|e| e.path == phys.scene.file) {
+            // Inside an assignment the next level is the assignment's, in the teacher's order:
+            // it went to the library's next, out of the assignment.
+            assignment_next(ui, (browser, a, phys), done, course, load);
+            return;
+        }
+    }
     let order = exercises(browser);
     let keys: Vec<LevelKey> = order.iter().map(|(k, _)| k.clone()).collect();
     let here = order.iter().position(|(_, e)| e.path == phys.scene.file);
@@ -280,6 +290,70 @@ pub fn next_level(
     });
 }
 
+/// *Next level* for a level of the assignment: the next one of it not solved yet, in the
+/// teacher's order after this one (round to its start), or, once every level of it is solved,
+/// that the assignment is finished. A level of it that does not load is not offered.
+fn assignment_next(
+    ui: &mut egui::Ui,
+    (browser, a, phys): (&Browser, &AssignmentList, &Run),
+    done: bool,
+    course: &mut Course,
+    load: &mut Option<Scene>,
+) {
+    let rows: Vec<&assignment_list::Row> = a.entries.iter().filter(|e| e.error.is_none()).collect();
+    let keys: Vec<LevelKey> = rows
+        .iter()
+        .map(|e| level_key(&browser.root, &e.path, &e.title))
+        .collect();
+    let here = rows.iter().position(|e| e.path == phys.scene.file);
+    let next = progress::next_unsolved(&keys, here, &course.progress).map(|i| rows[i]);
+    ui.horizontal(|ui| match next {
+        Some(e) => {
+            course.next = Some(e.path.clone());
+            let n = a
+                .entries
+                .iter()
+                .position(|r| r.path == e.path)
+                .map_or(0, |k| k + 1);
+            let b = ui
+                .add_enabled(
+                    done,
+                    egui::Button::new(format!("Next level ▶ {n}. {}", e.title)).truncate(),
+                )
+                .on_hover_text(format!(
+                    "level {n} of the assignment “{}”\n{}\n\n{}",
+                    a.title,
+                    e.path.display(),
+                    e.statement
+                ))
+                .on_disabled_hover_text("answer every question right first");
+            if b.clicked() {
+                match e.load() {
+                    Ok(s) => *load = Some(s),
+                    Err(err) => {
+                        ui.label(rich(err.to_string(), palette::NORMAL));
+                    }
+                }
+            }
+        }
+        None if done => {
+            ui.label(rich(
+                format!(
+                    "✔ the assignment “{}” is finished: every level of it is solved",
+                    a.title
+                ),
+                palette::GRAVITY,
+            ));
+        }
+        None => {
+            ui.label(rich(
+                "the last level of the assignment left to solve",
+                palette::OUTLINE,
+            ));
+        }
+    });
+}
+
 /// The course's body: where progress is kept and what went wrong with it, then each topic with
 /// its levels. A clicked level that loads is put in `load`.
 pub fn course(
@@ -304,7 +378,7 @@ pub fn course(
             _ => {
                 let keys: Vec<LevelKey> = entries
                     .iter()
-                    .filter(|e| e.error.is_none() && e.questions > 0)
+                    .filter(|e| e.is_exercise())
                     .map(|e| level_key(&browser.root, &e.path, &e.title))
                     .collect();
                 let solved = keys
@@ -385,7 +459,7 @@ impl RowLook {
         if kind == TopicKind::Stress {
             return plain("", "engine test", None);
         }
-        if e.questions == 0 {
+        if !e.is_exercise() {
             return plain("", "no questions", None);
         }
         let Some(r) = rec else {
@@ -401,6 +475,16 @@ impl RowLook {
         if r.attempts > 0 {
             numbers = format!("{}×", r.attempts);
         }
+        if e.challenge {
+            // Launches, and the stars of the launch that met it (as the Challenge box shows).
+            if r.status.is_solved() {
+                numbers.push_str(&format!(
+                    " {}",
+                    "*".repeat(progress::stars(r.attempts).into())
+                ));
+            }
+            return plain(r.status.word(), numbers.trim(), color);
+        }
         match r.best_error() {
             Some(err) => numbers.push_str(&format!(" {}", percent(err))),
             None if r.attempts > 0 => {
@@ -411,6 +495,55 @@ impl RowLook {
         }
         plain(r.status.word(), numbers.trim(), color)
     }
+}
+
+/// A challenge row's hover: met at which launch with its stars, or the launches so far.
+fn challenge_hover(rec: Option<&Record>) -> String {
+    match rec {
+        Some(r) if r.status.is_solved() => format!(
+            "\n\nchallenge met at launch {}: {} star{}",
+            r.attempts,
+            progress::stars(r.attempts),
+            if progress::stars(r.attempts) == 1 {
+                ""
+            } else {
+                "s"
+            }
+        ),
+        Some(r) if r.attempts > 0 => format!(
+            "\n\nchallenge not met yet: {} launch{}",
+            r.attempts,
+            if r.attempts == 1 { "" } else { "es" }
+        ),
+        _ => "\n\nchallenge: not launched yet".into(),
+    }
+}
+
+/// A challenge's launch ended on the level on screen: `met` its goal, `error` the control's
+/// relative distance from the worked value. Recorded as an attempt until the challenge is met
+/// (`progress::launch`) and kept; a problem keeping it, for the status line.
+pub fn record_launch(
+    course: &mut Course,
+    browser: &Browser,
+    phys: &Run,
+    met: bool,
+    error: f64,
+) -> Option<String> {
+    let key = level_key(&browser.root, &phys.scene.file, &phys.scene.level.title);
+    if !progress::launch(&mut course.progress, &key, met, error) {
+        return None;
+    }
+    match course.store.save(&mut course.progress) {
+        Ok(None) => None,
+        Ok(Some(note)) | Err(note) => Some(note),
+    }
+}
+
+/// The launches recorded for the challenge on screen, and its stars once met.
+pub fn challenge_record(course: &Course, browser: &Browser, phys: &Run) -> (u32, Option<u8>) {
+    let key = level_key(&browser.root, &phys.scene.file, &phys.scene.level.title);
+    let launches = course.progress.get(&key).map_or(0, |r| r.attempts);
+    (launches, progress::challenge_stars(&course.progress, &key))
 }
 
 /// A relative error as the course prints it: `0.42%`, `<0.01%`.
@@ -489,10 +622,14 @@ fn hover_text(e: &Entry, rec: Option<&Record>, kind: TopicKind) -> String {
         t.push_str("\n\n");
         t.push_str(&e.statement);
     }
-    if kind == TopicKind::Stress || e.questions == 0 {
+    if kind == TopicKind::Stress || !e.is_exercise() {
         return t;
     }
     let status = rec.map_or(Status::NotTried, |r| r.status);
+    if e.challenge {
+        t.push_str(&challenge_hover(rec));
+        return t;
+    }
     t.push_str(&format!("\n\n{}", status.meaning()));
     if let Some(r) = rec {
         let (right, n) = r.right();

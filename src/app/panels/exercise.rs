@@ -4,7 +4,7 @@
 
 use super::super::physics::LiveChecks;
 use super::super::run::Run;
-use super::super::ui::{fmt, rich};
+use super::super::ui::{fixed_height, fmt, rich, text_height};
 use super::super::view::palette;
 use super::hints::{hints, HintState};
 use bevy::prelude::Resource;
@@ -107,56 +107,122 @@ pub(super) fn exercise(ui: &mut egui::Ui, phys: &Run, live: &LiveChecks, st: &mu
                     }
                 }
             });
-            if st.hold_grades && st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {
-                // Predict first (predict.rs): the grade comes with the results, after the motion.
-                ui.label(rich(
-                    "prediction taken: graded after the motion",
-                    palette::VELOCITY,
-                ));
-            } else if let Some(g) = &st.grades[k] {
-                let (text, right) = grade_message(q, g);
-                let color = if right {
-                    palette::GRAVITY
-                } else {
-                    palette::NORMAL
-                };
-                ui.label(rich(text, color));
-            }
-            if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {
-                let show = st.grades[k]
-                    .as_ref()
-                    .is_some_and(|g| g.as_ref().is_ok_and(|g| g.passed));
-                if show {
-                    ui.label(rich(
-                        format!(
-                            "textbook {} {} · rigidlab measured {} {} at t = {:.3} s",
-                            fmt(a.expected),
-                            q.unit,
-                            fmt(a.engine),
-                            q.unit,
-                            a.time
-                        ),
-                        palette::OUTLINE,
-                    ));
-                } else {
-                    ui.label(
-                        rich(
-                            "rigidlab measured this run; answer first to see it",
-                            palette::OUTLINE,
-                        )
-                        .small(),
-                    );
-                }
-            }
+            // The verdict's rows keep the height of the longest one this question can show,
+            // from before the first Check: a verdict appearing moved every box below it, and a
+            // click aimed at the next box missed it (the student trial of 2026-12-07).
+            let room = verdict_height(ui, q);
+            fixed_height(ui, room, |ui| verdict(ui, q, k, live, st));
         });
     }
+    // The hints and the solution come after *Next level* ([`exercise_help`], `left_column`), so
+    // that a hint appearing after a wrong answer moves neither that button nor Show solution.
+}
+
+/// The hints and the worked solution (under the *Next level* button: `hints.rs`).
+pub(super) fn exercise_help(ui: &mut egui::Ui, phys: &Run, st: &mut Exercise) {
     hints(
         ui,
-        level,
+        &phys.sim.level,
         &phys.scene.file,
         &mut st.hints,
         &mut st.help_used,
     );
+}
+
+/// The texts a question's verdict rows can show (`grade_message`'s and the measured line's),
+/// as long as they can be: the height kept for them.
+fn verdict_height(ui: &egui::Ui, q: &crate::level::QuestionDef) -> f32 {
+    let worst = |g: crate::questions::StudentGrade| grade_message(q, &Ok(g)).0;
+    let wrong = |mistake: Option<String>| crate::questions::StudentGrade {
+        answer: -8.888e-88,
+        rel_error: 9.99e5,
+        passed: false,
+        mistake,
+    };
+    let mut grades: Vec<String> = q
+        .mistakes
+        .iter()
+        .map(|m| worst(wrong(Some(m.message.clone()))))
+        .collect();
+    grades.push(worst(wrong(None)));
+    grades.push(
+        grade_message(
+            q,
+            &Ok(crate::questions::StudentGrade {
+                rel_error: 2.0,
+                ..wrong(None)
+            }),
+        )
+        .0,
+    );
+    // What an answer that cannot be read says (its text, as typed, aside).
+    for typed in ["x", "1 x", "inf"] {
+        if let Err(e) = grade(q, typed) {
+            grades.push(e);
+        }
+    }
+    grades.push("prediction taken: graded after the motion".into());
+    let body = egui::TextStyle::Body;
+    let grade_h = grades
+        .iter()
+        .map(|t| text_height(ui, t, body.clone()))
+        .fold(0.0, f32::max);
+    let n = fmt(-8.888e-88);
+    let measured = format!(
+        "textbook {n} {} · rigidlab measured {n} {} at t = 888.888 s",
+        q.unit, q.unit
+    );
+    let measured_h =
+        text_height(ui, &measured, body).max(text_height(ui, NOT_YET_SEEN, egui::TextStyle::Small));
+    grade_h + measured_h
+}
+
+/// Shown under a question before its answer is right, where rigidlab has measured it.
+const NOT_YET_SEEN: &str = "rigidlab measured this run; answer first to see it";
+
+/// A question's verdict: its grade, and rigidlab's measured value once the answer is right.
+fn verdict(
+    ui: &mut egui::Ui,
+    q: &crate::level::QuestionDef,
+    k: usize,
+    live: &LiveChecks,
+    st: &Exercise,
+) {
+    if st.hold_grades && st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {
+        // Predict first (predict.rs): the grade comes with the results, after the motion.
+        ui.label(rich(
+            "prediction taken: graded after the motion",
+            palette::VELOCITY,
+        ));
+    } else if let Some(g) = &st.grades[k] {
+        let (text, right) = grade_message(q, g);
+        let color = if right {
+            palette::GRAVITY
+        } else {
+            palette::NORMAL
+        };
+        ui.label(rich(text, color));
+    }
+    if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {
+        let show = st.grades[k]
+            .as_ref()
+            .is_some_and(|g| g.as_ref().is_ok_and(|g| g.passed));
+        if show {
+            ui.label(rich(
+                format!(
+                    "textbook {} {} · rigidlab measured {} {} at t = {:.3} s",
+                    fmt(a.expected),
+                    q.unit,
+                    fmt(a.engine),
+                    q.unit,
+                    a.time
+                ),
+                palette::OUTLINE,
+            ));
+        } else {
+            ui.label(rich(NOT_YET_SEEN, palette::OUTLINE).small());
+        }
+    }
 }
 
 /// A typed answer's grade (answer, relative error, passed, the typical mistake it matches), or

@@ -22,6 +22,7 @@ pub(super) fn help(ctx: &egui::Context, open: &mut bool) {
                 );
                 ui.add_space(6.0);
                 ui.strong("Keys");
+                ui.label(KEYBOARD_RULE);
                 egui::Grid::new("help-keys").striped(true).show(ui, |ui| {
                     for (k, what) in keys(cfg!(target_arch = "wasm32")) {
                         ui.monospace(k);
@@ -117,6 +118,13 @@ pub fn sections(web: bool) -> Vec<(&'static str, String)> {
     }
     out
 }
+
+/// Whose the keyboard is (the help says it above the keys; `ui::Typing` is the rule).
+pub const KEYBOARD_RULE: &str = "These keys are shortcuts only while the keyboard is the \
+     scene's, after a click in the scene. A click on a panel, into a box or on a window over the \
+     scene gives the keys to the panels: what you type goes to the box, never to a shortcut \
+     (an answer never plays or resets the run). Click the scene or press Esc to use the \
+     shortcuts again; the status line says so meanwhile.";
 
 const KEYS: &[(&str, &str)] = &[
     ("Space", "play / pause (at the level's end: start over)"),

@@ -93,25 +93,28 @@ pub fn hints(
     help_used: &mut bool,
 ) {
     st.follow(file, help_used);
+    let has_solution = !level.solution.trim().is_empty();
+    // The button first: a hint that appears after a wrong answer comes below it and does not
+    // move it.
+    if has_solution && !st.solution_shown {
+        if st.confirming {
+            confirm(ui, st, help_used);
+        } else if ui.button("Show solution").clicked() {
+            if st.solved {
+                st.reveal(help_used);
+            } else {
+                st.confirming = true;
+            }
+        }
+    }
     for (title, text) in shown_hints(level, st) {
         ui.group(|ui| {
             ui.label(rich(title, palette::VELOCITY).strong());
             steps(ui, text);
         });
     }
-    if level.solution.trim().is_empty() {
-        return;
-    }
-    if st.solution_shown {
+    if has_solution && st.solution_shown {
         solution(ui, level, st, *help_used);
-    } else if st.confirming {
-        confirm(ui, st, help_used);
-    } else if ui.button("Show solution").clicked() {
-        if st.solved {
-            st.reveal(help_used);
-        } else {
-            st.confirming = true;
-        }
     }
 }
 

@@ -21,6 +21,9 @@ pub struct Entry {
     pub error: Option<String>,
     /// How many questions it asks (0 where it does not load).
     pub questions: usize,
+    /// It is a challenge (a control the student sets and a goal judged on the run): the course
+    /// counts it, met as solved.
+    pub challenge: bool,
     /// The file's text when it is compiled in (the web page has no file system).
     pub source: Option<Arc<str>>,
     /// When the file was last written (a file on disk; the listing shows it for saved levels,
@@ -29,6 +32,11 @@ pub struct Entry {
 }
 
 impl Entry {
+    /// It is an exercise of the course: it loads, and asks a question or sets a challenge.
+    pub fn is_exercise(&self) -> bool {
+        self.error.is_none() && (self.questions > 0 || self.challenge)
+    }
+
     /// The level as the student opens it (`app/student.rs`: their own numbers for a level with
     /// parameters): parsed from the compiled-in text, or read from its file.
     pub fn load(&self) -> Result<Scene, level::LevelError> {
@@ -78,6 +86,38 @@ impl Browser {
     /// The entry for `path` (as written in the browser, e.g. `levels/kinetics/x.ron`).
     pub fn find(&self, path: &Path) -> Option<&Entry> {
         self.groups.values().flatten().find(|e| e.path == path)
+    }
+
+    /// The text of the level listed for `file`, where the list holds it (compiled into the
+    /// page, or fetched there): the library's entry first, then the assignment's row.
+    pub fn listed_text(&self, file: &Path) -> Option<Arc<str>> {
+        let assigned = || {
+            self.assignment
+                .iter()
+                .flat_map(|a| a.entries.iter())
+                .find(|e| e.path == file)
+                .and_then(|e| e.source.clone())
+        };
+        self.find(file)
+            .and_then(|e| e.source.clone())
+            .or_else(assigned)
+    }
+
+    /// The level listed for `file`, opened again as the student opens it (their own numbers):
+    /// the library's entry, else the assignment's row; None where neither lists it as loading.
+    pub fn open_listed(&self, file: &Path) -> Option<Result<Scene, level::LevelError>> {
+        let listed = self
+            .find(file)
+            .filter(|e| e.error.is_none())
+            .map(Entry::load);
+        let assigned = || {
+            self.assignment
+                .iter()
+                .flat_map(|a| a.entries.iter())
+                .find(|e| e.path == file && e.error.is_none())
+                .map(|e| e.load())
+        };
+        listed.or_else(assigned)
     }
 
     pub fn scan(root: &Path) -> Browser {
@@ -143,6 +183,7 @@ impl Entry {
             Ok(s) => Entry {
                 path,
                 questions: s.level.questions.len(),
+                challenge: s.level.challenge.is_some(),
                 title: s.level.title,
                 statement: s.level.statement,
                 error: None,
@@ -158,6 +199,7 @@ impl Entry {
                 statement: String::new(),
                 error: Some(e.to_string()),
                 questions: 0,
+                challenge: false,
                 source,
                 modified,
             },

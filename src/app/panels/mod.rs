@@ -34,7 +34,7 @@ mod track_editor;
 pub use course::Course;
 pub use exercise::{grade, grade_message, Exercise, Grade};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
-pub use playback::{energy_drift_note, DRIFT_WARNING};
+pub use playback::{energy_drift_note, finer_step, DRIFT_WARNING, FINER_STEP};
 pub use predict::Predict;
 pub use solver::study_error;
 pub use state::UiState;
@@ -90,6 +90,9 @@ impl Plugin for PanelsPlugin {
             .add_systems(
                 Update,
                 (
+                    shortcuts::follow_presses
+                        .before(keys)
+                        .before(super::overlays::overlay_keys),
                     keys.before(super::physics::PhysicsStep),
                     predict::follow.before(super::physics::PhysicsStep),
                     super::view::pan_zoom,
@@ -194,7 +197,13 @@ fn panels(mut p: PanelInput) -> Result {
     let free = root.available_rect_before_wrap();
     p.view.viewport = Rect::new(free.min.x, free.min.y, free.max.x, free.max.y);
     help_and_tour(&ctx, &mut p, free);
-    for c in challenge::window(&ctx, (&p.phys, &p.browser, &p.view), &p.live, free) {
+    let asked = challenge::window(
+        &ctx,
+        (&p.phys, &p.browser, &p.view, p.st.tour.open),
+        (&p.live, &mut p.files.course, &mut p.st.message),
+        free,
+    );
+    for c in asked {
         p.run_commands.write(c);
     }
     tidy_after_frame(&ctx, &mut p);
@@ -307,6 +316,7 @@ pub fn left_column(
     scroll.show(ui, |ui| {
         exercise(ui, phys, live, ex);
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
+        exercise::exercise_help(ui, phys, ex);
         ui.separator();
         assignment_list::assignment_list(ui, browser.assignment.as_ref(), phys, &mut load);
         student_id::student_id(ui, browser, phys, &mut load);
@@ -486,6 +496,7 @@ fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
             labels: p.ov.labels,
             trails: p.ov.trails,
             predict_first: p.predict.everywhere,
+            student_id: super::student::id().unwrap_or_default(),
         };
         if now != *prefs {
             *prefs = now;
@@ -517,9 +528,14 @@ fn tidy_after_frame(ctx: &egui::Context, p: &mut PanelInput) {
     if !ctx.text_edit_focused() && !ctx.is_pointer_over_egui() {
         ctx.memory_mut(|m| m.stop_text_input());
     }
-    // The keyboard stays the text field's after it loses the focus, until a click in the scene
-    // or Esc (ui::Typing): the shortcuts read this next frame.
-    let scene_click = ctx.input(|i| i.pointer.any_pressed()) && !ctx.is_pointer_over_egui();
+    // The keyboard stays the text field's after it loses the focus, and is the panels' after a
+    // press on one (a click that missed a box), until a click in the scene or Esc (ui::Typing):
+    // the shortcuts read this next frame.
+    let pressed = ctx.input(|i| i.pointer.any_pressed());
+    if pressed && ctx.is_pointer_over_egui() {
+        p.typing.active = true;
+    }
+    let scene_click = pressed && !ctx.is_pointer_over_egui();
     let escape = ctx.input(|i| i.key_pressed(egui::Key::Escape));
     p.typing
         .follow(ctx.text_edit_focused(), scene_click, escape);

@@ -53,14 +53,14 @@ pub(super) fn playback(
         out.push(PhysicsCommand::StopAtEnd(stop_at_end));
     }
     follow(ui, phys, view, selected);
-    run_notes(ui, phys, play);
+    run_notes(ui, phys, play, out);
     restarts
 }
 
 /// The run's blows and warnings in a box of fixed height (scrolled when they are more): they
 /// come and go while the run plays (a blow struck, the physics falling behind real time) and
 /// moved every control below them as they did.
-fn run_notes(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
+fn run_notes(ui: &mut egui::Ui, phys: &Run, play: &Playback, out: &mut Vec<PhysicsCommand>) {
     let height = 2.0 * super::super::ui::row_height(ui);
     egui::ScrollArea::vertical()
         .id_salt("run notes")
@@ -69,7 +69,7 @@ fn run_notes(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
         .auto_shrink([true, true])
         .show(ui, |ui| {
             fixed_rows(ui, 2.0, |ui| {
-                warnings(ui, phys, play);
+                warnings(ui, phys, play, out);
                 blows(ui, phys);
             })
         });
@@ -226,17 +226,42 @@ pub fn energy_drift_note(phys: &Run) -> Option<String> {
     let drift = (last.total() - first.total()) / scale;
     (drift.is_finite() && drift.abs() > DRIFT_WARNING).then(|| {
         format!(
-            "Energy should stay constant here but has {} {:.0}% since t = 0 (the engine's step, \
-             not physics): halve dt in Solver to shrink it.",
+            "Energy should stay the same here, but this run has {} {:.0}% of it since t = 0: \
+             the engine's time step is too coarse, not the physics. {FINER_STEP} to halve dt \
+             and watch the loss shrink.",
             if drift < 0.0 { "lost" } else { "gained" },
             drift.abs() * 100.0
         )
     })
 }
 
+/// The button beside the energy-drift warning. The warning said "halve dt in Solver", a panel
+/// the student of the trial (2026-12-07) did not find: the button does it where the warning is.
+pub const FINER_STEP: &str = "Run again with a finer step";
+
+/// The settings [`FINER_STEP`] runs with: the run's own, dt halved (the Solver panel's ÷2).
+pub fn finer_step(phys: &Run) -> crate::sim::Options {
+    let mut options = phys.options.clone();
+    options.dt = Some(phys.sim.dt() / 2.0);
+    options.substeps = Some(phys.sim.substeps());
+    options.solver_iterations = Some(phys.sim.settings().solver_iterations);
+    options
+}
+
 /// Why the run waits (predict first), stopped, runs slowed, or is no longer the exercise's, or
 /// its energy drifted.
-fn warnings(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
+fn warnings(ui: &mut egui::Ui, phys: &Run, play: &Playback, out: &mut Vec<PhysicsCommand>) {
+    // First in the box, so that its button is in sight without scrolling.
+    if let Some(note) = energy_drift_note(phys) {
+        if ui
+            .button(FINER_STEP)
+            .on_hover_text("dt halved (as Solver's ÷2): the run starts again from t = 0")
+            .clicked()
+        {
+            out.push(PhysicsCommand::Settings(finer_step(phys)));
+        }
+        ui.label(rich(note, palette::NORMAL));
+    }
     if play.answer_first {
         ui.label(rich(
             "Predict first: the motion waits at t = 0 for your answers (left).",
@@ -245,9 +270,6 @@ fn warnings(ui: &mut egui::Ui, phys: &Run, play: &Playback) {
     }
     if let Some(e) = &phys.error {
         ui.label(rich(e.clone(), palette::NORMAL));
-    }
-    if let Some(note) = energy_drift_note(phys) {
-        ui.label(rich(note, palette::NORMAL));
     }
     if play.behind && !play.paused {
         ui.label(rich(

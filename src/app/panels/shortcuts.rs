@@ -147,11 +147,37 @@ pub fn keys_to_egui(
     }
 }
 
-/// What the status line says while keys are not taken as shortcuts after typing in a box.
-pub const TYPING_NOTE: &str = "shortcuts paused after typing: click the scene or press Esc";
+/// What the status line says while keys are not taken as shortcuts: the keyboard is the
+/// panels' (a box typed in, a press on a panel).
+pub const TYPING_NOTE: &str =
+    "keys go to the panels: click the scene (or press Esc) to use the shortcuts";
 
-/// The shortcuts, as a Bevy system: off while a text field has or had the keyboard (an answer
-/// box, the save path: [`Typing`]) until a click in the scene or Esc.
+/// Who owns the keyboard after this frame's mouse presses, before any key of the frame is read
+/// as a shortcut: a press on a panel or on a window over the scene gives it to the panels
+/// ([`Typing::press`]). egui's own view of the press (which comes after this frame's keys) is
+/// taken in after the panels are drawn (`panels/mod.rs`, `tidy_after_frame`).
+pub fn follow_presses(
+    mouse: Res<ButtonInput<MouseButton>>,
+    windows: Query<&Window>,
+    view: Res<View>,
+    egui_input: Option<Res<bevy_egui::input::EguiWantsInput>>,
+    typing: Option<ResMut<Typing>>,
+) {
+    let Some(mut typing) = typing else {
+        return;
+    };
+    let pressed = mouse.get_just_pressed().next().is_some();
+    if !pressed {
+        return;
+    }
+    let cursor = windows.iter().next().and_then(Window::cursor_position);
+    let over_egui = egui_input.is_some_and(|e| e.is_pointer_over_area());
+    typing.press(pressed, cursor, view.viewport, over_egui);
+}
+
+/// The shortcuts, as a Bevy system: only while the keyboard is the scene's, never while a text
+/// field has or had it or the last press was on a panel ([`Typing`]), until a click in the
+/// scene or Esc.
 #[allow(clippy::too_many_arguments)]
 pub fn keys(
     keys: Res<ButtonInput<KeyCode>>,

@@ -34,21 +34,7 @@ pub(super) fn student_id(
         let now = student::id().unwrap_or_default();
         if r.lost_focus() && given != now {
             student::set(Some(given));
-            let listed = browser
-                .groups
-                .values()
-                .flatten()
-                .find(|e| e.path == phys.scene.file && e.error.is_none())
-                .map(|e| e.load());
-            let assigned = || {
-                browser
-                    .assignment
-                    .iter()
-                    .flat_map(|a| a.entries.iter())
-                    .find(|e| e.path == phys.scene.file && e.error.is_none())
-                    .map(|e| e.load())
-            };
-            if let Some(Ok(scene)) = listed.or_else(assigned) {
+            if let Some(Ok(scene)) = browser.open_listed(&phys.scene.file) {
                 *load = Some(scene);
             }
         }

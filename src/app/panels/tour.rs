@@ -71,8 +71,12 @@ pub fn steps(
     ]
 }
 
+/// The tour window's egui id (its area's, where egui keeps its rect: the Challenge box keeps
+/// off it).
+pub const TOUR_ID: &str = "first-steps";
+
 /// Draws the tour while it is open; returns true when the user finished or dismissed it.
-pub(super) fn tour(
+pub fn tour(
     ctx: &egui::Context,
     scene: egui::Rect,
     tour: &mut Tour,
@@ -95,7 +99,7 @@ pub(super) fn tour(
     let done = steps.iter().filter(|(_, d)| *d).count();
     let mut finished = false;
     egui::Window::new(format!("First steps ({done} of {})", steps.len()))
-        .id(egui::Id::new("first-steps"))
+        .id(egui::Id::new(TOUR_ID))
         // In the scene's bottom right corner, inside the panels: anchored to the screen's
         // right edge it lay over the right panel's Play and overlay buttons once that panel
         // widened (seen at 1280x800, 2026-12-07), and a scene's bodies sit mostly above it.

@@ -1,9 +1,13 @@
 //! The Bevy sandbox (src/app), headless: the window, editor, inspector, playback and the web page.
 
 mod assignment_list;
+mod assignment_next;
 mod blows;
 mod challenge_box;
+mod challenge_tour;
+mod course_challenges;
 mod course_progress;
+mod drift_button;
 mod editor_commands;
 mod editor_core;
 mod exercise_questions;
@@ -11,6 +15,7 @@ mod help_tour;
 mod hints;
 mod inspector_fields;
 mod key_chords;
+mod keyboard_owner;
 mod kinetic_copy;
 mod label_placement;
 mod measure;
@@ -21,6 +26,7 @@ mod playback;
 mod plot_labels;
 mod plugins;
 mod predict_first;
+mod student_id_kept;
 mod student_window;
 mod unsaved_work;
 mod web_page;

@@ -322,6 +322,7 @@ fn saved_versions_show_their_file_and_date() {
         statement: String::new(),
         error: None,
         questions: 0,
+        challenge: false,
         source: None,
         modified: Some(at(s)),
     };

@@ -2,6 +2,7 @@
 //! levels written from the docs alone (src/questions).
 
 mod analysis_applies;
+mod challenge_verdicts;
 mod challenges;
 mod contact_sag;
 mod contacts_in_full;
