@@ -286,7 +286,7 @@ fn position_verdict(
 /// Which way a missed run went, where the goal's kind has one: a body that ends outside a
 /// region went past it or stopped short of it (the miss along its travel from where it
 /// started); a body that missed a point passed above or below it (or beside it, left or right,
-/// where the miss is more across than up); a reading was above or below the goal's value.
+/// where its travel is more up or down than across), the miss taken across its travel; a reading was above or below the goal's value.
 /// Empty for a body that left the region it had to stay in (it may leave on any side) and a
 /// pin's share of a blow (a size, no sign), and for a run met or not measured.
 pub fn miss_way(r: &ChallengeResult, goal: &Goal, start: Option<DVec2>) -> String {
@@ -307,7 +307,16 @@ pub fn miss_way(r: &ChallengeResult, goal: &Goal, start: Option<DVec2>) -> Strin
             }
         }
         (Goal::Reaches { .. }, Some((at, target))) => {
-            let d = at - target;
+            // The miss across the body's travel (from its start to where it came nearest): a
+            // projectile coming down on a cup at 45 degrees misses as much along x as along y,
+            // but across its path it plainly passed over or under the mouth.
+            let d = match start.map(|s| at - s).filter(|t| t.length() > 0.0) {
+                Some(t) => {
+                    let n = t.perp().normalize();
+                    n * n.dot(at - target)
+                }
+                None => at - target,
+            };
             let side = if d.y.abs() >= d.x.abs() {
                 if d.y > 0.0 {
                     "above"

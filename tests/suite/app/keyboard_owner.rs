@@ -151,7 +151,7 @@ fn a_press_is_the_scenes_only_in_the_bare_scene() {
     t.press(true, None, scene(), false);
     assert!(t.active, "a press off the window");
     // The help says the rule where the keys are listed.
-    assert!(panels::help::KEYBOARD_RULE.contains("click the scene"));
+    assert!(panels::help::KEYBOARD_RULE.contains("click in the scene"));
 }
 
 /// Every text drawn in a frame, with where.
