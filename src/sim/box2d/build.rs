@@ -103,6 +103,10 @@ impl Simulation {
                     for s in add_shape(&mut self.world, id, &def, shape, Transform::IDENTITY)? {
                         self.shapes.insert(s, i);
                     }
+                    // Shapes made without updating the mass leave it marked stale, which Box2D
+                    // asserts against when it steps: fold them in once (density 0, so nothing),
+                    // then set rigidlab's mass below.
+                    self.world.body(id)?.apply_mass_from_shapes()?;
                 }
             }
             if b.kind == BodyKind::Dynamic {

@@ -6,7 +6,7 @@ use super::world::Simulation;
 use crate::level::{BodyKind, JointKind};
 use crate::sim::{mass_properties, Settings};
 use crate::snapshot::*;
-use boxdd::{ContactId, Position, Vec2};
+use boxdd::{Position, ShapeId, Vec2};
 use glam::DVec2;
 use std::collections::{HashMap, HashSet};
 
@@ -59,9 +59,11 @@ pub(super) struct JointArms {
 #[derive(Default)]
 pub(super) struct StepContacts {
     contacts: Vec<ContactState>,
-    /// (contact, Box2D's feature id of the point) -> (index in `contacts`, index in its points).
-    points: HashMap<(ContactId, u16), (usize, usize)>,
-    pairs: HashMap<ContactId, usize>,
+    /// (the two shapes, Box2D's feature id of the point) -> (index in `contacts`, index in its
+    /// points). Keyed by shapes, not by Box2D's contact id: boxdd brands that id with the step
+    /// it was read after, so one contact read after two calls would count as two.
+    points: HashMap<(ShapeId, ShapeId, u16), (usize, usize)>,
+    pairs: HashMap<(ShapeId, ShapeId), usize>,
 }
 
 impl Simulation {
@@ -221,7 +223,7 @@ impl Simulation {
                 };
                 let normal = d(c.manifold.normal);
                 let com1 = self.snapshot.bodies[b1].com;
-                let k = *sum.pairs.entry(c.contact_id).or_insert_with(|| {
+                let k = *sum.pairs.entry((c.shape_id_a, c.shape_id_b)).or_insert_with(|| {
                     sum.contacts.push(ContactState {
                         body1: b1,
                         body2: b2,
@@ -238,7 +240,10 @@ impl Simulation {
                     // snapshot's bodies, read after the call) to the midpoint between the
                     // surfaces; body1's surface point is half the separation back along the normal.
                     let point = com1 + arm1 - 0.5 * separation * normal;
-                    let at = *sum.points.entry((c.contact_id, p.id)).or_insert_with(|| {
+                    let at = *sum
+                        .points
+                        .entry((c.shape_id_a, c.shape_id_b, p.id))
+                        .or_insert_with(|| {
                         sum.contacts[k].points.push(ContactPoint {
                             point,
                             distance: separation,
