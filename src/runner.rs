@@ -6,12 +6,12 @@
 
 use crate::checks::{CheckResult, CheckSet};
 use crate::clock::Instant;
+use crate::level::PhysicsEngine;
 use crate::level::{self, Level, LevelError, Scene};
 use crate::questions::{
     initial_in_f64, ChallengeProbe, ChallengeResult, LevelFacts, QuestionProbe, QuestionResult,
 };
 use crate::report::LevelReport;
-use crate::level::PhysicsEngine;
 use crate::sim::{Drive, Options, SimError};
 use crate::simulation::AnySimulation;
 use crate::snapshot::Snapshot;

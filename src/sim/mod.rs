@@ -16,11 +16,11 @@ pub(crate) use rapier2d as rapier;
 pub(crate) const PRECISION: crate::snapshot::Precision = crate::snapshot::Precision::F32;
 
 pub mod angles;
-pub mod box2d;
 mod arc_contacts;
 mod arc_curvature;
 mod arc_split;
 mod arc_track;
+pub mod box2d;
 mod build;
 mod contact_points;
 mod coupling_tension;

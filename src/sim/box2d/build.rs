@@ -54,12 +54,14 @@ pub(super) fn world(level: &Level, settings: &Settings) -> Result<(World, DVec2)
     let mut world = foundation.create_world(def.build()?)?;
     // The pair uses the larger coefficient, as on rapier (`sim/build.rs`): a level sets e or mu
     // on one body and it applies as given (Box2D's default friction mix is the geometric mean).
-    world.set_friction_callback(boxdd::MixerId::from_bytes(*b"rigidlab: friction = max(a, b)  "), |a, b| {
-        a.coefficient.max(b.coefficient)
-    })?;
-    world.set_restitution_callback(boxdd::MixerId::from_bytes(*b"rigidlab: restitution = max(a,b)"), |a, b| {
-        a.coefficient.max(b.coefficient)
-    })?;
+    world.set_friction_callback(
+        boxdd::MixerId::from_bytes(*b"rigidlab: friction = max(a, b)  "),
+        |a, b| a.coefficient.max(b.coefficient),
+    )?;
+    world.set_restitution_callback(
+        boxdd::MixerId::from_bytes(*b"rigidlab: restitution = max(a,b)"),
+        |a, b| a.coefficient.max(b.coefficient),
+    )?;
     Ok((world, g))
 }
 
@@ -89,8 +91,16 @@ impl Simulation {
                 .angle(b.angle as f32)
                 .linear_velocity(v(b.velocity))
                 .angular_velocity(b.omega as f32)
-                .linear_damping(if damping { b.linear_damping.unwrap_or(0.0) as f32 } else { 0.0 })
-                .angular_damping(if damping { b.angular_damping.unwrap_or(0.0) as f32 } else { 0.0 })
+                .linear_damping(if damping {
+                    b.linear_damping.unwrap_or(0.0) as f32
+                } else {
+                    0.0
+                })
+                .angular_damping(if damping {
+                    b.angular_damping.unwrap_or(0.0) as f32
+                } else {
+                    0.0
+                })
                 .enable_sleep(fx.has(Effect::Sleeping))
                 .allow_fast_rotation(fast)
                 .motion_locks(MotionLocks::new(false, false, b.lock_rotation))
@@ -115,8 +125,13 @@ impl Simulation {
                 }
             }
             if b.kind == BodyKind::Dynamic {
-                let inertia = if b.lock_rotation { 0.0 } else { mp.principal_inertia() };
-                let data = MassData::new(mp.mass(), Vec2::new(com.x as f32, com.y as f32), inertia)?;
+                let inertia = if b.lock_rotation {
+                    0.0
+                } else {
+                    mp.principal_inertia()
+                };
+                let data =
+                    MassData::new(mp.mass(), Vec2::new(com.x as f32, com.y as f32), inertia)?;
                 self.world.body(id)?.set_mass_data(data)?;
             }
         }
@@ -142,8 +157,12 @@ impl Simulation {
                 .with_local_frames(frame1, frame2)
                 .with_collide_connected(false);
             let id: JointId = match j.kind {
-                JointKind::Revolute => self.world.create_revolute_joint(&RevoluteJointDef::new(base))?,
-                JointKind::Prismatic => self.world.create_prismatic_joint(&PrismaticJointDef::new(base))?,
+                JointKind::Revolute => self
+                    .world
+                    .create_revolute_joint(&RevoluteJointDef::new(base))?,
+                JointKind::Prismatic => self
+                    .world
+                    .create_prismatic_joint(&PrismaticJointDef::new(base))?,
                 JointKind::Fixed => self.world.create_weld_joint(&WeldJointDef::new(base))?,
                 JointKind::PinSlot => unreachable!("refused by support.rs"),
             };
@@ -164,8 +183,16 @@ impl Simulation {
 
 /// The shape definition: the body's friction and restitution where their effects are declared.
 fn shape_def(b: &BodyDef, fx: &Effects) -> Result<ShapeDef> {
-    let mu = if fx.has(Effect::Friction) { b.friction.unwrap_or(0.0) } else { 0.0 };
-    let e = if fx.has(Effect::Restitution) { b.restitution.unwrap_or(0.0) } else { 0.0 };
+    let mu = if fx.has(Effect::Friction) {
+        b.friction.unwrap_or(0.0)
+    } else {
+        0.0
+    };
+    let e = if fx.has(Effect::Restitution) {
+        b.restitution.unwrap_or(0.0)
+    } else {
+        0.0
+    };
     let material = SurfaceMaterial::new()
         .with_friction(mu as f32)?
         .with_restitution(e as f32)?;
@@ -184,32 +211,40 @@ fn add_shape(
     shape: &Shape,
     at: Transform,
 ) -> Result<Vec<ShapeId>> {
+    if let Shape::Compound { parts } = shape {
+        let mut ids = Vec::new();
+        for p in parts {
+            let t = Transform::from_pos_angle(v(p.offset), p.angle as f32)?;
+            ids.extend(add_shape(world, body, def, &p.shape, t)?);
+        }
+        return Ok(ids);
+    }
     let place = |p: V2| -> Vec2 { at.transform_point(v(p)) };
     let mut b = world.body(body)?;
     let id = match shape {
-        Shape::Circle { radius } => b.create_circle(def, &shapes::circle(place((0.0, 0.0)), *radius as f32)?)?,
+        Shape::Circle { radius } => {
+            b.create_circle(def, &shapes::circle(place((0.0, 0.0)), *radius as f32)?)?
+        }
         Shape::Box { width, height } => b.create_polygon(
             def,
             &shapes::offset_box_polygon(*width as f32 / 2.0, *height as f32 / 2.0, at)?,
         )?,
         Shape::Capsule { length, radius } => b.create_capsule(
             def,
-            &boxdd::Capsule::new(place((-length / 2.0, 0.0)), place((length / 2.0, 0.0)), *radius as f32)?,
+            &boxdd::Capsule::new(
+                place((-length / 2.0, 0.0)),
+                place((length / 2.0, 0.0)),
+                *radius as f32,
+            )?,
         )?,
         Shape::Polygon { points } => b.create_polygon(
             def,
             &shapes::polygon_from_points(points.iter().map(|&p| place(p)), 0.0)?,
         )?,
-        Shape::Segment { a, b: e } => b.create_segment(def, &shapes::segment(place(*a), place(*e))?)?,
-        Shape::Compound { parts } => {
-            drop(b);
-            let mut ids = Vec::new();
-            for p in parts {
-                let t = Transform::from_pos_angle(v(p.offset), p.angle as f32)?;
-                ids.extend(add_shape(world, body, def, &p.shape, t)?);
-            }
-            return Ok(ids);
+        Shape::Segment { a, b: e } => {
+            b.create_segment(def, &shapes::segment(place(*a), place(*e))?)?
         }
+        Shape::Compound { .. } => unreachable!("handled above"),
         Shape::Polyline { .. } | Shape::Arc { .. } | Shape::Track { .. } => {
             unreachable!("refused by support.rs")
         }

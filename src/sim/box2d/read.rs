@@ -122,7 +122,11 @@ impl Simulation {
                 let p2 = b2.world_point(DVec2::new(j.anchor2.0, j.anchor2.1));
                 // A slider's rows act at body2's anchor on both bodies (Box2D's prismatic
                 // Jacobian uses d + rA on body A); a pin's and a weld's at each body's anchor.
-                let on1 = if j.kind == JointKind::Prismatic { p2 } else { p1 };
+                let on1 = if j.kind == JointKind::Prismatic {
+                    p2
+                } else {
+                    p1
+                };
                 JointArms {
                     r1: on1 - b1.com,
                     r2: p2 - b2.com,
@@ -216,22 +220,26 @@ impl Simulation {
                 if c.manifold.is_empty() || !seen.insert(c.contact_id) {
                     continue;
                 }
-                let (Some(&b1), Some(&b2)) =
-                    (self.shapes.get(&c.shape_id_a), self.shapes.get(&c.shape_id_b))
-                else {
+                let (Some(&b1), Some(&b2)) = (
+                    self.shapes.get(&c.shape_id_a),
+                    self.shapes.get(&c.shape_id_b),
+                ) else {
                     continue;
                 };
                 let normal = d(c.manifold.normal);
                 let com1 = self.snapshot.bodies[b1].com;
-                let k = *sum.pairs.entry((c.shape_id_a, c.shape_id_b)).or_insert_with(|| {
-                    sum.contacts.push(ContactState {
-                        body1: b1,
-                        body2: b2,
-                        normal,
-                        points: Vec::new(),
+                let k = *sum
+                    .pairs
+                    .entry((c.shape_id_a, c.shape_id_b))
+                    .or_insert_with(|| {
+                        sum.contacts.push(ContactState {
+                            body1: b1,
+                            body2: b2,
+                            normal,
+                            points: Vec::new(),
+                        });
+                        sum.contacts.len() - 1
                     });
-                    sum.contacts.len() - 1
-                });
                 sum.contacts[k].normal = normal;
                 for p in c.manifold.points() {
                     let (arm1, arm2) = (d(p.anchor_a), d(p.anchor_b));
@@ -244,16 +252,16 @@ impl Simulation {
                         .points
                         .entry((c.shape_id_a, c.shape_id_b, p.id))
                         .or_insert_with(|| {
-                        sum.contacts[k].points.push(ContactPoint {
-                            point,
-                            distance: separation,
-                            normal_impulse: 0.0,
-                            tangent_impulse: 0.0,
-                            arms: None,
-                            local: None,
+                            sum.contacts[k].points.push(ContactPoint {
+                                point,
+                                distance: separation,
+                                normal_impulse: 0.0,
+                                tangent_impulse: 0.0,
+                                arms: None,
+                                local: None,
+                            });
+                            (k, sum.contacts[k].points.len() - 1)
                         });
-                        (k, sum.contacts[k].points.len() - 1)
-                    });
                     let q = &mut sum.contacts[at.0].points[at.1];
                     q.point = point;
                     q.distance = separation;

@@ -109,9 +109,15 @@ impl Simulation {
         for l in &self.level.loads {
             let i = self.body_index(&l.body);
             let local = DVec2::new(l.point.0, l.point.1);
-            let f = l.force.as_ref().map_or((0.0, 0.0), |f| vector_profile_at(f, t_mid));
+            let f = l
+                .force
+                .as_ref()
+                .map_or((0.0, 0.0), |f| vector_profile_at(f, t_mid));
             let f = DVec2::new(f.0, f.1);
-            let m = l.torque.as_ref().map_or(0.0, |m| scalar_profile_at(m, t_mid));
+            let m = l
+                .torque
+                .as_ref()
+                .map_or(0.0, |m| scalar_profile_at(m, t_mid));
             held.push((i, local, f, m));
             self.snapshot.loads.push(LoadState {
                 name: l.name.clone(),

@@ -9,9 +9,7 @@
 //! refused here, before a world is built, with the level item that asks for it: it is never run
 //! wrong. docs/engines.md lists the same subset.
 
-use crate::level::{
-    BodyKind, EventDef, JointKind, Level, LevelError, Locator, Precision, Shape,
-};
+use crate::level::{BodyKind, EventDef, JointKind, Level, LevelError, Locator, Precision, Shape};
 use std::path::Path;
 
 /// The largest polygon Box2D takes (`B2_MAX_POLYGON_VERTICES`).
@@ -116,13 +114,17 @@ fn body_refusal(b: &crate::level::BodyDef) -> Option<Refusal> {
         ));
     }
     let shape = b.shape.as_ref()?;
-    shape_refusal(shape, false).map(|feature| Refusal::item("bodies", &b.name, Some("shape"), &feature))
+    shape_refusal(shape, false)
+        .map(|feature| Refusal::item("bodies", &b.name, Some("shape"), &feature))
 }
 
 /// Why a shape cannot be built in Box2D (None: it can).
 fn shape_refusal(shape: &Shape, in_compound: bool) -> Option<String> {
     match shape {
-        Shape::Circle { .. } | Shape::Box { .. } | Shape::Capsule { .. } | Shape::Segment { .. } => None,
+        Shape::Circle { .. }
+        | Shape::Box { .. }
+        | Shape::Capsule { .. }
+        | Shape::Segment { .. } => None,
         Shape::Polygon { points } if points.len() > MAX_POLYGON_VERTICES => Some(format!(
             "a polygon of {} vertices (Box2D takes at most {MAX_POLYGON_VERTICES})",
             points.len()
@@ -138,13 +140,28 @@ fn shape_refusal(shape: &Shape, in_compound: bool) -> Option<String> {
 
 fn joint_refusal(j: &crate::level::JointDef) -> Option<Refusal> {
     if j.kind == JointKind::PinSlot {
-        return Some(Refusal::item("joints", &j.name, Some("kind"), "a pin in a slot (pin_slot joint)"));
+        return Some(Refusal::item(
+            "joints",
+            &j.name,
+            Some("kind"),
+            "a pin in a slot (pin_slot joint)",
+        ));
     }
     if j.motor.is_some() {
-        return Some(Refusal::item("joints", &j.name, Some("motor"), "a joint motor"));
+        return Some(Refusal::item(
+            "joints",
+            &j.name,
+            Some("motor"),
+            "a joint motor",
+        ));
     }
     if j.limits.is_some() {
-        return Some(Refusal::item("joints", &j.name, Some("limits"), "joint limits"));
+        return Some(Refusal::item(
+            "joints",
+            &j.name,
+            Some("limits"),
+            "joint limits",
+        ));
     }
     None
 }
@@ -152,13 +169,28 @@ fn joint_refusal(j: &crate::level::JointDef) -> Option<Refusal> {
 /// Couplings, springs and follower loads: what rigidlab applies itself inside the rapier runner.
 fn interaction_refusal(level: &Level) -> Option<Refusal> {
     if let Some(c) = level.couplings.first() {
-        return Some(Refusal::item("couplings", &c.name, None, "a coupling (pulley, cable, gear)"));
+        return Some(Refusal::item(
+            "couplings",
+            &c.name,
+            None,
+            "a coupling (pulley, cable, gear)",
+        ));
     }
     if let Some(s) = level.springs.first() {
-        return Some(Refusal::item("springs", &s.name, None, "a spring (rigidlab's Hooke force)"));
+        return Some(Refusal::item(
+            "springs",
+            &s.name,
+            None,
+            "a spring (rigidlab's Hooke force)",
+        ));
     }
     if let Some(s) = level.torsion_springs.first() {
-        return Some(Refusal::item("torsion_springs", &s.name, None, "a torsion spring"));
+        return Some(Refusal::item(
+            "torsion_springs",
+            &s.name,
+            None,
+            "a torsion spring",
+        ));
     }
     level
         .loads
@@ -172,7 +204,8 @@ pub fn not_built() -> Refusal {
     Refusal {
         place: Place::World("engine"),
         feature: "the box2d engine (this build was made without the `box2d` feature)".into(),
-        help: "build natively with default features (cargo build --release), or run on rapier".into(),
+        help: "build natively with default features (cargo build --release), or run on rapier"
+            .into(),
     }
 }
 

@@ -40,7 +40,8 @@ fn a_resting_box_is_pushed_up_by_m_g() {
         let s = sim.step().expect("runs");
         let n = common::normal_contact_force(s, 1);
         let after = &s.bodies[1];
-        let balance = (n.y * s.dt - m * G * s.dt - m * (after.velocity.y - before.velocity.y)).abs();
+        let balance =
+            (n.y * s.dt - m * G * s.dt - m * (after.velocity.y - before.velocity.y)).abs();
         worst_balance = worst_balance.max(balance / (m * G * s.dt));
         if s.time > 0.5 && (after.velocity.y - before.velocity.y).abs() < 1e-6 {
             worst_rest = worst_rest.max((n.y - m * G).abs() / (m * G));
@@ -51,9 +52,18 @@ fn a_resting_box_is_pushed_up_by_m_g() {
         }
         before = after.clone();
     }
-    assert!(resting_steps > 60, "the box came to rest in {resting_steps} steps only");
-    assert!(worst_balance < 1e-5, "impulse-momentum off by {worst_balance:.2e} of m g dt");
-    assert!(worst_rest < 2e-5, "resting normal force off m g by {worst_rest:.2e}");
+    assert!(
+        resting_steps > 60,
+        "the box came to rest in {resting_steps} steps only"
+    );
+    assert!(
+        worst_balance < 1e-5,
+        "impulse-momentum off by {worst_balance:.2e} of m g dt"
+    );
+    assert!(
+        worst_rest < 2e-5,
+        "resting normal force off m g by {worst_rest:.2e}"
+    );
 }
 
 /// A simple pendulum (1 kg bob, L = 1 m, released from rest at theta0 = 60 degrees): its pin
@@ -108,8 +118,14 @@ fn a_released_pendulum_pulls_its_pin_with_m_g_3cos_minus_2cos() {
         before = com;
     }
     // The swing went through the bottom, where the textbook's tension is its largest, 2 m g.
-    assert!(lowest_swing > 1.99 * m * G, "the bob never reached the bottom");
-    assert!(worst < 2e-3, "tension off its closed form by {worst:.2e} of m g");
+    assert!(
+        lowest_swing > 1.99 * m * G,
+        "the bob never reached the bottom"
+    );
+    assert!(
+        worst < 2e-3,
+        "tension off its closed form by {worst:.2e} of m g"
+    );
 }
 
 /// A ball (e = 0.8, frictionless) dropped from 1 m onto a fixed floor. Box2D bounces a contact
@@ -146,9 +162,15 @@ fn an_impact_bounces_with_its_e_and_reads_its_impulse() {
     // It fell about 1 m: the approach speed is near sqrt(2 g h) = 4.43 m/s.
     assert!((v0.abs() - (2.0 * G).sqrt()).abs() < 0.1, "approach {v0}");
     let e_read = -v1 / v0;
-    assert!((e_read - e).abs() < 1e-6 * e, "e read {e_read}, expected {e}");
+    assert!(
+        (e_read - e).abs() < 1e-6 * e,
+        "e read {e_read}, expected {e}"
+    );
     let balance = m * (v1 - v0) + m * G * dt;
-    assert!((j - balance).abs() < 1e-6 * balance, "impulse {j} against {balance}");
+    assert!(
+        (j - balance).abs() < 1e-6 * balance,
+        "impulse {j} against {balance}"
+    );
 }
 
 /// A blow P = 1 N s, square to a bar pinned at its end O (m = 2 kg, L = 1 m, no gravity): the
@@ -188,6 +210,10 @@ fn a_blow_through_a_pin_gives_its_textbook_reaction() {
             (read - r).abs() < allowed,
             "d = {d}: pin impulse {read:.5} N s, textbook {r:.5} N s (allowed {allowed:.1e})"
         );
-        assert!((s.bodies[1].omega - omega).abs() < 1e-4 * omega, "omega {}", s.bodies[1].omega);
+        assert!(
+            (s.bodies[1].omega - omega).abs() < 1e-4 * omega,
+            "omega {}",
+            s.bodies[1].omega
+        );
     }
 }

@@ -43,7 +43,10 @@ fn refusal(effects: &str, extra: &str) -> level::LevelError {
 /// Line (1-based) of the first line holding `needle` in the file `refusal` writes.
 fn line_of(effects: &str, extra: &str, needle: &str) -> usize {
     let text = level_text(effects, extra);
-    1 + text.lines().position(|l| l.contains(needle)).expect("needle in text")
+    1 + text
+        .lines()
+        .position(|l| l.contains(needle))
+        .expect("needle in text")
 }
 
 #[test]
@@ -56,7 +59,10 @@ fn a_spring_is_refused_at_its_item() {
     assert_eq!(e.line, line_of(", springs", extra, "name: \"s\""), "{e}");
     assert!(e.col > 0, "{e}");
     let text = e.to_string();
-    assert!(text.contains("spring") && text.contains("box2d engine"), "{text}");
+    assert!(
+        text.contains("spring") && text.contains("box2d engine"),
+        "{text}"
+    );
     assert!(e.file.ends_with("refused.ron"), "{e}");
 }
 
@@ -87,7 +93,10 @@ fn a_curved_track_is_refused_at_its_body() {
     let Err(RunError::Level(e)) = err else {
         panic!("an Arc ran on Box2D");
     };
-    let line = 1 + text.lines().position(|l| l.contains("Arc(")).expect("arc line");
+    let line = 1 + text
+        .lines()
+        .position(|l| l.contains("Arc("))
+        .expect("arc line");
     assert_eq!(e.line, line, "{e}");
     assert!(e.to_string().contains("Arc track"), "{e}");
 }
