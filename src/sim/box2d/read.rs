@@ -64,6 +64,14 @@ pub(super) struct StepContacts {
     /// it was read after, so one contact read after two calls would count as two.
     points: HashMap<(ShapeId, ShapeId, u16), (usize, usize)>,
     pairs: HashMap<(ShapeId, ShapeId), usize>,
+    /// Each point's impulse summed as a vector (world axes, N s, on body2): a contact's normal
+    /// turns within a step (a bar rocking on a small round ledge turned it 5e-3 rad a step), so
+    /// the calls' scalar impulses, each along its own call's normal, are added as vectors and
+    /// split along the last call's normal and tangent at the step's end (`store_contacts`).
+    vectors: Vec<Vec<DVec2>>,
+    /// Each point's moments about body1's and body2's mass centers, summed over the calls with
+    /// each call's own arms (N m s): the arms move within a step too (`store_contacts`).
+    moments: Vec<Vec<(f64, f64)>>,
 }
 
 impl Simulation {
@@ -241,6 +249,7 @@ impl Simulation {
                         sum.contacts.len() - 1
                     });
                 sum.contacts[k].normal = normal;
+                let tangent = normal.perp();
                 for p in c.manifold.points() {
                     let (arm1, arm2) = (d(p.anchor_a), d(p.anchor_b));
                     let separation = p.separation as f64;
@@ -265,16 +274,51 @@ impl Simulation {
                     let q = &mut sum.contacts[at.0].points[at.1];
                     q.point = point;
                     q.distance = separation;
-                    q.normal_impulse += p.total_normal_impulse as f64;
-                    q.tangent_impulse -= p.tangent_impulse as f64;
                     q.arms = Some((arm1, arm2));
+                    if sum.vectors.len() <= at.0 {
+                        sum.vectors.resize(at.0 + 1, Vec::new());
+                        sum.moments.resize(at.0 + 1, Vec::new());
+                    }
+                    let (v, m) = (&mut sum.vectors[at.0], &mut sum.moments[at.0]);
+                    if v.len() <= at.1 {
+                        v.resize(at.1 + 1, DVec2::ZERO);
+                        m.resize(at.1 + 1, (0.0, 0.0));
+                    }
+                    let j =
+                        p.total_normal_impulse as f64 * normal - p.tangent_impulse as f64 * tangent;
+                    v[at.1] += j;
+                    m[at.1].0 -= arm1.perp_dot(j);
+                    m[at.1].1 += arm2.perp_dot(j);
                 }
             }
         }
         Ok(())
     }
 
-    pub(super) fn store_contacts(&mut self, sum: StepContacts) {
+    pub(super) fn store_contacts(&mut self, mut sum: StepContacts) {
+        let (vectors, moments) = (&sum.vectors, &sum.moments);
+        for ((c, v), m) in sum.contacts.iter_mut().zip(vectors).zip(moments) {
+            let (n, t) = (c.normal, c.normal.perp());
+            for ((q, &j), &(m1, m2)) in c.points.iter_mut().zip(v).zip(m) {
+                q.normal_impulse = j.dot(n);
+                q.tangent_impulse = j.dot(t);
+                q.arms = q
+                    .arms
+                    .map(|(a1, a2)| (arm_for(a1, -j, m1), arm_for(a2, j, m2)));
+            }
+        }
         self.snapshot.contacts = sum.contacts;
     }
+}
+
+/// The arm at which the step's impulse `j` on a body has the step's summed moment `moment`
+/// about its mass center: the last call's arm `last`, moved across `j`'s line of action, so
+/// that `arm x j = moment` (the impulse and its moment both exact); `last` when j is nil.
+fn arm_for(last: DVec2, j: DVec2, moment: f64) -> DVec2 {
+    let jj = j.length_squared();
+    if jj < 1e-30 {
+        return last;
+    }
+    // perp_dot(j.perp(), j) = -|j|^2.
+    last - (moment - last.perp_dot(j)) / jj * j.perp()
 }
