@@ -33,8 +33,8 @@ pub enum Place {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Refusal {
     pub place: Place,
-    /// The feature, as the docs name it.
-    pub feature: String,
+    /// What is refused: "<the feature, as the docs name it> is not supported by the box2d engine".
+    pub message: String,
     /// How to run the level anyway.
     pub help: String,
 }
@@ -47,7 +47,7 @@ impl Refusal {
                 name: name.to_string(),
                 field,
             },
-            feature: feature.to_string(),
+            message: unsupported(feature),
             help: RUN_ON_RAPIER.to_string(),
         }
     }
@@ -67,17 +67,16 @@ impl Refusal {
                 Place::World(field) => loc.section_field("world", field),
             }
         });
-        LevelError::new(
-            file,
-            pos,
-            format!("{} is not supported by the box2d engine", self.feature),
-            self.help.clone(),
-        )
+        LevelError::new(file, pos, self.message.clone(), self.help.clone())
     }
 }
 
 const RUN_ON_RAPIER: &str =
     "run this level on rapier (--engine rapier, or leave world.engine out); docs/engines.md lists what box2d runs";
+
+fn unsupported(feature: &str) -> String {
+    format!("{feature} is not supported by the box2d engine")
+}
 
 /// The first feature of `level` that the Box2D engine does not run, if any.
 pub fn refusal(level: &Level) -> Option<Refusal> {
@@ -91,7 +90,7 @@ pub fn refusal(level: &Level) -> Option<Refusal> {
 fn world_refusal(level: &Level) -> Option<Refusal> {
     (level.world.precision == Precision::F64).then(|| Refusal {
         place: Place::World("precision"),
-        feature: "f64 precision".into(),
+        message: unsupported("f64 precision"),
         help: "Box2D runs in f32 here; leave world.precision out, or run on rapier".into(),
     })
 }
@@ -203,7 +202,7 @@ fn interaction_refusal(level: &Level) -> Option<Refusal> {
 pub fn not_built() -> Refusal {
     Refusal {
         place: Place::World("engine"),
-        feature: "the box2d engine (this build was made without the `box2d` feature)".into(),
+        message: "the box2d engine is not in this build (made without the `box2d` feature, or for the web)".into(),
         help: "build natively with default features (cargo build --release), or run on rapier"
             .into(),
     }
