@@ -182,6 +182,18 @@ pub struct SolverArgs {
     /// level's world.precision.
     #[arg(long, value_parser = parse_precision)]
     pub precision: Option<level::Precision>,
+    /// The physics engine: rapier or box2d (Box2D v3, docs/engines.md); default: the level's
+    /// world.engine.
+    #[arg(long, value_parser = parse_engine)]
+    pub engine: Option<level::PhysicsEngine>,
+}
+
+fn parse_engine(s: &str) -> Result<level::PhysicsEngine, String> {
+    match s {
+        "rapier" => Ok(level::PhysicsEngine::Rapier),
+        "box2d" => Ok(level::PhysicsEngine::Box2d),
+        _ => Err(format!("\"{s}\": write rapier or box2d")),
+    }
 }
 
 fn parse_precision(s: &str) -> Result<level::Precision, String> {
@@ -228,6 +240,7 @@ impl SolverArgs {
             all_effects: self.all_effects,
             substepping: None,
             precision: self.precision,
+            engine: self.engine,
             impact_cuts: if self.impact_cuts {
                 Some(true)
             } else if self.no_impact_cuts {

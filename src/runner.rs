@@ -6,12 +6,13 @@
 
 use crate::checks::{CheckResult, CheckSet};
 use crate::clock::Instant;
+use crate::level::PhysicsEngine;
 use crate::level::{self, Level, LevelError, Scene};
 use crate::questions::{
     initial_in_f64, ChallengeProbe, ChallengeResult, LevelFacts, QuestionProbe, QuestionResult,
 };
 use crate::report::LevelReport;
-use crate::sim::{Options, SimError};
+use crate::sim::{Drive, Options, SimError};
 use crate::simulation::AnySimulation;
 use crate::snapshot::Snapshot;
 use std::collections::HashMap;
@@ -156,14 +157,14 @@ fn run_with(
     as_read: bool,
     mut each: impl FnMut(&Snapshot),
 ) -> Result<LevelReport, RunError> {
-    let mut sim = AnySimulation::new(scene, opts);
-    let mut observers = Observers::new(&sim.level);
+    let mut sim = engine_for(scene, opts)?;
+    let mut observers = Observers::new(sim.level());
     if as_read && !observers.reads_contacts() {
         sim.set_contact_readings(false);
     }
     let start = Instant::now();
     let mut steps = 0;
-    let result = sim.run(|s| {
+    let result = sim.run_each(&mut |s| {
         steps = s.step;
         observers.observe(s);
         each(s);
@@ -183,12 +184,12 @@ fn run_with(
         && challenge.as_ref().is_none_or(|c| c.success);
     Ok(LevelReport {
         file: scene.file.display().to_string(),
-        title: sim.level.title.clone(),
+        title: sim.level().title.clone(),
         passed,
         steps,
         sim_time: sim.snapshot().time,
         wall_ms,
-        effects: sim.settings.effects.names(),
+        effects: sim.settings().effects.names(),
         settings: Some(sim.settings_as_run()),
         checks,
         questions,
@@ -198,4 +199,27 @@ fn run_with(
         hint: None,
         solution: None,
     })
+}
+
+/// The engine seam's dispatch: the engine `--engine` names, else the level's `world.engine`.
+/// rapier runs every level; Box2D refuses, with the level item, what it does not run
+/// (`sim::box2d::support`), and a build without the `box2d` feature refuses it whole.
+pub fn engine_for(scene: &Scene, opts: &Options) -> Result<Box<dyn Drive>, RunError> {
+    match opts.engine.unwrap_or(scene.level.world.engine) {
+        PhysicsEngine::Rapier => Ok(Box::new(AnySimulation::new(scene, opts))),
+        PhysicsEngine::Box2d => box2d_engine(scene, opts),
+    }
+}
+
+#[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+fn box2d_engine(scene: &Scene, opts: &Options) -> Result<Box<dyn Drive>, RunError> {
+    Ok(Box::new(crate::sim::box2d::Simulation::new(scene, opts)?))
+}
+
+#[cfg(not(all(feature = "box2d", not(target_arch = "wasm32"))))]
+fn box2d_engine(scene: &Scene, _opts: &Options) -> Result<Box<dyn Drive>, RunError> {
+    let text = level::read_text(&scene.file).ok();
+    Err(RunError::Level(
+        crate::sim::box2d::not_built().locate(&scene.file, text.as_deref()),
+    ))
 }

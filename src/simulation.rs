@@ -39,6 +39,8 @@ macro_rules! forward {
 }
 
 impl AnySimulation {
+    /// rapier at the run's precision, whatever `world.engine` or `Options::engine` say: the
+    /// window and the studies run rapier; the runner picks the engine (`runner::engine_for`).
     pub fn new(scene: &Scene, opts: &Options) -> Self {
         let precision = opts.precision.unwrap_or(scene.level.world.precision);
         let engine = match precision {
@@ -117,5 +119,26 @@ impl crate::sim::Engine for AnySimulation {
     }
     fn total_steps(&self) -> u64 {
         AnySimulation::total_steps(self)
+    }
+}
+
+impl crate::sim::Drive for AnySimulation {
+    fn level(&self) -> &Level {
+        &self.level
+    }
+    fn settings(&self) -> &Settings {
+        &self.settings
+    }
+    fn settings_as_run(&self) -> Settings {
+        AnySimulation::settings_as_run(self)
+    }
+    fn set_contact_readings(&mut self, on: bool) {
+        AnySimulation::set_contact_readings(self, on)
+    }
+    fn snapshot(&self) -> &Snapshot {
+        AnySimulation::snapshot(self)
+    }
+    fn run_each(&mut self, each: &mut dyn FnMut(&Snapshot)) -> Result<(), SimError> {
+        self.run(each)
     }
 }

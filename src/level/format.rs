@@ -194,6 +194,34 @@ pub struct World {
     /// (rapier2d-f64), for small motions far from the origin (docs/levels.md).
     #[serde(skip_serializing_if = "Precision::is_f32")]
     pub precision: Precision,
+    /// The physics engine: `rapier` (the default) or `box2d` (Box2D v3, native builds with the
+    /// `box2d` feature; docs/engines.md says what it runs and what it refuses).
+    #[serde(skip_serializing_if = "PhysicsEngine::is_rapier")]
+    pub engine: PhysicsEngine,
+}
+
+/// The physics engine a level runs on (`world.engine`, `--engine`).
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PhysicsEngine {
+    /// rapier2d (or rapier2d-f64 at `precision: f64`).
+    #[default]
+    Rapier,
+    /// Box2D v3 through the `boxdd` crate (src/sim/box2d/).
+    Box2d,
+}
+
+impl PhysicsEngine {
+    pub fn is_rapier(&self) -> bool {
+        *self == PhysicsEngine::Rapier
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            PhysicsEngine::Rapier => "rapier",
+            PhysicsEngine::Box2d => "box2d",
+        }
+    }
 }
 
 impl Default for World {
@@ -207,6 +235,7 @@ impl Default for World {
             contact_hz: None,
             allow_fast_rotation: false,
             precision: Precision::F32,
+            engine: PhysicsEngine::Rapier,
         }
     }
 }

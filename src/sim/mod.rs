@@ -5,6 +5,9 @@
 //! rigidlab itself so that their forces and work are known exactly. After each
 //! step the engine state is copied into a plain-f64 [`Snapshot`](crate::snapshot::Snapshot).
 //!
+//! Box2D v3 is a second engine behind the same snapshot (`box2d/`, compiled once); the runner
+//! drives either through [`Drive`] (`seam.rs`).
+//!
 //! The files in this folder are compiled twice: here against rapier2d (f32),
 //! and as `crate::sim64` against rapier2d-f64, through the `rapier` alias.
 
@@ -17,6 +20,7 @@ mod arc_contacts;
 mod arc_curvature;
 mod arc_split;
 mod arc_track;
+pub mod box2d;
 mod build;
 mod contact_points;
 mod coupling_tension;
@@ -29,6 +33,7 @@ pub mod options;
 mod probes;
 pub mod profiles;
 mod readings;
+pub mod seam;
 pub mod settings;
 mod setup;
 mod step;
@@ -40,5 +45,6 @@ pub use crate::snapshot::Precision;
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
 pub use options::{Effects, Engine, Options, SimError};
 pub use profiles::{scalar_profile_at, vector_profile_at};
+pub use seam::Drive;
 pub use settings::{Settings, StepCalls, Substepping};
 pub use world::Simulation;

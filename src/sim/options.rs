@@ -19,6 +19,9 @@ pub struct Options {
     /// Cut rapier's calls at times of impact (None: where the scene allows, see
     /// `Settings::impact_cuts`); `Some(false)` measures rapier's own speculative contacts.
     pub impact_cuts: Option<bool>,
+    /// The engine (None: the level's `world.engine`). Read at the runner's entry
+    /// (`runner::run_graded`, `runner::run_scene`), which builds that engine's simulation.
+    pub engine: Option<crate::level::PhysicsEngine>,
 }
 
 /// The set of effects a world was built with.

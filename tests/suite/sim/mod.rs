@@ -1,6 +1,10 @@
 //! The simulation against closed forms: contacts, impacts, joints, springs, motors, determinism,
 //! and the engine's known gaps with their sizes (src/sim).
 
+#[cfg(feature = "box2d")]
+mod box2d_readings;
+#[cfg(feature = "box2d")]
+mod box2d_refusals;
 mod closed_forms;
 mod compound_track;
 mod contact_readings;
