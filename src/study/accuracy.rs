@@ -11,15 +11,19 @@
 //! - one knob varied at a time from the level's settings: dt, substeps, PGS iterations,
 //!   precision (f32 / f64), effects (declared / all).
 //!
-//! Output: `accuracy.csv`, one Pareto plot per level, `summary.md`.
+//! Output: `accuracy.csv`, one Pareto plot per level, `summary.md`; a sweep can be split into
+//! shards (`--shard K/N`, [`shard`]) run anywhere and joined by `study merge` ([`merge`]).
 
+mod jobs;
 pub mod measure;
+pub mod merge;
 pub mod metrics;
 mod output;
 mod plan;
 mod plot;
 mod rows;
 mod run;
+pub mod shard;
 mod summary;
 
 pub use output::*;

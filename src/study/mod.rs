@@ -14,11 +14,14 @@ pub enum StudyCommand {
     Accuracy(accuracy::Args),
     /// Run the hard cases and check that they stay numerically stable.
     Stability(stability::Args),
+    /// Join the shards of an accuracy sweep (`study accuracy --shard K/N`) into one study.
+    Merge(accuracy::merge::MergeArgs),
 }
 
 pub fn main(cmd: StudyCommand) -> ExitCode {
     match cmd {
         StudyCommand::Accuracy(a) => accuracy::main(a),
         StudyCommand::Stability(a) => stability::main(a),
+        StudyCommand::Merge(a) => accuracy::merge::main(a),
     }
 }

@@ -9,7 +9,13 @@ fn plot_file(name: &str, format: &str) -> String {
 pub fn main(args: Args) -> ExitCode {
     // Before the sweep, which takes minutes: an --out that cannot take the files, or holds
     // a summary or table rigidlab did not write (kept, and the study refused).
-    if let Err(e) = writable_folder(&args.out).and_then(|()| own_outputs(&args.out)) {
+    let out_ok = writable_folder(&args.out)
+        .and_then(|()| own_outputs(&args.out))
+        .and_then(|()| match args.shard {
+            Some(_) => shard::Manifest::replaceable(&args.out),
+            None => Ok(()),
+        });
+    if let Err(e) = out_ok {
         stderr!("{e}");
         return ExitCode::from(2);
     }
@@ -34,6 +40,13 @@ pub fn main(args: Args) -> ExitCode {
     } else {
         Plan::full()
     };
+    if let Some(j) = args.jobs {
+        return jobs::main(&args, &plan, j);
+    }
+    let mine = match args.shard {
+        Some(s) => shard::slice(&files, s),
+        None => files.clone(),
+    };
     let progress = ProgressBar::new(0);
     progress.set_style(
         ProgressStyle::with_template(
@@ -41,10 +54,46 @@ pub fn main(args: Args) -> ExitCode {
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let (studies, skipped) = run_study(&files, &plan, &progress);
+    let (studies, skipped, timing) = run_study_timed(&mine, &plan, &progress, args.shard.is_some());
+    let code = write_outputs(&args.out, &args.format, &studies, &skipped, &plan, None);
+    if let Some(s) = args.shard {
+        let manifest =
+            shard::Manifest::of(s, &files, &plan, &args.format, &studies, &skipped, timing);
+        if let Err(e) = manifest.write(&args.out) {
+            stderr!("error: {e}");
+            return ExitCode::from(2);
+        }
+        stderr!(
+            "shard {s} of sweep {}: {} of {} level file(s); timing level {} at {}",
+            manifest.fingerprint,
+            mine.len(),
+            files.len(),
+            shard::TIMING_LEVEL,
+            manifest
+                .timing
+                .as_ref()
+                .map_or("- (not timed)".into(), |t| format!(
+                    "{:.1} µs per simulated second",
+                    t.cost_us_per_sim_s
+                ))
+        );
+    }
+    code
+}
 
-    let csv_path = args.out.join("accuracy.csv");
-    if let Err(e) = write_csv(&csv_path, &studies) {
+/// accuracy.csv, the plots and summary.md of `studies` in `out` (`note`, if any, right under
+/// summary.md's title), and what was written said on stderr; exit 2 if any file could not be
+/// written or a level did not load.
+pub fn write_outputs(
+    out: &Path,
+    format: &str,
+    studies: &[LevelStudy],
+    skipped: &[(String, String)],
+    plan: &Plan,
+    note: Option<&str>,
+) -> ExitCode {
+    let csv_path = out.join("accuracy.csv");
+    if let Err(e) = write_csv(&csv_path, studies) {
         stderr!("cannot write {}: {e}", csv_path.display());
         return ExitCode::from(2);
     }
@@ -52,9 +101,9 @@ pub fn main(args: Args) -> ExitCode {
     // the exit code 2, after the other files are written.
     let mut plots = Vec::new();
     let mut failed_plots = 0;
-    for st in &studies {
-        let file = plot_file(&st.name, &args.format);
-        match summary::plot_level(st, &args.out.join(&file)) {
+    for st in studies {
+        let file = plot_file(&st.name, format);
+        match summary::plot_level(st, &out.join(&file)) {
             Ok(()) => plots.push((st.name.clone(), file)),
             Err(e) => {
                 stderr!("error: {}: cannot write the plot: {e}", st.name);
@@ -62,8 +111,12 @@ pub fn main(args: Args) -> ExitCode {
             }
         }
     }
-    let md = summary::markdown(&studies, &skipped, &plan, &plots);
-    let md_path = args.out.join("summary.md");
+    let mut md = summary::markdown(studies, skipped, plan, &plots);
+    if let Some(note) = note {
+        let at = md.find("\n\n").map_or(0, |i| i + 2);
+        md.insert_str(at, &format!("{note}\n\n"));
+    }
+    let md_path = out.join("summary.md");
     let md = format!("{}\n{md}", crate::files::TEXT_MARK);
     if let Err(e) = crate::files::write_over_own(&md_path, md.as_bytes(), SUMMARY_MARK) {
         stderr!("cannot write {}: {e}", md_path.display());
@@ -74,9 +127,9 @@ pub fn main(args: Args) -> ExitCode {
         csv_path.display(),
         md_path.display(),
         plots.len(),
-        args.out.display()
+        out.display()
     );
-    for (name, why) in &skipped {
+    for (name, why) in skipped {
         stderr!("skipped {name}: {why}");
     }
     if failed_plots > 0 {
@@ -105,7 +158,7 @@ fn csv_header() -> String {
 
 /// Err when accuracy.csv or summary.md in `dir` is a file rigidlab did not write: a user's
 /// notes under either name are kept, and the study refused before it runs.
-fn own_outputs(dir: &Path) -> Result<(), String> {
+pub fn own_outputs(dir: &Path) -> Result<(), String> {
     let header = csv_header();
     crate::files::replaceable(
         &dir.join("accuracy.csv"),

@@ -17,6 +17,14 @@ pub struct Args {
     /// Plot format.
     #[arg(long, value_parser = ["png", "svg"], default_value = "png")]
     pub format: String,
+    /// Run only the K-th of N slices of the sweep (whole levels, every N-th of the sorted list)
+    /// and write its rows, plots, summary and shard.json; join shards with `study merge`.
+    #[arg(long, value_name = "K/N", conflicts_with = "jobs")]
+    pub shard: Option<shard::Shard>,
+    /// Run the sweep as N shards side by side on this machine (at most one per core), then
+    /// merge them into --out; the shards' folders go to --out/shards.
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
 }
 
 /// The sweep: knob values, reference, pieces, timing, budgets.

@@ -2,8 +2,8 @@
 
 use super::*;
 
-/// One row of accuracy.csv.
-#[derive(Debug, Clone, Serialize)]
+/// One row of accuracy.csv (read back by `study merge`).
+#[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
 pub struct Row {
     pub level: String,
     pub class: String,

@@ -85,7 +85,8 @@ fn reference_setting(level: &level::Level, plan: &Plan) -> Setting {
 
 /// How much of the level a study runs, sized so that the f64 reference fits its budget.
 struct Budget {
-    /// The cost of one substep at the level's settings, s (`measure::unit_cost`).
+    /// The cost of one substep at the level's settings, s, as the run budget estimates it
+    /// ([`estimated_unit`]).
     unit: f64,
     /// The span the reference and the self-consistency pieces cover, s.
     window: f64,
@@ -97,8 +98,24 @@ struct Budget {
     span: f64,
 }
 
+/// One substep at the level's own settings, s, priced by the run budget
+/// (`runner::budget::Work::step_us`, a step's estimate over its substeps). An estimate, not a
+/// timed probe (until 2026-12-07 a 0.25 s run was timed): the window and the runs left out
+/// over the cap then depend on the level alone, not on the machine or how busy it is, so that
+/// a sweep split into shards run on different machines (`--shard`) gives the rows a whole run
+/// gives.
+pub fn estimated_unit(level: &level::Level) -> f64 {
+    let base = Setting::of_level(level);
+    let opts = crate::sim::Options {
+        precision: Some(level::Precision::F32),
+        ..base.options()
+    };
+    let work = crate::runner::budget::Work::of(level, &opts, None);
+    work.step_us() * 1e-6 / base.substeps.max(1) as f64
+}
+
 impl Budget {
-    /// Time a short run at the level's settings, then size the window so that the f64
+    /// Price a substep at the level's settings, then size the window so that the f64
     /// reference fits its budget. Levels with an exact answer always run their whole duration
     /// (questions may be asked at its end).
     fn of(
@@ -109,10 +126,8 @@ impl Budget {
         notes: &mut Vec<String>,
     ) -> Budget {
         let level = &scene.level;
-        let base = Setting::of_level(level);
         let duration = level.world.duration;
-        let probe = duration.min(0.25);
-        let unit = measure::unit_cost(scene, &base, probe).unwrap_or(1e-6);
+        let unit = estimated_unit(level);
         let ref_per_s = measure::predicted(ref_setting, 1.0, unit);
         let piece_s = plan.piece_s.min(duration / 4.0);
         let window = (plan.reference_budget_s / ref_per_s)
@@ -120,7 +135,7 @@ impl Budget {
             .min(duration);
         if window < duration {
             notes.push(format!(
-                "self-consistency{} over the first {window:.3} s of {duration} s (the f64 reference costs about {ref_per_s:.1} s of wall time per simulated second)",
+                "self-consistency{} over the first {window:.3} s of {duration} s (the f64 reference is estimated at {ref_per_s:.1} s of wall time per simulated second)",
                 if exact { "" } else { ", joint drift and cost" }
             ));
         }
@@ -342,6 +357,23 @@ pub fn run_study(
     plan: &Plan,
     progress: &ProgressBar,
 ) -> (Vec<LevelStudy>, Vec<(String, String)>) {
+    let (studies, skipped, _) = run_study_timed(files, plan, progress, false);
+    (studies, skipped)
+}
+
+/// [`run_study`], and with `time_reference` the built-in timing level timed in the same rounds
+/// as the levels' settings ([`shard::timing_study`]), so that shards run on different machines
+/// can be put on one scale.
+pub fn run_study_timed(
+    files: &[PathBuf],
+    plan: &Plan,
+    progress: &ProgressBar,
+    time_reference: bool,
+) -> (
+    Vec<LevelStudy>,
+    Vec<(String, String)>,
+    Option<shard::TimingRef>,
+) {
     let mut skipped = Vec::new();
     let mut scenes = Vec::new();
     for f in files {
@@ -359,7 +391,12 @@ pub fn run_study(
     let jobs: u64 = scenes
         .iter()
         .map(|s| (1 + plan.rounds as u64) * points(&s.level, plan).len() as u64)
-        .sum();
+        .sum::<u64>()
+        + if time_reference {
+            plan.rounds as u64
+        } else {
+            0
+        };
     progress.set_length(jobs);
     progress.set_message("errors (parallel across levels)");
     let tick = || progress.inc(1);
@@ -369,16 +406,24 @@ pub fn run_study(
         .collect();
     // Timings only now, one run at a time, so that nothing of ours disturbs them.
     progress.set_message("timing (one run at a time)");
+    if time_reference {
+        studies.push(shard::timing_study());
+    }
     let before = load_average();
     measure_costs(&mut studies, plan, &tick);
     let after = load_average();
+    let timing = if time_reference {
+        studies.pop().as_ref().and_then(shard::TimingRef::of)
+    } else {
+        None
+    };
     progress.finish_with_message("done");
     if let (Some(b), Some(a)) = (before, after) {
         for st in studies.iter_mut() {
             st.load = Some((b, a));
         }
     }
-    (studies, skipped)
+    (studies, skipped, timing)
 }
 
 /// The machine's 1-minute load average (Linux), to judge how disturbed the timings were.
