@@ -157,9 +157,12 @@ fn cases() -> Vec<(String, Scene, Options)> {
     };
     let ring = "levels/kinetics/curve_disc_rolling_in_ring.ron";
     let arm = "levels/virtual-work/zh_slider_slotted_arm.ron";
+    let puck = "tests/newuser/curved/n13_05_ball_in_vertical_ring.ron";
     vec![
-        (format!("{ring} --dt 1e-5 (0.2 s)"), cut(ring, 0.2), dt(1e-5)),
-        (format!("{arm} --dt 1e-5 (0.2 s)"), cut(arm, 0.2), dt(1e-5)),
+        (format!("{ring} --dt 2e-6 (0.02 s)"), cut(ring, 0.02), dt(2e-6)),
+        (format!("{ring} --dt 1e-5 (0.1 s)"), cut(ring, 0.1), dt(1e-5)),
+        (format!("{puck} --dt 1e-5 (0.05 s)"), cut(puck, 0.05), dt(1e-5)),
+        (format!("{arm} --dt 2e-5 (0.04 s)"), cut(arm, 0.04), dt(2e-5)),
         (
             "10,000 discs on a floor (0.25 s)".into(),
             ten_thousand_discs(),
