@@ -112,7 +112,14 @@ fn summary(title: &str, rows: &[Row]) {
     for (side, worst) in [("lowest", low), ("highest", high)] {
         let mut line = format!("  {side}:");
         for r in worst {
-            let _ = write!(line, " {} {:.2} ({:.3} s for {:.3} s);", r.name, r.ratio(), r.estimate_s, r.measured_s);
+            let _ = write!(
+                line,
+                " {} {:.2} ({:.3} s for {:.3} s);",
+                r.name,
+                r.ratio(),
+                r.estimate_s,
+                r.measured_s
+            );
         }
         println!("{line}");
     }
@@ -159,10 +166,26 @@ fn cases() -> Vec<(String, Scene, Options)> {
     let arm = "levels/virtual-work/zh_slider_slotted_arm.ron";
     let puck = "tests/newuser/curved/n13_05_ball_in_vertical_ring.ron";
     vec![
-        (format!("{ring} --dt 2e-6 (0.02 s)"), cut(ring, 0.02), dt(2e-6)),
-        (format!("{ring} --dt 1e-5 (0.1 s)"), cut(ring, 0.1), dt(1e-5)),
-        (format!("{puck} --dt 1e-5 (0.05 s)"), cut(puck, 0.05), dt(1e-5)),
-        (format!("{arm} --dt 2e-5 (0.04 s)"), cut(arm, 0.04), dt(2e-5)),
+        (
+            format!("{ring} --dt 2e-6 (0.02 s)"),
+            cut(ring, 0.02),
+            dt(2e-6),
+        ),
+        (
+            format!("{ring} --dt 1e-5 (0.1 s)"),
+            cut(ring, 0.1),
+            dt(1e-5),
+        ),
+        (
+            format!("{puck} --dt 1e-5 (0.05 s)"),
+            cut(puck, 0.05),
+            dt(1e-5),
+        ),
+        (
+            format!("{arm} --dt 2e-5 (0.04 s)"),
+            cut(arm, 0.04),
+            dt(2e-5),
+        ),
         (
             "10,000 discs on a floor (0.25 s)".into(),
             ten_thousand_discs(),

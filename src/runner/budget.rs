@@ -271,7 +271,9 @@ impl Windows {
 
     /// Their price a step, us.
     pub fn step_us(&self) -> f64 {
-        self.motor * MOTOR_WINDOW_US + self.contact * CONTACT_WINDOW_US + self.joint * JOINT_WINDOW_US
+        self.motor * MOTOR_WINDOW_US
+            + self.contact * CONTACT_WINDOW_US
+            + self.joint * JOINT_WINDOW_US
     }
 }
 

@@ -486,7 +486,12 @@ fn a_windowed_question_read_at_a_time_is_priced_to_that_time() {
             "Level(title: \"window\", effects: [gravity, contacts],\n world: (dt: 0.001, substeps: 1, duration: 1.0),\n bodies: [(name: \"floor\", kind: fixed, shape: Box(width: 2.0, height: 0.2), position: (0.0, -0.1)), (name: \"box\", shape: Box(width: 0.2, height: 0.2), mass: 1.0, position: (0.0, 0.1))],\n questions: [(id: \"N\", ask: \"N\", unit: \"N\", expected: 9.81, tolerance: 0.01, quantity: ContactForceFrom(body: \"box\", other: \"floor\", window: 0.02), at: {at}, why: \"budget test\")],\n)\n"
         )
     };
-    let end = Estimate::of(&parse(&text("End")).level, &Options::default(), Mode::Check, None);
+    let end = Estimate::of(
+        &parse(&text("End")).level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
     let early = Estimate::of(
         &parse(&text("Time(0.24)")).level,
         &Options::default(),
@@ -495,7 +500,10 @@ fn a_windowed_question_read_at_a_time_is_priced_to_that_time() {
     );
     // 21 snapshots a step; to t = 0.24 + 0.01 of 1 s: a quarter of the run.
     assert_eq!(end.work.windows.contact, 21.0);
-    assert!((early.work.windows.contact - 21.0 * 0.25).abs() < 1e-9, "{early:?}");
+    assert!(
+        (early.work.windows.contact - 21.0 * 0.25).abs() < 1e-9,
+        "{early:?}"
+    );
 }
 
 /// A body on a curved track is cast against the track's facets before each call once calls are
@@ -517,7 +525,10 @@ fn a_ring_at_a_fine_dt_is_priced_its_casts_and_refused() {
     assert_eq!(fine.work.track_cast_us(), budget::TRACK_CAST_US);
     // At dt / 1000 the steps alone are 1000x; each call also pays its cast.
     let steps_s = |e: &Estimate| e.work.steps * e.work.step_us() * 1e-6;
-    assert!(steps_s(&fine) > 1000.0 * 10.0 * steps_s(&coarse), "{coarse:?} {fine:?}");
+    assert!(
+        steps_s(&fine) > 1000.0 * 10.0 * steps_s(&coarse),
+        "{coarse:?} {fine:?}"
+    );
     let e = at_dt(&level, 4.2e-8);
     assert!(!e.fits() && e.seconds > 5000.0, "{e:?}");
     assert_refused(&["check", ring, "--dt", "4.2e-8"], ring);
