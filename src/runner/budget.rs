@@ -4,9 +4,10 @@
 //! The estimate adds measured unit costs over what the level and the overrides say the run
 //! will do: rapier calls (one a step, or one a substep where substeps are split:
 //! [`Substepping`], or where a ball that can spin touches something at the start), the
-//! couplings rigidlab solves after each call, the curved tracks' facets built once, bodies and constraints (joints and potential contact pairs) per substep and
-//! per solver iteration, contact pairs made and kept, questions and checks per step, and the
-//! history a check keeps. `check`, `run`, `study stability` and `render --time` all price their
+//! couplings rigidlab solves after each call, the curved tracks' facets built once and the casts
+//! against them that plan short calls, bodies and constraints (joints and potential contact
+//! pairs) per substep and per solver iteration, contact pairs made and kept, questions and checks
+//! per step, the windows windowed questions read again each step, and the history a check keeps. `check`, `run`, `study stability` and `render --time` all price their
 //! run here. The table in docs/cli.md compares the estimate with the measured wall time and
 //! peak memory (within 3x on the library and on adversarial levels, tests/budget/).
 //!
@@ -86,10 +87,33 @@
 //!   from the start for a smooth dynamic `Circle` in a contact pair with a fixed smooth `Arc`,
 //!   with more than one substep. Measured 2026-12-07: tests/newuser/curved/n14_02 (a puck down a
 //!   ramp arc into a loop, 1/4800 s, 4 substeps) 0.34 s before, 1.09 s split, every step split.
+//! - [`MOTOR_WINDOW_US`], [`CONTACT_WINDOW_US`], [`JOINT_WINDOW_US`]: a question with a
+//!   `window` reads its window's snapshots again at every step (questions/probe.rs), so it costs
+//!   steps x window / dt (issue 45: the slotted arm at dt 1e-6, priced 0.61 s, ran past 226 s).
+//!   Measured 2026-12-07 (CPU time of `check --dt 2e-5 --no-advice`, a copy of the level cut
+//!   short, with its window and with `window: 0.0`): levels/virtual-work/zh_slider_slotted_arm
+//!   (`MotorTorque`, 10 ms; 0.04 s) 1.43 s against 0.03 s, 1.0e6 snapshots read: 1.4 us each
+//!   (1.5 us at 1e-5, 1.7 us at 5e-6), the power balance's analysis at each; tests/newuser/curved/
+//!   n14_14 (`ContactForceFrom`, 10 ms; 0.3 s) 1.80 s against 0.17 s, 7.5e6: 0.22 us;
+//!   levels/kinematics/ha_polar_arm_collar (`JointReaction`, 20 ms; 0.3 s) 0.31 s against 0.22
+//!   s, 1.5e7: 0.006 us. A question read at a `Time` stops there; any other is priced to the end.
+//! - [`TRACK_CAST_US`], [`TRACK_CAST_CALL_S`]: where the calls are cut at impacts
+//!   (sim/impacts.rs, scenes of at most 64 moving bodies), every pair that closes faster than
+//!   2 g h + 1 mm/s (h the call) and is more than 10 um apart is cast against the other before
+//!   the call, and a cast against a curved track's facets walks the facets' tree. At coarse steps
+//!   that is rare; at fine ones every call. Measured 2026-12-07 (CPU time over the calls the
+//!   report counts, `check --dt` of a copy cut to 20,000 steps or 0.3 s):
+//!   levels/kinetics/curve_disc_rolling_in_ring 2.9, 3.1, 2.7 and 2.7 us a call at dt 4.2e-4,
+//!   1e-4, 4.2e-5 and 1e-5, then 6.4 us at 4.2e-6, 31 us at 2e-6 and 35 us at 1e-6 (its calls
+//!   dt / 4, split for the disc's spin); tests/newuser/curved/n13_05 (a puck in a ring) 30 us at
+//!   1e-5 (calls of 2.5 us). Priced 30 us a call for each pair of a moving body and a curved
+//!   track at the start, from calls of 2.5 us down: the ring between calls of 1 and 2.5 us is
+//!   priced up to 11x its cost (a slow disc casts less often than a fast puck), and below, within
+//!   1.2x; before, the ring at dt 4.2e-8 was accepted for about 11 hours of CPU.
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
 use crate::level::shape as shapes;
-use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError};
+use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError, Quantity, When};
 use crate::sim::{Options, Settings, Substepping};
 use std::path::Path;
 
@@ -126,6 +150,18 @@ pub const FACET_US: f64 = 1.1;
 pub const COUPLING_CALL_US: f64 = 7.0;
 /// One question watching one step, us.
 pub const QUESTION_STEP_US: f64 = 0.15;
+/// One snapshot of a `MotorTorque` question's averaging window, read at one step, us: the window
+/// is summed again at every step, with the power balance's analysis at each of its snapshots.
+pub const MOTOR_WINDOW_US: f64 = 1.4;
+/// One snapshot of a `ContactForceFrom` question's window, read at one step, us.
+pub const CONTACT_WINDOW_US: f64 = 0.22;
+/// One snapshot of a `JointReaction` question's window, read at one step, us.
+pub const JOINT_WINDOW_US: f64 = 0.006;
+/// One nonlinear shape cast of a moving body against a curved track's facets, planning an
+/// impact cut before a call (sim/impacts.rs), us.
+pub const TRACK_CAST_US: f64 = 30.0;
+/// Calls at most this long, s, cast a body against the curved track it rides at every call.
+pub const TRACK_CAST_CALL_S: f64 = 2.5e-6;
 /// One check observing one step, us.
 pub const CHECK_STEP_US: f64 = 0.8;
 /// The engine's part of a step in f64 against f32 (rapier2d-f64 against rapier2d: 1.2x to 1.3x
@@ -185,6 +221,60 @@ pub struct Work {
     pub history_bytes_per_step: f64,
     /// The engine in f64 (rapier2d-f64), whose steps cost [`F64_COST`] times f32's.
     pub f64: bool,
+    /// The step, s.
+    pub dt: f64,
+    /// The snapshots the windowed questions read a step, over the run (see [`Windows`]).
+    pub windows: Windows,
+    /// Pairs of a moving body and a curved track at the start, when the run cuts its calls at
+    /// impacts (sim/impacts.rs): each may cost a shape cast against the track's facets a call.
+    pub track_pairs: f64,
+}
+
+/// The snapshots windowed questions read a step, by family, averaged over the run's steps: a
+/// question with a `window` of w s at a step dt reads 2 round(w / 2 dt) + 1 snapshots at every
+/// step until it is read for good (its `Time`; to the end otherwise), so its price grows as
+/// steps x w / dt: the square of the steps.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Windows {
+    /// The questions with a window past one step each side.
+    pub questions: usize,
+    pub motor: f64,
+    pub contact: f64,
+    pub joint: f64,
+}
+
+impl Windows {
+    fn of(level: &Level, dt: f64) -> Windows {
+        let mut w = Windows::default();
+        let duration = level.world.duration.max(dt);
+        for q in &level.questions {
+            let window = q.quantity.averaging_window();
+            // As QuestionProbe counts them: lag steps each side, a window only past one.
+            let lag = (0.5 * window / dt).round().max(1.0);
+            if lag <= 1.0 {
+                continue;
+            }
+            let active = match q.at {
+                When::Time(at) => ((at + 0.5 * window) / duration).clamp(0.0, 1.0),
+                _ => 1.0,
+            };
+            let samples = (2.0 * lag + 1.0) * active;
+            w.questions += 1;
+            match q.quantity {
+                Quantity::MotorTorque { .. } => w.motor += samples,
+                Quantity::ContactForceFrom { .. } => w.contact += samples,
+                _ => w.joint += samples,
+            }
+        }
+        w
+    }
+
+    /// Their price a step, us.
+    pub fn step_us(&self) -> f64 {
+        self.motor * MOTOR_WINDOW_US
+            + self.contact * CONTACT_WINDOW_US
+            + self.joint * JOINT_WINDOW_US
+    }
 }
 
 /// The estimate of one run: its [`Work`] priced with the unit costs.
@@ -263,6 +353,24 @@ impl Work {
             checks: level.checks.len(),
             history_bytes_per_step,
             f64: precision == crate::level::Precision::F64,
+            dt: opts.dt.unwrap_or(level.world.dt),
+            windows: Windows::of(level, opts.dt.unwrap_or(level.world.dt)),
+            track_pairs: if set.impact_cuts {
+                contacts.track_pairs
+            } else {
+                0.0
+            },
+        }
+    }
+
+    /// The shape casts against curved tracks a call, priced: every call of a pair of a moving
+    /// body and a curved track once calls are [`TRACK_CAST_CALL_S`] or shorter, none before.
+    pub fn track_cast_us(&self) -> f64 {
+        let call_s = self.dt / self.calls_per_step as f64;
+        if call_s <= TRACK_CAST_CALL_S {
+            self.track_pairs * TRACK_CAST_US
+        } else {
+            0.0
         }
     }
 
@@ -279,6 +387,8 @@ impl Work {
                         + rows * (ROW_SUBSTEP_US + self.iterations as f64 * ROW_ITERATION_US))
                 + self.pairs * PAIR_STEP_US)
             + self.calls_per_step as f64 * self.couplings as f64 * COUPLING_CALL_US
+            + self.calls_per_step as f64 * self.track_cast_us()
+            + self.windows.step_us()
             + self.questions as f64 * QUESTION_STEP_US
             + self.checks as f64 * CHECK_STEP_US
     }
@@ -338,6 +448,20 @@ impl Estimate {
         if w.questions > 0 {
             what += &format!(", {} questions", w.questions);
         }
+        let windowed = w.windows.motor + w.windows.contact + w.windows.joint;
+        if w.windows.questions > 0 {
+            what += &format!(
+                " ({} windowed question{} reading {windowed:.0} snapshots a step)",
+                w.windows.questions,
+                if w.windows.questions == 1 { "" } else { "s" }
+            );
+        }
+        if w.track_cast_us() > 0.0 {
+            what += &format!(
+                ", {:.0} bodies on curved tracks cast against their facets every call",
+                w.track_pairs
+            );
+        }
         if w.history_bytes_per_step > 0.0 {
             what += &format!(", checks keeping {} bytes a step", w.history_bytes_per_step);
         }
@@ -385,6 +509,8 @@ struct Pairs {
     /// Whether a smooth dynamic `Circle` is in one with a fixed `Arc` (sim/arc_split.rs splits
     /// its steps while it rides the arc's circle).
     arc_rider: bool,
+    /// Pairs of a moving body and a curved track (an `Arc`, a `Polyline`, a `Track`).
+    track_pairs: f64,
 }
 
 /// What a body may do in a pair that splits a step (see [`Pairs`]).
@@ -395,6 +521,10 @@ struct Splits {
     smooth_ball: bool,
     /// A fixed `Arc` without friction.
     smooth_arc: bool,
+    /// A body that is not fixed.
+    moving: bool,
+    /// A curved track: a shape with facets.
+    curved: bool,
 }
 
 impl Splits {
@@ -411,12 +541,19 @@ impl Splits {
             smooth_arc: b.kind == BodyKind::Fixed
                 && matches!(shape, crate::level::Shape::Arc { .. })
                 && smooth,
+            moving: b.kind != BodyKind::Fixed,
+            curved: shapes::facets(shape) > 0.0,
         }
     }
 
     /// Whether the pair of `self` and `other` rides the chord contact.
     fn arc_rider(self, other: Splits) -> bool {
         self.smooth_ball && other.smooth_arc || self.smooth_arc && other.smooth_ball
+    }
+
+    /// Whether the pair is a moving body and a curved track.
+    fn on_track(self, other: Splits) -> bool {
+        self.moving && other.curved || self.curved && other.moving
     }
 }
 
@@ -442,6 +579,7 @@ fn contact_pairs(level: &Level, friction: bool) -> Pairs {
     let mut pairs = 0.0;
     let mut spinning_ball = false;
     let mut arc_rider = false;
+    let mut track_pairs = 0.0;
     'sweep: for i in 0..boxes.len() {
         let (a, fixed_a, spin_a) = boxes[i];
         for j in i + 1..boxes.len() {
@@ -457,6 +595,9 @@ fn contact_pairs(level: &Level, friction: bool) -> Pairs {
             pairs += 1.0;
             spinning_ball |= spin_a.may_spin || spin_b.may_spin;
             arc_rider |= spin_a.arc_rider(spin_b);
+            if spin_a.on_track(spin_b) {
+                track_pairs += 1.0;
+            }
             if pairs >= PAIRS_COUNTED {
                 break 'sweep;
             }
@@ -468,5 +609,6 @@ fn contact_pairs(level: &Level, friction: bool) -> Pairs {
         degrees: degree.iter().map(|&d| (d as f64).powi(2)).sum(),
         spinning_ball,
         arc_rider,
+        track_pairs,
     }
 }

@@ -434,3 +434,102 @@ fn a_curved_tracks_facets_are_priced_once() {
     );
     assert!(e1.seconds < 0.03, "{}", e1.seconds);
 }
+
+/// The estimate at `dt` of a level.
+fn at_dt(level: &rigidlab::level::Level, dt: f64) -> Estimate {
+    Estimate::of(
+        level,
+        &Options {
+            dt: Some(dt),
+            ..Options::default()
+        },
+        Mode::Check,
+        None,
+    )
+}
+
+/// A windowed question reads its whole window again at every step (questions/probe.rs): its
+/// price is steps x window / dt, so halving dt quadruples it, where a plain question's price
+/// doubles. The slotted arm (a `MotorTorque` over 10 ms) at dt 1e-6 was priced 0.61 s before and
+/// ran past 226 s of CPU (issue 45; 1.4 to 1.7 us a snapshot measured 2026-12-07 at dt 2e-5 to
+/// 5e-6, benches/budget.rs): 80,000 steps x 10,001 snapshots x 1.4 us (to its reading at 30
+/// degrees, 0.07 s of the 0.08 s, priced to the end: a crossing's time is not known before)
+/// is 1120 s, past the budget.
+#[test]
+fn a_windowed_questions_price_grows_with_the_square_of_the_steps() {
+    let arm = "levels/virtual-work/zh_slider_slotted_arm.ron";
+    let level = load(arm).level;
+    let (e1, e2) = (at_dt(&level, 1e-5), at_dt(&level, 5e-6));
+    // 0.01 s window: 2 x round(0.005 / dt) + 1 snapshots a step.
+    assert_eq!(e1.work.windows.motor, 1001.0);
+    assert_eq!(e2.work.windows.motor, 2001.0);
+    let windows_s = |e: &Estimate| e.work.steps * e.work.windows.step_us() * 1e-6;
+    let ratio = windows_s(&e2) / windows_s(&e1);
+    // (2 x 2001) / 1001 = 3.998: the square of the steps' ratio, within the window's odd count.
+    assert!((ratio - 4.0).abs() < 0.01, "{ratio}");
+    assert!(
+        windows_s(&e1) > 0.9 * e1.seconds,
+        "the window is most of the run: {e1:?}"
+    );
+    let e = at_dt(&level, 1e-6);
+    assert!(!e.fits() && e.seconds > 1000.0, "{e:?}");
+    let err = assert_refused(&["check", arm, "--dt", "1e-6"], arm);
+    assert!(err.contains("1 windowed question"), "{err}");
+}
+
+/// A question read at a time stops reading its window there (a settled probe does no work):
+/// priced to its time and half its window, not to the end.
+#[test]
+fn a_windowed_question_read_at_a_time_is_priced_to_that_time() {
+    let text = |at: &str| {
+        format!(
+            "Level(title: \"window\", effects: [gravity, contacts],\n world: (dt: 0.001, substeps: 1, duration: 1.0),\n bodies: [(name: \"floor\", kind: fixed, shape: Box(width: 2.0, height: 0.2), position: (0.0, -0.1)), (name: \"box\", shape: Box(width: 0.2, height: 0.2), mass: 1.0, position: (0.0, 0.1))],\n questions: [(id: \"N\", ask: \"N\", unit: \"N\", expected: 9.81, tolerance: 0.01, quantity: ContactForceFrom(body: \"box\", other: \"floor\", window: 0.02), at: {at}, why: \"budget test\")],\n)\n"
+        )
+    };
+    let end = Estimate::of(
+        &parse(&text("End")).level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
+    let early = Estimate::of(
+        &parse(&text("Time(0.24)")).level,
+        &Options::default(),
+        Mode::Check,
+        None,
+    );
+    // 21 snapshots a step; to t = 0.24 + 0.01 of 1 s: a quarter of the run.
+    assert_eq!(end.work.windows.contact, 21.0);
+    assert!(
+        (early.work.windows.contact - 21.0 * 0.25).abs() < 1e-9,
+        "{early:?}"
+    );
+}
+
+/// A body on a curved track is cast against the track's facets before each call once calls are
+/// short (sim/impacts.rs plans the impact cuts: a cast whenever the pair closes faster than
+/// 2 g h + 1 mm/s and is more than 10 um apart). Measured 2026-12-07 (CPU time, `check --dt`):
+/// levels/kinetics/curve_disc_rolling_in_ring.ron at 2.7 to 3.1 us a call from dt 4.2e-4 to
+/// 1e-5, 6.4 us at 4.2e-6, 31 us at 2e-6 and 35 us at 1e-6 (its calls dt/4); the puck in a ring
+/// of tests/newuser/curved/n13_05 30 us a call at 1e-5 (calls of 2.5 us). Priced 30 us a call
+/// from calls of 2.5 us down. At dt 4.2e-8 the ring was accepted at about 11 hours of CPU
+/// (issue 45): 4.3e7 steps x 4 calls x 31 us is now past the budget and refused.
+#[test]
+fn a_ring_at_a_fine_dt_is_priced_its_casts_and_refused() {
+    let ring = "levels/kinetics/curve_disc_rolling_in_ring.ron";
+    let level = load(ring).level;
+    let dt = level.world.dt;
+    let (coarse, fine) = (at_dt(&level, dt), at_dt(&level, dt / 1000.0));
+    assert_eq!(coarse.work.track_pairs, 1.0);
+    assert_eq!(coarse.work.track_cast_us(), 0.0);
+    assert_eq!(fine.work.track_cast_us(), budget::TRACK_CAST_US);
+    // At dt / 1000 the steps alone are 1000x; each call also pays its cast.
+    let steps_s = |e: &Estimate| e.work.steps * e.work.step_us() * 1e-6;
+    assert!(
+        steps_s(&fine) > 1000.0 * 10.0 * steps_s(&coarse),
+        "{coarse:?} {fine:?}"
+    );
+    let e = at_dt(&level, 4.2e-8);
+    assert!(!e.fits() && e.seconds > 5000.0, "{e:?}");
+    assert_refused(&["check", ring, "--dt", "4.2e-8"], ring);
+}
