@@ -23,8 +23,17 @@ if [ "$have" != "$want" ]; then
   cargo install wasm-bindgen-cli --version "$want"
 fi
 
-# The `web` profile (Cargo.toml): release, optimised for size except the physics.
-cargo build --profile web --target wasm32-unknown-unknown --bin rigidlab
+# The `web` profile (Cargo.toml): release, optimised for size except the physics. `--lto` adds
+# fat link-time optimisation (17% smaller, 6% smaller compressed; the build takes about twice as
+# long and 12 GB at its final link: docs/web.md), for a page to deploy.
+lto=false
+for arg in "$@"; do
+  case "$arg" in
+    --lto) lto=fat ;;
+    *) echo "web/build.sh: unknown option $arg (the only one is --lto)" >&2; exit 2 ;;
+  esac
+done
+CARGO_PROFILE_WEB_LTO=$lto cargo build --profile web --target wasm32-unknown-unknown --bin rigidlab
 
 rm -rf "$out"
 mkdir -p "$out"

@@ -17,8 +17,11 @@
 //   links.json      a level opened from a #level= link, corrupt links refused, an assignment
 //                   fetched with ?url= and a missing one refused; link.png the linked level;
 //   browser.json    how the wasm came (its Content-Encoding and size on the wire), timings: page
-//                   open to first frame, frame rates while playing, the CPU a
-//                   paused page takes over 10 s (paused_10s).
+//                   open to first frame (wasm compiled earlier in the session, and cold: a new
+//                   browser context), frame rates while playing, the CPU a paused page takes
+//                   over 10 s (paused_10s), the loading bar's first and last byte counts;
+//   loading.json / loading.png   the cold page over a throttled line: the loading note sampled
+//                   every 100 ms until the first frame, and a screenshot of it.
 // Usage: node web/test/browser.mjs [OUT]   (exit 1 with the reason when a step fails)
 import { chromium } from "playwright-core";
 import { spawn } from "node:child_process";
@@ -377,6 +380,75 @@ try {
   const pausedFrames = (await status()).frames;
   await sleep(10000);
   summary.paused_10s = { cpu_s: cpuSeconds() - c0, frames: (await status()).frames - pausedFrames };
+
+  // 11. Opened cold, as a student opens it the first time: a new browser context (no cached and no
+  //     compiled wasm). First on this machine's loopback, timing the first frame; then over a
+  //     slow line (Chromium's network throttling, LOADING_RATE bytes per second on the wire),
+  //     sampling the loading note every 100 ms until the first frame removes it: the bar and the
+  //     megabytes received must show while the wasm comes (loading.json, loading.png).
+  const cold = async (rate) => {
+    const ctx = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+    const p = await ctx.newPage();
+    if (rate) {
+      const cdp = await ctx.newCDPSession(p);
+      await cdp.send("Network.enable");
+      await cdp.send("Network.emulateNetworkConditions", { offline: false, latency: 20, downloadThroughput: rate, uploadThroughput: -1 });
+    }
+    const t0 = Date.now();
+    await p.goto(`${base}?level=kinetics/simple_pendulum.ron`, { waitUntil: "commit" });
+    const samples = [];
+    let shot = false;
+    for (;;) {
+      let s;
+      try {
+        s = await p.evaluate(() => {
+          const note = document.getElementById("loading");
+          const drawn = document.getElementById("rigidlab-status")?.textContent ?? "";
+          if (!note) return { gone: true, drawn: drawn.length > 0 };
+          const bar = document.getElementById("loading-bar");
+          const r = bar.getBoundingClientRect();
+          const style = getComputedStyle(note);
+          return {
+            gone: false,
+            drawn: drawn.length > 0,
+            count: document.getElementById("loading-count").textContent,
+            bar: bar.hasAttribute("value") ? bar.value : null,
+            visible: r.width > 0 && r.height > 0 && style.display !== "none" && style.visibility !== "hidden",
+          };
+        });
+      } catch {
+        s = null; // the document is being replaced
+      }
+      const at_s = (Date.now() - t0) / 1000;
+      if (s && s.gone && s.drawn) {
+        await ctx.close();
+        return { first_frame_s: at_s, samples };
+      }
+      if (s && !s.gone && s.count) {
+        samples.push({ at_s, count: s.count, bar: s.bar, visible: s.visible, drawn: s.drawn });
+        if (rate && !shot) {
+          await p.screenshot({ path: join(out, "loading.png") });
+          shot = true;
+        }
+      }
+      if (at_s > 180) fail(`the cold page drew no frame within 180 s (rate ${rate}); last ${JSON.stringify(s)}`);
+      await sleep(100);
+    }
+  };
+  summary.cold_first_frame_s = (await cold(null)).first_frame_s;
+  const LOADING_RATE = 2_000_000; // bytes per second: a 16 Mbit/s share of a classroom's line
+  const loading = await cold(LOADING_RATE);
+  loading.rate_bytes_per_s = LOADING_RATE;
+  writeFileSync(join(out, "loading.json"), JSON.stringify(loading, null, 1));
+  const counted = loading.samples.filter((s) => /^[\d.]+ of [\d.]+ MB$/.test(s.count));
+  if (counted.length < 2) fail(`the loading bar showed no byte count over a slow line: ${JSON.stringify(loading.samples.slice(0, 5))}`);
+  summary.loading = {
+    rate_bytes_per_s: LOADING_RATE,
+    first_count: counted[0],
+    last_count: counted.at(-1),
+    samples: loading.samples.length,
+    first_frame_s: loading.first_frame_s,
+  };
   writeFileSync(join(out, "console.log"), logs.join("\n"));
   writeFileSync(join(out, "browser.json"), JSON.stringify(summary, null, 1));
   console.log(`browser test: ${JSON.stringify(summary)}`);
