@@ -4,4 +4,5 @@ mod accuracy;
 mod advice;
 mod advice_names_gaps;
 mod advice_reproducible;
+mod sand_pile;
 mod stability;
