@@ -307,7 +307,10 @@ fn ten_thousand_bodies() {
         "{STRESS}: {} bodies, {contacts} contact manifolds after {SETTLE} steps; median of {ROUNDS} blocks of {BLOCK} steps:",
         scene.level.bodies.len()
     );
-    println!("  plain rapier loop (the same world)           {:>8.2} ms/step", m[2] * 1e3);
+    println!(
+        "  plain rapier loop (the same world)           {:>8.2} ms/step",
+        m[2] * 1e3
+    );
     println!(
         "  rigidlab's step, contacts unread (check)      {:>8.2} ms/step   ratio {:.3}x   goal <= {STRESS_GOAL}x: {}",
         m[0] * 1e3,

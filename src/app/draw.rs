@@ -268,9 +268,12 @@ mod tests {
         for r in [0.0, 0.05, 0.5, 1.0, 2.0, 3.0, 10.0, 30.0] {
             let n = circle_resolution(r, 48);
             let sagitta = r * (1.0 - (std::f64::consts::PI / n as f64).cos());
-            assert!(n >= 6 && (sagitta <= CHORD_PX + 1e-12 || n == 48), "{r} px: {n}");
+            assert!(
+                n >= 6 && (sagitta <= CHORD_PX + 1e-12 || n == 48),
+                "{r} px: {n}"
+            );
         }
-        assert!(circle_resolution(f64::NAN, 48) == 6);
+        assert_eq!(circle_resolution(f64::NAN, 48), 6);
     }
 
     #[test]

@@ -50,8 +50,15 @@ fn the_sand_pile_is_ten_thousand_grains_apart_inside_the_bin() {
     assert!(ys.windows(2).all(|w| w[1] - w[0] >= 2.0 * R), "{ys:?}");
     for (y, xs) in &mut rows {
         xs.sort_by(f64::total_cmp);
-        let gap = xs.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
-        assert!(gap >= 2.0 * R, "row at y = {}: grains {gap} m apart", *y as f64 * 1e-4);
+        let gap = xs
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            gap >= 2.0 * R,
+            "row at y = {}: grains {gap} m apart",
+            *y as f64 * 1e-4
+        );
     }
 }
 
@@ -113,7 +120,13 @@ fn at_rapiers_default_contacts_the_pile_sinks_past_the_limit() {
     // measured 2026-12-07), as the stiff contacts of vertical_stack are needed for its 15 boxes.
     let scene = common::load(LEVEL);
     let spec = st::spec("sand_pile").expect("cases.rs has the sand pile");
-    let r = st::run(&scene, &spec, &st::Settings::defaults(&scene, &spec), None, None);
+    let r = st::run(
+        &scene,
+        &spec,
+        &st::Settings::defaults(&scene, &spec),
+        None,
+        None,
+    );
     let pen = r.criterion("penetration").expect("penetration is judged");
     assert!(!pen.passed && pen.known_gap.is_none(), "{pen:?}");
 }
