@@ -18,6 +18,15 @@
 //! 5. a typical library level, levels/kinetics/physical_pendulum.ron (3 checks, 2 questions, a
 //!    few ms a run), run 10 times a round (information: with its checks only, with its question
 //!    only).
+//! 6. the 10,000-body stress level, levels/stress/sand_pile.ron (issue 45: at most 1.1x): a run
+//!    of it takes minutes, so this case times steps, not runs, as `--bench core` does for its
+//!    200-body pile: rigidlab's `Simulation::step` (what `runner::run_scene` calls each step; the
+//!    level has no checks or questions, so `check` leaves its contacts unread) against a plain
+//!    rapier loop (`PhysicsWorld::step` on the very same world), both settled for 4 s and then
+//!    timed in interleaved blocks (information: with the contacts read, as the window reads them;
+//!    and rapier at its own defaults, without the contact hook and query dispatcher rigidlab
+//!    gives the world, `--bench frame` times the window's frame of the same level).
+//!    `RIGIDLAB_BENCH_CASE=10` runs it alone.
 
 #[path = "common/hundred_bodies.rs"]
 mod hundred_bodies;
@@ -31,6 +40,10 @@ use std::time::Instant;
 
 /// The typical library level of case 5.
 const TYPICAL: &str = "levels/kinetics/physical_pendulum.ron";
+
+/// The 10,000-body level of case 6, and its goal (issue 45).
+const STRESS: &str = "levels/stress/sand_pile.ron";
+const STRESS_GOAL: f64 = 1.1;
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -147,6 +160,9 @@ fn main() {
         .collect();
     let mut files = Vec::new();
     library_levels(Path::new("levels"), &mut files);
+    // The 10,000-body level has its own case (6): a run of it takes longer than the rest of the
+    // library together.
+    files.retain(|p| p != Path::new(STRESS));
     let library: Vec<Scene> = files
         .iter()
         .map(|p| level::load(p).unwrap_or_else(|e| panic!("{e}")))
@@ -157,6 +173,9 @@ fn main() {
     let only: Option<usize> = std::env::var("RIGIDLAB_BENCH_CASE")
         .ok()
         .and_then(|c| c.parse().ok());
+    if only.is_none_or(|c| c == 10) {
+        ten_thousand_bodies();
+    }
     for (case, (label, scenes, pairs)) in [
         (
             format!(
@@ -229,4 +248,83 @@ fn main() {
             if r <= 1.05 { "" } else { "  over 1.05x" }
         );
     }
+}
+
+/// Seconds per step over `steps` steps: rigidlab's step (`ours`) or rapier's alone.
+fn time_steps(sim: &mut Simulation, steps: usize, ours: bool) -> f64 {
+    let t = Instant::now();
+    for _ in 0..steps {
+        if ours {
+            sim.step().expect("the stress level stays finite");
+        } else {
+            sim.world.step();
+        }
+    }
+    t.elapsed().as_secs_f64() / steps as f64
+}
+
+/// The same world as rapier at its own defaults would step it: parry's query dispatcher instead
+/// of rigidlab's (sim/arc_contacts.rs), no contact-modification hook on the discs
+/// (sim/contact_points.rs; `PhysicsWorld::step` runs no hooks anyway), contact recycling on.
+fn rapier_defaults(sim: &mut Simulation) {
+    use rapier2d::prelude::*;
+    let w = &mut sim.world;
+    w.narrow_phase
+        .set_query_dispatcher(rapier2d::parry::query::DefaultQueryDispatcher);
+    for (_, co) in w.colliders.iter_mut() {
+        co.set_active_hooks(ActiveHooks::empty());
+    }
+    w.integration_parameters.contact_recycling = true;
+}
+
+/// Case 6: the 10,000-body stress level, stepped by rigidlab and by a plain rapier loop.
+fn ten_thousand_bodies() {
+    const SETTLE: usize = 240;
+    const BLOCK: usize = 5;
+    const ROUNDS: usize = 15;
+    let scene = level::load(Path::new(STRESS)).unwrap_or_else(|e| panic!("{e}"));
+    let opts = Options::default();
+    // [rigidlab, contacts unread (as `check` runs it)], [rigidlab, contacts read (the window)],
+    // [plain rapier loop], [rapier at its defaults]
+    let mut sims: Vec<Simulation> = (0..4).map(|_| Simulation::new(&scene, &opts)).collect();
+    sims[0].set_contact_readings(false);
+    rapier_defaults(&mut sims[3]);
+    let ours = [true, true, false, false];
+    for (sim, ours) in sims.iter_mut().zip(ours) {
+        time_steps(sim, SETTLE, ours);
+    }
+    // Blocks interleaved, the order rotated every round, so drifts in load hit each alike.
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); sims.len()];
+    for r in 0..ROUNDS {
+        for k in 0..sims.len() {
+            let i = (k + r) % sims.len();
+            times[i].push(time_steps(&mut sims[i], BLOCK, ours[i]));
+        }
+    }
+    let m: Vec<f64> = times.iter_mut().map(|t| median(t)).collect();
+    let contacts = sims[1].snapshot().contacts.len();
+    println!(
+        "{STRESS}: {} bodies, {contacts} contact manifolds after {SETTLE} steps; median of {ROUNDS} blocks of {BLOCK} steps:",
+        scene.level.bodies.len()
+    );
+    println!(
+        "  plain rapier loop (the same world)           {:>8.2} ms/step",
+        m[2] * 1e3
+    );
+    println!(
+        "  rigidlab's step, contacts unread (check)      {:>8.2} ms/step   ratio {:.3}x   goal <= {STRESS_GOAL}x: {}",
+        m[0] * 1e3,
+        m[0] / m[2],
+        if m[0] / m[2] <= STRESS_GOAL { "met" } else { "NOT met" }
+    );
+    println!(
+        "  rigidlab's step, contacts read (the window)   {:>8.2} ms/step   ratio {:.3}x",
+        m[1] * 1e3,
+        m[1] / m[2]
+    );
+    println!(
+        "  rapier at its own defaults (information)      {:>8.2} ms/step   ratio {:.3}x",
+        m[3] * 1e3,
+        m[3] / m[2]
+    );
 }

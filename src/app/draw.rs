@@ -105,6 +105,41 @@ impl Drawing {
 const ARROW_HEAD_PX: f64 = 9.0;
 const DASH_PX: f64 = 6.0;
 
+/// How far, in pixels, a drawn chord may stray from the circle it stands for: a tenth of a
+/// pixel, which no line width shows. Small circles (a mass-center ring, a grain of a 10,000-body
+/// pile a few pixels wide) need far fewer segments than the 48 a large one is drawn with.
+const CHORD_PX: f64 = 0.1;
+
+/// A polyline's points closer than this to the last point drawn are skipped, pixels: the sagitta
+/// of a 1 px chord on a circle of radius r px is 1/(8 r) px, under CHORD_PX from r = 1.25 px.
+const MIN_STEP_PX: f64 = 1.0;
+
+/// Segments for a circle of `r_px` pixels: the fewest whose chords stay within [`CHORD_PX`] of
+/// the arc (sagitta r (1 - cos(pi / n)) <= CHORD_PX), between 6 and `max`.
+pub fn circle_resolution(r_px: f64, max: u32) -> u32 {
+    if r_px.is_nan() || r_px <= CHORD_PX {
+        return 6.min(max);
+    }
+    let n = (std::f64::consts::PI / (1.0 - CHORD_PX / r_px).acos()).ceil();
+    (n.min(max as f64) as u32).clamp(6.min(max), max)
+}
+
+/// A polyline's points as drawn at `m_per_px`: each point closer than [`MIN_STEP_PX`] to the
+/// last one kept is skipped (a 40-point circle outline 4 pixels across gives about 12); the
+/// first and last points are always kept.
+pub fn thinned(pts: &[DVec2], m_per_px: f64) -> impl Iterator<Item = Vec2> + '_ {
+    let step2 = (MIN_STEP_PX * m_per_px).powi(2);
+    let n = pts.len();
+    let mut last: Option<DVec2> = None;
+    pts.iter().enumerate().filter_map(move |(k, p)| {
+        let keep = k + 1 == n || last.is_none_or(|l| (*p - l).length_squared() >= step2);
+        keep.then(|| {
+            last = Some(*p);
+            v2(*p)
+        })
+    })
+}
+
 pub fn emit_gizmos(drawing: Res<Drawing>, mut gizmos: Gizmos) {
     emit(&drawing, &mut gizmos);
 }
@@ -122,7 +157,7 @@ pub fn emit<C: GizmoConfigGroup, K: 'static + Send + Sync>(
         match p {
             Prim::Line(a, b, c) => gizmos.line_2d(v2(*a), v2(*b), *c),
             Prim::Poly(pts, closed, c) => {
-                let it = pts.iter().copied().map(v2);
+                let it = thinned(pts, px);
                 if *closed && pts.len() > 2 {
                     gizmos.linestrip_2d(it.chain(std::iter::once(v2(pts[0]))), *c);
                 } else {
@@ -147,7 +182,7 @@ pub fn emit<C: GizmoConfigGroup, K: 'static + Send + Sync>(
             Prim::Circle(center, r, c) => {
                 gizmos
                     .circle_2d(Isometry2d::from_translation(v2(*center)), *r as f32, *c)
-                    .resolution(48);
+                    .resolution(circle_resolution(r / px, 48));
             }
             Prim::Dot(center, r_px, c) => {
                 // A small filled-looking dot: concentric circles.
@@ -159,7 +194,7 @@ pub fn emit<C: GizmoConfigGroup, K: 'static + Send + Sync>(
                             (r * k as f64 / 3.0) as f32,
                             *c,
                         )
-                        .resolution(16);
+                        .resolution(circle_resolution(r_px * k as f64 / 3.0, 16));
                 }
             }
             Prim::Dashed(a, b, c) => {
@@ -221,7 +256,39 @@ pub fn si(value: f64, unit: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::si;
+    use super::*;
+
+    #[test]
+    fn a_small_circle_gets_the_segments_its_size_needs() {
+        // Sagitta r (1 - cos(pi / n)) <= 0.1 px: 48 segments hold it up to r = 46.7 px
+        // (0.1 / (1 - cos(pi / 48))), and a 3 px ring needs 13 (pi / acos(1 - 0.1 / 3) = 12.1).
+        assert_eq!(circle_resolution(46.0, 48), 48);
+        assert_eq!(circle_resolution(500.0, 48), 48);
+        assert_eq!(circle_resolution(3.0, 48), 13);
+        for r in [0.0, 0.05, 0.5, 1.0, 2.0, 3.0, 10.0, 30.0] {
+            let n = circle_resolution(r, 48);
+            let sagitta = r * (1.0 - (std::f64::consts::PI / n as f64).cos());
+            assert!(
+                n >= 6 && (sagitta <= CHORD_PX + 1e-12 || n == 48),
+                "{r} px: {n}"
+            );
+        }
+        assert_eq!(circle_resolution(f64::NAN, 48), 6);
+    }
+
+    #[test]
+    fn thinning_keeps_what_a_pixel_shows() {
+        // A 40-point circle 2 px in radius (perimeter 12.6 px): points 1 px apart or more.
+        let pts: Vec<DVec2> = (0..40)
+            .map(|k| DVec2::from_angle(std::f64::consts::TAU * k as f64 / 40.0) * 2.0)
+            .collect();
+        let kept: Vec<Vec2> = thinned(&pts, 1.0).collect();
+        assert!(kept.len() < 20 && kept.len() >= 10, "{}", kept.len());
+        assert_eq!(kept[0], v2(pts[0]));
+        assert_eq!(*kept.last().unwrap(), v2(pts[39]));
+        // At 100 px per metre unit (m_per_px = 0.01) nothing is dropped.
+        assert_eq!(thinned(&pts, 0.01).count(), 40);
+    }
 
     #[test]
     fn si_keeps_three_significant_figures() {

