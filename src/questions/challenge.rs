@@ -286,7 +286,7 @@ fn position_verdict(
 /// Which way a missed run went, where the goal's kind has one: a body that ends outside a
 /// region went past it or stopped short of it (the miss along its travel from where it
 /// started); a body that missed a point passed above or below it (or beside it, left or right,
-/// where its travel is more up or down than across), the miss taken across its travel; a reading was above or below the goal's value.
+/// where its travel is more up or down than across), the miss taken across its travel; a reading says what it read beside the goal's value.
 /// Empty for a body that left the region it had to stay in (it may leave on any side) and a
 /// pin's share of a blow (a size, no sign), and for a run met or not measured.
 pub fn miss_way(r: &ChallengeResult, goal: &Goal, start: Option<DVec2>) -> String {
@@ -331,11 +331,16 @@ pub fn miss_way(r: &ChallengeResult, goal: &Goal, start: Option<DVec2>) -> Strin
             format!("passed {side} the point")
         }
         (Goal::Reads { .. }, _) => {
-            if r.miss > 0.0 {
-                "read above the goal's value".into()
-            } else {
-                "read below the goal's value".into()
-            }
+            // The numbers, not "above" or "below": a reading is signed (an acceleration
+            // downwards, a polar angle) while the challenge's words may speak of a size or of
+            // another angle, so "below" read backwards to a student (the trial of 2026-12-07).
+            let goal = r.measured - r.miss;
+            format!(
+                "read {} {} for the goal's {}",
+                sig4(r.measured),
+                r.miss_unit,
+                sig4(goal)
+            )
         }
         _ => String::new(),
     }
@@ -361,4 +366,13 @@ impl ChallengeResult {
         self.worked = c.worked;
         self.student = student;
     }
+}
+
+/// `x` with four significant digits, as the verdicts print their values.
+fn sig4(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (3 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.digits$}")
 }

@@ -318,7 +318,11 @@ fn assignment_next(
             let b = ui
                 .add_enabled(
                     done,
-                    egui::Button::new(format!("Next level ▶ {n}. {}", e.title)).truncate(),
+                    egui::Button::new(format!(
+                        "Next level ▶ {} (level {n} of the assignment)",
+                        e.title
+                    ))
+                    .truncate(),
                 )
                 .on_hover_text(format!(
                     "level {n} of the assignment “{}”\n{}\n\n{}",

@@ -34,8 +34,12 @@ pub(super) fn student_id(
         let now = student::id().unwrap_or_default();
         if r.lost_focus() && given != now {
             student::set(Some(given));
+            // Reopened only where the id changes the numbers: a level without parameters keeps
+            // its run and the answers typed (the trial of 2026-12-07 lost a prediction here).
             if let Some(Ok(scene)) = browser.open_listed(&phys.scene.file) {
-                *load = Some(scene);
+                if scene.level != phys.scene.level {
+                    *load = Some(scene);
+                }
             }
         }
     });

@@ -57,17 +57,19 @@ fn a_missed_region_says_past_or_short() {
 }
 
 /// The spring that stops a block at a mark (a `Reads` goal): the largest extension is
-/// v0 sqrt(m / k), so a stiffer spring reads below the mark's 0.5 m.
+/// v0 sqrt(m / k), so a stiffer spring reads short of the mark's 0.5 m: 0.5 / sqrt(1.03) =
+/// 0.4927 m, and a softer one past it, 0.5 / sqrt(0.97) = 0.5077 m (the verdict prints the
+/// reading beside the goal's value, which a student can judge whatever the quantity's sign).
 #[test]
-fn a_missed_reading_says_above_or_below_the_goals_value() {
+fn a_missed_reading_says_what_it_read_and_the_goals_value() {
     let stiff = verdict("spring_stops_at_mark.ron", 1.03);
     assert!(
-        stiff.contains("read below the goal's value: k too high"),
+        stiff.contains("read 0.49") && stiff.contains("for the goal's 0.5000: k too high"),
         "{stiff}"
     );
     let soft = verdict("spring_stops_at_mark.ron", 0.97);
     assert!(
-        soft.contains("read above the goal's value: k too low"),
+        soft.contains("read 0.50") && soft.contains("for the goal's 0.5000: k too low"),
         "{soft}"
     );
 }
