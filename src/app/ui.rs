@@ -121,7 +121,7 @@ impl Typing {
         if !pressed {
             return;
         }
-        self.active = !(cursor.is_some_and(|c| scene.contains(c)) && !over_egui);
+        self.active = !cursor.is_some_and(|c| scene.contains(c)) || over_egui;
     }
 
     /// Whether a key may be a shortcut now (`egui_wants`: egui asked for the keyboard).

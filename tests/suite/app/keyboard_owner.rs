@@ -256,8 +256,8 @@ fn checking_an_answer_moves_no_box_below_it() {
         "the verdict {message:?} is not drawn"
     );
     // Half a pixel: egui rounds positions to pixels.
-    for k in 1..boxes_before.len() {
-        let (a, b) = (boxes_before[k].unwrap(), ex.answer_boxes[k].unwrap());
+    for (k, before) in boxes_before.iter().enumerate().skip(1) {
+        let (a, b) = (before.unwrap(), ex.answer_boxes[k].unwrap());
         assert!(
             (a.min.y - b.min.y).abs() < 0.5,
             "box {} moved from {a:?} to {b:?}",
