@@ -114,7 +114,7 @@ const CHORD_PX: f64 = 0.1;
 /// of a 1 px chord on a circle of radius r px is 1/(8 r) px, under CHORD_PX from r = 1.25 px.
 const MIN_STEP_PX: f64 = 1.0;
 
-/// Segments for a circle of `r_px` pixels: the fewest whose chords stay within [`CHORD_PX`] of
+/// Segments for a circle of `r_px` pixels: the fewest whose chords stay within `CHORD_PX` of
 /// the arc (sagitta r (1 - cos(pi / n)) <= CHORD_PX), between 6 and `max`.
 pub fn circle_resolution(r_px: f64, max: u32) -> u32 {
     if r_px.is_nan() || r_px <= CHORD_PX {
@@ -124,7 +124,7 @@ pub fn circle_resolution(r_px: f64, max: u32) -> u32 {
     (n.min(max as f64) as u32).clamp(6.min(max), max)
 }
 
-/// A polyline's points as drawn at `m_per_px`: each point closer than [`MIN_STEP_PX`] to the
+/// A polyline's points as drawn at `m_per_px`: each point closer than `MIN_STEP_PX` to the
 /// last one kept is skipped (a 40-point circle outline 4 pixels across gives about 12); the
 /// first and last points are always kept.
 pub fn thinned(pts: &[DVec2], m_per_px: f64) -> impl Iterator<Item = Vec2> + '_ {

@@ -6,7 +6,7 @@
 //! it off other labels and bodies. A joint's name is pushed from its anchor away from the mass
 //! centers of the bodies it joins, so it does not sit on the links. When that side is taken by
 //! another body (a row of touching balls, as Newton's cradle's), the name turns to the nearest
-//! side where it lies clear of the others and nearer its own body than any other ([`Others`]).
+//! side where it lies clear of the others and nearer its own body than any other (`Others`).
 
 use super::draw::Drawing;
 use super::geometry::Outline;

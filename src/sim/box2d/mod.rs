@@ -2,7 +2,7 @@
 //!
 //! [`Simulation::new`] builds a Box2D world from the part of a level `support.rs` lets through
 //! (anything else is refused with its place in the file, never run wrong), steps it at the
-//! level's dt and substeps, and fills the plain-f64 [`Snapshot`] the analysis reads, as the
+//! level's dt and substeps, and fills the plain-f64 [`Snapshot`](crate::snapshot::Snapshot) the analysis reads, as the
 //! rapier stage does. One rigidlab step of `substeps` substeps is `substeps` Box2D calls of one
 //! substep each, so that every impulse Box2D applies is read whole (docs/box2d-readings.md):
 //! Box2D keeps a contact's and a joint's accumulated impulse of the last substep only.
