@@ -26,10 +26,14 @@ use rigidlab::runner;
 use rigidlab::sim::{Options, Simulation, Substepping};
 use std::collections::HashMap;
 
-/// Every level of the library, the stress scenes too.
+/// Every level of the library, the stress scenes too, but the 10,000-grain sand pile: one run
+/// of it is 50 to 80 s of CPU here, so its twins would add minutes to every suite run. CI's
+/// `check levels` runs it at its own settings, and tests/suite/study/sand_pile.rs holds its
+/// stability criteria and its default-contacts failure (ignored by default for their cost).
 fn library() -> Vec<Scene> {
     common::ron_files("levels", &[])
         .iter()
+        .filter(|f| !f.ends_with("stress/sand_pile.ron"))
         .map(common::load)
         .collect()
 }
