@@ -4,6 +4,6 @@ mod accuracy;
 mod advice;
 mod advice_names_gaps;
 mod advice_reproducible;
-mod shards;
 mod sand_pile;
+mod shards;
 mod stability;
