@@ -19,6 +19,20 @@ pub fn scene_lines(
     m_per_px: f64,
     d: &mut Drawing,
 ) {
+    body_lines(outlines, index, s, m_per_px, d);
+    joint_lines(level, outlines, index, s, m_per_px, d);
+    coupling_lines(level, outlines, index, s, m_per_px, d);
+    spring_lines(s, m_per_px, d);
+}
+
+/// Each body's outline, rotation spokes, ground hatching, pin support and mass center.
+fn body_lines(
+    outlines: &[Outline],
+    index: &SceneIndex,
+    s: &Snapshot,
+    m_per_px: f64,
+    d: &mut Drawing,
+) {
     // Ground hatching goes on the side away from the moving bodies.
     let (sum, n) = s
         .bodies
@@ -76,10 +90,21 @@ pub fn scene_lines(
             d.prims.push(Prim::Circle(b.com, 3.0 * m_per_px, color));
         }
     }
+}
+
+/// Each joint's symbol at its anchor, the light links that reach it and the supports of fixed
+/// point bodies.
+fn joint_lines(
+    level: &Level,
+    outlines: &[Outline],
+    index: &SceneIndex,
+    s: &Snapshot,
+    m_per_px: f64,
+    d: &mut Drawing,
+) {
     // Joints and couplings from the level and the current poses (the snapshot's joint states
     // exist only after a step).
-    for (k, (def, &(i1, i2))) in level.joints.iter().zip(&index.joints).enumerate() {
-        let _ = k;
+    for (def, &(i1, i2)) in level.joints.iter().zip(&index.joints) {
         let (b1, b2) = (&s.bodies[i1], &s.bodies[i2]);
         let anchor1 = b1.world_point(DVec2::new(def.anchor1.0, def.anchor1.1));
         let anchor = b2.world_point(DVec2::new(def.anchor2.0, def.anchor2.1));
@@ -136,6 +161,17 @@ pub fn scene_lines(
             }
         }
     }
+}
+
+/// Couplings: a dashed line between their bodies, or the string a body unwinds from.
+fn coupling_lines(
+    level: &Level,
+    outlines: &[Outline],
+    index: &SceneIndex,
+    s: &Snapshot,
+    m_per_px: f64,
+    d: &mut Drawing,
+) {
     // Couplings (pulleys, cables, gears) have no drawn path: a dashed line joins their bodies;
     // a string unwinding from one body (a yo-yo's) is drawn as the cord it is.
     for (def, bodies) in level.couplings.iter().zip(&index.couplings) {
@@ -159,6 +195,10 @@ pub fn scene_lines(
             );
         }
     }
+}
+
+/// Springs as coils, with a support where one end is fixed in the world.
+fn spring_lines(s: &Snapshot, m_per_px: f64, d: &mut Drawing) {
     for sp in &s.springs {
         if sp.torsion {
             coil(sp.point1, m_per_px, d);
