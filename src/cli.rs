@@ -387,14 +387,10 @@ fn check(
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let mut answers = HashMap::new();
-    for (id, v) in answer_list {
-        if let Some(first) = answers.insert(id.clone(), v.clone()) {
-            return bad(format!(
-                "error: --answer {id} is given twice ({first} and {v})\n  help: give one answer per question"
-            ));
-        }
-    }
+    let answers = match unique_answers(answer_list) {
+        Ok(a) => a,
+        Err(e) => return bad(e),
+    };
     let (files, bad_manifests) = match level::collect_levels(paths) {
         Ok(f) => f,
         Err(e) => return bad(e),
@@ -492,24 +488,7 @@ fn check(
             }
         }
     }
-    // A student's answer to a question that is not there would otherwise be silently ignored.
-    let asked: Vec<&str> = levels
-        .iter()
-        .flat_map(|l| l.questions.iter().map(|q| q.id.as_str()))
-        .chain(asked_elsewhere.iter().map(String::as_str))
-        .collect();
-    let mut unknown: Vec<&str> = answers
-        .keys()
-        .map(String::as_str)
-        .filter(|id| !asked.contains(id))
-        .collect();
-    if !unknown.is_empty() {
-        unknown.sort_unstable();
-        stderr!(
-            "error: --answer names no question in the levels run: {}\n  help: the questions are: {}",
-            unknown.join(", "),
-            if asked.is_empty() { "(none)".to_string() } else { asked.join(", ") }
-        );
+    if names_unknown_questions(&answers, &levels, &asked_elsewhere) {
         bad_input = true;
     }
     let report = Report {
@@ -529,6 +508,48 @@ fn check(
         report::table(&report)
     };
     report::print(&text, code)
+}
+
+/// The `--answer ID=VALUE` pairs by question id; an id given twice is an error.
+fn unique_answers(answer_list: Vec<(String, String)>) -> Result<HashMap<String, String>, String> {
+    let mut answers = HashMap::new();
+    for (id, v) in answer_list {
+        if let Some(first) = answers.insert(id.clone(), v.clone()) {
+            return Err(format!(
+                "error: --answer {id} is given twice ({first} and {v})\n  help: give one answer per question"
+            ));
+        }
+    }
+    Ok(answers)
+}
+
+/// Whether an `--answer` names no question of the levels run (reported on stderr):
+/// a student's answer to a question that is not there would otherwise be silently ignored.
+fn names_unknown_questions(
+    answers: &HashMap<String, String>,
+    levels: &[LevelReport],
+    asked_elsewhere: &[String],
+) -> bool {
+    let asked: Vec<&str> = levels
+        .iter()
+        .flat_map(|l| l.questions.iter().map(|q| q.id.as_str()))
+        .chain(asked_elsewhere.iter().map(String::as_str))
+        .collect();
+    let mut unknown: Vec<&str> = answers
+        .keys()
+        .map(String::as_str)
+        .filter(|id| !asked.contains(id))
+        .collect();
+    if !unknown.is_empty() {
+        unknown.sort_unstable();
+        stderr!(
+            "error: --answer names no question in the levels run: {}\n  help: the questions are: {}",
+            unknown.join(", "),
+            if asked.is_empty() { "(none)".to_string() } else { asked.join(", ") }
+        );
+        return true;
+    }
+    false
 }
 
 /// A level's report with its first hint, when a student's answer to it was wrong, and its
