@@ -267,12 +267,7 @@ pub fn next_level(
                 .on_hover_text(format!("{}\n\n{}", e.path.display(), e.statement))
                 .on_disabled_hover_text("answer every question right first");
             if b.clicked() {
-                match e.load() {
-                    Ok(s) => *load = Some(s),
-                    Err(err) => {
-                        ui.label(rich(err.to_string(), palette::NORMAL));
-                    }
-                }
+                open_next(ui, e.load(), load);
             }
         }
         None if done => {
@@ -332,12 +327,7 @@ fn assignment_next(
                 ))
                 .on_disabled_hover_text("answer every question right first");
             if b.clicked() {
-                match e.load() {
-                    Ok(s) => *load = Some(s),
-                    Err(err) => {
-                        ui.label(rich(err.to_string(), palette::NORMAL));
-                    }
-                }
+                open_next(ui, e.load(), load);
             }
         }
         None if done => {
@@ -651,4 +641,18 @@ fn hover_text(e: &Entry, rec: Option<&Record>, kind: TopicKind) -> String {
         }
     }
     t
+}
+
+/// *Next level* clicked: the level opens, or the reason it does not shows under the button.
+fn open_next<E: std::fmt::Display>(
+    ui: &mut egui::Ui,
+    loaded: Result<Scene, E>,
+    load: &mut Option<Scene>,
+) {
+    match loaded {
+        Ok(s) => *load = Some(s),
+        Err(err) => {
+            ui.label(rich(err.to_string(), palette::NORMAL));
+        }
+    }
 }
