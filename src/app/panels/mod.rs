@@ -234,6 +234,8 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
                 p.predict.switch = Some(true);
             }
         }
+        // The tour's steps ticked in an earlier session (the page has no preferences file).
+        tour::restore(&mut st.tour, &p.files.course);
         if let Some(problem) = p
             .files
             .prefs_file
@@ -488,6 +490,9 @@ fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
         &p.files.editor,
     );
     st.tour = t;
+    if let Some(note) = tour::keep(&st.tour, finished, &mut p.files.course) {
+        st.message = Some((note, false));
+    }
     if let Some(prefs) = p.files.prefs.as_deref_mut() {
         let now = Prefs {
             tour_done: prefs.tour_done || finished,

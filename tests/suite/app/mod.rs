@@ -28,6 +28,7 @@ mod plugins;
 mod predict_first;
 mod student_id_kept;
 mod student_window;
+mod tour_kept;
 mod typed_after_click;
 mod unsaved_work;
 mod web_page;
