@@ -65,7 +65,10 @@ fn a_question_that_can_be_answered_negative_states_its_sign() {
         }
     }
     // The library had 47 such questions on 2026-12-07: the rule has something to hold.
-    assert!(signed >= 40, "only {signed} questions with a negative answer");
+    assert!(
+        signed >= 40,
+        "only {signed} questions with a negative answer"
+    );
     assert!(
         missing.is_empty(),
         "{} of {signed} questions with a negative answer do not say which way is positive \
