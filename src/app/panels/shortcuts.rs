@@ -4,8 +4,8 @@
 //! Chords (Ctrl+Z, Ctrl+Y, Ctrl+Shift+Z, Shift+/) are read from the keyboard's messages in the
 //! order they came, with the modifiers held at each key ([`Held`]): a chord pressed and released
 //! within one frame (a fast typist, a test driving xdotool) has no modifier down in the frame's
-//! key state and did nothing. The keys egui gets go the same way ([`keys_to_egui`]), and the keys
-//! typed after a mouse press wait a frame for egui to focus the box clicked ([`route_keys`]).
+//! key state and did nothing. The keys egui gets go the same way ([`egui_events`], sent by
+//! `egui_input.rs` in one order with the pointer's presses).
 
 use super::super::editor::EditorCommand;
 use super::super::overlays::Overlays;
@@ -18,11 +18,9 @@ use super::super::user_files;
 use super::super::view::View;
 use super::state::UiState;
 use bevy::input::keyboard::{Key, KeyboardInput};
-use bevy::input::touch::TouchPhase;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy::window::{RequestRedraw, WindowEvent};
-use bevy_egui::{egui, input::EguiInputEvent, PrimaryEguiContext};
+use bevy_egui::egui;
 
 /// The modifiers held, as the keyboard's messages say, one message at a time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -121,96 +119,6 @@ pub fn egui_events(held: &mut Held, e: &KeyboardInput) -> Vec<egui::Event> {
         });
     }
     out
-}
-
-/// A keyboard message for egui, or the window's loss of the keyboard, in the order they came.
-#[derive(Debug, Clone, PartialEq)]
-pub enum KeyMessage {
-    Key(KeyboardInput),
-    FocusLost,
-}
-
-/// The modifiers as egui's keys have seen them, and the keys waiting for the next frame
-/// ([`route_keys`]).
-#[derive(Resource, Debug, Default)]
-pub struct EguiKeys {
-    pub held: Held,
-    pub waiting: Vec<KeyMessage>,
-}
-
-/// One frame's window messages (`frame`, in the order they came) sorted for egui: what goes to
-/// egui now (the keys that `waiting` kept from the last frame, then this frame's keys up to its
-/// first mouse press or touch) and what waits for the next frame (the keys after that press).
-///
-/// egui's text box takes a frame's keys while it is drawn, if it has the focus then, and asks
-/// for the focus only afterwards, when it sees the press on it (egui 0.36, `TextEdit::show`). In
-/// the page at 3-10 fps the click into a box and the first keys typed came in one frame: those
-/// keys went nowhere ("7.104" became ".104", graded wrong), or to the box focused before the
-/// click. A frame later the box clicked has the focus, whatever the frame rate. The keys typed
-/// before the press go in its frame, to the box that had the focus then (the last digit of an
-/// answer typed just before clicking *Check* or the next question's box) where that box is
-/// drawn before the one clicked: egui moves the focus as it draws the box clicked, so a key
-/// typed in a lower box in the very frame of a click into a higher one is still lost (the
-/// pointer's events are bevy_egui's, and cannot wait a frame here).
-pub fn route_keys<'a>(
-    waiting: Vec<KeyMessage>,
-    frame: impl IntoIterator<Item = &'a WindowEvent>,
-) -> (Vec<KeyMessage>, Vec<KeyMessage>) {
-    let (mut now, mut next) = (waiting, Vec::new());
-    let mut pressed = false;
-    for e in frame {
-        let m = match e {
-            WindowEvent::MouseButtonInput(b) if b.state.is_pressed() => {
-                pressed = true;
-                continue;
-            }
-            WindowEvent::TouchInput(t) if t.phase == TouchPhase::Started => {
-                pressed = true;
-                continue;
-            }
-            WindowEvent::KeyboardInput(k) => KeyMessage::Key(k.clone()),
-            WindowEvent::KeyboardFocusLost(_) => KeyMessage::FocusLost,
-            _ => continue,
-        };
-        if pressed {
-            next.push(m);
-        } else {
-            now.push(m);
-        }
-    }
-    (now, next)
-}
-
-/// The keyboard's messages to the window's egui context, in order (in place of bevy_egui's, which
-/// read every key of a frame with the modifiers as they were at the frame's end), read from the
-/// window's ordered messages so that the keys after a mouse press wait a frame ([`route_keys`]);
-/// a frame with keys waiting asks for the next one at once (a paused page waits for input).
-pub fn keys_to_egui(
-    mut window: MessageReader<WindowEvent>,
-    mut keys: ResMut<EguiKeys>,
-    context: Query<Entity, With<PrimaryEguiContext>>,
-    mut out: MessageWriter<EguiInputEvent>,
-    mut redraw: MessageWriter<RequestRedraw>,
-) {
-    let waiting = std::mem::take(&mut keys.waiting);
-    let (now, next) = route_keys(waiting, window.read());
-    let Ok(context) = context.single() else {
-        return;
-    };
-    for m in now {
-        match m {
-            KeyMessage::FocusLost => keys.held = Held::default(),
-            KeyMessage::Key(e) => {
-                for event in egui_events(&mut keys.held, &e) {
-                    out.write(EguiInputEvent { context, event });
-                }
-            }
-        }
-    }
-    if !next.is_empty() {
-        redraw.write(RequestRedraw);
-    }
-    keys.waiting = next;
 }
 
 /// What the status line says while keys are not taken as shortcuts: the keyboard is the
