@@ -32,6 +32,7 @@ mod tour_kept;
 mod typed_after_click;
 mod unsaved_work;
 mod web_page;
+mod web_typing;
 mod window;
 mod window_advice;
 mod window_diagram;
