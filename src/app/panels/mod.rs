@@ -239,7 +239,7 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
             }
         }
         // The tour's steps ticked in an earlier session (the page has no preferences file).
-        tour::restore(&mut st.tour, &p.files.course);
+        tour::restore(&mut st.tour, &p.files.course.progress);
         if let Some(problem) = p
             .files
             .prefs_file
@@ -494,7 +494,12 @@ fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
         &p.files.editor,
     );
     st.tour = t;
-    if let Some(note) = tour::keep(&st.tour, finished, &mut p.files.course) {
+    let course = &mut *p.files.course;
+    if let Some(note) = tour::keep(
+        &st.tour,
+        finished,
+        (&mut course.progress, &mut course.store),
+    ) {
         st.message = Some((note, false));
     }
     if let Some(prefs) = p.files.prefs.as_deref_mut() {

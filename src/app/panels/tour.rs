@@ -6,11 +6,11 @@
 
 use super::super::editor::Editor;
 use super::super::overlays::Overlays;
-use super::super::progress::TourRecord;
+use super::super::progress::{Progress, TourRecord};
+use super::super::progress_file::Store;
 use super::super::run::Run;
 use super::super::ui::rich;
 use super::super::view::palette;
-use super::course::Course;
 use bevy_egui::egui;
 
 /// What the tour has seen that leaves no trace in the window's state.
@@ -70,24 +70,28 @@ pub const STEP_IDS: [&str; 7] = [
 
 /// The tour as the course's progress kept it (at the window's first frame): its steps ticked
 /// again, and closed where it was finished or hidden for good.
-pub fn restore(tour: &mut Tour, course: &Course) {
-    tour.restore(&course.progress.tour.ticked);
-    if course.progress.tour.done {
+pub fn restore(tour: &mut Tour, progress: &Progress) {
+    tour.restore(&progress.tour.ticked);
+    if progress.tour.done {
         tour.open = false;
     }
 }
 
 /// Keeps in the course's progress, and its store, a step newly ticked or the tour `finished`
 /// (nothing is written while nothing changed). A problem keeping it, for the status line.
-pub fn keep(tour: &Tour, finished: bool, course: &mut Course) -> Option<String> {
+pub fn keep(
+    tour: &Tour,
+    finished: bool,
+    (progress, store): (&mut Progress, &mut Store),
+) -> Option<String> {
     let now = TourRecord {
         ticked: tour.ticked_ids(),
         done: finished,
     };
-    if !course.progress.tour.merge(&now) {
+    if !progress.tour.merge(&now) {
         return None;
     }
-    match course.store.save(&mut course.progress) {
+    match store.save(progress) {
         Ok(None) => None,
         Ok(Some(note)) | Err(note) => Some(note),
     }

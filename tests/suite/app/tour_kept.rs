@@ -28,7 +28,10 @@ fn ticked_steps_come_back_in_a_new_session() {
     let mut course = Course::open(Some(Box::new(m.clone())));
     let t = ticked(&["play", "answer"]);
     assert_eq!(t.ticked_ids(), ["play", "answer"]);
-    assert_eq!(tour::keep(&t, false, &mut course), None);
+    assert_eq!(
+        tour::keep(&t, false, (&mut course.progress, &mut course.store)),
+        None
+    );
     let text = stored(&m).expect("the tour's progress was stored");
     assert!(
         text.contains("\"play\"") && text.contains("\"answer\""),
@@ -38,7 +41,10 @@ fn ticked_steps_come_back_in_a_new_session() {
     m.0.lock()
         .unwrap()
         .insert(STORAGE_KEY.into(), text.clone() + "// untouched\n");
-    assert_eq!(tour::keep(&t, false, &mut course), None);
+    assert_eq!(
+        tour::keep(&t, false, (&mut course.progress, &mut course.store)),
+        None
+    );
     assert!(stored(&m).unwrap().ends_with("// untouched\n"));
 
     // A new session (a reload): the same two steps ticked, the tour still open.
@@ -48,7 +54,7 @@ fn ticked_steps_come_back_in_a_new_session() {
         open: true,
         ..Tour::default()
     };
-    tour::restore(&mut fresh, &again);
+    tour::restore(&mut fresh, &again.progress);
     assert_eq!(fresh.ticked_ids(), ["play", "answer"]);
     assert!(fresh.open);
     // The count the tour's title shows: ticks stay when the live state says not done.
@@ -57,12 +63,12 @@ fn ticked_steps_come_back_in_a_new_session() {
 
     // Finished ("done" or "hide for good"): closed in the next session.
     let mut course = again;
-    tour::keep(&fresh, true, &mut course);
+    tour::keep(&fresh, true, (&mut course.progress, &mut course.store));
     let mut next = Tour {
         open: true,
         ..Tour::default()
     };
-    tour::restore(&mut next, &Course::open(Some(Box::new(m.clone()))));
+    tour::restore(&mut next, &Course::open(Some(Box::new(m.clone()))).progress);
     assert!(!next.open, "the finished tour opened again");
 }
 
@@ -83,7 +89,11 @@ fn natively_it_is_kept_in_progress_ron_and_old_files_still_read() {
     assert_eq!(course.progress.records.len(), 1);
     assert!(course.progress.tour.is_empty());
     assert_eq!(
-        tour::keep(&ticked(&["select", "help"]), false, &mut course),
+        tour::keep(
+            &ticked(&["select", "help"]),
+            false,
+            (&mut course.progress, &mut course.store)
+        ),
         None
     );
     let text = std::fs::read_to_string(&file).unwrap();
@@ -96,7 +106,10 @@ fn natively_it_is_kept_in_progress_ron_and_old_files_still_read() {
         "the level's record was lost: {text}"
     );
     let mut t = Tour::default();
-    tour::restore(&mut t, &Course::open(Some(Box::new(FileBackend(file)))));
+    tour::restore(
+        &mut t,
+        &Course::open(Some(Box::new(FileBackend(file)))).progress,
+    );
     assert_eq!(t.ticked_ids(), ["select", "help"]);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -116,10 +129,14 @@ fn a_corrupt_store_is_reported_kept_aside_and_the_tour_starts_afresh() {
         .expect("the corrupt value reported");
     assert!(problem.contains("rigidlab.progress.bad"), "{problem}");
     let mut t = Tour::default();
-    tour::restore(&mut t, &course);
+    tour::restore(&mut t, &course.progress);
     assert!(t.ticked_ids().is_empty());
     // The next tick is saved afresh; the value kept aside is not touched.
-    tour::keep(&ticked(&["play"]), false, &mut course);
+    tour::keep(
+        &ticked(&["play"]),
+        false,
+        (&mut course.progress, &mut course.store),
+    );
     let all = m.0.lock().unwrap().clone();
     assert_eq!(all["rigidlab.progress.bad"], corrupt);
     assert!(all[STORAGE_KEY].contains("\"play\""));
