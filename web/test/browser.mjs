@@ -8,7 +8,8 @@
 //   answered.png / answered.json   after typing an answer into the first question's box;
 //   progress.json   the course's progress in localStorage: saved after that answer, shown again
 //                   after a reload; a corrupt value reported, kept aside, never overwritten;
-//                   the first-steps tour's steps ticked, before and after the reload;
+//                   the first-steps tour's steps ticked, before and after the reload
+//                   (reloaded.png: the page after the reload, its tour's count);
 //   typed.json / typed.png   answers typed with no pause right after a click into each box;
 //   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
@@ -184,6 +185,7 @@ try {
   const reloaded = await waitStatus("the course after a reload", (s) => s.frames >= 2 && s.course, 60);
   progress.after_reload = reloaded.course;
   progress.tour_after_reload = reloaded.course.tour ?? null;
+  await page.screenshot({ path: join(out, "reloaded.png") });
   const CORRUPT = "Progress(levels: [ this is not progress";
   await page.evaluate(([k, v]) => localStorage.setItem(k, v), [KEY, CORRUPT]);
   await page.reload();
