@@ -187,10 +187,41 @@ pub struct Graded {
     pub right: bool,
 }
 
-/// Every level's record.
+/// Every level's record, and the first-steps tour's.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Progress {
     pub records: Vec<Record>,
+    pub tour: TourRecord,
+}
+
+/// How far the student got in the first-steps tour (`panels/tour.rs`): the steps ticked, by
+/// their ids (`tour::STEP_IDS`), and whether it was finished or hidden for good. Kept with the
+/// course's progress, so that a reload of the page or a new window does not start it again.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TourRecord {
+    pub ticked: Vec<String>,
+    pub done: bool,
+}
+
+impl TourRecord {
+    /// Nothing done yet (left out of the stored text).
+    pub fn is_empty(&self) -> bool {
+        self.ticked.is_empty() && !self.done
+    }
+
+    /// Takes in `other`'s (another window's): a step ticked in either stays ticked. True when
+    /// that added anything.
+    pub fn merge(&mut self, other: &TourRecord) -> bool {
+        let before = (self.ticked.len(), self.done);
+        for id in &other.ticked {
+            if !self.ticked.contains(id) {
+                self.ticked.push(id.clone());
+            }
+        }
+        self.done |= other.done;
+        before != (self.ticked.len(), self.done)
+    }
 }
 
 impl Progress {
@@ -260,6 +291,7 @@ impl Progress {
     /// level keeps the better of the two (status, attempts, each question's best answer), and a
     /// level only they know is added.
     pub fn merge(&mut self, other: &Progress) {
+        self.tour.merge(&other.tour);
         for o in &other.records {
             match self
                 .records

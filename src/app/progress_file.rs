@@ -1,4 +1,4 @@
-//! The course's progress kept between runs: natively `progress.ron` beside `prefs.ron` (the folder
+//! The course's progress (and the first-steps tour's) kept between runs: natively `progress.ron` beside `prefs.ron` (the folder
 //! `prefs::path` names, so `RIGIDLAB_PREFS` moves both), in the page the browser's localStorage
 //! (key `rigidlab.progress`). Both hold the same RON text ([`to_text`], [`parse`]).
 //!
@@ -18,12 +18,14 @@
 //!
 //! No Bevy: the window holds a [`Store`] in its course state (`panels/course.rs`).
 
-use super::progress::{Progress, Record};
+use super::progress::{Progress, Record, TourRecord};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// The format this rigidlab writes and reads (a file with a higher one is a newer rigidlab's).
-pub const VERSION: u32 = 1;
+/// 2 (2026-12-07) adds the first-steps tour (`tour:`), which a rigidlab reading 1 would refuse
+/// as an unknown field and move aside; a file of version 1 reads as it did.
+pub const VERSION: u32 = 2;
 
 /// The largest progress file read, bytes (a whole library solved is about 40 KiB).
 pub const MAX_PROGRESS_BYTES: u64 = 4 << 20;
@@ -36,6 +38,9 @@ const HEADER: &str = "// rigidlab: the course's progress (docs/student.md#the-co
 struct ProgressText {
     version: u32,
     levels: Vec<Record>,
+    /// The first-steps tour (format 2), left out while nothing of it is done.
+    #[serde(default, skip_serializing_if = "TourRecord::is_empty")]
+    tour: TourRecord,
 }
 
 /// Only the version, read before the rest so a newer format is told apart from a broken file.
@@ -58,6 +63,7 @@ pub fn to_text(p: &Progress) -> String {
     let text = ProgressText {
         version: VERSION,
         levels: p.records.clone(),
+        tour: p.tour.clone(),
     };
     // A level a line or so: its questions' answers on its `questions:` line.
     let pretty = ron::ser::PrettyConfig::default().depth_limit(3);
@@ -105,7 +111,10 @@ pub fn parse(name: &str, text: &str) -> Result<Parsed, String> {
             ));
         }
     }
-    Ok(Parsed::Progress(Progress { records: t.levels }))
+    Ok(Parsed::Progress(Progress {
+        records: t.levels,
+        tour: t.tour,
+    }))
 }
 
 /// Why stored progress was not read.
@@ -334,8 +343,9 @@ impl Store {
 }
 
 /// The course's progress as the page's status publishes it: each level tried (its path, status
-/// and attempts, as the course lists them) and what was wrong with what was stored (the
-/// browser test reloads the page, and corrupts the store, and reads them).
+/// and attempts, as the course lists them), the first-steps tour's steps ticked, and what was
+/// wrong with what was stored (the browser test reloads the page, and corrupts the store, and
+/// reads them).
 pub fn status_json(progress: &Progress, store: &Store) -> serde_json::Value {
     let levels: Vec<serde_json::Value> = progress
         .records
@@ -348,7 +358,11 @@ pub fn status_json(progress: &Progress, store: &Store) -> serde_json::Value {
             })
         })
         .collect();
-    serde_json::json!({ "levels": levels, "problem": store.problem })
+    serde_json::json!({
+        "levels": levels,
+        "problem": store.problem,
+        "tour": { "ticked": progress.tour.ticked, "done": progress.tour.done },
+    })
 }
 
 /// An in-memory store, for tests of what the page's storage does: its keys and texts.
@@ -550,7 +564,7 @@ mod tests {
     #[test]
     fn newer_progress_is_never_written_over() {
         let m = MemoryBackend::default();
-        let newer = "(version: 2, levels: [])";
+        let newer = "(version: 3, levels: [])";
         m.write(newer).unwrap();
         let (mut p, mut store) = Store::open(Some(Box::new(m.clone())));
         assert!(store.problem.as_deref().unwrap().contains("newer"));

@@ -8,6 +8,9 @@
 //   answered.png / answered.json   after typing an answer into the first question's box;
 //   progress.json   the course's progress in localStorage: saved after that answer, shown again
 //                   after a reload; a corrupt value reported, kept aside, never overwritten;
+//                   the first-steps tour's steps ticked, before and after the reload
+//                   (reloaded.png: the page after the reload, its tour's count);
+//   typed.json / typed.png   answers typed with no pause right after a click into each box;
 //   built.png       a pendulum built in the page with the editor's buttons and tools, swinging;
 //   pyramid.png     the 210-box pyramid playing with every overlay on;
 //   unknown.png / unknown.json   the page opened with a ?level= the library does not have;
@@ -140,7 +143,7 @@ try {
 
   // 3. The student types an answer into the first question's box and presses Enter.
   // The questions sit under the statement in the left panel: scroll it until the box shows.
-  const typeAnswer = async (k, text) => {
+  const answerBox = async (k) => {
     let q = (await status()).answers[k];
     for (let i = 0; i < 20 && q && q.box && q.box[1] + q.box[3] > 780; i++) {
       await page.mouse.move(150, 600);
@@ -150,8 +153,12 @@ try {
       q = (await status()).answers[k];
     }
     if (!q || !q.box) fail(`no answer box ${k} in the status: ${JSON.stringify((await status()).answers)}`);
-    const [x, y, w, h] = q.box;
+    const [, y, , h] = q.box;
     if (y + h > 800) fail(`the answer box stays below the page (${q.box}) after scrolling`);
+    return q.box;
+  };
+  const typeAnswer = async (k, text) => {
+    const [x, y, w, h] = await answerBox(k);
     await page.mouse.click(x + w / 2, y + h / 2);
     // Keys typed before egui has seen the click would go nowhere: let it focus the box first.
     const f0 = (await status()).frames;
@@ -171,15 +178,19 @@ try {
   //     overwritten when the next answer saves progress afresh (progress.json).
   const KEY = "rigidlab.progress";
   const stored = () => page.evaluate(() => Object.fromEntries(Object.keys(localStorage).map((k) => [k, localStorage.getItem(k)])));
-  const progress = { saved: (await stored())[KEY] ?? null };
+  //     The first-steps tour's steps ticked are kept with it (its count reset on every reload
+  //     before 2026-12-07): recorded before the reload, after it, and after the corrupt value.
+  const progress = { saved: (await stored())[KEY] ?? null, tour_saved: (await status()).course.tour ?? null };
   await page.reload();
   const reloaded = await waitStatus("the course after a reload", (s) => s.frames >= 2 && s.course, 60);
   progress.after_reload = reloaded.course;
+  progress.tour_after_reload = reloaded.course.tour ?? null;
+  await page.screenshot({ path: join(out, "reloaded.png") });
   const CORRUPT = "Progress(levels: [ this is not progress";
   await page.evaluate(([k, v]) => localStorage.setItem(k, v), [KEY, CORRUPT]);
   await page.reload();
   const refusedProgress = await waitStatus("the corrupt progress reported", (s) => s.frames >= 2 && s.course && s.course.problem, 60);
-  progress.corrupt = { course: refusedProgress.course, message: refusedProgress.message, stored: await stored() };
+  progress.corrupt = { course: refusedProgress.course, message: refusedProgress.message, stored: await stored(), tour: refusedProgress.course.tour ?? null };
   await typeAnswer(0, ANSWER);
   await waitStatus("the grade after the corrupt progress", (s) => s.answers[0].grade, 30);
   progress.corrupt.after_answer = await stored();
@@ -187,6 +198,42 @@ try {
   writeFileSync(join(out, "progress.json"), JSON.stringify(progress, null, 1));
   // The later steps start with no progress stored, as before this step.
   await page.evaluate(() => localStorage.clear());
+
+  // 3c. Typed at once after the click, as a student types (typed.json): a click into a box and
+  //     the answer typed with no pause, at the page's own low frame rate, into the first box and
+  //     then (the first still focused) into the second, three times on a fresh page. Before
+  //     2026-12-07 the keys that came in the click's frame were lost ("7.104" became ".104") or
+  //     went to the box focused before. No wait between the click and the keys, on purpose.
+  const typedAtOnce = [];
+  for (const [a, b] of [["7.104", "19.62"], ["3.13", "0.525"], ["42", "8.25"]]) {
+    await page.goto(`${base}?level=kinetics/simple_pendulum.ron`);
+    await waitStatus("the pendulum's first frames", (s) => s.frames >= 2, 60);
+    const boxes = [await answerBox(0), await answerBox(1)];
+    const before = { frames: (await status()).frames, at: Date.now() };
+    for (const [k, text] of [[0, a], [1, b]]) {
+      const [x, y, w, h] = boxes[k];
+      await page.mouse.click(x + w / 2, y + h / 2);
+      await page.keyboard.type(text);
+    }
+    // How many frames the page drew while the two clicks and the keys came: fewer than the
+    // clicks and keys, so that some of them shared a frame (the condition of the lost keys).
+    const during = { frames: (await status()).frames - before.frames, ms: Date.now() - before.at, inputs: 2 + a.length + b.length };
+    // A paused page draws on input: small moves over the statement bring frames until the boxes
+    // hold the answers, or 15 s (a click and the keys after it take a frame each).
+    const f = (await status()).frames;
+    let s = await status();
+    for (let i = 0; i < 75 && !(s.answers[0].typed === a && s.answers[1].typed === b); i++) {
+      await page.mouse.move(150 + (i % 2), 100);
+      await sleep(200);
+      s = await status();
+    }
+    typedAtOnce.push({ want: [a, b], typed: [s.answers[0].typed, s.answers[1].typed], during, frames_after: s.frames - f });
+  }
+  writeFileSync(join(out, "typed.json"), JSON.stringify(typedAtOnce, null, 1));
+  await page.screenshot({ path: join(out, "typed.png") });
+  summary.typed_at_once = typedAtOnce;
+  const lost = typedAtOnce.filter((r) => r.typed[0] !== r.want[0] || r.typed[1] !== r.want[1]);
+  if (lost.length) fail(`keys typed at once after a click did not all reach the box: ${JSON.stringify(lost)}`);
 
   // 4. The student opens level files from their computer: a good one opens, a broken one says
   //    where it is broken and leaves the open level alone.

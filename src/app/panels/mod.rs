@@ -11,6 +11,7 @@ pub mod assignment_list;
 pub mod challenge;
 pub mod checks;
 pub mod course;
+pub mod egui_input;
 mod exercise;
 pub mod help;
 pub mod hints;
@@ -80,12 +81,12 @@ impl Plugin for PanelsPlugin {
         app.init_resource::<UiState>()
             .init_resource::<Exercise>()
             .init_resource::<Course>()
-            .init_resource::<shortcuts::EguiKeys>()
+            .init_resource::<egui_input::EguiInputQueue>()
             .init_resource::<Typing>()
             .init_resource::<Predict>()
             .add_systems(
                 PreUpdate,
-                shortcuts::keys_to_egui.in_set(bevy_egui::EguiInputSet::ReadBevyMessages),
+                egui_input::input_to_egui.in_set(bevy_egui::EguiInputSet::ReadBevyMessages),
             )
             .add_systems(
                 Update,
@@ -114,11 +115,14 @@ pub fn spawn_cameras(
     adapter: Option<Res<bevy::render::renderer::RenderAdapterInfo>>,
 ) {
     settings.auto_create_primary_context = false;
-    // Keys reach egui through shortcuts::keys_to_egui, which reads the modifiers in the order
-    // the keys came (bevy_egui's own system typed "a" for a Ctrl+A pressed within one frame).
-    settings
-        .input_system_settings
-        .run_write_keyboard_input_messages_system = false;
+    // Keys, the cursor and the mouse buttons reach egui through egui_input::input_to_egui, in
+    // the order they came and with a click a frame before the keys typed after it (bevy_egui's
+    // own systems typed "a" for a Ctrl+A pressed within one frame, and lost the keys typed in
+    // the frame of the click into a box).
+    let input = &mut settings.input_system_settings;
+    input.run_write_keyboard_input_messages_system = false;
+    input.run_write_window_pointer_moved_messages = false;
+    input.run_write_pointer_button_messages = false;
     let msaa = super::frame_cost::scene_samples(adapter.as_deref());
     commands.spawn((Camera2d, WorldCamera, msaa));
     commands.spawn((
@@ -234,6 +238,8 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
                 p.predict.switch = Some(true);
             }
         }
+        // The tour's steps ticked in an earlier session (the page has no preferences file).
+        tour::restore(&mut st.tour, &p.files.course.progress);
         if let Some(problem) = p
             .files
             .prefs_file
@@ -488,6 +494,14 @@ fn help_and_tour(ctx: &egui::Context, p: &mut PanelInput, scene: egui::Rect) {
         &p.files.editor,
     );
     st.tour = t;
+    let course = &mut *p.files.course;
+    if let Some(note) = tour::keep(
+        &st.tour,
+        finished,
+        (&mut course.progress, &mut course.store),
+    ) {
+        st.message = Some((note, false));
+    }
     if let Some(prefs) = p.files.prefs.as_deref_mut() {
         let now = Prefs {
             tour_done: prefs.tour_done || finished,

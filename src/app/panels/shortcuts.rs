@@ -4,7 +4,8 @@
 //! Chords (Ctrl+Z, Ctrl+Y, Ctrl+Shift+Z, Shift+/) are read from the keyboard's messages in the
 //! order they came, with the modifiers held at each key ([`Held`]): a chord pressed and released
 //! within one frame (a fast typist, a test driving xdotool) has no modifier down in the frame's
-//! key state and did nothing. The keys egui gets go the same way ([`keys_to_egui`]).
+//! key state and did nothing. The keys egui gets go the same way ([`egui_events`], sent by
+//! `egui_input.rs` in one order with the pointer's presses).
 
 use super::super::editor::EditorCommand;
 use super::super::overlays::Overlays;
@@ -16,10 +17,10 @@ use super::super::ui::Typing;
 use super::super::user_files;
 use super::super::view::View;
 use super::state::UiState;
-use bevy::input::keyboard::{Key, KeyboardFocusLost, KeyboardInput};
+use bevy::input::keyboard::{Key, KeyboardInput};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy_egui::{egui, input::EguiInputEvent, PrimaryEguiContext};
+use bevy_egui::egui;
 
 /// The modifiers held, as the keyboard's messages say, one message at a time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -118,33 +119,6 @@ pub fn egui_events(held: &mut Held, e: &KeyboardInput) -> Vec<egui::Event> {
         });
     }
     out
-}
-
-/// The modifiers as egui's keys have seen them.
-#[derive(Resource, Debug, Default)]
-pub struct EguiKeys(pub Held);
-
-/// The keyboard's messages to the window's egui context, in order (in place of bevy_egui's, which
-/// read every key of a frame with the modifiers as they were at the frame's end).
-pub fn keys_to_egui(
-    mut keys: MessageReader<KeyboardInput>,
-    mut lost: MessageReader<KeyboardFocusLost>,
-    mut held: ResMut<EguiKeys>,
-    context: Query<Entity, With<PrimaryEguiContext>>,
-    mut out: MessageWriter<EguiInputEvent>,
-) {
-    if lost.read().count() > 0 {
-        held.0 = Held::default();
-    }
-    let Ok(context) = context.single() else {
-        keys.clear();
-        return;
-    };
-    for e in keys.read() {
-        for event in egui_events(&mut held.0, e) {
-            out.write(EguiInputEvent { context, event });
-        }
-    }
 }
 
 /// What the status line says while keys are not taken as shortcuts: the keyboard is the

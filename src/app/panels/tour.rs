@@ -1,9 +1,13 @@
 //! The first-steps tour: a small window listing what to try first in the sandbox, each step
 //! ticked when the user has done it (read from the window's own state, not from clicks on the
-//! tour), until they finish or dismiss it; [`super::super::prefs::Prefs`] remembers that.
+//! tour), until they finish or dismiss it; [`super::super::prefs::Prefs`] remembers that, and
+//! the course's progress keeps the steps ticked and the finish ([`keep`], [`restore`]: natively
+//! in `progress.ron`, in the page in localStorage), so a reload does not start the count again.
 
 use super::super::editor::Editor;
 use super::super::overlays::Overlays;
+use super::super::progress::{Progress, TourRecord};
+use super::super::progress_file::Store;
 use super::super::run::Run;
 use super::super::ui::rich;
 use super::super::view::palette;
@@ -31,6 +35,65 @@ impl Tour {
                 (what, *was)
             })
             .collect()
+    }
+
+    /// The ids of the steps ticked ([`STEP_IDS`]).
+    pub fn ticked_ids(&self) -> Vec<String> {
+        STEP_IDS
+            .iter()
+            .zip(&self.ticked)
+            .filter(|(_, t)| **t)
+            .map(|(id, _)| id.to_string())
+            .collect()
+    }
+
+    /// Ticks the steps `ids` names (kept from an earlier session); an id this rigidlab does not
+    /// know (a later one's step) ticks nothing.
+    pub fn restore(&mut self, ids: &[String]) {
+        self.ticked.resize(STEP_IDS.len(), false);
+        for (step, t) in STEP_IDS.iter().zip(self.ticked.iter_mut()) {
+            *t |= ids.iter().any(|id| id == step);
+        }
+    }
+}
+
+/// Each step's id, in the order of [`steps`]: what the course's progress keeps of the tour.
+pub const STEP_IDS: [&str; 7] = [
+    "play",
+    "select",
+    "diagrams",
+    "step_back",
+    "answer",
+    "build",
+    "help",
+];
+
+/// The tour as the course's progress kept it (at the window's first frame): its steps ticked
+/// again, and closed where it was finished or hidden for good.
+pub fn restore(tour: &mut Tour, progress: &Progress) {
+    tour.restore(&progress.tour.ticked);
+    if progress.tour.done {
+        tour.open = false;
+    }
+}
+
+/// Keeps in the course's progress, and its store, a step newly ticked or the tour `finished`
+/// (nothing is written while nothing changed). A problem keeping it, for the status line.
+pub fn keep(
+    tour: &Tour,
+    finished: bool,
+    (progress, store): (&mut Progress, &mut Store),
+) -> Option<String> {
+    let now = TourRecord {
+        ticked: tour.ticked_ids(),
+        done: finished,
+    };
+    if !progress.tour.merge(&now) {
+        return None;
+    }
+    match store.save(progress) {
+        Ok(None) => None,
+        Ok(Some(note)) | Err(note) => Some(note),
     }
 }
 

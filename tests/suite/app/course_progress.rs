@@ -143,7 +143,7 @@ fn a_corrupt_file_is_kept_aside_reported_and_not_lost() {
 fn a_newer_file_is_left_as_it_is() {
     let dir = temp_dir("newer");
     let file = dir.join("progress.ron");
-    let newer = "(version: 2, levels: [], streak: 12)\n";
+    let newer = "(version: 3, levels: [], streak: 12)\n";
     fs::write(&file, newer).unwrap();
     let mut c = course_in(&file);
     let problem = c.store.problem.clone().unwrap();

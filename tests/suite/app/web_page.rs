@@ -15,7 +15,7 @@ use rigidlab::report::Report;
 use rigidlab::sim::Options;
 use std::path::{Path, PathBuf};
 
-fn records() -> Option<PathBuf> {
+pub(super) fn records() -> Option<PathBuf> {
     let dir = std::env::var_os("RIGIDLAB_WEB_RESULTS")
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from("target/web-test"));
@@ -34,7 +34,7 @@ fn records() -> Option<PathBuf> {
     None
 }
 
-fn read_json(path: &Path) -> serde_json::Value {
+pub(super) fn read_json(path: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }

@@ -9,5 +9,6 @@ mod hints;
 mod joint_anchors;
 mod parameters;
 mod quantity_forms;
+mod sign_conventions;
 mod tracks;
 mod validation_scale;
