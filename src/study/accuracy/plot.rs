@@ -228,7 +228,10 @@ where
             .map_err(err)?;
         for f in &p.fronts {
             let front: Vec<(f64, f64)> = f.points.iter().cloned().map(clamp).collect();
-            let style = f.color.mix(0.7).stroke_width(if f.marker == Marker::Circle { 1 } else { 2 });
+            let style = f
+                .color
+                .mix(0.7)
+                .stroke_width(if f.marker == Marker::Circle { 1 } else { 2 });
             if front.len() > 1 {
                 chart
                     .draw_series(DashedLineSeries::new(
@@ -293,10 +296,10 @@ where
                 )),
             }
             .map_err(err)?
-                .label(c.label.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+            .label(c.label.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
             match c.marker {
                 Marker::Circle => {
                     chart.draw_series(pts.iter().map(|pt| Circle::new(*pt, 3, color.filled())))

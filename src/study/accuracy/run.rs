@@ -24,6 +24,15 @@ pub fn measure_errors_on(
     let ref_setting = reference_setting(level, plan).on(engine);
     let mut notes = Vec::new();
     let budget = Budget::of(scene, plan, &ref_setting, exact, &mut notes);
+    if !engine.is_rapier() {
+        // The window is priced for every engine by the run budget's estimate of rapier in f64.
+        for n in notes.iter_mut() {
+            *n = n.replace(
+                "(the f64 reference is estimated at",
+                "(priced by rapier's f64 estimate at",
+            );
+        }
+    }
     let windowed = measure::with_duration(scene, budget.window);
     // Questions may be asked at the end: levels with an exact answer run their whole duration.
     let studied = if exact {
@@ -58,9 +67,14 @@ pub fn measure_errors_on(
         tick();
     }
     if !exact {
-        notes.push(
-            "no textbook answer or closed-form check: the error is self-consistency against the f64 reference".into(),
-        );
+        notes.push(format!(
+            "no textbook answer or closed-form check: the error is self-consistency against {}",
+            if engine.is_rapier() {
+                "the f64 reference"
+            } else {
+                "the engine's own f32 reference"
+            }
+        ));
     }
     LevelStudy {
         name,

@@ -5,8 +5,8 @@ use super::measure::Precision;
 use super::measure::Setting;
 use super::plot::{self, Curve, Front, Marker, Panel};
 use super::{gain_floor, metrics, Knob, LevelStudy, Plan, Point, Row};
-use std::fmt::Write as _;
 use crate::level::PhysicsEngine;
+use std::fmt::Write as _;
 use std::path::Path;
 
 /// Errors at or below this are drawn at it and treated as exact.
@@ -417,6 +417,18 @@ pub fn markdown(
     s
 }
 
+/// "12", or "12 (20 level-engine studies)" when some levels ran on more than one engine.
+fn level_count(studies: &[LevelStudy]) -> String {
+    let mut names: Vec<&str> = studies.iter().map(|st| st.name.as_str()).collect();
+    names.sort_unstable();
+    names.dedup();
+    if names.len() == studies.len() {
+        names.len().to_string()
+    } else {
+        format!("{} ({} level-engine studies)", names.len(), studies.len())
+    }
+}
+
 /// The title and the method: how errors and costs were measured, and the machine's load.
 fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
     let _ = writeln!(s, "# What accuracy costs in time\n");
@@ -431,7 +443,7 @@ fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
          a round's sample is the fastest of the runs that fit in {} ms (a preempted run is slower, never faster). \
          One knob is varied at a time from each level's settings.\n",
         if plan.quick { " --quick" } else { "" },
-        studies.len(),
+        level_count(studies),
         if plan.quick { " (quick sweep: fewer points, coarser reference)" } else { "" },
         super::measure::dt_label(plan.reference.0),
         plan.reference.1,
@@ -450,7 +462,10 @@ fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
     if engines.iter().any(|e| *e != "rapier") {
         let _ = writeln!(
             s,
-            "Engines: {} (`--engine`). Box2D v3 runs in f32 only and has no PGS-iterations knob: its sweep is dt,              substeps and effects, and its self-consistency reference is its own f32 run at the reference's dt and              substeps (rapier's is its f64 build); a level's rows on Box2D are marked [box2d]. Levels an engine refuses              are listed at the end with the feature it lacks.\n",
+            "Engines: {} (`--engine`). Box2D v3 runs in f32 only and has no PGS-iterations knob: its sweep \
+             is dt, substeps and effects, and its self-consistency reference is its own f32 run at the \
+             reference's dt and substeps (rapier's is its f64 build); a level's rows on Box2D are marked \
+             [box2d]. Levels an engine refuses are listed at the end with the feature it lacks.\n",
             engines.join(", ")
         );
     }

@@ -34,7 +34,10 @@ pub fn engine_list(given: &[PhysicsEngine]) -> Vec<PhysicsEngine> {
 pub fn check_overrides(args: &Args) -> Result<(), String> {
     let other = args.engine.iter().find(|e| !e.is_rapier());
     if let Some(e) = other {
-        for (flag, on) in [("--f64", args.double), ("--joint-hz", args.joint_hz.is_some())] {
+        for (flag, on) in [
+            ("--f64", args.double),
+            ("--joint-hz", args.joint_hz.is_some()),
+        ] {
             if on {
                 return Err(format!(
                     "error: {flag} is a rapier setting; the {} engine runs in f32 without joint softness\n  help: leave {flag} out, or give --engine rapier",

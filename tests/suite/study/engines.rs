@@ -126,8 +126,9 @@ fn both_engines_swept_refusals_listed_and_the_verdict_from_the_rows() {
     // The refused level listed, with the engine and the feature.
     let md = std::fs::read_to_string(dir.join("summary.md")).unwrap();
     assert!(
-        md.lines().any(|l| l.starts_with("- energy/jh_spring_work: refused by box2d:")
-            && l.contains("spring")),
+        md.lines().any(
+            |l| l.starts_with("- energy/jh_spring_work: refused by box2d:") && l.contains("spring")
+        ),
         "{md}"
     );
 
@@ -149,7 +150,10 @@ fn both_engines_swept_refusals_listed_and_the_verdict_from_the_rows() {
         let graded = rows
             .iter()
             .any(|r| r["level"] == level && !r["meets_tolerance"].is_empty());
-        let slot = match (cheapest(&rows, level, "rapier"), cheapest(&rows, level, "box2d")) {
+        let slot = match (
+            cheapest(&rows, level, "rapier"),
+            cheapest(&rows, level, "box2d"),
+        ) {
             _ if !graded => 7,
             (Some(a), Some(b)) if a < b => 2,
             (Some(a), Some(b)) if b < a => 3,
@@ -174,7 +178,10 @@ fn both_engines_swept_refusals_listed_and_the_verdict_from_the_rows() {
         let verdict = &cells[10];
         if a != b {
             let winner = if a > b { "rapier" } else { "box2d" };
-            assert!(verdict.starts_with(&format!("**{winner}**")), "{class}: {verdict}");
+            assert!(
+                verdict.starts_with(&format!("**{winner}**")),
+                "{class}: {verdict}"
+            );
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
