@@ -590,23 +590,7 @@ pub fn main(args: Args) -> ExitCode {
             }
         }
     }
-    // Every case on every engine, in the order given (`--engine`).
-    let runs: Vec<(&cases::Spec, &PathBuf, Plan)> = engines::engine_list(&args.engine)
-        .into_iter()
-        .flat_map(|e| {
-            let plan = &plan;
-            chosen.iter().zip(&paths).map(move |(s, p)| {
-                (
-                    *s,
-                    p,
-                    Plan {
-                        engine: e,
-                        ..plan.clone()
-                    },
-                )
-            })
-        })
-        .collect();
+    let runs = engines::case_runs(&args.engine, &chosen, &paths, &plan);
     let total: u64 = runs
         .iter()
         .map(|(s, p, plan)| planned_steps(p, s, plan))

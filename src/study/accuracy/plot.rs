@@ -166,6 +166,50 @@ fn palette_png(w: u32, h: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
+/// Draws each engine's Pareto front: a dashed line through it and a ring (rapier) or a triangle
+/// (Box2D) at each of its points, named in the legend.
+fn draw_fronts<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    p: &Panel,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let clamp = |(c, e): (f64, f64)| (c, e.max(p.floor));
+    for f in &p.fronts {
+        let front: Vec<(f64, f64)> = f.points.iter().cloned().map(clamp).collect();
+        let style = f
+            .color
+            .mix(0.7)
+            .stroke_width(if f.marker == Marker::Circle { 1 } else { 2 });
+        if front.len() > 1 {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    front.clone(),
+                    6,
+                    4,
+                    f.color.mix(0.6).stroke_width(2),
+                ))
+                .map_err(err)?;
+        }
+        let anno = match f.marker {
+            Marker::Circle => chart.draw_series(front.iter().map(|pt| Circle::new(*pt, 9, style))),
+            Marker::Triangle => {
+                chart.draw_series(front.iter().map(|pt| TriangleMarker::new(*pt, 9, style)))
+            }
+        }
+        .map_err(err)?;
+        let marker = f.marker;
+        anno.label(f.label.as_str())
+            .legend(move |(x, y)| match marker {
+                Marker::Circle => Circle::new((x + 10, y), 6, style).into_dyn(),
+                Marker::Triangle => TriangleMarker::new((x + 10, y), 6, style).into_dyn(),
+            });
+    }
+    Ok(())
+}
+
 fn draw_on<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     caption: &str,
@@ -226,38 +270,7 @@ where
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(err)?;
-        for f in &p.fronts {
-            let front: Vec<(f64, f64)> = f.points.iter().cloned().map(clamp).collect();
-            let style = f
-                .color
-                .mix(0.7)
-                .stroke_width(if f.marker == Marker::Circle { 1 } else { 2 });
-            if front.len() > 1 {
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        front.clone(),
-                        6,
-                        4,
-                        f.color.mix(0.6).stroke_width(2),
-                    ))
-                    .map_err(err)?;
-            }
-            let anno = match f.marker {
-                Marker::Circle => {
-                    chart.draw_series(front.iter().map(|pt| Circle::new(*pt, 9, style)))
-                }
-                Marker::Triangle => {
-                    chart.draw_series(front.iter().map(|pt| TriangleMarker::new(*pt, 9, style)))
-                }
-            }
-            .map_err(err)?;
-            let marker = f.marker;
-            anno.label(f.label.as_str())
-                .legend(move |(x, y)| match marker {
-                    Marker::Circle => Circle::new((x + 10, y), 6, style).into_dyn(),
-                    Marker::Triangle => TriangleMarker::new((x + 10, y), 6, style).into_dyn(),
-                });
-        }
+        draw_fronts(&mut chart, p)?;
         if !p.meets.is_empty() {
             chart
                 .draw_series(

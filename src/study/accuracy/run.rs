@@ -440,14 +440,13 @@ pub fn run_study_timed(
     (studies, skipped, timing)
 }
 
+/// The scenes to sweep, each with its engine, and the files skipped with why.
+type Loaded = (Vec<(Scene, PhysicsEngine)>, Vec<(String, String)>);
+
 /// The levels to sweep, each with every engine of the plan that runs it (level order, then the
 /// plan's engine order), and the files skipped with why: a level that does not load or has
 /// nothing to measure, and a level an engine refuses (named with the engine and the feature).
-fn load_scenes(
-    files: &[PathBuf],
-    plan: &Plan,
-    progress: &ProgressBar,
-) -> (Vec<(Scene, PhysicsEngine)>, Vec<(String, String)>) {
+fn load_scenes(files: &[PathBuf], plan: &Plan, progress: &ProgressBar) -> Loaded {
     let mut skipped = Vec::new();
     let mut scenes = Vec::new();
     for f in files {

@@ -7,14 +7,16 @@
 //! engine's poses (`Simulation::deepest_overlap`). Box2D runs in f32 and has no joint softness
 //! setting here: `--f64` and `--joint-hz` are rapier's only and refused with another engine.
 
+use super::cases::Spec;
 use super::criteria::Monitor;
-use super::{Args, RunResult, Settings};
+use super::{Args, Plan, RunResult, Settings};
 use crate::level::{PhysicsEngine, Scene};
 use crate::runner::{engine_for, RunError};
 use crate::sim::Options;
 use crate::snapshot::Snapshot;
 use indicatif::ProgressBar;
 use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 /// The engines of `--engine`, each once, in the order given (rapier if none).
 pub fn engine_list(given: &[PhysicsEngine]) -> Vec<PhysicsEngine> {
@@ -28,6 +30,30 @@ pub fn engine_list(given: &[PhysicsEngine]) -> Vec<PhysicsEngine> {
         v.push(PhysicsEngine::Rapier);
     }
     v
+}
+
+/// Every case on every engine of `--engine`, in the order given: (spec, level file, plan).
+pub fn case_runs<'a>(
+    engines: &[PhysicsEngine],
+    chosen: &[&'a Spec],
+    paths: &'a [PathBuf],
+    plan: &Plan,
+) -> Vec<(&'a Spec, &'a PathBuf, Plan)> {
+    engine_list(engines)
+        .into_iter()
+        .flat_map(|engine| {
+            chosen.iter().zip(paths).map(move |(s, p)| {
+                (
+                    *s,
+                    p,
+                    Plan {
+                        engine,
+                        ..plan.clone()
+                    },
+                )
+            })
+        })
+        .collect()
 }
 
 /// Err when a rapier-only setting is asked of another engine.
