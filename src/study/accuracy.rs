@@ -11,9 +11,14 @@
 //! - one knob varied at a time from the level's settings: dt, substeps, PGS iterations,
 //!   precision (f32 / f64), effects (declared / all).
 //!
+//! `--engine rapier,box2d` sweeps each level on each engine that runs it ([`engines`]; a level an
+//! engine refuses is listed with the feature it lacks).
+//!
 //! Output: `accuracy.csv`, one Pareto plot per level, `summary.md`; a sweep can be split into
 //! shards (`--shard K/N`, [`shard`]) run anywhere and joined by `study merge` ([`merge`]).
 
+mod engine_verdict;
+mod engines;
 mod jobs;
 pub mod measure;
 pub mod merge;
@@ -26,12 +31,13 @@ mod run;
 pub mod shard;
 mod summary;
 
+pub use engines::parse_engine;
 pub use output::*;
 pub use plan::*;
 pub use rows::*;
 pub use run::*;
 
-use crate::level::{self, CheckKind, Effect, Scene};
+use crate::level::{self, CheckKind, Effect, PhysicsEngine, Scene};
 use indicatif::{ProgressBar, ProgressStyle};
 use measure::{Precision, Setting};
 use rayon::prelude::*;

@@ -18,9 +18,10 @@
 
 pub mod cases;
 pub mod criteria;
+mod engines;
 
 use crate::clock::Instant;
-use crate::level::{self, Scene};
+use crate::level::{self, PhysicsEngine, Scene};
 use crate::sim::{Engine, Options};
 use criteria::{Criterion, Monitor, Outcome};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -71,6 +72,10 @@ pub struct Args {
     /// Try soft joints: rapier's joint softness natural frequency, Hz (default 1e6, i.e. rigid).
     #[arg(long)]
     pub joint_hz: Option<f64>,
+    /// The engines to run every case on, comma-separated: rapier (the default), box2d, or
+    /// rapier,box2d; the same criteria judge both (Box2D runs in f32, without joint softness).
+    #[arg(long, value_delimiter = ',', value_parser = crate::study::accuracy::parse_engine, default_value = "rapier")]
+    pub engine: Vec<PhysicsEngine>,
 }
 
 /// Settings tried instead of the recorded ones (`--dt`, `--substeps`, ...).
@@ -96,6 +101,7 @@ impl Overrides {
             contact_hz: self.contact_hz.or(s.contact_hz),
             joint_hz: self.joint_hz.or(s.joint_hz),
             dropped: s.dropped.clone(),
+            engine: s.engine,
         }
     }
 }
@@ -127,6 +133,9 @@ pub struct Settings {
     pub joint_hz: Option<f64>,
     /// Effects of the level dropped for this run (e.g. `ccd` in the defaults run).
     pub dropped: Vec<String>,
+    /// The engine of the run (absent in the JSON: rapier).
+    #[serde(default, skip_serializing_if = "PhysicsEngine::is_rapier")]
+    pub engine: PhysicsEngine,
 }
 
 impl Settings {
@@ -143,6 +152,7 @@ impl Settings {
             contact_hz: w.contact_hz.or(spec.recorded.contact_hz),
             joint_hz: spec.recorded.joint_hz,
             dropped: Vec::new(),
+            engine: PhysicsEngine::Rapier,
         }
     }
 
@@ -162,7 +172,13 @@ impl Settings {
                 .filter(|e| scene.level.effects.contains(e))
                 .map(|e| e.name().to_string())
                 .collect(),
+            engine: PhysicsEngine::Rapier,
         }
+    }
+
+    /// The same settings on `engine`.
+    pub fn on(self, engine: PhysicsEngine) -> Self {
+        Settings { engine, ..self }
     }
 
     pub fn is_default(&self) -> bool {
@@ -178,6 +194,9 @@ impl Settings {
     /// Short human form: "defaults" or what differs from them.
     pub fn describe(&self) -> String {
         let mut parts = Vec::new();
+        if !self.engine.is_rapier() {
+            parts.push(self.engine.name().to_string());
+        }
         if (self.dt - DEFAULT_DT).abs() > 1e-12 {
             parts.push(format!("dt 1/{:.0}", 1.0 / self.dt));
         }
@@ -202,11 +221,10 @@ impl Settings {
         for d in &self.dropped {
             parts.push(format!("no {d}"));
         }
-        if parts.is_empty() {
-            "defaults".into()
-        } else {
-            parts.join(", ")
+        if parts.is_empty() || parts == [self.engine.name()] {
+            parts.push("defaults".into());
         }
+        parts.join(", ")
     }
 }
 
@@ -223,6 +241,10 @@ pub struct RunResult {
     /// Set when the run stopped early (non-finite state, explosion guard).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Set when the engine refused the case (a feature it does not run, with its place in the
+    /// level): not run, and not counted as a pass or a failure.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refused: Option<String>,
 }
 
 impl RunResult {
@@ -241,6 +263,9 @@ impl RunResult {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CaseResult {
     pub name: String,
+    /// The engine the case ran on (absent in the JSON: rapier).
+    #[serde(default, skip_serializing_if = "PhysicsEngine::is_rapier")]
+    pub engine: PhysicsEngine,
     pub about: String,
     pub steps: u64,
     pub passed: bool,
@@ -295,7 +320,12 @@ pub fn run(
     let mut monitor = Monitor::new(&scene.level, limits, special);
     let opts = Options::default();
     let start = Instant::now();
-    let error = if settings.f64 {
+    let error = if !settings.engine.is_rapier() {
+        match engines::drive(&scene, settings.engine, &mut monitor, progress) {
+            Ok(error) => error,
+            Err(why) => return engines::refused_run(settings, why),
+        }
+    } else if settings.f64 {
         let mut sim = crate::sim64::Simulation::new(&scene, &opts);
         if let Some(hz) = settings.joint_hz {
             sim.set_joint_softness(hz);
@@ -330,6 +360,7 @@ pub fn run(
         figures,
         criteria: outcome.criteria,
         error,
+        refused: None,
     }
 }
 
@@ -381,6 +412,8 @@ pub struct Plan {
     pub progress: bool,
     /// Settings to try instead of the recorded ones.
     pub overrides: Overrides,
+    /// The engine every run of the case is made on.
+    pub engine: PhysicsEngine,
 }
 
 /// Runs one case (by level file) according to the plan.
@@ -395,25 +428,29 @@ fn run_case_with(
     bar: Option<&ProgressBar>,
 ) -> Result<CaseResult, String> {
     let scene = level::load(path).map_err(|e| e.to_string())?;
-    let recorded_settings = plan.overrides.apply(&Settings::recorded(&scene, spec));
+    let recorded_settings = plan
+        .overrides
+        .apply(&Settings::recorded(&scene, spec))
+        .on(plan.engine);
     let recorded = run(&scene, spec, &recorded_settings, plan.steps, bar);
     let mut defaults = None;
     let mut variants = Vec::new();
     if plan.compare {
-        let d = Settings::defaults(&scene, spec);
-        if d != recorded_settings {
+        let d = Settings::defaults(&scene, spec).on(plan.engine);
+        if d != recorded_settings && recorded.refused.is_none() {
             defaults = Some(run(&scene, spec, &d, plan.steps, bar));
         }
-        if spec.name == "spinning_disc" {
+        if spec.name == "spinning_disc" && recorded.refused.is_none() {
             // Lifting the cap at rapier's default step: only the linearized rotation remains.
             let v = Settings {
                 fast_rotation: true,
-                ..Settings::defaults(&scene, spec)
+                ..Settings::defaults(&scene, spec).on(plan.engine)
             };
             variants.push(run(&scene, spec, &v, plan.steps, bar));
         }
     }
     Ok(CaseResult {
+        engine: plan.engine,
         name: spec.name.to_string(),
         about: spec.about.to_string(),
         steps: recorded.steps,
@@ -511,7 +548,12 @@ pub fn main(args: Args) -> ExitCode {
             contact_hz: args.contact_hz,
             joint_hz: args.joint_hz,
         },
+        engine: PhysicsEngine::Rapier,
     };
+    if let Err(e) = engines::check_overrides(&args) {
+        stderr!("{e}");
+        return ExitCode::from(2);
+    }
     let paths: Vec<PathBuf> = chosen
         .iter()
         .map(|s| args.dir.join(format!("{}.ron", s.name)))
@@ -548,10 +590,10 @@ pub fn main(args: Args) -> ExitCode {
             }
         }
     }
-    let total: u64 = chosen
+    let runs = engines::case_runs(&args.engine, &chosen, &paths, &plan);
+    let total: u64 = runs
         .iter()
-        .zip(&paths)
-        .map(|(s, p)| planned_steps(p, s, &plan))
+        .map(|(s, p, plan)| planned_steps(p, s, plan))
         .sum();
     let bar = ProgressBar::new(total);
     bar.set_style(
@@ -561,15 +603,14 @@ pub fn main(args: Args) -> ExitCode {
     if !plan.progress || args.json && !args.long {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
-    let results: Vec<Result<CaseResult, String>> = chosen
+    let results: Vec<Result<CaseResult, String>> = runs
         .par_iter()
-        .zip(paths.par_iter())
-        .map(|(s, p)| run_case_with(p, s, &plan, Some(&bar)))
+        .map(|(s, p, plan)| run_case_with(p, s, plan, Some(&bar)))
         .collect();
     bar.finish_and_clear();
     let mut bad_input = false;
     let mut cases_out = Vec::new();
-    for (r, s) in results.into_iter().zip(&chosen) {
+    for (r, (s, _, _)) in results.into_iter().zip(&runs) {
         match r {
             Ok(c) => cases_out.push(c),
             Err(e) => {
@@ -580,7 +621,10 @@ pub fn main(args: Args) -> ExitCode {
         }
     }
     let report = StabilityReport {
-        passed: cases_out.iter().all(|c| c.passed),
+        // A case an engine refuses is listed, not judged.
+        passed: cases_out
+            .iter()
+            .all(|c| c.passed || c.recorded.refused.is_some()),
         cases: cases_out,
     };
     for u in &unjudged {
@@ -612,6 +656,7 @@ fn missing(spec: &cases::Spec, error: &str) -> CaseResult {
             contact_hz: None,
             joint_hz: None,
             dropped: Vec::new(),
+            engine: PhysicsEngine::Rapier,
         },
         steps: 0,
         passed: false,
@@ -619,8 +664,10 @@ fn missing(spec: &cases::Spec, error: &str) -> CaseResult {
         figures: BTreeMap::new(),
         criteria: Vec::new(),
         error: Some(error.to_string()),
+        refused: None,
     };
     CaseResult {
+        engine: PhysicsEngine::Rapier,
         name: spec.name.to_string(),
         about: spec.about.to_string(),
         steps: 0,
@@ -706,6 +753,10 @@ pub fn table(report: &StabilityReport) -> String {
     );
     for c in &report.cases {
         let r = &c.recorded;
+        if let Some(why) = &r.refused {
+            out += &format!("{:<18} {:<w$} refused: {why}\n", c.name, c.engine.name());
+            continue;
+        }
         let d = match &c.defaults {
             Some(d) => verdict(d),
             None if r.settings.is_default() => "(same)".into(),
@@ -740,10 +791,20 @@ pub fn table(report: &StabilityReport) -> String {
         }
     }
     let passed = report.cases.iter().filter(|c| c.passed).count();
+    let refused = report
+        .cases
+        .iter()
+        .filter(|c| c.recorded.refused.is_some())
+        .count();
     out += &format!(
-        "{passed}/{} cases passed at their recorded settings \
+        "{passed}/{} cases passed at their recorded settings{} \
          (!: criterion failed; ~ and pass*: a known engine gap, reported, see --json)\n",
-        report.cases.len()
+        report.cases.len() - refused,
+        if refused > 0 {
+            format!(", {refused} refused by their engine")
+        } else {
+            String::new()
+        }
     );
     out
 }

@@ -81,6 +81,10 @@ fn spawn_shard(
     if args.quick {
         cmd.arg("--quick");
     }
+    let engines: Vec<&str> = args.engine.iter().map(|e| e.name()).collect();
+    if !engines.is_empty() {
+        cmd.arg("--engine").arg(engines.join(","));
+    }
     let mut child = cmd
         .spawn()
         .map_err(|e| stderr!("error: cannot start shard {s}: {e}"))?;

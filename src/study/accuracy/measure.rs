@@ -5,7 +5,7 @@ use super::metrics;
 use crate::analysis::energy;
 use crate::checks::CheckResult;
 use crate::clock::Instant;
-use crate::level::{CheckKind, EventDef, Level, Profile, Scene};
+use crate::level::{CheckKind, EventDef, Level, PhysicsEngine, Profile, Scene};
 use crate::questions::QuestionResult;
 use crate::runner::Observers;
 use crate::sim::{Engine, Options};
@@ -27,6 +27,8 @@ pub struct Setting {
     pub precision: Precision,
     /// Every effect stage on (`Options::all_effects`) instead of only the declared ones.
     pub all_effects: bool,
+    /// The engine that runs it: rapier (f32 or f64), or Box2D v3 (f32 only; `engines.rs`).
+    pub engine: PhysicsEngine,
 }
 
 impl Setting {
@@ -38,6 +40,7 @@ impl Setting {
             iterations: level.world.solver_iterations,
             precision: Precision::F32,
             all_effects: false,
+            engine: PhysicsEngine::Rapier,
         }
     }
 
@@ -49,7 +52,13 @@ impl Setting {
             iterations: 1,
             precision: Precision::F32,
             all_effects: false,
+            engine: PhysicsEngine::Rapier,
         }
+    }
+
+    /// The same knobs on `engine`.
+    pub fn on(self, engine: PhysicsEngine) -> Self {
+        Setting { engine, ..self }
     }
 
     pub fn options(&self) -> Options {
@@ -62,8 +71,9 @@ impl Setting {
             // The study builds each precision's engine itself (`with_engine!`).
             precision: None,
             impact_cuts: None,
-            // rapier only, for now: sweeping Box2D too is issue 46's next item.
-            engine: None,
+            // rapier's runs build their precision's engine themselves; other engines are
+            // built through the runner's entry (`runner::engine_for`, `engines.rs`).
+            engine: Some(self.engine),
         }
     }
 
@@ -74,6 +84,7 @@ impl Setting {
             && self.iterations == o.iterations
             && self.precision == o.precision
             && self.all_effects == o.all_effects
+            && self.engine == o.engine
     }
 
     /// "1/60" when 1/dt is a whole number, else the step in seconds.
@@ -89,10 +100,10 @@ impl Setting {
         }
     }
 
-    /// "dt 1/60 s, 4 substeps, 1 iteration, f32"
+    /// "dt 1/60 s, 4 substeps, 1 iteration, f32" (", box2d" on Box2D)
     pub fn label(&self) -> String {
         format!(
-            "dt {} s, {} substep{}, {} iteration{}, {}{}",
+            "dt {} s, {} substep{}, {} iteration{}, {}{}{}",
             self.dt_label(),
             self.substeps,
             if self.substeps == 1 { "" } else { "s" },
@@ -103,6 +114,11 @@ impl Setting {
                 ", all effects"
             } else {
                 ""
+            },
+            if self.engine.is_rapier() {
+                String::new()
+            } else {
+                format!(", {}", self.engine.name())
             }
         )
     }
@@ -268,6 +284,9 @@ impl RunGrade {
 
 /// Runs the level's duration at `setting`, with its checks and questions.
 pub fn full_run(scene: &Scene, setting: &Setting) -> FullRun {
+    if !setting.engine.is_rapier() {
+        return super::engines::full_run(scene, setting);
+    }
     with_engine!(setting.precision, full_run_on(scene, setting))
 }
 
@@ -300,6 +319,12 @@ fn full_run_on<E: StudyEngine>(scene: &Scene, setting: &Setting) -> FullRun {
             ..FullRun::default()
         };
     }
+    graded_run(observers, joint_drift)
+}
+
+/// A finished run's grade: its checks and questions against their tolerances, and the joints'
+/// largest anchor separation (`joint_drift`), whichever engine ran it.
+pub(super) fn graded_run(observers: Observers, joint_drift: Option<f64>) -> FullRun {
     let (checks, answers) = observers.finish(&Default::default());
     let checks: Vec<CheckResult> = checks.into_iter().filter(graded).collect();
     let grade = RunGrade::of(&checks, &answers);
@@ -339,6 +364,9 @@ pub fn conservation(
     span: f64,
 ) -> Conservation {
     let long = with_duration(scene, span);
+    if !setting.engine.is_rapier() {
+        return super::engines::conservation(&long, setting, what);
+    }
     with_engine!(setting.precision, conservation_on(&long, setting, what))
 }
 
@@ -349,31 +377,11 @@ fn conservation_on<E: StudyEngine>(
 ) -> Conservation {
     let mut sim = E::build(scene, &setting.options());
     let n = sim.total_steps() as usize + 1;
-    let (mut t, mut e, mut ke, mut l, mut h) = (
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-    );
-    let (mut l_scale, mut h_scale) = (0.0f64, 0.0f64);
-    let m = metrics::mass_props(&scene.level);
-    let mut observe = |s: &Snapshot| {
-        t.push(s.time);
-        e.push(energy::system_mechanical_energy(
-            s,
-            metrics::textbook_mass(&m),
-        ));
-        ke.push(energy::system_kinetic_energy(s, metrics::textbook_mass(&m)));
-        l.push(metrics::linear_momentum(s, &m));
-        h.push(metrics::angular_momentum(s, &m));
-        l_scale = l_scale.max(metrics::momentum_scale(s, &m));
-        h_scale = h_scale.max(metrics::angular_momentum_scale(s, &m));
-    };
-    observe(sim.snapshot());
+    let mut log = ConservationLog::new(scene, n);
+    log.observe(sim.snapshot());
     for _ in 1..n {
         match sim.step() {
-            Ok(s) => observe(s),
+            Ok(s) => log.observe(s),
             Err(err) => {
                 return Conservation {
                     stopped: Some(err.to_string()),
@@ -382,25 +390,74 @@ fn conservation_on<E: StudyEngine>(
             }
         }
     }
-    let ke_peak = ke.iter().cloned().fold(0.0, f64::max);
-    let mut out = Conservation::default();
-    if what.energy && ke_peak > 0.0 {
-        out.energy_drift_per_s = metrics::slope(&t, &e).map(|s| s / ke_peak);
-        out.period_s = metrics::oscillation_period(&t, &ke);
-        out.energy_drift_per_period = out.energy_drift_per_s.zip(out.period_s).map(|(d, p)| d * p);
+    log.finish(what)
+}
+
+/// The conserved quantities of a conservation run, snapshot by snapshot, and their drift rates
+/// at its end (whichever engine ran it).
+pub(super) struct ConservationLog {
+    m: Vec<metrics::MassProps>,
+    t: Vec<f64>,
+    e: Vec<f64>,
+    ke: Vec<f64>,
+    l: Vec<glam::DVec2>,
+    h: Vec<f64>,
+    l_scale: f64,
+    h_scale: f64,
+}
+
+impl ConservationLog {
+    pub(super) fn new(scene: &Scene, n: usize) -> Self {
+        ConservationLog {
+            m: metrics::mass_props(&scene.level),
+            t: Vec::with_capacity(n),
+            e: Vec::with_capacity(n),
+            ke: Vec::with_capacity(n),
+            l: Vec::with_capacity(n),
+            h: Vec::with_capacity(n),
+            l_scale: 0.0,
+            h_scale: 0.0,
+        }
     }
-    if let (Some(axes), true) = (what.momentum, l_scale > 0.0) {
-        let l0 = metrics::conserved_momentum(l[0], axes);
-        let dev: Vec<f64> = l
-            .iter()
-            .map(|x| (metrics::conserved_momentum(*x, axes) - l0).length())
-            .collect();
-        out.momentum_drift_per_s = metrics::slope(&t, &dev).map(|s| s / l_scale);
+
+    pub(super) fn observe(&mut self, s: &Snapshot) {
+        let m = &self.m;
+        self.t.push(s.time);
+        self.e.push(energy::system_mechanical_energy(
+            s,
+            metrics::textbook_mass(m),
+        ));
+        self.ke
+            .push(energy::system_kinetic_energy(s, metrics::textbook_mass(m)));
+        self.l.push(metrics::linear_momentum(s, m));
+        self.h.push(metrics::angular_momentum(s, m));
+        self.l_scale = self.l_scale.max(metrics::momentum_scale(s, m));
+        self.h_scale = self.h_scale.max(metrics::angular_momentum_scale(s, m));
     }
-    if what.angular_momentum && h_scale > 0.0 {
-        out.angular_momentum_drift_per_s = metrics::slope(&t, &h).map(|s| s / h_scale);
+
+    pub(super) fn finish(self, what: metrics::Conserved) -> Conservation {
+        let (t, e, ke, l, h) = (&self.t, &self.e, &self.ke, &self.l, &self.h);
+        let ke_peak = ke.iter().cloned().fold(0.0, f64::max);
+        let mut out = Conservation::default();
+        if what.energy && ke_peak > 0.0 {
+            out.energy_drift_per_s = metrics::slope(t, e).map(|s| s / ke_peak);
+            out.period_s = metrics::oscillation_period(t, ke);
+            out.energy_drift_per_period =
+                out.energy_drift_per_s.zip(out.period_s).map(|(d, p)| d * p);
+        }
+        if let (Some(axes), true) = (what.momentum, self.l_scale > 0.0) {
+            let l0 = metrics::conserved_momentum(l[0], axes);
+            let dev: Vec<f64> = l
+                .iter()
+                .map(|x| (metrics::conserved_momentum(*x, axes) - l0).length())
+                .collect();
+            out.momentum_drift_per_s = metrics::slope(t, &dev).map(|s| s / self.l_scale);
+        }
+        if what.angular_momentum && self.h_scale > 0.0 {
+            out.angular_momentum_drift_per_s = metrics::slope(t, h).map(|s| s / self.h_scale);
+        }
+        out
     }
-    out
 }
 
 /// The engine's own f64 run at a very small step: the states every reference step.
@@ -439,8 +496,13 @@ impl Reference {
     }
 }
 
-/// Runs the f64 reference (its `precision` is ignored: always f64) over the level's duration.
+/// Runs the f64 reference (its `precision` is ignored: always f64) over the level's duration;
+/// on Box2D, which runs in f32 only, the engine's own f32 run at the reference's step and
+/// substeps ([`super::engines::reference`]).
 pub fn reference(scene: &Scene, setting: &Setting) -> Reference {
+    if !setting.engine.is_rapier() {
+        return super::engines::reference(scene, setting);
+    }
     let setting = Setting {
         precision: Precision::F64,
         ..*setting
@@ -495,6 +557,9 @@ pub fn self_consistency(
     pieces: usize,
     piece: f64,
 ) -> Result<f64, String> {
+    if !setting.engine.is_rapier() {
+        return super::engines::self_consistency(scene, setting, reference, pieces, piece);
+    }
     with_engine!(
         setting.precision,
         self_consistency_on(scene, setting, reference, pieces, piece)
@@ -540,6 +605,9 @@ fn self_consistency_on<E: StudyEngine>(
 /// run is kept: on a shared machine a run that was preempted is slower, never faster. The
 /// simulation is built outside the timer. None if a run stops (an explosion).
 pub fn cost_sample(scene: &Scene, setting: &Setting, min_total: Duration) -> Option<f64> {
+    if !setting.engine.is_rapier() {
+        return super::engines::cost_sample(scene, setting, min_total);
+    }
     with_engine!(setting.precision, cost_sample_on(scene, setting, min_total))
 }
 

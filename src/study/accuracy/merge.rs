@@ -194,7 +194,8 @@ fn join(shards: Vec<ShardIn>, basis: Option<Basis>) -> Result<Merged, String> {
         Plan::quick()
     } else {
         Plan::full()
-    };
+    }
+    .on_engines(&m0.engines);
     let format = m0.format.clone();
     let basis = basis.or_else(|| median_basis(&shards));
     let note = scale_note(&shards, basis.as_ref());
@@ -213,19 +214,25 @@ fn join(shards: Vec<ShardIn>, basis: Option<Basis>) -> Result<Merged, String> {
         for meta in &s.manifest.levels {
             let mine: Vec<Row> = rows
                 .iter()
-                .filter(|r| r.level == meta.name)
+                .filter(|r| r.level == meta.name && r.engine == meta.engine.name())
                 .cloned()
                 .collect();
             let st = level_study(meta, mine, s.manifest.load)
                 .map_err(|e| format!("error: {}: {e}", s.dir.display()))?;
             levels.push((meta.order, st));
         }
-        let known = |n: &str| s.manifest.levels.iter().any(|m| m.name == n);
-        if let Some(r) = rows.iter().find(|r| !known(&r.level)) {
+        let known = |r: &Row| {
+            s.manifest
+                .levels
+                .iter()
+                .any(|m| m.name == r.level && m.engine.name() == r.engine)
+        };
+        if let Some(r) = rows.iter().find(|r| !known(r)) {
             return Err(format!(
-                "error: {}: accuracy.csv has rows of {} that shard.json does not list\n  help: rerun the shard (its files were changed after it ran)",
+                "error: {}: accuracy.csv has rows of {} on {} that shard.json does not list\n  help: rerun the shard (its files were changed after it ran)",
                 s.dir.display(),
-                r.level
+                r.level,
+                r.engine
             ));
         }
         skipped.extend(
@@ -235,7 +242,11 @@ fn join(shards: Vec<ShardIn>, basis: Option<Basis>) -> Result<Merged, String> {
                 .map(|k| (k.order, k.name, k.why)),
         );
     }
-    levels.sort_by(|a, b| (a.0, &a.1.name).cmp(&(b.0, &b.1.name)));
+    // A whole run writes a level's engines in the plan's order, after one another.
+    let rank = |e: PhysicsEngine| plan.engines.iter().position(|x| *x == e);
+    levels.sort_by(|a, b| {
+        (a.0, &a.1.name, rank(a.1.engine)).cmp(&(b.0, &b.1.name, rank(b.1.engine)))
+    });
     skipped.sort();
     Ok(Merged {
         studies: levels.into_iter().map(|(_, st)| st).collect(),
@@ -321,6 +332,7 @@ fn level_study(
     let (dt, substeps, iterations) = meta.reference;
     Ok(LevelStudy {
         name: meta.name.clone(),
+        engine: meta.engine,
         title: lvl.title.clone(),
         class: class(&lvl),
         points,
@@ -335,6 +347,7 @@ fn level_study(
             iterations,
             precision: Precision::F64,
             all_effects: false,
+            engine: meta.engine,
         },
         window_s: meta.window_s,
         load,
@@ -352,18 +365,24 @@ fn point_of(r: &Row) -> Result<Point, String> {
         "f64" => Precision::F64,
         p => return Err(format!("unknown precision `{p}`")),
     };
+    let engine = match r.engine.as_str() {
+        "rapier" => PhysicsEngine::Rapier,
+        "box2d" => PhysicsEngine::Box2d,
+        e => return Err(format!("unknown engine `{e}`")),
+    };
     let setting = Setting {
         dt: r.dt,
         substeps: r.substeps,
         iterations: r.pgs_iterations,
         precision,
         all_effects: r.effects == "all",
+        engine,
     };
     if r.knob == "baseline" {
-        // The level's own settings lie on every f32 curve (`points`).
+        // The level's own settings lie on every f32 curve of the engine's sweep (`points_on`).
         return Ok(Point {
             setting,
-            knobs: vec![Knob::Dt, Knob::Substeps, Knob::Iterations, Knob::Effects],
+            knobs: baseline_knobs(engine),
             baseline: true,
             rapier_default: false,
         });

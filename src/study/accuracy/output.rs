@@ -39,7 +39,8 @@ pub fn main(args: Args) -> ExitCode {
         Plan::quick()
     } else {
         Plan::full()
-    };
+    }
+    .on_engines(&args.engine);
     if let Some(j) = args.jobs {
         return jobs::main(&args, &plan, j);
     }
@@ -101,9 +102,14 @@ pub fn write_outputs(
     // the exit code 2, after the other files are written.
     let mut plots = Vec::new();
     let mut failed_plots = 0;
-    for st in studies {
+    // One plot per level, every engine that ran it on the same axes.
+    let mut names: Vec<&str> = studies.iter().map(|st| st.name.as_str()).collect();
+    names.dedup();
+    for name in names {
+        let group: Vec<&LevelStudy> = studies.iter().filter(|st| st.name == name).collect();
+        let st = group[0];
         let file = plot_file(&st.name, format);
-        match summary::plot_level(st, &out.join(&file)) {
+        match summary::plot_level(&group, &out.join(&file)) {
             Ok(()) => plots.push((st.name.clone(), file)),
             Err(e) => {
                 stderr!("error: {}: cannot write the plot: {e}", st.name);

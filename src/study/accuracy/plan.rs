@@ -25,6 +25,10 @@ pub struct Args {
     /// merge them into --out; the shards' folders go to --out/shards.
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
+    /// The engines to sweep, comma-separated: rapier (the default), box2d, or rapier,box2d
+    /// (each level on each engine that runs it; Box2D runs in f32 only, docs/engines.md).
+    #[arg(long, value_delimiter = ',', value_parser = engines::parse_engine, default_value = "rapier")]
+    pub engine: Vec<PhysicsEngine>,
 }
 
 /// The sweep: knob values, reference, pieces, timing, budgets.
@@ -53,6 +57,8 @@ pub struct Plan {
     /// Runs predicted to take longer than this are not run (reported as such), s.
     pub run_cap_s: f64,
     pub quick: bool,
+    /// The engines swept, in the order given (rapier unless `--engine` says otherwise).
+    pub engines: Vec<PhysicsEngine>,
 }
 
 impl Plan {
@@ -73,6 +79,7 @@ impl Plan {
             reference_budget_s: 20.0,
             run_cap_s: 20.0,
             quick: false,
+            engines: vec![PhysicsEngine::Rapier],
         }
     }
 
@@ -90,7 +97,22 @@ impl Plan {
             reference_budget_s: 0.15,
             run_cap_s: 0.25,
             quick: true,
+            engines: vec![PhysicsEngine::Rapier],
         }
+    }
+
+    /// The plan sweeping `engines` (each once, in the order given; rapier if none).
+    pub fn on_engines(mut self, engines: &[PhysicsEngine]) -> Self {
+        let mut v: Vec<PhysicsEngine> = Vec::new();
+        for e in engines {
+            if !v.contains(e) {
+                v.push(*e);
+            }
+        }
+        if !v.is_empty() {
+            self.engines = v;
+        }
+        self
     }
 }
 
@@ -158,12 +180,39 @@ pub fn sweep_dts(level: &level::Level, plan: &Plan) -> Vec<f64> {
     dts
 }
 
-/// The settings to run for a level: each knob's values with the others at the level's settings.
+/// The settings to run for a level on rapier: each knob's values with the others at the
+/// level's settings.
 pub fn points(level: &level::Level, plan: &Plan) -> Vec<Point> {
-    let base = Setting::of_level(level);
+    points_on(level, plan, PhysicsEngine::Rapier)
+}
+
+/// The knobs an engine's sweep varies: Box2D has no f64 build and no PGS iterations
+/// (`engines.rs`), so its sweep is dt, substeps and effects.
+pub fn knobs_of(engine: PhysicsEngine) -> &'static [Knob] {
+    if engine.is_rapier() {
+        &Knob::ALL
+    } else {
+        &[Knob::Dt, Knob::Substeps, Knob::Effects]
+    }
+}
+
+/// The curves the level's own settings lie on (every f32 curve of the engine's sweep).
+pub fn baseline_knobs(engine: PhysicsEngine) -> Vec<Knob> {
+    knobs_of(engine)
+        .iter()
+        .copied()
+        .filter(|k| *k != Knob::DtF64)
+        .collect()
+}
+
+/// The settings to run for a level on `engine`: each of the engine's knobs' values with the
+/// others at the level's settings ([`knobs_of`]).
+pub fn points_on(level: &level::Level, plan: &Plan, engine: PhysicsEngine) -> Vec<Point> {
+    let base = Setting::of_level(level).on(engine);
+    let knobs = knobs_of(engine);
     let mut out: Vec<Point> = vec![Point {
         setting: base,
-        knobs: vec![Knob::Dt, Knob::Substeps, Knob::Iterations, Knob::Effects],
+        knobs: baseline_knobs(engine),
         baseline: true,
         rapier_default: false,
     }];
@@ -191,6 +240,9 @@ pub fn points(level: &level::Level, plan: &Plan) -> Vec<Point> {
     }
     for &dt in &dts {
         add(Setting { dt, ..base }, Some(Knob::Dt), false);
+        if !knobs.contains(&Knob::DtF64) {
+            continue;
+        }
         add(
             Setting {
                 dt,
@@ -211,7 +263,12 @@ pub fn points(level: &level::Level, plan: &Plan) -> Vec<Point> {
             false,
         );
     }
-    for &n in &plan.iterations {
+    let iterations: &[usize] = if knobs.contains(&Knob::Iterations) {
+        &plan.iterations
+    } else {
+        &[]
+    };
+    for &n in iterations {
         add(
             Setting {
                 iterations: n,
@@ -229,8 +286,10 @@ pub fn points(level: &level::Level, plan: &Plan) -> Vec<Point> {
         Some(Knob::Effects),
         false,
     );
+    // rapier's defaults, 1/60 s and 4 substeps, are Box2D v3's too (its samples' 60 Hz and 4
+    // sub-steps): the same point on either engine.
     if Setting::rapier_default().dt <= 0.5 * level.world.duration {
-        add(Setting::rapier_default(), None, true);
+        add(Setting::rapier_default().on(engine), None, true);
     }
     out
 }

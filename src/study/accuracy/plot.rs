@@ -1,5 +1,6 @@
 //! Pareto plots: cost against error on log axes, a curve per knob, the front marked.
 
+use plotters::element::IntoDynElement;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -27,6 +28,23 @@ pub struct Curve {
     pub label: String,
     pub color: RGBColor,
     pub points: Vec<(f64, f64)>,
+    /// How its points are drawn (an engine each, when a plot has two).
+    pub marker: Marker,
+}
+
+/// A point's marker: rapier's circles, Box2D's triangles.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Marker {
+    Circle,
+    Triangle,
+}
+
+/// One engine's Pareto front (cost, error), sorted by cost.
+pub struct Front {
+    pub label: String,
+    pub color: RGBColor,
+    pub marker: Marker,
+    pub points: Vec<(f64, f64)>,
 }
 
 /// One chart: an error measure against cost.
@@ -34,8 +52,8 @@ pub struct Panel {
     pub title: String,
     pub y_desc: String,
     pub curves: Vec<Curve>,
-    /// The Pareto front (cost, error), sorted by cost.
-    pub front: Vec<(f64, f64)>,
+    /// The Pareto fronts, one per engine.
+    pub fronts: Vec<Front>,
     /// Points meeting the level's tolerance (ringed).
     pub meets: Vec<(f64, f64)>,
     /// Labelled points (the level's settings, rapier's defaults).
@@ -43,6 +61,10 @@ pub struct Panel {
     /// Errors at or below this are drawn at it (exact results on a log axis).
     pub floor: f64,
 }
+
+/// The Pareto fronts' colours: rapier's black, Box2D's dark orange.
+pub const FRONT_RAPIER: RGBColor = RGBColor(0, 0, 0);
+pub const FRONT_BOX2D: RGBColor = RGBColor(200, 90, 0);
 
 pub const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
@@ -144,6 +166,50 @@ fn palette_png(w: u32, h: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
+/// Draws each engine's Pareto front: a dashed line through it and a ring (rapier) or a triangle
+/// (Box2D) at each of its points, named in the legend.
+fn draw_fronts<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    p: &Panel,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let clamp = |(c, e): (f64, f64)| (c, e.max(p.floor));
+    for f in &p.fronts {
+        let front: Vec<(f64, f64)> = f.points.iter().cloned().map(clamp).collect();
+        let style = f
+            .color
+            .mix(0.7)
+            .stroke_width(if f.marker == Marker::Circle { 1 } else { 2 });
+        if front.len() > 1 {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    front.clone(),
+                    6,
+                    4,
+                    f.color.mix(0.6).stroke_width(2),
+                ))
+                .map_err(err)?;
+        }
+        let anno = match f.marker {
+            Marker::Circle => chart.draw_series(front.iter().map(|pt| Circle::new(*pt, 9, style))),
+            Marker::Triangle => {
+                chart.draw_series(front.iter().map(|pt| TriangleMarker::new(*pt, 9, style)))
+            }
+        }
+        .map_err(err)?;
+        let marker = f.marker;
+        anno.label(f.label.as_str())
+            .legend(move |(x, y)| match marker {
+                Marker::Circle => Circle::new((x + 10, y), 6, style).into_dyn(),
+                Marker::Triangle => TriangleMarker::new((x + 10, y), 6, style).into_dyn(),
+            });
+    }
+    Ok(())
+}
+
 fn draw_on<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     caption: &str,
@@ -204,28 +270,7 @@ where
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(err)?;
-        if p.front.len() > 1 {
-            let front: Vec<(f64, f64)> = p.front.iter().cloned().map(clamp).collect();
-            chart
-                .draw_series(DashedLineSeries::new(
-                    front.clone(),
-                    6,
-                    4,
-                    BLACK.mix(0.6).stroke_width(2),
-                ))
-                .map_err(err)?;
-        }
-        chart
-            .draw_series(
-                p.front
-                    .iter()
-                    .cloned()
-                    .map(clamp)
-                    .map(|pt| Circle::new(pt, 9, BLACK.mix(0.7).stroke_width(1))),
-            )
-            .map_err(err)?
-            .label("Pareto front")
-            .legend(|(x, y)| Circle::new((x + 10, y), 6, BLACK.mix(0.7).stroke_width(1)));
+        draw_fronts(&mut chart, p)?;
         if !p.meets.is_empty() {
             chart
                 .draw_series(
@@ -251,16 +296,33 @@ where
                 continue;
             }
             let color = c.color;
-            chart
-                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(err)?
-                .label(c.label.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            chart
-                .draw_series(pts.iter().map(|pt| Circle::new(*pt, 3, color.filled())))
-                .map_err(err)?;
+            // A second engine's curves dashed, beside the first's solid ones.
+            match c.marker {
+                Marker::Circle => {
+                    chart.draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+                }
+                Marker::Triangle => chart.draw_series(DashedLineSeries::new(
+                    pts.clone(),
+                    8,
+                    4,
+                    color.stroke_width(2),
+                )),
+            }
+            .map_err(err)?
+            .label(c.label.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+            match c.marker {
+                Marker::Circle => {
+                    chart.draw_series(pts.iter().map(|pt| Circle::new(*pt, 3, color.filled())))
+                }
+                Marker::Triangle => chart.draw_series(
+                    pts.iter()
+                        .map(|pt| TriangleMarker::new(*pt, 5, color.filled())),
+                ),
+            }
+            .map_err(err)?;
         }
         for (label, pt) in &p.marks {
             let pt = clamp(*pt);

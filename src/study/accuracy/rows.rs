@@ -6,6 +6,8 @@ use super::*;
 #[derive(Debug, Clone, Default, Serialize, serde::Deserialize)]
 pub struct Row {
     pub level: String,
+    /// The engine that ran the row: `rapier` or `box2d` (`--engine`).
+    pub engine: String,
     pub class: String,
     /// The curve(s) the setting lies on: `baseline` (the level's settings, on every curve),
     /// `dt`, `dt_f64`, `substeps`, `pgs_iterations`, `effects`, `rapier_default`.
@@ -50,8 +52,9 @@ pub struct Row {
 }
 
 /// The CSV header (the fields of [`Row`], in order).
-pub const CSV_COLUMNS: [&str; 28] = [
+pub const CSV_COLUMNS: [&str; 29] = [
     "level",
+    "engine",
     "class",
     "knob",
     "dt",
@@ -95,6 +98,8 @@ pub fn gain_floor(p: Precision) -> f64 {
 #[derive(Debug, Clone)]
 pub struct LevelStudy {
     pub name: String,
+    /// The engine of every row of this study (a level swept on two engines has two studies).
+    pub engine: PhysicsEngine,
     pub title: String,
     pub class: &'static str,
     /// The scene as studied (its duration cut to the window).
@@ -111,6 +116,18 @@ pub struct LevelStudy {
     pub timeable: Vec<bool>,
     /// The machine's 1-minute load average before and after the timing phase.
     pub load: Option<(f64, f64)>,
+}
+
+impl LevelStudy {
+    /// The level's name as the summary's tables show it: with the engine beside it when not
+    /// rapier ("kinetics/simple_pendulum [box2d]").
+    pub fn label(&self) -> String {
+        if self.engine.is_rapier() {
+            self.name.clone()
+        } else {
+            format!("{} [{}]", self.name, self.engine.name())
+        }
+    }
 }
 
 /// "kinetics/simple_pendulum" from ".../kinetics/simple_pendulum.ron".

@@ -3,17 +3,36 @@
 
 use super::*;
 
-/// The error part of a level's study (runs in parallel with other levels): the reference, the
-/// window and every point's runs, which share the level's budget.
+/// The error part of a level's study on rapier (runs in parallel with other levels): the
+/// reference, the window and every point's runs, which share the level's budget.
 pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> LevelStudy {
+    measure_errors_on(scene, plan, PhysicsEngine::Rapier, tick)
+}
+
+/// [`measure_errors`] on `engine` (the scene as [`engines::prepared`] makes it).
+pub fn measure_errors_on(
+    scene: &Scene,
+    plan: &Plan,
+    engine: PhysicsEngine,
+    tick: &(dyn Fn() + Sync),
+) -> LevelStudy {
     let level = &scene.level;
     let name = level_name(&scene.file);
-    let pts = points(level, plan);
+    let pts = points_on(level, plan, engine);
     let exact = has_exact(level);
     let conserved = metrics::conserved(level);
-    let ref_setting = reference_setting(level, plan);
+    let ref_setting = reference_setting(level, plan).on(engine);
     let mut notes = Vec::new();
     let budget = Budget::of(scene, plan, &ref_setting, exact, &mut notes);
+    if !engine.is_rapier() {
+        // The window is priced for every engine by the run budget's estimate of rapier in f64.
+        for n in notes.iter_mut() {
+            *n = n.replace(
+                "(the f64 reference is estimated at",
+                "(priced by rapier's f64 estimate at",
+            );
+        }
+    }
     let windowed = measure::with_duration(scene, budget.window);
     // Questions may be asked at the end: levels with an exact answer run their whole duration.
     let studied = if exact {
@@ -24,7 +43,7 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
     let reference = measure::reference(&windowed, &ref_setting);
     if let Some(e) = &reference.stopped {
         notes.push(format!(
-            "the f64 reference ({}) stopped: {e}; self-consistency uses the {:.3} s before",
+            "the reference ({}) stopped: {e}; self-consistency uses the {:.3} s before",
             ref_setting.label(),
             reference.duration()
         ));
@@ -48,12 +67,18 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
         tick();
     }
     if !exact {
-        notes.push(
-            "no textbook answer or closed-form check: the error is self-consistency against the f64 reference".into(),
-        );
+        notes.push(format!(
+            "no textbook answer or closed-form check: the error is self-consistency against {}",
+            if engine.is_rapier() {
+                "the f64 reference"
+            } else {
+                "the engine's own f32 reference"
+            }
+        ));
     }
     LevelStudy {
         name,
+        engine,
         title: level.title.clone(),
         class: class(level),
         scene: studied,
@@ -80,6 +105,7 @@ fn reference_setting(level: &level::Level, plan: &Plan) -> Setting {
         iterations: plan.reference.2.max(level.world.solver_iterations),
         precision: Precision::F64,
         all_effects: false,
+        engine: PhysicsEngine::Rapier,
     }
 }
 
@@ -271,6 +297,7 @@ impl Sweep<'_> {
         };
         Row {
             level: name.to_string(),
+            engine: s.engine.name().into(),
             class: class(&self.scene.level).into(),
             knob,
             dt: s.dt,
@@ -374,23 +401,10 @@ pub fn run_study_timed(
     Vec<(String, String)>,
     Option<shard::TimingRef>,
 ) {
-    let mut skipped = Vec::new();
-    let mut scenes = Vec::new();
-    for f in files {
-        match level::load(f) {
-            Ok(s) => match nothing_to_measure(&s.level) {
-                Some(why) => skipped.push((level_name(f), why)),
-                None => scenes.push(s),
-            },
-            Err(e) => {
-                progress.suspend(|| stderr!("{e}"));
-                skipped.push((level_name(f), format!("does not load: {}", e.message)));
-            }
-        }
-    }
+    let (scenes, skipped) = load_scenes(files, plan, progress);
     let jobs: u64 = scenes
         .iter()
-        .map(|s| (1 + plan.rounds as u64) * points(&s.level, plan).len() as u64)
+        .map(|(s, e)| (1 + plan.rounds as u64) * points_on(&s.level, plan, *e).len() as u64)
         .sum::<u64>()
         + if time_reference {
             plan.rounds as u64
@@ -402,7 +416,7 @@ pub fn run_study_timed(
     let tick = || progress.inc(1);
     let mut studies: Vec<LevelStudy> = scenes
         .par_iter()
-        .map(|s| measure_errors(s, plan, &tick))
+        .map(|(s, e)| measure_errors_on(s, plan, *e, &tick))
         .collect();
     // Timings only now, one run at a time, so that nothing of ours disturbs them.
     progress.set_message("timing (one run at a time)");
@@ -424,6 +438,39 @@ pub fn run_study_timed(
         }
     }
     (studies, skipped, timing)
+}
+
+/// The scenes to sweep, each with its engine, and the files skipped with why.
+type Loaded = (Vec<(Scene, PhysicsEngine)>, Vec<(String, String)>);
+
+/// The levels to sweep, each with every engine of the plan that runs it (level order, then the
+/// plan's engine order), and the files skipped with why: a level that does not load or has
+/// nothing to measure, and a level an engine refuses (named with the engine and the feature).
+fn load_scenes(files: &[PathBuf], plan: &Plan, progress: &ProgressBar) -> Loaded {
+    let mut skipped = Vec::new();
+    let mut scenes = Vec::new();
+    for f in files {
+        let s = match level::load(f) {
+            Ok(s) => s,
+            Err(e) => {
+                progress.suspend(|| stderr!("{e}"));
+                skipped.push((level_name(f), format!("does not load: {}", e.message)));
+                continue;
+            }
+        };
+        if let Some(why) = nothing_to_measure(&s.level) {
+            skipped.push((level_name(f), why));
+            continue;
+        }
+        for &engine in &plan.engines {
+            let mine = engines::prepared(&s, engine);
+            match engines::refused(&mine, engine) {
+                Some(why) => skipped.push((level_name(f), why)),
+                None => scenes.push((mine, engine)),
+            }
+        }
+    }
+    (scenes, skipped)
 }
 
 /// The machine's 1-minute load average (Linux), to judge how disturbed the timings were.

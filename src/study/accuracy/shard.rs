@@ -124,6 +124,7 @@ pub fn timing_study() -> LevelStudy {
     let setting = Setting::of_level(&scene.level);
     LevelStudy {
         name: TIMING_LEVEL.into(),
+        engine: PhysicsEngine::Rapier,
         title: scene.level.title.clone(),
         class: class(&scene.level),
         conserved: metrics::conserved(&scene.level),
@@ -171,6 +172,9 @@ impl TimingRef {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct LevelMeta {
     pub name: String,
+    /// The engine of the level's rows (shards written before `--engine` have rapier's only).
+    #[serde(default)]
+    pub engine: PhysicsEngine,
     /// Position in the files the shard was given (rows are merged in this order).
     pub order: usize,
     /// The level as studied (its duration cut to the window), as `level::to_ron` writes it.
@@ -201,12 +205,19 @@ pub struct Manifest {
     /// Level files in the whole sweep.
     pub work: usize,
     pub quick: bool,
+    /// The engines swept (`--engine`; shards written before it swept rapier only).
+    #[serde(default = "rapier_only")]
+    pub engines: Vec<PhysicsEngine>,
     pub format: String,
     pub timing: Option<TimingRef>,
     /// The machine's 1-minute load average before and after the timing phase.
     pub load: Option<(f64, f64)>,
     pub levels: Vec<LevelMeta>,
     pub skipped: Vec<SkippedMeta>,
+}
+
+fn rapier_only() -> Vec<PhysicsEngine> {
+    vec![PhysicsEngine::Rapier]
 }
 
 pub const MANIFEST_FILE: &str = "shard.json";
@@ -238,6 +249,7 @@ impl Manifest {
             fingerprint: fingerprint(all_files, plan),
             work: all_files.len(),
             quick: plan.quick,
+            engines: plan.engines.clone(),
             format: format.into(),
             timing,
             load: studies.iter().find_map(|s| s.load),
@@ -245,6 +257,7 @@ impl Manifest {
                 .iter()
                 .map(|st| LevelMeta {
                     name: st.name.clone(),
+                    engine: st.engine,
                     order: order(&st.name),
                     level: level::to_ron(&st.scene.level),
                     notes: st.notes.clone(),

@@ -3,8 +3,9 @@
 
 use super::measure::Precision;
 use super::measure::Setting;
-use super::plot::{self, Curve, Panel};
+use super::plot::{self, Curve, Front, Marker, Panel};
 use super::{gain_floor, metrics, Knob, LevelStudy, Plan, Point, Row};
+use crate::level::PhysicsEngine;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -35,7 +36,7 @@ fn curve(st: &LevelStudy, k: Knob) -> Vec<(&Point, &Row)> {
     v
 }
 
-fn baseline(st: &LevelStudy) -> Option<&Row> {
+pub(super) fn baseline(st: &LevelStudy) -> Option<&Row> {
     st.points
         .iter()
         .zip(&st.rows)
@@ -81,6 +82,7 @@ fn panel(st: &LevelStudy, m: Measure, title: &str, y_desc: &str) -> Panel {
     let curves = Knob::ALL
         .iter()
         .enumerate()
+        .filter(|(_, k)| super::knobs_of(st.engine).contains(k))
         .map(|(i, k)| Curve {
             label: k.label().to_string(),
             color: plot::COLORS[i % plot::COLORS.len()],
@@ -88,6 +90,7 @@ fn panel(st: &LevelStudy, m: Measure, title: &str, y_desc: &str) -> Panel {
                 .into_iter()
                 .filter_map(|(_, r)| pt(r))
                 .collect(),
+            marker: Marker::Circle,
         })
         .collect();
     let declared: Vec<(f64, f64)> = st
@@ -127,28 +130,86 @@ fn panel(st: &LevelStudy, m: Measure, title: &str, y_desc: &str) -> Panel {
         title: title.to_string(),
         y_desc: y_desc.to_string(),
         curves,
-        front,
+        fronts: vec![Front {
+            label: "Pareto front".into(),
+            color: plot::FRONT_RAPIER,
+            marker: Marker::Circle,
+            points: front,
+        }],
         meets,
         marks,
         floor: FLOOR,
     }
 }
 
-/// Draws a level's Pareto plot: the exact error (where there is one) and the self-consistency error.
-pub fn plot_level(st: &LevelStudy, path: &Path) -> Result<(), String> {
+/// One panel of a level's plot over every engine that ran it: each engine's curves and Pareto
+/// front, told apart by marker (rapier's circles, Box2D's triangles) and named in the legend;
+/// with one engine, that engine's panel as it always was.
+fn panel_all(sts: &[&LevelStudy], m: Measure, title: &str, y_desc: &str) -> Panel {
+    let mut panels: Vec<(PhysicsEngine, Panel)> = sts
+        .iter()
+        .map(|st| (st.engine, panel(st, m, title, y_desc)))
+        .collect();
+    if panels.len() == 1 {
+        return panels.remove(0).1;
+    }
+    let mut out = Panel {
+        title: title.to_string(),
+        y_desc: y_desc.to_string(),
+        curves: Vec::new(),
+        fronts: Vec::new(),
+        meets: Vec::new(),
+        marks: Vec::new(),
+        floor: FLOOR,
+    };
+    for (engine, p) in panels {
+        let (marker, front_color) = if engine.is_rapier() {
+            (Marker::Circle, plot::FRONT_RAPIER)
+        } else {
+            (Marker::Triangle, plot::FRONT_BOX2D)
+        };
+        let e = engine.name();
+        out.curves.extend(p.curves.into_iter().map(|c| Curve {
+            label: format!("{e}: {}", c.label),
+            marker,
+            ..c
+        }));
+        out.fronts.extend(p.fronts.into_iter().map(|f| Front {
+            label: format!("Pareto front, {e}"),
+            color: front_color,
+            marker,
+            ..f
+        }));
+        out.meets.extend(p.meets);
+        out.marks
+            .extend(p.marks.into_iter().map(|(l, x)| (format!("{l} ({e})"), x)));
+    }
+    out
+}
+
+/// Draws a level's Pareto plot, every engine that ran it on the same axes: the exact error
+/// (where there is one) and the self-consistency error.
+pub fn plot_level(sts: &[&LevelStudy], path: &Path) -> Result<(), String> {
+    let Some(st) = sts.first() else {
+        return Err("no study to plot".into());
+    };
     let mut panels = Vec::new();
     if st.has_exact {
-        panels.push(panel(
-            st,
+        panels.push(panel_all(
+            sts,
             Measure::Primary,
             "error against the textbook answer",
             "worst relative error (questions, closed form)",
         ));
     }
-    panels.push(panel(
-        st,
+    panels.push(panel_all(
+        sts,
         Measure::Position,
-        "self-consistency against the f64 reference",
+        if sts.len() == 1 && st.engine.is_rapier() {
+            "self-consistency against the f64 reference"
+        } else {
+            "self-consistency against the engine's own fine-step reference"
+        },
         "body position error at the end of restarted pieces, m",
     ));
     plot::draw(
@@ -158,7 +219,7 @@ pub fn plot_level(st: &LevelStudy, path: &Path) -> Result<(), String> {
     )
 }
 
-fn num(x: Option<f64>) -> String {
+pub(super) fn num(x: Option<f64>) -> String {
     match x {
         Some(0.0) => "0".into(),
         Some(v) if v.is_finite() => {
@@ -307,7 +368,7 @@ fn front_share(st: &LevelStudy, m: Measure) -> [(usize, usize); 3] {
 
 const GAIN_KNOBS: [Knob; 4] = [Knob::Dt, Knob::DtF64, Knob::Substeps, Knob::Iterations];
 
-fn median(mut v: Vec<f64>) -> Option<f64> {
+pub(super) fn median(mut v: Vec<f64>) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
@@ -321,7 +382,7 @@ fn median(mut v: Vec<f64>) -> Option<f64> {
 }
 
 /// The cheapest declared-effects setting whose run meets every graded tolerance of the level.
-fn cheapest_meeting(st: &LevelStudy) -> Option<&Row> {
+pub(super) fn cheapest_meeting(st: &LevelStudy) -> Option<&Row> {
     st.rows
         .iter()
         .filter(|r| r.effects == "declared" && r.meets_tolerance == Some(true))
@@ -351,8 +412,26 @@ pub fn markdown(
     knob_table(&mut s, studies);
     conservation_table(&mut s, studies, plan);
     level_sections(&mut s, studies, plots);
+    super::engine_verdict::section(&mut s, studies, skipped);
     skipped_list(&mut s, skipped);
     s
+}
+
+/// "12 level(s)", or "12 level(s) (20 level-engine studies)" when some levels ran on more than
+/// one engine.
+fn level_count(studies: &[LevelStudy]) -> String {
+    let mut names: Vec<&str> = studies.iter().map(|st| st.name.as_str()).collect();
+    names.sort_unstable();
+    names.dedup();
+    if names.len() == studies.len() {
+        format!("{} level(s)", names.len())
+    } else {
+        format!(
+            "{} level(s) ({} level-engine studies)",
+            names.len(),
+            studies.len()
+        )
+    }
 }
 
 /// The title and the method: how errors and costs were measured, and the machine's load.
@@ -360,7 +439,7 @@ fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
     let _ = writeln!(s, "# What accuracy costs in time\n");
     let _ = writeln!(
         s,
-        "Generated by `rigidlab study accuracy{}` over {} level(s){}. Method (Erez, Tassa & Todorov 2015): \
+        "Generated by `rigidlab study accuracy{}` over {}{}. Method (Erez, Tassa & Todorov 2015): \
          error against the exact (textbook / closed-form) answer where the level has one, and always the \
          self-consistency error against the engine's own f64 run at dt {} s, {} substeps, {} PGS iterations, \
          on {} pieces of {} s restarted from that reference (fresh simulation, body poses and velocities \
@@ -369,7 +448,7 @@ fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
          a round's sample is the fastest of the runs that fit in {} ms (a preempted run is slower, never faster). \
          One knob is varied at a time from each level's settings.\n",
         if plan.quick { " --quick" } else { "" },
-        studies.len(),
+        level_count(studies),
         if plan.quick { " (quick sweep: fewer points, coarser reference)" } else { "" },
         super::measure::dt_label(plan.reference.0),
         plan.reference.1,
@@ -379,6 +458,22 @@ fn intro(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
         plan.rounds,
         plan.sample_time.as_millis(),
     );
+    let engines: Vec<&str> = studies.iter().fold(Vec::new(), |mut v, st| {
+        if !v.contains(&st.engine.name()) {
+            v.push(st.engine.name());
+        }
+        v
+    });
+    if engines.iter().any(|e| *e != "rapier") {
+        let _ = writeln!(
+            s,
+            "Engines: {} (`--engine`). Box2D v3 runs in f32 only and has no PGS-iterations knob: its sweep \
+             is dt, substeps and effects, and its self-consistency reference is its own f32 run at the \
+             reference's dt and substeps (rapier's is its f64 build); a level's rows on Box2D are marked \
+             [box2d]. Levels an engine refuses are listed at the end with the feature it lacks.\n",
+            engines.join(", ")
+        );
+    }
     if let Some((b, a)) = studies.iter().find_map(|st| st.load) {
         let _ = writeln!(
             s,
@@ -411,7 +506,7 @@ fn cheapest_table(s: &mut String, studies: &[LevelStudy]) {
         let _ = writeln!(
             s,
             "| {} | {} | {}, {} | {} | {}, {} | {}, {}, {} | {} |",
-            st.name,
+            st.label(),
             st.class,
             num(base.and_then(|r| r.cost_us_per_sim_s)),
             num(base.and_then(|r| r.error)),
@@ -470,7 +565,7 @@ fn effects_table(s: &mut String, studies: &[LevelStudy]) {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} |",
-            st.name,
+            st.label(),
             st.class,
             num(base),
             num(all),
@@ -529,7 +624,7 @@ fn knob_table(s: &mut String, studies: &[LevelStudy]) {
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {} | {} | {} | {} | {} |",
-                st.name,
+                st.label(),
                 st.class,
                 k.label(),
                 pe,
@@ -543,7 +638,7 @@ fn knob_table(s: &mut String, studies: &[LevelStudy]) {
         let _ = writeln!(
             s,
             "| {} | {} | precision f32 -> f64 | error f32/f64: {} | cost f64/f32: {} | error f32/f64: {} | | |",
-            st.name,
+            st.label(),
             st.class,
             num(e),
             num(c),
@@ -553,9 +648,39 @@ fn knob_table(s: &mut String, studies: &[LevelStudy]) {
     class_verdicts(s, studies);
 }
 
+/// Whether a level's class belongs to a group of scenes.
+type Member = fn(&str) -> bool;
+
+/// The verdict's groups per engine: each group of scenes on each engine of the study, named with
+/// the engine when the study has more than one (the verdict table extended by engine).
+fn engine_groups(
+    studies: &[LevelStudy],
+    groups: &[(&str, Member)],
+) -> Vec<(String, PhysicsEngine, Member)> {
+    let mut engines: Vec<PhysicsEngine> = Vec::new();
+    for st in studies {
+        if !engines.contains(&st.engine) {
+            engines.push(st.engine);
+        }
+    }
+    let many = engines.len() > 1;
+    engines
+        .iter()
+        .flat_map(|e| {
+            groups.iter().map(move |(g, m)| {
+                let name = if many {
+                    format!("{g}, {}", e.name())
+                } else {
+                    g.to_string()
+                };
+                (name, *e, *m)
+            })
+        })
+        .collect()
+}
+
 /// Table 3's second half: per class of scene, which knob family buys accuracy most cheaply.
 fn class_verdicts(s: &mut String, studies: &[LevelStudy]) {
-    type Member = fn(&str) -> bool;
     let groups: [(&str, Member); 3] = [
         ("contact scenes", |c| {
             c.contains("contact") && c != "contact-free"
@@ -577,8 +702,13 @@ fn class_verdicts(s: &mut String, studies: &[LevelStudy]) {
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     let mut verdicts = Vec::new();
-    for (gname, member) in groups {
-        let members: Vec<&LevelStudy> = studies.iter().filter(|st| member(st.class)).collect();
+    let groups = engine_groups(studies, &groups);
+    for (gname, engine, member) in groups {
+        let gname = gname.as_str();
+        let members: Vec<&LevelStudy> = studies
+            .iter()
+            .filter(|st| st.engine == engine && member(st.class))
+            .collect();
         if members.is_empty() {
             continue;
         }
@@ -591,6 +721,9 @@ fn class_verdicts(s: &mut String, studies: &[LevelStudy]) {
         let mut best_f: Option<(&str, f64)> = None;
         for (f, (fname, knobs)) in FAMILIES.iter().enumerate() {
             let k = knobs[0];
+            if !super::knobs_of(engine).contains(&k) {
+                continue; // not a knob of this engine's sweep (Box2D: PGS iterations)
+            }
             let pe: Vec<f64> = members
                 .iter()
                 .filter(|st| st.has_exact)
@@ -634,27 +767,32 @@ fn class_verdicts(s: &mut String, studies: &[LevelStudy]) {
                 rate.map_or(String::new(), |r| format!(" ({:.0} %)", 100.0 * r))
             );
         }
-        let prec: Vec<(Option<f64>, Option<f64>, Option<f64>)> =
-            members.iter().map(|st| precision_ratios(st)).collect();
+        // Box2D runs in f32 only: no precision row.
+        let prec: Vec<(Option<f64>, Option<f64>, Option<f64>)> = if engine.is_rapier() {
+            members.iter().map(|st| precision_ratios(st)).collect()
+        } else {
+            Vec::new()
+        };
         let me = median(prec.iter().filter_map(|x| x.0).collect());
         let mc = median(prec.iter().filter_map(|x| x.1).collect());
         let mp = median(prec.iter().filter_map(|x| x.2).collect());
-        let _ = writeln!(
-            s,
-            "| {} | precision f32 -> f64 | error ÷ {} | | error ÷ {} | | cost × {} |",
-            gname,
-            num(me),
-            num(mp),
-            num(mc)
-        );
+        if engine.is_rapier() {
+            let _ = writeln!(
+                s,
+                "| {} | precision f32 -> f64 | error ÷ {} | | error ÷ {} | | cost × {} |",
+                gname,
+                num(me),
+                num(mp),
+                num(mc)
+            );
+        }
         let say = |b: Option<(&str, f64)>| match b {
             None => "no data".to_string(),
             Some((_, p)) if p <= 0.05 => "no knob (every median p <= 0.05)".to_string(),
             Some((k, p)) => format!("**{k}** (median p = {p:.2})"),
         };
         verdicts.push(format!(
-            "- {gname} ({} levels): self-consistency {}; against the exact answer {}; most often on the Pareto front: {}. \
-             f64 instead of f32: error ÷ {} (self-consistency), cost × {}.",
+            "- {gname} ({} levels): self-consistency {}; against the exact answer {}; most often on the Pareto front: {}. {}",
             members.len(),
             say(best_p),
             say(best_e),
@@ -662,8 +800,15 @@ fn class_verdicts(s: &mut String, studies: &[LevelStudy]) {
                 "**{k}** ({:.0} % of its dearer points)",
                 100.0 * r
             )),
-            num(mp),
-            num(mc)
+            if engine.is_rapier() {
+                format!(
+                    "f64 instead of f32: error ÷ {} (self-consistency), cost × {}.",
+                    num(mp),
+                    num(mc)
+                )
+            } else {
+                format!("{} runs in f32 only.", engine.name())
+            }
         ));
     }
     let _ = writeln!(s);
@@ -700,7 +845,7 @@ fn conservation_table(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
                 let _ = writeln!(
                     s,
                     "| {} | {} | {} | {} | {} | {} | {} |",
-                    st.name,
+                    st.label(),
                     setting_of(r),
                     num(r.energy_drift_per_s),
                     num(r.energy_drift_per_period),
@@ -721,7 +866,7 @@ fn conservation_table(s: &mut String, studies: &[LevelStudy], plan: &Plan) {
 fn level_sections(s: &mut String, studies: &[LevelStudy], plots: &[(String, String)]) {
     let _ = writeln!(s, "\n## Levels\n");
     for st in studies {
-        let _ = writeln!(s, "### {} — {} ({})\n", st.name, st.title, st.class);
+        let _ = writeln!(s, "### {} — {} ({})\n", st.label(), st.title, st.class);
         let lvl = &st.scene.level.world;
         let _ = writeln!(
             s,
@@ -736,7 +881,7 @@ fn level_sections(s: &mut String, studies: &[LevelStudy], plots: &[(String, Stri
             let _ = writeln!(s, "- note: {n}");
         }
         if let Some((_, f)) = plots.iter().find(|(n, _)| n == &st.name) {
-            let _ = writeln!(s, "\n![{}]({f})\n", st.name);
+            let _ = writeln!(s, "\n![{}]({f})\n", st.label());
         }
         let _ = writeln!(
             s,

@@ -25,6 +25,7 @@ fn setting(dt: f64, substeps: usize, precision: Precision) -> Setting {
         iterations: 1,
         precision,
         all_effects: false,
+        engine: rigidlab::level::PhysicsEngine::Rapier,
     }
 }
 
