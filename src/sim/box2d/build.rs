@@ -6,7 +6,7 @@
 
 use super::world::Simulation;
 use crate::level::*;
-use crate::sim::{mass_properties, Effects, Settings};
+use crate::sim::{describe, mass_properties, Effects, Settings};
 use boxdd::{
     shapes, BodyBuilder, BodyId, BodyType, Foundation, JointId, MassData, MotionLocks, Position,
     PrismaticJointDef, RevoluteJointDef, ShapeDef, ShapeId, SurfaceMaterial, Transform, Vec2,
@@ -84,23 +84,15 @@ impl Simulation {
             // Box2D's kinematic body moves its origin at its linear velocity; the level gives
             // the mass center's, which is the origin's for a body that does not turn (a
             // turning kinematic body is refused).
-            let damping = fx.has(Effect::Damping);
+            let (linear_damping, angular_damping) = describe::damping(b, &fx);
             let def = BodyBuilder::from(Foundation::initialize_default()?.body_def())
                 .body_type(body_type(b.kind))
                 .position(Position::new(b.position.0 as _, b.position.1 as _))
                 .angle(b.angle as f32)
                 .linear_velocity(v(b.velocity))
                 .angular_velocity(b.omega as f32)
-                .linear_damping(if damping {
-                    b.linear_damping.unwrap_or(0.0) as f32
-                } else {
-                    0.0
-                })
-                .angular_damping(if damping {
-                    b.angular_damping.unwrap_or(0.0) as f32
-                } else {
-                    0.0
-                })
+                .linear_damping(linear_damping as f32)
+                .angular_damping(angular_damping as f32)
                 .enable_sleep(fx.has(Effect::Sleeping))
                 .allow_fast_rotation(fast)
                 .motion_locks(MotionLocks::new(false, false, b.lock_rotation))
@@ -143,14 +135,10 @@ impl Simulation {
         for j in self.level.joints.clone() {
             let (i1, i2) = (self.body_index(&j.body1), self.body_index(&j.body2));
             let (b1, b2) = (&self.level.bodies[i1], &self.level.bodies[i2]);
-            let n = j.axis.0.hypot(j.axis.1);
-            let axis_angle = (j.axis.1 / n).atan2(j.axis.0 / n);
-            // Frame 1 carries the slide axis as its x axis; frame 2 is turned so that both
-            // frames coincide at t = 0 (a weld and a slider keep the bodies' relative angle), as
-            // on rapier (`sim/build.rs`).
-            let frame1 = Transform::from_pos_angle(v(j.anchor1), axis_angle as f32)?;
-            let frame2 =
-                Transform::from_pos_angle(v(j.anchor2), (axis_angle + b1.angle - b2.angle) as f32)?;
+            // The frames rapier gets too (`describe::joint_frames`).
+            let f = describe::joint_frames(&j, b1, b2);
+            let frame1 = Transform::from_pos_angle(v(f.anchor1), f.angle1 as f32)?;
+            let frame2 = Transform::from_pos_angle(v(f.anchor2), f.angle2 as f32)?;
             let base = self
                 .world
                 .joint_base(self.bodies[i1], self.bodies[i2])?
@@ -181,21 +169,12 @@ impl Simulation {
     }
 }
 
-/// The shape definition: the body's friction and restitution where their effects are declared.
+/// The shape definition: the body's surface as rapier gets it (`describe::surface`).
 fn shape_def(b: &BodyDef, fx: &Effects) -> Result<ShapeDef> {
-    let mu = if fx.has(Effect::Friction) {
-        b.friction.unwrap_or(0.0)
-    } else {
-        0.0
-    };
-    let e = if fx.has(Effect::Restitution) {
-        b.restitution.unwrap_or(0.0)
-    } else {
-        0.0
-    };
+    let surface = describe::surface(b, fx);
     let material = SurfaceMaterial::new()
-        .with_friction(mu as f32)?
-        .with_restitution(e as f32)?;
+        .with_friction(surface.friction as f32)?
+        .with_restitution(surface.restitution as f32)?;
     ShapeDef::builder()
         .material(material)
         .density(0.0)
@@ -212,10 +191,11 @@ fn add_shape(
     at: Transform,
 ) -> Result<Vec<ShapeId>> {
     if let Shape::Compound { parts } = shape {
+        // The leaves rapier's compound has (`describe::leaves`).
         let mut ids = Vec::new();
-        for p in parts {
-            let t = Transform::from_pos_angle(v(p.offset), p.angle as f32)?;
-            ids.extend(add_shape(world, body, def, &p.shape, t)?);
+        for l in describe::leaves(parts) {
+            let t = Transform::from_pos_angle(v(l.offset), l.angle as f32)?;
+            ids.extend(add_shape(world, body, def, l.shape, t)?);
         }
         return Ok(ids);
     }
