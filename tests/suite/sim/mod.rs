@@ -2,6 +2,8 @@
 //! and the engine's known gaps with their sizes (src/sim).
 
 #[cfg(feature = "box2d")]
+mod box2d_pin;
+#[cfg(feature = "box2d")]
 mod box2d_readings;
 #[cfg(feature = "box2d")]
 mod box2d_refusals;
