@@ -4,6 +4,7 @@ mod accuracy;
 mod advice;
 mod advice_names_gaps;
 mod advice_reproducible;
+mod other_engine;
 mod sand_pile;
 mod shards;
 mod stability;
