@@ -128,6 +128,18 @@ impl Simulation {
         Ok(())
     }
 
+    /// A blow between steps (the window's): impulse `j` (N s) at the world point `at` on body
+    /// `i`, as on rapier (`sim::Simulation::apply_impulse`); false when there is no such body.
+    pub fn apply_impulse(&mut self, i: usize, at: DVec2, j: DVec2) -> bool {
+        let Some(&id) = self.bodies.get(i) else {
+            return false;
+        };
+        let Ok(mut b) = self.world.body(id) else {
+            return false;
+        };
+        b.apply_linear_impulse(vec(j), pos(at), true).is_ok()
+    }
+
     /// Stops a run whose state became non-finite.
     fn guard(&self) -> std::result::Result<(), SimError> {
         for b in &self.snapshot.bodies {
