@@ -57,13 +57,13 @@ impl AnySimulation {
     /// level instead (`runner::engine_for`); the window shows the refusal and runs rapier.
     pub fn new(scene: &Scene, opts: &Options) -> Self {
         match opts.engine.unwrap_or(scene.level.world.engine) {
-            PhysicsEngine::Rapier => Self::rapier(scene, opts, None),
+            PhysicsEngine::Rapier => Self::on_rapier(scene, opts, None),
             PhysicsEngine::Box2d => Self::box2d(scene, opts),
         }
     }
 
     /// rapier at the run's precision.
-    fn rapier(scene: &Scene, opts: &Options, refused: Option<String>) -> Self {
+    fn on_rapier(scene: &Scene, opts: &Options, refused: Option<String>) -> Self {
         let precision = opts.precision.unwrap_or(scene.level.world.precision);
         let engine = match precision {
             Precision::F32 => Engine::F32(Box::new(crate::sim::Simulation::new(scene, opts))),
@@ -92,14 +92,14 @@ impl AnySimulation {
                 refused: None,
                 engine: Engine::Box2d(Box::new(t)),
             },
-            Err(e) => Self::rapier(scene, opts, Some(e.message)),
+            Err(e) => Self::on_rapier(scene, opts, Some(e.message)),
         }
     }
 
     #[cfg(not(all(feature = "box2d", not(target_arch = "wasm32"))))]
     fn box2d(scene: &Scene, opts: &Options) -> Self {
         let why = crate::sim::box2d::not_built().message;
-        Self::rapier(scene, opts, Some(why))
+        Self::on_rapier(scene, opts, Some(why))
     }
 
     /// The engine that runs (rapier when Box2D was asked for and refused).

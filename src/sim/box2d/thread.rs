@@ -24,7 +24,8 @@ enum Ask {
 
 /// The thread's answers, one per ask that needs one.
 enum Answer {
-    Stepped(Result<Snapshot, SimError>),
+    /// Boxed: a snapshot is large, the other answers a bool.
+    Stepped(Box<Result<Snapshot, SimError>>),
     Impulse(bool),
 }
 
@@ -108,11 +109,10 @@ impl Threaded {
     /// Asks the thread for one step and keeps its snapshot.
     pub fn step(&mut self) -> Result<&Snapshot, SimError> {
         match self.ask(Ask::Step) {
-            Some(Answer::Stepped(Ok(s))) => {
-                self.snapshot = s;
+            Some(Answer::Stepped(r)) => {
+                self.snapshot = (*r)?;
                 Ok(&self.snapshot)
             }
-            Some(Answer::Stepped(Err(e))) => Err(e),
             _ => Err(SimError {
                 step: self.snapshot.step + 1,
                 time: self.snapshot.time,
@@ -157,7 +157,7 @@ impl Threaded {
 fn serve(sim: &mut Simulation, asks: &Receiver<Ask>, answers: &Sender<Answer>) {
     while let Ok(a) = asks.recv() {
         let answer = match a {
-            Ask::Step => Answer::Stepped(sim.step().cloned()),
+            Ask::Step => Answer::Stepped(Box::new(sim.step().cloned())),
             Ask::Impulse(i, at, j) => Answer::Impulse(sim.apply_impulse(i, at, j)),
             Ask::ContactReadings(on) => {
                 sim.set_contact_readings(on);

@@ -7,6 +7,8 @@ mod box2d_pin;
 mod box2d_readings;
 #[cfg(feature = "box2d")]
 mod box2d_refusals;
+#[cfg(feature = "box2d")]
+mod box2d_window;
 mod closed_forms;
 mod compound_track;
 mod contact_readings;
