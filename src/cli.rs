@@ -452,6 +452,8 @@ fn check(
                             Some(&report),
                             cost_s,
                         ));
+                        report.other_engine =
+                            Some(crate::study::other_engine::other_engine(&scene, &opts));
                         Ok(report)
                     }
                     Err(e @ RunError::Sim { .. }) => {
@@ -460,6 +462,9 @@ fn check(
                         report.advice = Some(crate::study::advice::advise_within(
                             &scene, &opts, None, cost_s,
                         ));
+                        report.engine = Some(runner::engine_of(&scene, &opts));
+                        report.other_engine =
+                            Some(crate::study::other_engine::other_engine(&scene, &opts));
                         Ok(report)
                     }
                     other => other,

@@ -190,22 +190,29 @@ fn run_with(
         sim_time: sim.snapshot().time,
         wall_ms,
         effects: sim.settings().effects.names(),
+        engine: Some(engine_of(scene, opts)),
         settings: Some(sim.settings_as_run()),
         checks,
         questions,
         challenge,
         error: None,
         advice: None,
+        other_engine: None,
         hint: None,
         solution: None,
     })
+}
+
+/// The engine a run of `scene` at `opts` uses: `--engine`, else the level's `world.engine`.
+pub fn engine_of(scene: &Scene, opts: &Options) -> PhysicsEngine {
+    opts.engine.unwrap_or(scene.level.world.engine)
 }
 
 /// The engine seam's dispatch: the engine `--engine` names, else the level's `world.engine`.
 /// rapier runs every level; Box2D refuses, with the level item, what it does not run
 /// (`sim::box2d::support`), and a build without the `box2d` feature refuses it whole.
 pub fn engine_for(scene: &Scene, opts: &Options) -> Result<Box<dyn Drive>, RunError> {
-    match opts.engine.unwrap_or(scene.level.world.engine) {
+    match engine_of(scene, opts) {
         PhysicsEngine::Rapier => Ok(Box::new(AnySimulation::new(scene, opts))),
         PhysicsEngine::Box2d => box2d_engine(scene, opts),
     }

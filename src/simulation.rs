@@ -1,9 +1,12 @@
 //! The simulation stage at the precision a run asks for: the level's `world.precision`, or the
 //! `--precision` override. `sim` is compiled twice (rapier2d and rapier2d-f64, see
 //! `sim/mod.rs`); this picks one of the two once, when the run is built, and forwards to it,
-//! so the runner and the window drive either the same way.
+//! so the runner and the window drive either the same way. A level run on Box2D (`--engine`,
+//! the window's solver panel, or `world.engine`) runs Box2D here too, on a thread of its own
+//! (`sim::box2d::Threaded`: boxdd's world is `!Send`); one Box2D refuses runs rapier, with the
+//! refusal kept in [`AnySimulation::refused`] for the window to show.
 
-use crate::level::{Level, Precision, Scene};
+use crate::level::{Level, PhysicsEngine, Precision, Scene};
 use crate::sim::{Options, Settings, SimError};
 use crate::snapshot::Snapshot;
 use glam::DVec2;
@@ -14,12 +17,17 @@ pub struct AnySimulation {
     pub level: Level,
     /// The run's settings, resolved once (as `sim::Simulation::settings`).
     pub settings: Settings,
+    /// Why the engine asked for (Box2D) does not run this level and rapier does instead: the
+    /// refusal, with the level item it names (None when the engine asked for runs).
+    pub refused: Option<String>,
     engine: Engine,
 }
 
 enum Engine {
     F32(Box<crate::sim::Simulation>),
     F64(Box<crate::sim64::Simulation>),
+    #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+    Box2d(Box<crate::sim::box2d::Threaded>),
 }
 
 /// Forwards a call to whichever precision's simulation runs.
@@ -28,20 +36,34 @@ macro_rules! forward {
         match &$self.engine {
             Engine::F32($sim) => $call,
             Engine::F64($sim) => $call,
+            #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+            Engine::Box2d($sim) => $call,
         }
     };
     (mut $self:expr, $sim:ident => $call:expr) => {
         match &mut $self.engine {
             Engine::F32($sim) => $call,
             Engine::F64($sim) => $call,
+            #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+            Engine::Box2d($sim) => $call,
         }
     };
 }
 
 impl AnySimulation {
-    /// rapier at the run's precision, whatever `world.engine` or `Options::engine` say: the
-    /// window and the studies run rapier; the runner picks the engine (`runner::engine_for`).
+    /// The engine `Options::engine` names, else the level's `world.engine`: rapier at the
+    /// run's precision, or Box2D on its thread; rapier, with [`AnySimulation::refused`] saying
+    /// why, when Box2D refuses the level or is not in this build. The runner refuses such a
+    /// level instead (`runner::engine_for`); the window shows the refusal and runs rapier.
     pub fn new(scene: &Scene, opts: &Options) -> Self {
+        match opts.engine.unwrap_or(scene.level.world.engine) {
+            PhysicsEngine::Rapier => Self::on_rapier(scene, opts, None),
+            PhysicsEngine::Box2d => Self::box2d(scene, opts),
+        }
+    }
+
+    /// rapier at the run's precision.
+    fn on_rapier(scene: &Scene, opts: &Options, refused: Option<String>) -> Self {
         let precision = opts.precision.unwrap_or(scene.level.world.precision);
         let engine = match precision {
             Precision::F32 => Engine::F32(Box::new(crate::sim::Simulation::new(scene, opts))),
@@ -50,11 +72,42 @@ impl AnySimulation {
         let (level, settings) = match &engine {
             Engine::F32(s) => (s.level.clone(), s.settings.clone()),
             Engine::F64(s) => (s.level.clone(), s.settings.clone()),
+            #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+            Engine::Box2d(s) => (s.level.clone(), s.settings.clone()),
         };
         AnySimulation {
             level,
             settings,
+            refused,
             engine,
+        }
+    }
+
+    #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+    fn box2d(scene: &Scene, opts: &Options) -> Self {
+        match crate::sim::box2d::Threaded::new(scene, opts) {
+            Ok(t) => AnySimulation {
+                level: t.level.clone(),
+                settings: t.settings.clone(),
+                refused: None,
+                engine: Engine::Box2d(Box::new(t)),
+            },
+            Err(e) => Self::on_rapier(scene, opts, Some(e.message)),
+        }
+    }
+
+    #[cfg(not(all(feature = "box2d", not(target_arch = "wasm32"))))]
+    fn box2d(scene: &Scene, opts: &Options) -> Self {
+        let why = crate::sim::box2d::not_built().message;
+        Self::on_rapier(scene, opts, Some(why))
+    }
+
+    /// The engine that runs (rapier when Box2D was asked for and refused).
+    pub fn engine(&self) -> PhysicsEngine {
+        match self.engine {
+            #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+            Engine::Box2d(_) => PhysicsEngine::Box2d,
+            _ => PhysicsEngine::Rapier,
         }
     }
 
@@ -69,7 +122,12 @@ impl AnySimulation {
     /// The settings as a report states them: how the steps so far were really called
     /// (`sim::Settings::as_run`).
     pub fn settings_as_run(&self) -> Settings {
-        forward!(self, s => s.settings.as_run(&s.calls))
+        match &self.engine {
+            Engine::F32(s) => s.settings.as_run(&s.calls),
+            Engine::F64(s) => s.settings.as_run(&s.calls),
+            #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+            Engine::Box2d(s) => s.settings.clone(),
+        }
     }
 
     pub fn dt(&self) -> f64 {

@@ -26,6 +26,10 @@ pub struct LevelReport {
     pub sim_time: f64,
     pub wall_ms: f64,
     pub effects: Vec<String>,
+    /// The engine the run used (`--engine`, else the level's `world.engine`; None when the
+    /// level could not be loaded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub engine: Option<crate::level::PhysicsEngine>,
     /// The settings the run used, resolved from the level and the command line (None when the
     /// level could not be loaded).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -42,6 +46,10 @@ pub struct LevelReport {
     /// search's bound does (`study::advice`; `rigidlab check --no-advice` leaves it out).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub advice: Option<Advice>,
+    /// For a level the engine failed, with its advice: the same level on the other engine at
+    /// the same settings (`study::advice::other_engine`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_engine: Option<OtherEngine>,
     /// The level's first hint, when a student's answer (`--answer`) to it was wrong.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub hint: Option<String>,
@@ -79,6 +87,61 @@ pub enum Advice {
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         known_gaps: Vec<KnownGapRef>,
     },
+}
+
+/// A failing level run on the other engine (rapier for Box2D, Box2D for rapier) at the same
+/// settings: whether it passes there, fails too, or is refused (the feature it lacks).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OtherEngine {
+    /// The other engine.
+    pub engine: crate::level::PhysicsEngine,
+    pub verdict: OtherVerdict,
+    /// What was found: the failing checks and questions, the refusal with its place in the
+    /// file, why the run stopped, or that the engine is not in this build.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub why: String,
+}
+
+/// [`OtherEngine`]'s verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OtherVerdict {
+    /// Every check and question passes on the other engine.
+    Passes,
+    /// It fails there too.
+    Fails,
+    /// The other engine refuses a feature of the level (before any run).
+    Refused,
+    /// The run stopped early (an explosion, a non-finite state).
+    Stopped,
+    /// The other engine is not in this build (the `box2d` feature, or the web page).
+    NotBuilt,
+}
+
+impl OtherEngine {
+    /// The table's line under a failing level, after its advice.
+    pub fn line(&self) -> String {
+        let e = self.engine.name();
+        match self.verdict {
+            OtherVerdict::Passes => format!(
+                "advice: on {e} at the same settings this level passes: the failure is the \
+                 engine's, not the level's (--engine {e})"
+            ),
+            OtherVerdict::Fails => format!(
+                "advice: on {e} at the same settings it fails too: {}",
+                self.why
+            ),
+            OtherVerdict::Refused => format!("advice: {e} refuses this level: {}", self.why),
+            OtherVerdict::Stopped => format!(
+                "advice: on {e} at the same settings the run stopped: {}",
+                self.why
+            ),
+            OtherVerdict::NotBuilt => format!(
+                "advice: {e} is not in this build, so it was not tried: {}",
+                self.why
+            ),
+        }
+    }
 }
 
 /// A published engine gap the advice names: its stable id, its heading in docs/known-gaps.md,
@@ -135,12 +198,14 @@ impl LevelReport {
             sim_time: 0.0,
             wall_ms: 0.0,
             effects: Vec::new(),
+            engine: None,
             settings: None,
             checks: Vec::new(),
             questions: Vec::new(),
             challenge: None,
             error: Some(error.to_string()),
             advice: None,
+            other_engine: None,
             hint: None,
             solution: None,
         }
@@ -154,6 +219,33 @@ pub fn table(report: &Report) -> String {
     crate::terminal::text(&table_text(report)).into_owned()
 }
 
+/// The table's first line: the engine the levels ran on, or each engine with its number of
+/// levels when they differ (`--engine`, else each level's `world.engine`); none when no level
+/// ran.
+fn engines_line(report: &Report) -> String {
+    let mut counts: Vec<(crate::level::PhysicsEngine, usize)> = Vec::new();
+    for e in report.levels.iter().filter_map(|l| l.engine) {
+        match counts.iter_mut().find(|(k, _)| *k == e) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((e, 1)),
+        }
+    }
+    match counts.as_slice() {
+        [] => String::new(),
+        [(e, _)] => format!("engine: {}\n", e.name()),
+        _ => {
+            let each: Vec<String> = counts
+                .iter()
+                .map(|(e, n)| format!("{} ({n} level{})", e.name(), if *n == 1 { "" } else { "s" }))
+                .collect();
+            format!(
+                "engines: {}; each level's row names its own\n",
+                each.join(", ")
+            )
+        }
+    }
+}
+
 fn table_text(report: &Report) -> String {
     use crate::terminal::field;
     let mut out = String::new();
@@ -164,6 +256,9 @@ fn table_text(report: &Report) -> String {
         .max()
         .unwrap_or(10)
         .clamp(10, 60);
+    out += &engines_line(report);
+    // Levels on different engines: each row names its own.
+    let mixed = engines_line(report).starts_with("engines:");
     out += &format!(
         "{:<w$}  {:>6}  {:>7}  {:>8}  {:>6}  {:>9}  result\n",
         "level", "steps", "sim s", "wall ms", "checks", "questions"
@@ -172,20 +267,27 @@ fn table_text(report: &Report) -> String {
         let cp = l.checks.iter().filter(|c| c.passed).count();
         let qp = l.questions.iter().filter(|q| q.passed).count();
         out += &format!(
-            "{:<w$}  {:>6}  {:>7.3}  {:>8.1}  {:>6}  {:>9}  {}\n",
+            "{:<w$}  {:>6}  {:>7.3}  {:>8.1}  {:>6}  {:>9}  {}{}\n",
             field(&l.file),
             l.steps,
             l.sim_time,
             l.wall_ms,
             format!("{cp}/{}", l.checks.len()),
             format!("{qp}/{}", l.questions.len()),
-            if l.passed { "pass" } else { "FAIL" }
+            if l.passed { "pass" } else { "FAIL" },
+            match l.engine {
+                Some(e) if mixed => format!(" on {}", e.name()),
+                _ => String::new(),
+            }
         );
         if let Some(e) = &l.error {
             out += &format!("    error: {e}\n");
         }
         if let Some(a) = &l.advice {
             out += &format!("    {}\n", a.line());
+        }
+        if let Some(o) = &l.other_engine {
+            out += &format!("    {}\n", o.line());
         }
         for c in &l.checks {
             out += &format!(

@@ -7,9 +7,9 @@ use super::track_shape::{TrackPart, TrackShape};
 use crate::level::curves;
 use crate::level::track::Walked;
 use crate::level::{
-    ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Part,
-    Shape as LevelShape, V2,
+    ArcSide, BodyDef, BodyKind, Effect, JointDef, JointKind, Level, Motor, Shape as LevelShape, V2,
 };
+use crate::sim::describe;
 use crate::sim::options::Effects;
 use crate::sim::settings::Settings;
 
@@ -73,11 +73,18 @@ pub fn shared_shape(s: &LevelShape) -> SharedShape {
                 _ => SharedShape::new(facets),
             }
         }
-        LevelShape::Compound { parts } => {
-            let mut flat = Vec::new();
-            flatten(parts, Pose::IDENTITY, &mut flat);
-            SharedShape::compound(flat)
-        }
+        // parry forbids nested compounds: the leaves, with their composed poses.
+        LevelShape::Compound { parts } => SharedShape::compound(
+            describe::leaves(parts)
+                .into_iter()
+                .map(|l| {
+                    (
+                        Pose::new(v(l.offset), l.angle as Real),
+                        shared_shape(l.shape),
+                    )
+                })
+                .collect(),
+        ),
     }
 }
 
@@ -141,16 +148,6 @@ fn track(s: &LevelShape) -> SharedShape {
 fn closing(n: usize, closed: bool) -> Option<Vec<[u32; 2]>> {
     let n = n as u32;
     (closed && n >= 3).then(|| (0..n).map(|k| [k, (k + 1) % n]).collect())
-}
-
-fn flatten(parts: &[Part], base: Pose, out: &mut Vec<(Pose, SharedShape)>) {
-    for p in parts {
-        let pose = base * Pose::new(v(p.offset), p.angle as Real);
-        match &p.shape {
-            LevelShape::Compound { parts } => flatten(parts, pose, out),
-            s => out.push((pose, shared_shape(s))),
-        }
-    }
 }
 
 pub use crate::level::DEFAULT_DENSITY;
@@ -220,7 +217,7 @@ pub(crate) fn body_builder(b: &BodyDef, fx: &Effects, fast_rotation: bool) -> Ri
         BodyKind::Dynamic => RigidBodyBuilder::dynamic(),
         BodyKind::Kinematic => RigidBodyBuilder::kinematic_velocity_based(),
     };
-    let damping = fx.has(Effect::Damping);
+    let (linear_damping, angular_damping) = describe::damping(b, fx);
     let mut builder = builder
         .translation(v(b.position))
         .rotation(b.angle as Real)
@@ -228,16 +225,8 @@ pub(crate) fn body_builder(b: &BodyDef, fx: &Effects, fast_rotation: bool) -> Ri
         .angvel(b.omega as Real)
         .can_sleep(fx.has(Effect::Sleeping))
         .ccd_enabled(fx.has(Effect::Ccd) && b.kind == BodyKind::Dynamic)
-        .linear_damping(if damping {
-            b.linear_damping.unwrap_or(0.0) as Real
-        } else {
-            0.0
-        })
-        .angular_damping(if damping {
-            b.angular_damping.unwrap_or(0.0) as Real
-        } else {
-            0.0
-        });
+        .linear_damping(linear_damping as Real)
+        .angular_damping(angular_damping as Real);
     if b.kind == BodyKind::Dynamic {
         // Colliders get zero density: mass properties are the same with or without contacts.
         builder = builder.additional_mass_properties(mass_properties(b));
@@ -253,16 +242,7 @@ pub(crate) fn colliders(b: &BodyDef, fx: &Effects) -> Vec<ColliderBuilder> {
     let Some(shape) = &b.shape else {
         return Vec::new();
     };
-    let friction = if fx.has(Effect::Friction) {
-        b.friction.unwrap_or(0.0)
-    } else {
-        0.0
-    };
-    let restitution = if fx.has(Effect::Restitution) {
-        b.restitution.unwrap_or(0.0)
-    } else {
-        0.0
-    };
+    let surface = describe::surface(b, fx);
     // A ball's solver point goes on its rim (sim/contact_points.rs).
     let hooks = if matches!(shape, LevelShape::Circle { .. }) {
         ActiveHooks::MODIFY_SOLVER_CONTACTS
@@ -272,23 +252,17 @@ pub(crate) fn colliders(b: &BodyDef, fx: &Effects) -> Vec<ColliderBuilder> {
     vec![ColliderBuilder::new(shared_shape(shape))
         .active_hooks(hooks)
         .density(0.0)
-        .friction(friction as Real)
-        .restitution(restitution as Real)
+        .friction(surface.friction as Real)
+        .restitution(surface.restitution as Real)
         // The pair uses the larger coefficient: a level sets e or mu on one body and it applies as given.
         .friction_combine_rule(CoefficientCombineRule::Max)
         .restitution_combine_rule(CoefficientCombineRule::Max)]
 }
 
 pub(crate) fn joint(j: &JointDef, b1: &BodyDef, b2: &BodyDef) -> GenericJoint {
-    let axis = {
-        let n = j.axis.0.hypot(j.axis.1);
-        (j.axis.0 / n, j.axis.1 / n)
-    };
-    let axis_angle = axis.1.atan2(axis.0);
-    // Frame 1 carries the joint axis as its x axis. Frame 2 is turned so that both frames
-    // coincide in the initial configuration (the weld/slider keeps the bodies' relative angle).
-    let frame1 = Pose::new(v(j.anchor1), axis_angle as Real);
-    let frame2 = Pose::new(v(j.anchor2), (axis_angle + b1.angle - b2.angle) as Real);
+    let f = describe::joint_frames(j, b1, b2);
+    let frame1 = Pose::new(v(f.anchor1), f.angle1 as Real);
+    let frame2 = Pose::new(v(f.anchor2), f.angle2 as Real);
     let (mask, coord_axis) = match j.kind {
         JointKind::Revolute => (JointAxesMask::LOCKED_REVOLUTE_AXES, JointAxis::AngX),
         JointKind::Prismatic => (JointAxesMask::LOCKED_PRISMATIC_AXES, JointAxis::LinX),

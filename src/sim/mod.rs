@@ -25,6 +25,7 @@ mod build;
 mod contact_points;
 mod coupling_tension;
 mod couplings;
+pub mod describe;
 pub mod explosion_guard;
 mod impacts;
 mod interventions;

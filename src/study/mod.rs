@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod advice;
 pub mod gaps;
+pub mod other_engine;
 pub mod stability;
 
 use clap::Subcommand;

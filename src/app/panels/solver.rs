@@ -1,4 +1,5 @@
-//! The solver panel: dt, substeps and iterations (changing them restarts the run), the measured
+//! The solver panel: the engine (rapier, or Box2D where it is built), dt, substeps and
+//! iterations (changing them restarts the run), the measured
 //! step time, the energy change since t = 0, and the error against the textbook answers as the
 //! accuracy study measures it ([`study_error`]).
 
@@ -16,6 +17,7 @@ pub(super) fn solver(
     out: &mut Vec<PhysicsCommand>,
 ) {
     ui.heading("Solver");
+    engine_row(ui, phys, out);
     let dt = phys.sim.dt();
     let mut new_dt = dt;
     let mut substeps = phys.sim.substeps();
@@ -117,6 +119,49 @@ pub(super) fn solver(
     }
     if phys.options != Default::default() && ui.small_button("level's settings").clicked() {
         out.push(PhysicsCommand::Settings(Default::default()));
+    }
+}
+
+/// Whether Box2D is in this build (native, with the `box2d` feature): the page has rapier only.
+const BOX2D_BUILT: bool = cfg!(all(feature = "box2d", not(target_arch = "wasm32")));
+
+/// The engine the window runs, the one the level declares, and a choice between them where
+/// Box2D is built (choosing restarts the run, as a changed step does). A level Box2D refuses
+/// runs on rapier, and the panel says so with the refusal: never a silent swap.
+fn engine_row(ui: &mut egui::Ui, phys: &Run, out: &mut Vec<PhysicsCommand>) {
+    use crate::level::PhysicsEngine;
+    let running = phys.sim.engine();
+    let declared = phys.sim.level.world.engine;
+    // Box2D asked for and refused: the choice stays on Box2D, the line below says what runs.
+    let chosen = match phys.sim.refused {
+        Some(_) => PhysicsEngine::Box2d,
+        None => running,
+    };
+    ui.horizontal(|ui| {
+        ui.label("engine");
+        for (e, name) in [
+            (PhysicsEngine::Rapier, "rapier"),
+            (PhysicsEngine::Box2d, "Box2D"),
+        ] {
+            if e == PhysicsEngine::Box2d && !BOX2D_BUILT {
+                continue;
+            }
+            if ui.selectable_label(chosen == e, name).clicked() && chosen != e {
+                let mut options = phys.options.clone();
+                options.engine = Some(e);
+                out.push(PhysicsCommand::Settings(options));
+            }
+        }
+        if declared != chosen {
+            ui.label(format!("(the level declares {})", declared.name()));
+        }
+    });
+    if let Some(why) = &phys.sim.refused {
+        // Wrapped under the row (a long refusal in the row would widen the panel).
+        ui.label(rich(
+            format!("Box2D does not run this level: {why}. The window runs rapier."),
+            palette::FRICTION,
+        ));
     }
 }
 

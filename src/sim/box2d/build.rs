@@ -6,11 +6,11 @@
 
 use super::world::Simulation;
 use crate::level::*;
-use crate::sim::{mass_properties, Effects, Settings};
+use crate::sim::{describe, mass_properties, Effects, Settings};
 use boxdd::{
-    shapes, BodyBuilder, BodyId, BodyType, Foundation, JointId, MassData, MotionLocks, Position,
-    PrismaticJointDef, RevoluteJointDef, ShapeDef, ShapeId, SurfaceMaterial, Transform, Vec2,
-    WeldJointDef, World, WorldBuilder,
+    shapes, BodyBuilder, BodyId, BodyType, ConstraintTuning, Foundation, JointId, MassData,
+    MotionLocks, Position, PrismaticJointDef, RevoluteJointDef, ShapeDef, ShapeId, SurfaceMaterial,
+    Transform, Vec2, WeldJointDef, World, WorldBuilder,
 };
 use glam::DVec2;
 
@@ -84,23 +84,15 @@ impl Simulation {
             // Box2D's kinematic body moves its origin at its linear velocity; the level gives
             // the mass center's, which is the origin's for a body that does not turn (a
             // turning kinematic body is refused).
-            let damping = fx.has(Effect::Damping);
+            let (linear_damping, angular_damping) = describe::damping(b, &fx);
             let def = BodyBuilder::from(Foundation::initialize_default()?.body_def())
                 .body_type(body_type(b.kind))
                 .position(Position::new(b.position.0 as _, b.position.1 as _))
                 .angle(b.angle as f32)
                 .linear_velocity(v(b.velocity))
                 .angular_velocity(b.omega as f32)
-                .linear_damping(if damping {
-                    b.linear_damping.unwrap_or(0.0) as f32
-                } else {
-                    0.0
-                })
-                .angular_damping(if damping {
-                    b.angular_damping.unwrap_or(0.0) as f32
-                } else {
-                    0.0
-                })
+                .linear_damping(linear_damping as f32)
+                .angular_damping(angular_damping as f32)
                 .enable_sleep(fx.has(Effect::Sleeping))
                 .allow_fast_rotation(fast)
                 .motion_locks(MotionLocks::new(false, false, b.lock_rotation))
@@ -140,21 +132,19 @@ impl Simulation {
 
     /// Adds the level's joints: pins, sliders and welds (the ones `support.rs` lets through).
     pub(super) fn insert_joints(&mut self) -> Result<()> {
+        let stiffest = ConstraintTuning::new(joint_hertz(&self.settings), JOINT_DAMPING_RATIO)?;
         for j in self.level.joints.clone() {
             let (i1, i2) = (self.body_index(&j.body1), self.body_index(&j.body2));
             let (b1, b2) = (&self.level.bodies[i1], &self.level.bodies[i2]);
-            let n = j.axis.0.hypot(j.axis.1);
-            let axis_angle = (j.axis.1 / n).atan2(j.axis.0 / n);
-            // Frame 1 carries the slide axis as its x axis; frame 2 is turned so that both
-            // frames coincide at t = 0 (a weld and a slider keep the bodies' relative angle), as
-            // on rapier (`sim/build.rs`).
-            let frame1 = Transform::from_pos_angle(v(j.anchor1), axis_angle as f32)?;
-            let frame2 =
-                Transform::from_pos_angle(v(j.anchor2), (axis_angle + b1.angle - b2.angle) as f32)?;
+            // The frames rapier gets too (`describe::joint_frames`).
+            let f = describe::joint_frames(&j, b1, b2);
+            let frame1 = Transform::from_pos_angle(v(f.anchor1), f.angle1 as f32)?;
+            let frame2 = Transform::from_pos_angle(v(f.anchor2), f.angle2 as f32)?;
             let base = self
                 .world
                 .joint_base(self.bodies[i1], self.bodies[i2])?
                 .with_local_frames(frame1, frame2)
+                .with_constraint_tuning(stiffest)
                 .with_collide_connected(false);
             let id: JointId = match j.kind {
                 JointKind::Revolute => self
@@ -181,21 +171,30 @@ impl Simulation {
     }
 }
 
-/// The shape definition: the body's friction and restitution where their effects are declared.
+/// Box2D's default damping ratio of a joint's position correction (`b2DefaultJointDef`), kept.
+const JOINT_DAMPING_RATIO: f32 = 2.0;
+
+/// The frequency of a joint's position correction, Hz: the highest Box2D allows, a quarter of
+/// the call rate (`b2PrepareJoint` clamps to 0.25 / h; rigidlab's calls are one substep of
+/// h = dt / substeps each). Box2D's default, 60 Hz, leaves a loaded joint apart by its
+/// steady-state error g / (2 pi f)^2 (the soft step's bias balancing the impulse it relaxes
+/// every substep): 6.9e-5 m under a weight, which a 2 kg bar pendulum released at 5 degrees
+/// took as 3.6% more drop of G than its d (1 - cos 5 deg) = 1.9 mm, and the work-energy
+/// analysis of its kinetic energy read 3.6e-2 high (kinetics/classic_physical_pendulum_small,
+/// dt 2 ms, 4 substeps: 500 Hz, 9.9e-7 m). rapier's joints correct the whole error every
+/// substep (their natural frequency is 1e6 Hz), which this comes nearest to. At 60 Hz steps
+/// of 4 substeps the cap is 60 Hz itself: a finer step is what closes the joint there.
+pub(super) fn joint_hertz(settings: &Settings) -> f32 {
+    let h = settings.dt / settings.substeps.max(1) as f64;
+    (0.25 / h) as f32
+}
+
+/// The shape definition: the body's surface as rapier gets it (`describe::surface`).
 fn shape_def(b: &BodyDef, fx: &Effects) -> Result<ShapeDef> {
-    let mu = if fx.has(Effect::Friction) {
-        b.friction.unwrap_or(0.0)
-    } else {
-        0.0
-    };
-    let e = if fx.has(Effect::Restitution) {
-        b.restitution.unwrap_or(0.0)
-    } else {
-        0.0
-    };
+    let surface = describe::surface(b, fx);
     let material = SurfaceMaterial::new()
-        .with_friction(mu as f32)?
-        .with_restitution(e as f32)?;
+        .with_friction(surface.friction as f32)?
+        .with_restitution(surface.restitution as f32)?;
     ShapeDef::builder()
         .material(material)
         .density(0.0)
@@ -212,10 +211,11 @@ fn add_shape(
     at: Transform,
 ) -> Result<Vec<ShapeId>> {
     if let Shape::Compound { parts } = shape {
+        // The leaves rapier's compound has (`describe::leaves`).
         let mut ids = Vec::new();
-        for p in parts {
-            let t = Transform::from_pos_angle(v(p.offset), p.angle as f32)?;
-            ids.extend(add_shape(world, body, def, &p.shape, t)?);
+        for l in describe::leaves(parts) {
+            let t = Transform::from_pos_angle(v(l.offset), l.angle as f32)?;
+            ids.extend(add_shape(world, body, def, l.shape, t)?);
         }
         return Ok(ids);
     }

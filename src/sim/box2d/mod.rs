@@ -18,8 +18,12 @@ mod read;
 mod step;
 pub mod support;
 #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+mod thread;
+#[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
 mod world;
 
 pub use support::{not_built, refusal, Refusal};
+#[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
+pub use thread::Threaded;
 #[cfg(all(feature = "box2d", not(target_arch = "wasm32")))]
 pub use world::Simulation;

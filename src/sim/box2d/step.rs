@@ -4,7 +4,6 @@
 use super::build::{v, Result};
 use super::read::StepContacts;
 use super::world::Simulation;
-use crate::level::EventDef;
 use crate::sim::{scalar_profile_at, vector_profile_at, SimError};
 use crate::snapshot::{ImpulseState, LoadState, Snapshot};
 use boxdd::{Position, Vec2};
@@ -69,35 +68,22 @@ impl Simulation {
     }
 
     /// Applies the impulse events of this step at its start and lists them in the snapshot:
-    /// those whose time falls in [t0 - dt / 2, t0 + dt / 2), as on rapier.
+    /// those `describe::impulses_due` gives, as on rapier.
     fn apply_impulse_events(&mut self, t0: f64, dt: f64) -> Result<()> {
         self.snapshot.impulses.clear();
-        for e in self.level.events.clone() {
-            let EventDef::Impulse {
-                name,
-                at,
-                body,
-                point,
-                impulse,
-                angular,
-            } = e
-            else {
-                continue;
-            };
-            if at >= t0 - 0.5 * dt && at < t0 + 0.5 * dt {
-                let i = self.body_index(&body);
-                let p = self.snapshot.bodies[i].world_point(DVec2::new(point.0, point.1));
-                let mut b = self.world.body(self.bodies[i])?;
-                b.apply_linear_impulse(v(impulse), pos(p), true)?;
-                b.apply_angular_impulse(angular as f32, true)?;
-                self.snapshot.impulses.push(ImpulseState {
-                    name,
-                    body: i,
-                    point: p,
-                    impulse: DVec2::new(impulse.0, impulse.1),
-                    angular_impulse: angular,
-                });
-            }
+        for e in crate::sim::describe::impulses_due(&self.level.events, t0, dt) {
+            let i = self.body_index(e.body);
+            let p = self.snapshot.bodies[i].world_point(DVec2::new(e.point.0, e.point.1));
+            let mut b = self.world.body(self.bodies[i])?;
+            b.apply_linear_impulse(v(e.impulse), pos(p), true)?;
+            b.apply_angular_impulse(e.angular as f32, true)?;
+            self.snapshot.impulses.push(ImpulseState {
+                name: e.name.to_string(),
+                body: i,
+                point: p,
+                impulse: DVec2::new(e.impulse.0, e.impulse.1),
+                angular_impulse: e.angular,
+            });
         }
         Ok(())
     }
@@ -140,6 +126,18 @@ impl Simulation {
             b.apply_torque(m as f32, true)?;
         }
         Ok(())
+    }
+
+    /// A blow between steps (the window's): impulse `j` (N s) at the world point `at` on body
+    /// `i`, as on rapier (`sim::Simulation::apply_impulse`); false when there is no such body.
+    pub fn apply_impulse(&mut self, i: usize, at: DVec2, j: DVec2) -> bool {
+        let Some(&id) = self.bodies.get(i) else {
+            return false;
+        };
+        let Ok(mut b) = self.world.body(id) else {
+            return false;
+        };
+        b.apply_linear_impulse(vec(j), pos(at), true).is_ok()
     }
 
     /// Stops a run whose state became non-finite.

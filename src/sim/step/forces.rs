@@ -7,7 +7,6 @@ use super::super::rapier::prelude::*;
 use super::super::world::{to_d, vd, Simulation};
 use super::calls::StepReadings;
 use super::plan::Call;
-use crate::level::*;
 use crate::snapshot::*;
 use glam::DVec2;
 
@@ -18,35 +17,21 @@ pub(super) type HeldLoad = (usize, Vector, Vector, Real);
 impl Simulation {
     /// Applies the impulse events of this step to their bodies and lists them in the snapshot.
     pub(super) fn apply_impulse_events(&mut self, t0: f64, dt: f64) {
-        // Impulses whose time falls in [t0 - dt / 2, t0 + dt / 2) act at the start of this step.
         self.snapshot.impulses.clear();
-        for e in &self.level.events {
-            let EventDef::Impulse {
-                name,
-                at,
-                body,
-                point,
-                impulse,
-                angular,
-            } = e
-            else {
-                continue;
-            };
-            // The event acts at the start of the step that begins nearest to its time.
-            if *at >= t0 - 0.5 * dt && *at < t0 + 0.5 * dt {
-                let i = self.body_index[body];
-                let rb = &mut self.world.bodies[self.bodies[i]];
-                let p = *rb.position() * build::v(*point);
-                rb.apply_impulse_at_point(build::v(*impulse), p, true);
-                rb.apply_torque_impulse(*angular as Real, true);
-                self.snapshot.impulses.push(ImpulseState {
-                    name: name.clone(),
-                    body: i,
-                    point: to_d(p),
-                    impulse: DVec2::new(impulse.0, impulse.1),
-                    angular_impulse: *angular,
-                });
-            }
+        // Each acts at the start of the step that begins nearest to its time (`describe`).
+        for e in crate::sim::describe::impulses_due(&self.level.events, t0, dt) {
+            let i = self.body_index[e.body];
+            let rb = &mut self.world.bodies[self.bodies[i]];
+            let p = *rb.position() * build::v(e.point);
+            rb.apply_impulse_at_point(build::v(e.impulse), p, true);
+            rb.apply_torque_impulse(e.angular as Real, true);
+            self.snapshot.impulses.push(ImpulseState {
+                name: e.name.to_string(),
+                body: i,
+                point: to_d(p),
+                impulse: DVec2::new(e.impulse.0, e.impulse.1),
+                angular_impulse: e.angular,
+            });
         }
     }
 

@@ -2,9 +2,13 @@
 //! and the engine's known gaps with their sizes (src/sim).
 
 #[cfg(feature = "box2d")]
+mod box2d_pin;
+#[cfg(feature = "box2d")]
 mod box2d_readings;
 #[cfg(feature = "box2d")]
 mod box2d_refusals;
+#[cfg(feature = "box2d")]
+mod box2d_window;
 mod closed_forms;
 mod compound_track;
 mod contact_readings;

@@ -5,6 +5,7 @@ mod advice;
 mod advice_names_gaps;
 mod advice_reproducible;
 mod engines;
+mod other_engine;
 mod sand_pile;
 mod shards;
 mod stability;
