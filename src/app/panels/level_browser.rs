@@ -60,6 +60,8 @@ pub struct Browser {
     pub embedded: bool,
     /// The assignment opened, listed above the library (`assignment_list.rs`).
     pub assignment: Option<super::assignment_list::AssignmentList>,
+    /// Which library this is and where it was found, for the status line (`app/library.rs`).
+    pub opened_from: String,
 }
 
 impl Browser {
@@ -137,27 +139,35 @@ impl Browser {
             let entry = Entry::from_load(f.clone(), level::load(&f), None);
             b.groups.entry(group_of(root, &f)).or_default().push(entry);
         }
-        // The levels the user saved from the window, listed apart from the library.
+        b.list_saved();
+        b
+    }
+
+    /// Lists the levels the user saved from the window (`saved-levels/` in the folder the
+    /// program runs in), apart from the library.
+    pub fn list_saved(&mut self) {
         let saved = Path::new(crate::app::user_files::SAVED_LEVELS);
         if saved.is_dir() {
             if let Ok(files) = level::collect_files(&[saved.to_path_buf()]) {
                 for f in files {
                     let entry = Entry::from_load(f.clone(), level::load(&f), None);
-                    b.groups
+                    self.groups
                         .entry(format!("saved ({}/)", saved.display()))
                         .or_default()
                         .push(entry);
                 }
             }
         }
-        b
     }
 
-    /// Reads the levels folder again, and the assignment's levels, keeping the assignment listed.
+    /// Reads the levels folder again, and the assignment's levels, keeping the assignment listed
+    /// and the note of where the library was found.
     pub fn rescan(&mut self) {
         let assignment = self.assignment.take().map(|a| a.reread());
+        let opened_from = std::mem::take(&mut self.opened_from);
         *self = Browser::scan(&self.root.clone());
         self.assignment = assignment;
+        self.opened_from = opened_from;
     }
 
     pub fn first_loadable(&self) -> Option<Scene> {

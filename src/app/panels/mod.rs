@@ -241,6 +241,9 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
             .and_then(|f| f.problem.clone())
         {
             st.message = Some((problem, false));
+        } else if !p.browser.opened_from.is_empty() {
+            // Which library opened: started from another folder, it is not ./levels.
+            st.message = Some((p.browser.opened_from.clone(), true));
         }
     }
     if st.save_for.as_ref() != Some(&phys.scene.file) {

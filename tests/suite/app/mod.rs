@@ -18,6 +18,7 @@ mod key_chords;
 mod keyboard_owner;
 mod kinetic_copy;
 mod label_placement;
+mod level_library;
 mod measure;
 mod mouse_tools;
 mod names_overlay;
