@@ -32,7 +32,7 @@ pub mod tour;
 mod track_editor;
 
 pub use course::Course;
-pub use exercise::{grade, grade_message, Exercise, Grade};
+pub use exercise::{grade, grade_message, measured_shown, Exercise, Grade, SHOWN_WHEN_RIGHT};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
 pub use playback::{energy_drift_note, finer_step, DRIFT_WARNING, FINER_STEP};
 pub use predict::Predict;

@@ -175,6 +175,7 @@ pub fn follow(
     }
     // The grades show with the results, at the end of the motion.
     ex.hold_grades = matches!(pred.phase, Phase::Predicting | Phase::Watching);
+    ex.revealed = pred.phase == Phase::Revealed;
 }
 
 /// What explains a quantity: one of the window's overlays.

@@ -20,6 +20,7 @@ mod kinetic_copy;
 mod label_placement;
 mod level_library;
 mod measure;
+mod measured_value;
 mod mouse_tools;
 mod names_overlay;
 mod own_numbers;

@@ -7,6 +7,7 @@ use bevy::input::keyboard::{Key, KeyboardInput};
 use bevy::input::ButtonState;
 use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
+use bevy_egui::egui;
 use rigidlab::app::editor::{Editor, EditorCommand, EditorPlugin};
 use rigidlab::app::{PhysicsPlugin, Run};
 use rigidlab::editor;
@@ -88,4 +89,81 @@ pub fn quick_chord(code: KeyCode, c: &str) -> Vec<KeyboardInput> {
         letter(code, c, false),
         ctrl(false),
     ]
+}
+
+/// A text egui drew: its string, where, and the rectangle it was clipped to (a scroll area's
+/// view, a panel's).
+#[derive(Debug, Clone)]
+pub struct Drawn {
+    pub text: String,
+    pub rect: egui::Rect,
+    pub clip: egui::Rect,
+}
+
+/// Every text of a shape, nested ones too, clipped to `clip`.
+fn texts_of(shape: &egui::Shape, clip: egui::Rect, out: &mut Vec<Drawn>) {
+    match shape {
+        egui::Shape::Text(t) => out.push(Drawn {
+            text: t.galley.text().to_string(),
+            rect: t.visual_bounding_rect(),
+            clip,
+        }),
+        egui::Shape::Vec(v) => v.iter().for_each(|s| texts_of(s, clip, out)),
+        _ => {}
+    }
+}
+
+/// `draw` run by egui at a 1280x800 screen for a frame with `events` and then one without (a
+/// click is seen on its release, and a layout settles a frame late, as in the window): the
+/// texts of the last frame.
+pub fn two_frames(
+    ctx: &egui::Context,
+    events: Vec<egui::Event>,
+    mut draw: impl FnMut(&mut egui::Ui),
+) -> Vec<Drawn> {
+    let mut texts = Vec::new();
+    for events in [events, Vec::new()] {
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(1280.0, 800.0),
+            )),
+            events,
+            ..Default::default()
+        };
+        let out = ctx.run_ui(input, &mut draw);
+        texts.clear();
+        for s in &out.shapes {
+            texts_of(&s.shape, s.clip_rect, &mut texts);
+        }
+    }
+    texts
+}
+
+/// The first text drawn that is `text`, or a panic naming what was drawn.
+pub fn drawn<'a>(texts: &'a [Drawn], text: &str) -> &'a Drawn {
+    texts
+        .iter()
+        .find(|d| d.text == text)
+        .unwrap_or_else(|| panic!("{text:?} is not drawn: {:?}", all_text(texts)))
+}
+
+/// The texts drawn, in order.
+pub fn all_text(texts: &[Drawn]) -> Vec<&str> {
+    texts.iter().map(|d| d.text.as_str()).collect()
+}
+
+/// A left click at `at`, pressed (the first frame's events) or released.
+pub fn click(at: egui::Pos2, pressed: bool) -> Vec<egui::Event> {
+    let button = egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    if pressed {
+        vec![egui::Event::PointerMoved(at), button]
+    } else {
+        vec![button]
+    }
 }
