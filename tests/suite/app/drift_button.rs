@@ -80,7 +80,7 @@ fn controls(
     (asked, texts)
 }
 
-/// The physical pendulum (T + V constant, WE-14) at its 60 Hz loses energy to the engine's
+/// The physical pendulum (T + V constant, WE-14) at its 120 Hz loses energy to the engine's
 /// first-order step (docs/known-gaps.md): past 5 % by 33 s, the warning shows with its button,
 /// and the button asks for the same run at dt / 2. A first-order method's drift over a fixed
 /// time is proportional to dt, so halving it about halves the drift: at most 0.75 of it allows

@@ -11,6 +11,7 @@ mod drift_button;
 mod editor_commands;
 mod editor_core;
 mod exercise_questions;
+mod first_level;
 mod help_tour;
 mod hints;
 mod inspector_fields;
