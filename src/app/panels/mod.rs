@@ -278,15 +278,10 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
         .size_range(200.0..=520.0)
         .show(root, |ui| {
             let (phys, play) = (&*p.phys, &*p.play);
-            predict::predict(
+            let (pred, message) = (&mut *p.predict, &mut p.st.message);
+            load = left_column_under(
                 ui,
-                (phys, play),
-                &p.exercise,
-                &mut p.predict,
-                &mut p.st.message,
-            );
-            load = left_column(
-                ui,
+                |ui, ex| predict::predict(ui, (phys, play), ex, pred, message),
                 &mut p.browser,
                 (&p.phys, &p.live),
                 &mut p.exercise,
@@ -294,6 +289,24 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
             );
         });
     load
+}
+
+/// The left panel of a level with questions, as the window draws it: predict first's part on
+/// top, then [`left_column`], in one scroll area. The level asked for, if any.
+pub fn left_panel_of(
+    ui: &mut egui::Ui,
+    (phys, play, live): (&Run, &Playback, &LiveChecks),
+    (browser, ex, pred, progress): (&mut Browser, &mut Exercise, &mut Predict, &mut Course),
+) -> Option<Scene> {
+    let mut message = None;
+    left_column_under(
+        ui,
+        |ui, ex| predict::predict(ui, (phys, play), ex, pred, &mut message),
+        browser,
+        (phys, live),
+        ex,
+        progress,
+    )
 }
 
 /// The left panel's column: the open exercise first, its statement and questions where a
@@ -308,6 +321,20 @@ pub fn left_column(
     ex: &mut Exercise,
     progress: &mut Course,
 ) -> Option<Scene> {
+    left_column_under(ui, |_, _| {}, browser, (phys, live), ex, progress)
+}
+
+/// [`left_column`] under `top` (predict first's switch and results), in the column's one scroll
+/// area: the results had a scroll area of their own stacked over the column's, each with its
+/// scroll bar (the student trial of 2026-12-07).
+fn left_column_under(
+    ui: &mut egui::Ui,
+    top: impl FnOnce(&mut egui::Ui, &Exercise),
+    browser: &mut Browser,
+    (phys, live): (&Run, &LiveChecks),
+    ex: &mut Exercise,
+    progress: &mut Course,
+) -> Option<Scene> {
     let mut load: Option<Scene> = None;
     let shown = egui::Id::new("left column: level shown");
     let new_level = ui.data(|d| d.get_temp::<PathBuf>(shown)) != Some(phys.scene.file.clone());
@@ -317,6 +344,7 @@ pub fn left_column(
         scroll = scroll.vertical_scroll_offset(0.0);
     }
     scroll.show(ui, |ui| {
+        top(ui, ex);
         exercise(ui, phys, live, ex);
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
         exercise::exercise_help(ui, phys, ex);

@@ -24,6 +24,7 @@ mod measure;
 mod measured_value;
 mod mouse_tools;
 mod names_overlay;
+mod one_scroll;
 mod own_numbers;
 mod playback;
 mod plot_labels;
