@@ -12,6 +12,7 @@ mod editor_commands;
 mod editor_core;
 mod exercise_questions;
 mod first_level;
+mod goal_drawing;
 mod help_tour;
 mod hints;
 mod inspector_fields;
