@@ -362,7 +362,11 @@ pub fn goal_prims(goal: &Goal, color: Color, out: &mut Vec<Prim>) -> Option<(DVe
 fn dashed_circle(c: DVec2, r: f64, color: Color, out: &mut Vec<Prim>) {
     const CHORDS: usize = 24;
     let at = |k: usize| c + r * DVec2::from_angle(std::f64::consts::TAU * k as f64 / CHORDS as f64);
-    out.extend((0..CHORDS).step_by(2).map(|k| Prim::Line(at(k), at(k + 1), color)));
+    out.extend(
+        (0..CHORDS)
+            .step_by(2)
+            .map(|k| Prim::Line(at(k), at(k + 1), color)),
+    );
 }
 
 /// A region's outline, dashed; the point to name it at (its lowest middle).

@@ -180,7 +180,9 @@ impl Browser {
 }
 
 impl Entry {
-    fn from_load(
+    /// The entry of the level at `path`, loaded (or why not), with its text where it was
+    /// compiled in or fetched.
+    pub(super) fn from_load(
         path: PathBuf,
         loaded: Result<Scene, level::LevelError>,
         source: Option<Arc<str>>,

@@ -7,17 +7,13 @@
 //! whole.
 
 use bevy_egui::egui;
-use rigidlab::app::editor::Editor;
-use rigidlab::app::overlays::Overlays;
-use rigidlab::app::panels::{self, UiState};
-use rigidlab::app::tools::ToolState;
-use rigidlab::app::view::View;
-use rigidlab::app::{Playback, Run, FIRST_LEVEL};
+use rigidlab::app::panels;
+use rigidlab::app::{Run, FIRST_LEVEL};
 use rigidlab::sim::Options;
 use std::path::Path;
 
 use crate::common;
-use crate::common::app::{drawn, two_frames};
+use crate::common::app::{drawn, upper_controls};
 
 fn first_level() -> Run {
     Run::new(
@@ -57,26 +53,7 @@ fn the_drift_warning_is_drawn_whole() {
         assert!(phys.advance());
     }
     let note = panels::energy_drift_note(&phys).expect("a drift past 5% by 33 s");
-    let (mut view, mut ov, mut tools, mut st) = (
-        View::default(),
-        Overlays::default(),
-        ToolState::default(),
-        UiState::default(),
-    );
-    let (play, editor) = (Playback::new(true), Editor::default());
-    let ctx = egui::Context::default();
-    let texts = two_frames(&ctx, Vec::new(), |ui| {
-        egui::Panel::right("controls")
-            .default_size(330.0)
-            .show(ui, |ui| {
-                panels::upper_controls(
-                    ui,
-                    (&phys, &play, &editor),
-                    (&mut view, &mut ov, &mut tools, &mut st),
-                    &mut Vec::new(),
-                );
-            });
-    });
+    let (_, texts) = upper_controls(&egui::Context::default(), &phys, Vec::new());
     let d = drawn(&texts, &note);
     assert!(
         d.clip.expand(0.5).contains_rect(d.rect),

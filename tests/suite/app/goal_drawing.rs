@@ -59,7 +59,11 @@ fn every_goal_is_drawn_dashed_and_no_body_stands_on_it() {
         }
         // Drawn dashed, with gaps: a circle is every other chord, not a closed ring.
         let lines = prims.iter().filter(|p| matches!(p, Prim::Line(..))).count();
-        assert!(lines == 0 || lines % 12 == 0, "{}: {lines} chords", file.display());
+        assert!(
+            lines == 0 || lines % 12 == 0,
+            "{}: {lines} chords",
+            file.display()
+        );
         // Nothing there to collide with: the goal's point lies inside no fixed body.
         let at = goal_point(&c.goal).unwrap();
         for b in &scene.level.bodies {
@@ -67,8 +71,8 @@ fn every_goal_is_drawn_dashed_and_no_body_stands_on_it() {
                 continue;
             }
             if let Some(shape) = &b.shape {
-                let local = DVec2::from_angle(-b.angle)
-                    .rotate(at - DVec2::new(b.position.0, b.position.1));
+                let local =
+                    DVec2::from_angle(-b.angle).rotate(at - DVec2::new(b.position.0, b.position.1));
                 assert!(
                     !level::shape::Outline::of(shape).contains(local, 0.0),
                     "{}: the goal at {at:?} is inside the fixed body {}",

@@ -13,10 +13,7 @@ use crate::common;
 
 /// An empty folder of this test's own (`tag`, the process id).
 fn empty_folder(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "rigidlab-library-{tag}-{}",
-        std::process::id()
-    ));
+    let dir = std::env::temp_dir().join(format!("rigidlab-library-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -8,12 +8,12 @@
 //! after the run has reached its end (the value is measured there).
 
 use bevy_egui::egui;
-use rigidlab::app::panels::{self, grade, Browser, Course, Exercise, SHOWN_WHEN_RIGHT};
+use rigidlab::app::panels::{grade, Browser, Exercise, SHOWN_WHEN_RIGHT};
 use rigidlab::app::{LiveChecks, Run};
 use rigidlab::sim::Options;
 
 use crate::common;
-use crate::common::app::{all_text, two_frames};
+use crate::common::app::{all_text, left_column};
 
 /// The hoop rolling down its incline (one question, 1.05 s), run to its end with the live
 /// checks watching as the window's do.
@@ -27,21 +27,17 @@ fn finished() -> (Run, LiveChecks) {
         assert!(phys.advance());
         live.observe(&phys);
     }
-    assert!(live.answers.is_some(), "the run's values are measured at its end");
+    assert!(
+        live.answers.is_some(),
+        "the run's values are measured at its end"
+    );
     (phys, live)
 }
 
 /// The left column's texts for `ex`.
 fn column(phys: &Run, live: &LiveChecks, ex: &mut Exercise) -> Vec<String> {
     let ctx = egui::Context::default();
-    let (mut browser, mut course) = (Browser::default(), Course::default());
-    let texts = two_frames(&ctx, Vec::new(), |ui| {
-        egui::Panel::left("levels")
-            .default_size(300.0)
-            .show(ui, |ui| {
-                panels::left_column(ui, &mut browser, (phys, live), ex, &mut course);
-            });
-    });
+    let texts = left_column(&ctx, &mut Browser::default(), (phys, live), ex, Vec::new());
     all_text(&texts).into_iter().map(String::from).collect()
 }
 
@@ -50,7 +46,9 @@ fn says_answer_first(texts: &[String]) -> bool {
 }
 
 fn shows_value(texts: &[String]) -> bool {
-    texts.iter().any(|t| t.contains("rigidlab measured") && t.contains(" at t = "))
+    texts
+        .iter()
+        .any(|t| t.contains("rigidlab measured") && t.contains(" at t = "))
 }
 
 /// Every question answered with `factor` times its answer and checked.
@@ -72,10 +70,16 @@ fn an_answered_question_never_says_answer_first() {
     let mut ex = Exercise::default();
     ex.start(phys.sim.level.questions.len());
     let texts = column(&phys, &live, &mut ex);
-    assert!(says_answer_first(&texts) && !shows_value(&texts), "{texts:?}");
+    assert!(
+        says_answer_first(&texts) && !shows_value(&texts),
+        "{texts:?}"
+    );
     // Right (the level's own answers): the values.
     let texts = column(&phys, &live, &mut answered(&phys, 1.0));
-    assert!(shows_value(&texts) && !says_answer_first(&texts), "{texts:?}");
+    assert!(
+        shows_value(&texts) && !says_answer_first(&texts),
+        "{texts:?}"
+    );
     // Wrong (twice the answers, far outside any tolerance): graded, so not "answer first",
     // and the values are not given away.
     let mut wrong = answered(&phys, 2.0);
@@ -98,5 +102,8 @@ fn after_predict_firsts_results_the_value_shows_under_a_wrong_prediction() {
     let mut ex = answered(&phys, 2.0);
     ex.revealed = true;
     let texts = column(&phys, &live, &mut ex);
-    assert!(shows_value(&texts) && !says_answer_first(&texts), "{texts:?}");
+    assert!(
+        shows_value(&texts) && !says_answer_first(&texts),
+        "{texts:?}"
+    );
 }

@@ -355,7 +355,10 @@ fn an_energy_drift_is_said_where_the_student_looks() {
     }
     let (first, last) = (&phys.series[0], phys.series.last().unwrap());
     let drift = (last.total() - first.total()) / first.gravity.abs().max(first.kinetic.abs());
-    println!("energy drift after 33 s at the level's dt: {:+.1}%", drift * 100.0);
+    println!(
+        "energy drift after 33 s at the level's dt: {:+.1}%",
+        drift * 100.0
+    );
     let note = panels::energy_drift_note(&phys);
     if drift.abs() > panels::DRIFT_WARNING {
         let note = note.expect("a drift past 5 % is said");
