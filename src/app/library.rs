@@ -7,7 +7,6 @@
 //! a binary of about 130 MB; the web page has always compiled it in). The status line says
 //! which one opened.
 
-use super::panels::Browser;
 use include_dir::{include_dir, Dir};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -78,45 +77,35 @@ fn holds_levels(dir: &Path) -> bool {
 }
 
 impl Library {
-    /// The level browser over this library, and what the status line says of it.
-    pub fn browser(&self) -> (Browser, String) {
-        let (browser, note) = match self {
-            Library::Given(dir) => (
-                Browser::scan(dir),
-                format!("levels from {} (--levels)", dir.display()),
+    /// The folder to list, or None for the compiled-in library.
+    pub fn folder(&self) -> Option<PathBuf> {
+        match self {
+            Library::Given(dir) | Library::BesideProgram(dir) => Some(dir.clone()),
+            Library::Here => Some(PathBuf::from("levels")),
+            Library::Compiled => None,
+        }
+    }
+
+    /// What the status line says of it.
+    pub fn note(&self) -> String {
+        match self {
+            Library::Given(dir) => format!("levels from {} (--levels)", dir.display()),
+            Library::Here => "levels from ./levels".to_string(),
+            Library::BesideProgram(dir) => format!(
+                "levels from {} (beside the program: no ./levels here)",
+                dir.display()
             ),
-            Library::Here => (
-                Browser::scan(Path::new("levels")),
-                "levels from ./levels".to_string(),
-            ),
-            Library::BesideProgram(dir) => (
-                Browser::scan(dir),
-                format!(
-                    "levels from {} (beside the program: no ./levels here)",
-                    dir.display()
-                ),
-            ),
-            Library::Compiled => {
-                let mut b = Browser::embedded(Path::new("levels"), library());
-                b.list_saved();
-                (
-                    b,
-                    "levels compiled into rigidlab (no ./levels here nor beside the program; \
-                     --levels DIR opens a folder)"
-                        .to_string(),
-                )
-            }
-        };
-        (browser, note)
+            Library::Compiled => "levels compiled into rigidlab (no ./levels here nor beside \
+                                  the program; --levels DIR opens a folder)"
+                .to_string(),
+        }
     }
 }
 
-/// The library the window opens from where it was started: [`find`] with this process's
-/// folder and program, and its browser with the status line's note in `opened_from`.
-pub fn open(given: Option<&Path>) -> Browser {
+/// The library the window opens from where it was started: [`find`] with this process's folder
+/// and program.
+pub fn here(given: Option<&Path>) -> Library {
     let cwd = std::env::current_dir().unwrap_or_default();
     let exe = std::env::current_exe().ok();
-    let (mut browser, note) = find(given, &cwd, exe.as_deref()).browser();
-    browser.opened_from = note;
-    browser
+    find(given, &cwd, exe.as_deref())
 }

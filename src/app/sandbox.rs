@@ -47,7 +47,7 @@ pub const FIRST_LEVEL: &str = "kinetics/physical_pendulum.ron";
 /// else found as `app/library.rs` says), and `level` directly or the library's first level.
 pub fn sandbox(levels: Option<PathBuf>, level: Option<PathBuf>) -> Result<(), String> {
     render::vulkan_check()?;
-    let browser = super::library::open(levels.as_deref());
+    let browser = library_browser(&super::library::here(levels.as_deref()));
     let scene = match &level {
         Some(p) => crate::level::load(p).map_err(|e| e.to_string())?,
         // The first exercise of the first-steps tour: a pendulum, if the library has it.
@@ -68,10 +68,28 @@ pub fn sandbox_assignment(
     assignment: panels::assignment_list::AssignmentList,
 ) -> Result<(), String> {
     render::vulkan_check()?;
-    let mut browser = super::library::open(levels.as_deref());
+    let mut browser = library_browser(&super::library::here(levels.as_deref()));
     let scene = assignment.first_loadable().unwrap_or_else(empty_scene);
     browser.assignment = Some(assignment);
     open_window(scene, browser)
+}
+
+/// The level browser over `library` (`app/library.rs`), its note for the status line in
+/// `opened_from`: a folder scanned, or the compiled-in library with the saved levels.
+pub fn library_browser(library: &super::library::Library) -> panels::Browser {
+    let mut browser = match library.folder() {
+        Some(dir) => panels::Browser::scan(&dir),
+        None => {
+            let mut b = panels::Browser::embedded(
+                std::path::Path::new("levels"),
+                super::library::library(),
+            );
+            b.list_saved();
+            b
+        }
+    };
+    browser.opened_from = library.note();
+    browser
 }
 
 /// The window opened on `scene` with the level browser, run until it closes.

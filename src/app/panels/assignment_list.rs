@@ -5,7 +5,7 @@
 use super::super::run::Run;
 use super::super::ui::rich;
 use super::super::view::palette;
-use super::level_browser::Entry;
+use super::level_entry::Entry;
 use crate::level::assignment::Assignment;
 use crate::level::{self, Scene};
 use bevy_egui::egui;

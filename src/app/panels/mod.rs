@@ -15,6 +15,7 @@ mod exercise;
 pub mod help;
 pub mod hints;
 mod level_browser;
+mod level_entry;
 pub mod measure;
 pub mod number_field;
 mod overlay_controls;

@@ -6,6 +6,7 @@
 //! the program's path as a window started elsewhere would see them.
 
 use rigidlab::app::library::{self, Library};
+use rigidlab::app::sandbox::library_browser;
 use rigidlab::app::FIRST_LEVEL;
 use std::path::{Path, PathBuf};
 
@@ -39,7 +40,8 @@ fn started_from_another_folder_the_window_finds_the_library_beside_the_program()
         dir.canonicalize().unwrap(),
         repo_levels().canonicalize().unwrap()
     );
-    let (browser, note) = found.browser();
+    let browser = library_browser(&found);
+    let note = &browser.opened_from;
     assert_eq!(browser.error, None);
     assert!(
         browser.find(&browser.root.join(FIRST_LEVEL)).is_some(),
@@ -62,7 +64,8 @@ fn with_no_folder_anywhere_the_library_compiled_in_opens() {
     let exe = cwd.join("bin").join("rigidlab");
     let found = library::find(None, &cwd, Some(&exe));
     assert_eq!(found, Library::Compiled);
-    let (browser, note) = found.browser();
+    let browser = library_browser(&found);
+    let note = &browser.opened_from;
     assert!(browser.embedded && browser.error.is_none());
     let listed = browser.groups.values().flatten().count();
     assert!(listed > 100, "{listed} levels compiled in");
