@@ -24,6 +24,10 @@ mod verify;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// The window's level library (with no command, or before `play`): this folder; by
+    /// default ./levels, else a levels folder beside the program, else the one compiled in.
+    #[arg(long, value_name = "DIR")]
+    pub levels: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -300,7 +304,7 @@ const BAD_INPUT: u8 = 2;
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        None => sandbox(),
+        None => sandbox(cli.levels),
         Some(Command::Check {
             paths,
             json,
@@ -353,7 +357,7 @@ pub fn main() -> ExitCode {
             csv,
             solver,
         }) => run(&level, &pick(student), csv, &solver),
-        Some(Command::Play { level }) => play(level),
+        Some(Command::Play { level }) => play(level, cli.levels),
         Some(Command::Link { level, base }) => link::link(&level, &base),
         Some(Command::Study { study }) => crate::study::main(study),
         Some(Command::Render {
@@ -826,27 +830,44 @@ pub fn no_display_message() -> String {
         .to_string()
 }
 
+/// `--levels DIR`: a folder, or what is wrong with it (exit 2).
+fn levels_folder(dir: Option<&std::path::Path>) -> Result<(), String> {
+    match dir {
+        Some(d) if !d.is_dir() => Err(format!(
+            "error: --levels {}: no such folder (give the folder that holds the level library)",
+            d.display()
+        )),
+        _ => Ok(()),
+    }
+}
+
 fn has_display() -> bool {
     std::env::var_os("DISPLAY").is_some_and(|d| !d.is_empty())
         || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|d| !d.is_empty())
 }
 
 #[cfg(feature = "app")]
-fn sandbox() -> ExitCode {
+fn sandbox(levels: Option<PathBuf>) -> ExitCode {
+    if let Err(e) = levels_folder(levels.as_deref()) {
+        return bad(e);
+    }
     if !has_display() {
         stderr!("{}", no_display_message());
         return ExitCode::from(BAD_INPUT);
     }
-    match crate::app::sandbox(PathBuf::from("levels"), None) {
+    match crate::app::sandbox(levels, None) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => bad(e),
     }
 }
 
 #[cfg(feature = "app")]
-fn play(level: PathBuf) -> ExitCode {
+fn play(level: PathBuf, levels: Option<PathBuf>) -> ExitCode {
+    if let Err(e) = levels_folder(levels.as_deref()) {
+        return bad(e);
+    }
     if level::assignment::is_assignment(&level) {
-        return play_assignment(&level);
+        return play_assignment(&level, levels);
     }
     if let Err(e) = level::load(&level) {
         return bad(e);
@@ -855,7 +876,7 @@ fn play(level: PathBuf) -> ExitCode {
         stderr!("{}", no_display_message());
         return ExitCode::from(BAD_INPUT);
     }
-    match crate::app::sandbox(PathBuf::from("levels"), Some(level)) {
+    match crate::app::sandbox(levels, Some(level)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => bad(e),
     }
@@ -864,7 +885,7 @@ fn play(level: PathBuf) -> ExitCode {
 /// `play ASSIGNMENT`: the assignment must read (exit 2 otherwise); a level of it that does not
 /// load is said on stderr and listed in the window with why.
 #[cfg(feature = "app")]
-fn play_assignment(path: &std::path::Path) -> ExitCode {
+fn play_assignment(path: &std::path::Path, levels: Option<PathBuf>) -> ExitCode {
     let a = match level::assignment::Assignment::load(path) {
         Ok(a) => a,
         Err(e) => return bad(e),
@@ -877,7 +898,7 @@ fn play_assignment(path: &std::path::Path) -> ExitCode {
         stderr!("{}", no_display_message());
         return ExitCode::from(BAD_INPUT);
     }
-    match crate::app::sandbox_assignment(PathBuf::from("levels"), list) {
+    match crate::app::sandbox_assignment(levels, list) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => bad(e),
     }
@@ -944,13 +965,19 @@ fn no_app() -> ExitCode {
 }
 
 #[cfg(not(feature = "app"))]
-fn sandbox() -> ExitCode {
+fn sandbox(levels: Option<PathBuf>) -> ExitCode {
+    if let Err(e) = levels_folder(levels.as_deref()) {
+        return bad(e);
+    }
     no_app()
 }
 
 #[cfg(not(feature = "app"))]
-fn play(level: PathBuf) -> ExitCode {
+fn play(level: PathBuf, levels: Option<PathBuf>) -> ExitCode {
     // Bad input is bad input, with or without the window.
+    if let Err(e) = levels_folder(levels.as_deref()) {
+        return bad(e);
+    }
     if level::assignment::is_assignment(&level) {
         if let Err(e) = level::assignment::Assignment::load(&level) {
             return bad(e);

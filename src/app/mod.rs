@@ -21,6 +21,7 @@ pub mod frame_cost;
 pub mod frame_rate;
 pub mod geometry;
 pub mod labels;
+pub mod library;
 pub mod names;
 pub mod overlay_systems;
 pub mod overlays;

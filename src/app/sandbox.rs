@@ -40,35 +40,56 @@ pub fn empty_scene() -> Scene {
     }
 }
 
-/// Opens the sandbox window: the level browser over `levels`, or `level` directly.
 /// The level the window opens with when none is named (under the levels folder).
 pub const FIRST_LEVEL: &str = "kinetics/physical_pendulum.ron";
 
-pub fn sandbox(levels: PathBuf, level: Option<PathBuf>) -> Result<(), String> {
+/// Opens the sandbox window: the level browser over the library (`levels`, the folder given;
+/// else found as `app/library.rs` says), and `level` directly or the library's first level.
+pub fn sandbox(levels: Option<PathBuf>, level: Option<PathBuf>) -> Result<(), String> {
     render::vulkan_check()?;
-    let browser = panels::Browser::scan(&levels);
+    let browser = library_browser(&super::library::here(levels.as_deref()));
     let scene = match &level {
         Some(p) => crate::level::load(p).map_err(|e| e.to_string())?,
         // The first exercise of the first-steps tour: a pendulum, if the library has it.
-        None => crate::level::load(&levels.join(FIRST_LEVEL))
-            .ok()
+        None => browser
+            .open_listed(&browser.root.join(FIRST_LEVEL))
+            .and_then(Result::ok)
             .or_else(|| browser.first_loadable())
             .unwrap_or_else(empty_scene),
     };
     open_window(scene, browser)
 }
 
-/// Opens the sandbox window on an assignment: its levels listed in order above the library over
-/// `levels`, the first that loads open (none loads: the empty scene, each level's error listed).
+/// Opens the sandbox window on an assignment: its levels listed in order above the library
+/// (found as [`sandbox`] finds it), the first that loads open (none loads: the empty scene,
+/// each level's error listed).
 pub fn sandbox_assignment(
-    levels: PathBuf,
+    levels: Option<PathBuf>,
     assignment: panels::assignment_list::AssignmentList,
 ) -> Result<(), String> {
     render::vulkan_check()?;
-    let mut browser = panels::Browser::scan(&levels);
+    let mut browser = library_browser(&super::library::here(levels.as_deref()));
     let scene = assignment.first_loadable().unwrap_or_else(empty_scene);
     browser.assignment = Some(assignment);
     open_window(scene, browser)
+}
+
+/// The level browser over `library` (`app/library.rs`), its note for the status line in
+/// `opened_from`: a folder scanned, or the compiled-in library with the saved levels.
+pub fn library_browser(library: &super::library::Library) -> panels::Browser {
+    let mut browser = match library.folder() {
+        Some(dir) => panels::Browser::scan(&dir),
+        None => {
+            let mut b = panels::Browser::embedded(
+                std::path::Path::new("levels"),
+                super::library::library(),
+            );
+            b.list_saved();
+            b
+        }
+    };
+    browser.opened_from = library.note();
+    browser
 }
 
 /// The window opened on `scene` with the level browser, run until it closes.

@@ -25,32 +25,10 @@ use super::run::Run;
 use super::view::View;
 use crate::level::Scene;
 use bevy::prelude::*;
-use include_dir::{include_dir, Dir};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
-/// The level library, compiled in.
-static LEVELS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/levels");
-
-/// The library as `(levels/<topic>/<file>.ron, text)`, the paths `rigidlab check levels` prints.
-pub fn library() -> Vec<(PathBuf, Arc<str>)> {
-    fn walk(d: &Dir<'static>, out: &mut Vec<(PathBuf, Arc<str>)>) {
-        for f in d.files() {
-            if f.path().extension().is_some_and(|e| e == "ron") {
-                if let Some(text) = f.contents_utf8() {
-                    out.push((Path::new("levels").join(f.path()), Arc::from(text)));
-                }
-            }
-        }
-        for sub in d.dirs() {
-            walk(sub, out);
-        }
-    }
-    let mut out = Vec::new();
-    walk(&LEVELS, &mut out);
-    out.sort_by(|a, b| a.0.cmp(&b.0));
-    out
-}
+/// The level library, compiled in (shared with the native window's last resort).
+pub use super::library::library;
 
 /// What the page's URL asks for.
 #[derive(Debug, Default, Clone)]

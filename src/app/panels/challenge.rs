@@ -313,16 +313,8 @@ pub fn draw(phys: Res<Run>, live: NonSend<LiveChecks>, mut d: ResMut<Drawing>) {
         return;
     };
     let color = palette::GRAVITY;
-    match &c.goal {
-        Goal::EndsInside { region, .. } | Goal::StaysInside { region, .. } => {
-            region_prims(region, color, &mut d.prims);
-        }
-        Goal::Reaches { point, radius, .. } => {
-            let p = DVec2::new(point.0, point.1);
-            d.prims.push(Prim::Circle(p, *radius, color));
-            d.prims.push(Prim::Dot(p, 3.0, color));
-        }
-        _ => {}
+    if let Some((at, name)) = goal_prims(&c.goal, color, &mut d.prims) {
+        d.label(at, Vec2::new(0.0, 16.0), name, color);
     }
     let Some(r) = live.challenge.as_ref() else {
         return;
@@ -347,21 +339,55 @@ pub fn draw(phys: Res<Run>, live: NonSend<LiveChecks>, mut d: ResMut<Drawing>) {
     }
 }
 
-/// A region's outline.
-fn region_prims(region: &Region, color: Color, out: &mut Vec<Prim>) {
+/// The goal's drawing, dashed: a goal is a region of the plane the run is judged on, never a
+/// body, and nothing collides with it (the cup of `challenges/projectile_into_cup.ron` is the
+/// point its mouth is at; drawn as a solid ring, the ball seemed to fly through a wall, the
+/// student trial of 2026-12-07). Solid outlines are the bodies'. Where to name it, and its name.
+pub fn goal_prims(goal: &Goal, color: Color, out: &mut Vec<Prim>) -> Option<(DVec2, &'static str)> {
+    match goal {
+        Goal::EndsInside { region, .. } | Goal::StaysInside { region, .. } => {
+            Some((region_prims(region, color, out), "goal region"))
+        }
+        Goal::Reaches { point, radius, .. } => {
+            let p = DVec2::new(point.0, point.1);
+            dashed_circle(p, *radius, color, out);
+            out.push(Prim::Dot(p, 3.0, color));
+            Some((p, "target"))
+        }
+        _ => None,
+    }
+}
+
+/// A circle drawn as every other one of 24 chords: dashed at any zoom, even a 3 cm target.
+fn dashed_circle(c: DVec2, r: f64, color: Color, out: &mut Vec<Prim>) {
+    const CHORDS: usize = 24;
+    let at = |k: usize| c + r * DVec2::from_angle(std::f64::consts::TAU * k as f64 / CHORDS as f64);
+    out.extend(
+        (0..CHORDS)
+            .step_by(2)
+            .map(|k| Prim::Line(at(k), at(k + 1), color)),
+    );
+}
+
+/// A region's outline, dashed; the point to name it at (its lowest middle).
+fn region_prims(region: &Region, color: Color, out: &mut Vec<Prim>) -> DVec2 {
     match *region {
-        Region::Rect { min, max } => out.push(Prim::Poly(
-            vec![
+        Region::Rect { min, max } => {
+            let corners = [
                 DVec2::new(min.0, min.1),
                 DVec2::new(max.0, min.1),
                 DVec2::new(max.0, max.1),
                 DVec2::new(min.0, max.1),
-            ],
-            true,
-            color,
-        )),
+            ];
+            for k in 0..4 {
+                out.push(Prim::Dashed(corners[k], corners[(k + 1) % 4], color));
+            }
+            DVec2::new((min.0 + max.0) / 2.0, min.1)
+        }
         Region::Circle { center, radius } => {
-            out.push(Prim::Circle(DVec2::new(center.0, center.1), radius, color));
+            let c = DVec2::new(center.0, center.1);
+            dashed_circle(c, radius, color, out);
+            c - DVec2::new(0.0, radius)
         }
         Region::Ring {
             center,
@@ -369,8 +395,9 @@ fn region_prims(region: &Region, color: Color, out: &mut Vec<Prim>) {
             outer,
         } => {
             let c = DVec2::new(center.0, center.1);
-            out.push(Prim::Circle(c, inner, color));
-            out.push(Prim::Circle(c, outer, color));
+            dashed_circle(c, inner, color, out);
+            dashed_circle(c, outer, color, out);
+            c - DVec2::new(0.0, outer)
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The exercise panel (left panel, under the browser): the level's source, statement and
 //! effects, and its questions with an answer box each. A typed answer is graded with the
-//! level's own rule; the value rigidlab measured is shown only once the answer is right.
+//! level's own rule; the value rigidlab measured is shown once the answer is right (or the
+//! values are given away: predict first's results, the worked solution).
 
 use super::super::physics::LiveChecks;
 use super::super::run::Run;
@@ -17,6 +18,9 @@ pub struct Exercise {
     /// Predict first (panels/predict.rs): a grade is held back until the motion has been seen,
     /// so an answer is not tried until it is right before the motion runs.
     pub hold_grades: bool,
+    /// Predict first's results are shown (the run's values beside each prediction, right or
+    /// wrong): the measured values show under the questions too.
+    pub revealed: bool,
     pub answers: Vec<String>,
     /// A student's grade per question.
     pub grades: Vec<Option<Grade>>,
@@ -172,15 +176,32 @@ fn verdict_height(ui: &egui::Ui, q: &crate::level::QuestionDef) -> f32 {
         "textbook {n} {} · rigidlab measured {n} {} at t = 888.888 s",
         q.unit, q.unit
     );
-    let measured_h =
-        text_height(ui, &measured, body).max(text_height(ui, NOT_YET_SEEN, egui::TextStyle::Small));
+    let measured_h = [NOT_YET_SEEN, SHOWN_WHEN_RIGHT]
+        .iter()
+        .map(|t| text_height(ui, t, egui::TextStyle::Small))
+        .fold(text_height(ui, &measured, body), f32::max);
     grade_h + measured_h
 }
 
-/// Shown under a question before its answer is right, where rigidlab has measured it.
+/// Shown under a question not yet answered, where rigidlab has measured it.
 const NOT_YET_SEEN: &str = "rigidlab measured this run; answer first to see it";
 
-/// A question's verdict: its grade, and rigidlab's measured value once the answer is right.
+/// Shown under a question answered wrong: the measured value would give the answer away (the
+/// hints and *Show solution* are the help, and the solution marks the level "solved with
+/// help"). "answer first" showed here under an answer already given (the trial of 2026-12-07).
+pub const SHOWN_WHEN_RIGHT: &str =
+    "rigidlab's measured value shows once your answer is right, or with the solution";
+
+/// Whether a question's measured value shows: its answer graded right, or the values already
+/// given away (predict first's results, the worked solution shown).
+pub fn measured_shown(st: &Exercise, k: usize) -> bool {
+    let right = st.grades[k]
+        .as_ref()
+        .is_some_and(|g| g.as_ref().is_ok_and(|g| g.passed));
+    (right && !st.hold_grades) || st.revealed || st.hints.solution_shown
+}
+
+/// A question's verdict: its grade, and rigidlab's measured value once [`measured_shown`].
 fn verdict(
     ui: &mut egui::Ui,
     q: &crate::level::QuestionDef,
@@ -204,10 +225,7 @@ fn verdict(
         ui.label(rich(text, color));
     }
     if let Some(a) = live.answers.as_ref().and_then(|a| a.get(k)) {
-        let show = st.grades[k]
-            .as_ref()
-            .is_some_and(|g| g.as_ref().is_ok_and(|g| g.passed));
-        if show {
+        if measured_shown(st, k) {
             ui.label(rich(
                 format!(
                     "textbook {} {} · rigidlab measured {} {} at t = {:.3} s",
@@ -219,6 +237,8 @@ fn verdict(
                 ),
                 palette::OUTLINE,
             ));
+        } else if st.grades[k].as_ref().is_some_and(|g| g.is_ok()) {
+            ui.label(rich(SHOWN_WHEN_RIGHT, palette::OUTLINE).small());
         } else {
             ui.label(rich(NOT_YET_SEEN, palette::OUTLINE).small());
         }

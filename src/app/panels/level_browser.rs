@@ -11,44 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// One level file in the browser.
-#[derive(Debug, Clone)]
-pub struct Entry {
-    pub path: PathBuf,
-    pub title: String,
-    pub statement: String,
-    /// Why it does not load (shown instead of opening it).
-    pub error: Option<String>,
-    /// How many questions it asks (0 where it does not load).
-    pub questions: usize,
-    /// It is a challenge (a control the student sets and a goal judged on the run): the course
-    /// counts it, met as solved.
-    pub challenge: bool,
-    /// The file's text when it is compiled in (the web page has no file system).
-    pub source: Option<Arc<str>>,
-    /// When the file was last written (a file on disk; the listing shows it for saved levels,
-    /// whose versions share one title).
-    pub modified: Option<std::time::SystemTime>,
-}
-
-impl Entry {
-    /// It is an exercise of the course: it loads, and asks a question or sets a challenge.
-    pub fn is_exercise(&self) -> bool {
-        self.error.is_none() && (self.questions > 0 || self.challenge)
-    }
-
-    /// The level as the student opens it (`app/student.rs`: their own numbers for a level with
-    /// parameters): parsed from the compiled-in text, or read from its file.
-    pub fn load(&self) -> Result<Scene, level::LevelError> {
-        self.load_variant(&super::super::student::pick())
-    }
-
-    /// The level as `pick` makes it (a student's own numbers for a level with parameters; the
-    /// same level for every pick otherwise).
-    pub fn load_variant(&self, pick: &level::params::Pick) -> Result<Scene, level::LevelError> {
-        level::variant_of(&self.path, self.source.as_deref(), pick)
-    }
-}
+pub use super::level_entry::Entry;
 
 /// The levels folder, grouped by topic (sub-folder).
 #[derive(Resource, Debug, Clone, Default)]
@@ -60,6 +23,8 @@ pub struct Browser {
     pub embedded: bool,
     /// The assignment opened, listed above the library (`assignment_list.rs`).
     pub assignment: Option<super::assignment_list::AssignmentList>,
+    /// Which library this is and where it was found, for the status line (`app/library.rs`).
+    pub opened_from: String,
 }
 
 impl Browser {
@@ -137,27 +102,35 @@ impl Browser {
             let entry = Entry::from_load(f.clone(), level::load(&f), None);
             b.groups.entry(group_of(root, &f)).or_default().push(entry);
         }
-        // The levels the user saved from the window, listed apart from the library.
+        b.list_saved();
+        b
+    }
+
+    /// Lists the levels the user saved from the window (`saved-levels/` in the folder the
+    /// program runs in), apart from the library.
+    pub fn list_saved(&mut self) {
         let saved = Path::new(crate::app::user_files::SAVED_LEVELS);
         if saved.is_dir() {
             if let Ok(files) = level::collect_files(&[saved.to_path_buf()]) {
                 for f in files {
                     let entry = Entry::from_load(f.clone(), level::load(&f), None);
-                    b.groups
+                    self.groups
                         .entry(format!("saved ({}/)", saved.display()))
                         .or_default()
                         .push(entry);
                 }
             }
         }
-        b
     }
 
-    /// Reads the levels folder again, and the assignment's levels, keeping the assignment listed.
+    /// Reads the levels folder again, and the assignment's levels, keeping the assignment listed
+    /// and the note of where the library was found.
     pub fn rescan(&mut self) {
         let assignment = self.assignment.take().map(|a| a.reread());
+        let opened_from = std::mem::take(&mut self.opened_from);
         *self = Browser::scan(&self.root.clone());
         self.assignment = assignment;
+        self.opened_from = opened_from;
     }
 
     pub fn first_loadable(&self) -> Option<Scene> {
@@ -166,44 +139,6 @@ impl Browser {
             .flatten()
             .filter(|e| e.error.is_none())
             .find_map(|e| e.load().ok())
-    }
-}
-
-impl Entry {
-    fn from_load(
-        path: PathBuf,
-        loaded: Result<Scene, level::LevelError>,
-        source: Option<Arc<str>>,
-    ) -> Entry {
-        let modified = source
-            .is_none()
-            .then(|| std::fs::metadata(&path).and_then(|m| m.modified()).ok())
-            .flatten();
-        match loaded {
-            Ok(s) => Entry {
-                path,
-                questions: s.level.questions.len(),
-                challenge: s.level.challenge.is_some(),
-                title: s.level.title,
-                statement: s.level.statement,
-                error: None,
-                source,
-                modified,
-            },
-            Err(e) => Entry {
-                title: path
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().to_string())
-                    .unwrap_or_default(),
-                path,
-                statement: String::new(),
-                error: Some(e.to_string()),
-                questions: 0,
-                challenge: false,
-                source,
-                modified,
-            },
-        }
     }
 }
 

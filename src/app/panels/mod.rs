@@ -16,6 +16,7 @@ mod exercise;
 pub mod help;
 pub mod hints;
 mod level_browser;
+mod level_entry;
 pub mod measure;
 pub mod number_field;
 mod overlay_controls;
@@ -33,7 +34,7 @@ pub mod tour;
 mod track_editor;
 
 pub use course::Course;
-pub use exercise::{grade, grade_message, Exercise, Grade};
+pub use exercise::{grade, grade_message, measured_shown, Exercise, Grade, SHOWN_WHEN_RIGHT};
 pub use level_browser::{utc_minute, version_line, Browser, Entry};
 pub use playback::{energy_drift_note, finer_step, DRIFT_WARNING, FINER_STEP};
 pub use predict::Predict;
@@ -247,6 +248,9 @@ fn follow_the_run(ctx: &egui::Context, p: &mut PanelInput) {
             .and_then(|f| f.problem.clone())
         {
             st.message = Some((problem, false));
+        } else if !p.browser.opened_from.is_empty() {
+            // Which library opened: started from another folder, it is not ./levels.
+            st.message = Some((p.browser.opened_from.clone(), true));
         }
     }
     if st.save_for.as_ref() != Some(&phys.scene.file) {
@@ -281,15 +285,10 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
         .size_range(200.0..=520.0)
         .show(root, |ui| {
             let (phys, play) = (&*p.phys, &*p.play);
-            predict::predict(
+            let (pred, message) = (&mut *p.predict, &mut p.st.message);
+            load = left_column_under(
                 ui,
-                (phys, play),
-                &p.exercise,
-                &mut p.predict,
-                &mut p.st.message,
-            );
-            load = left_column(
-                ui,
+                |ui, ex| predict::predict(ui, (phys, play), ex, pred, message),
                 &mut p.browser,
                 (&p.phys, &p.live),
                 &mut p.exercise,
@@ -297,6 +296,24 @@ fn left_panel(root: &mut egui::Ui, p: &mut PanelInput) -> Option<Scene> {
             );
         });
     load
+}
+
+/// The left panel of a level with questions, as the window draws it: predict first's part on
+/// top, then [`left_column`], in one scroll area. The level asked for, if any.
+pub fn left_panel_of(
+    ui: &mut egui::Ui,
+    (phys, play, live): (&Run, &Playback, &LiveChecks),
+    (browser, ex, pred, progress): (&mut Browser, &mut Exercise, &mut Predict, &mut Course),
+) -> Option<Scene> {
+    let mut message = None;
+    left_column_under(
+        ui,
+        |ui, ex| predict::predict(ui, (phys, play), ex, pred, &mut message),
+        browser,
+        (phys, live),
+        ex,
+        progress,
+    )
 }
 
 /// The left panel's column: the open exercise first, its statement and questions where a
@@ -311,6 +328,20 @@ pub fn left_column(
     ex: &mut Exercise,
     progress: &mut Course,
 ) -> Option<Scene> {
+    left_column_under(ui, |_, _| {}, browser, (phys, live), ex, progress)
+}
+
+/// [`left_column`] under `top` (predict first's switch and results), in the column's one scroll
+/// area: the results had a scroll area of their own stacked over the column's, each with its
+/// scroll bar (the student trial of 2026-12-07).
+fn left_column_under(
+    ui: &mut egui::Ui,
+    top: impl FnOnce(&mut egui::Ui, &Exercise),
+    browser: &mut Browser,
+    (phys, live): (&Run, &LiveChecks),
+    ex: &mut Exercise,
+    progress: &mut Course,
+) -> Option<Scene> {
     let mut load: Option<Scene> = None;
     let shown = egui::Id::new("left column: level shown");
     let new_level = ui.data(|d| d.get_temp::<PathBuf>(shown)) != Some(phys.scene.file.clone());
@@ -320,6 +351,7 @@ pub fn left_column(
         scroll = scroll.vertical_scroll_offset(0.0);
     }
     scroll.show(ui, |ui| {
+        top(ui, ex);
         exercise(ui, phys, live, ex);
         course::next_level(ui, (browser, phys, ex), progress, &mut load);
         exercise::exercise_help(ui, phys, ex);

@@ -5,7 +5,7 @@
 use super::super::physics::PhysicsCommand;
 use super::super::playback::{play_restarts, Playback};
 use super::super::run::Run;
-use super::super::ui::{fixed_rows, fmt, rich};
+use super::super::ui::{fixed_height, fmt, rich};
 use super::super::view::{palette, View};
 use bevy_egui::egui;
 
@@ -61,14 +61,15 @@ pub(super) fn playback(
 /// come and go while the run plays (a blow struck, the physics falling behind real time) and
 /// moved every control below them as they did.
 fn run_notes(ui: &mut egui::Ui, phys: &Run, play: &Playback, out: &mut Vec<PhysicsCommand>) {
-    let height = 2.0 * super::super::ui::row_height(ui);
+    let row = super::super::ui::row_height(ui);
+    let height = (2.0 * row).max(drift_note_room(ui, phys));
     egui::ScrollArea::vertical()
         .id_salt("run notes")
         .max_height(height)
         .min_scrolled_height(height)
         .auto_shrink([true, true])
         .show(ui, |ui| {
-            fixed_rows(ui, 2.0, |ui| {
+            fixed_height(ui, height, |ui| {
                 warnings(ui, phys, play, out);
                 blows(ui, phys);
             })
@@ -224,15 +225,37 @@ pub fn energy_drift_note(phys: &Run) -> Option<String> {
         .max(first.gravity.abs())
         .max(first.elastic.abs());
     let drift = (last.total() - first.total()) / scale;
-    (drift.is_finite() && drift.abs() > DRIFT_WARNING).then(|| {
-        format!(
-            "Energy should stay the same here, but this run has {} {:.0}% of it since t = 0: \
-             the engine's time step is too coarse, not the physics. {FINER_STEP} to halve dt \
-             and watch the loss shrink.",
-            if drift < 0.0 { "lost" } else { "gained" },
-            drift.abs() * 100.0
-        )
-    })
+    (drift.is_finite() && drift.abs() > DRIFT_WARNING).then(|| drift_note(drift))
+}
+
+/// The warning's text for a drift of `drift` (a fraction, negative for a loss).
+fn drift_note(drift: f64) -> String {
+    format!(
+        "Energy should stay the same here, but this run has {} {:.0}% of it since t = 0: \
+         the engine's time step is too coarse, not the physics. {FINER_STEP} to halve dt \
+         and watch the loss shrink.",
+        if drift < 0.0 { "lost" } else { "gained" },
+        drift.abs() * 100.0
+    )
+}
+
+/// The height the run notes keep where the drift warning can come (the level conserves
+/// energy): its button's row and the warning wrapped whole, at its longest ("gained 100%").
+/// The box was two rows, and the warning was cut after its first line (the student trial of
+/// 2026-12-07, on the first level). Elsewhere nothing: the box keeps its two rows.
+fn drift_note_room(ui: &egui::Ui, phys: &Run) -> f32 {
+    if !crate::study::accuracy::metrics::conserved(&phys.sim.level).energy {
+        return 0.0;
+    }
+    // Wrapped narrower than the box (its scroll bar's room), so never taller than it shows.
+    let width = ui.available_width() - 2.0 * ui.spacing().scroll.bar_width;
+    let galley = egui::WidgetText::from(drift_note(1.0)).into_galley(
+        ui,
+        Some(egui::TextWrapMode::Wrap),
+        width,
+        egui::TextStyle::Body,
+    );
+    super::super::ui::row_height(ui) + galley.size().y + 2.0 * ui.spacing().item_spacing.y
 }
 
 /// The button beside the energy-drift warning. The warning said "halve dt in Solver", a panel

@@ -175,6 +175,7 @@ pub fn follow(
     }
     // The grades show with the results, at the end of the motion.
     ex.hold_grades = matches!(pred.phase, Phase::Predicting | Phase::Watching);
+    ex.revealed = pred.phase == Phase::Revealed;
 }
 
 /// What explains a quantity: one of the window's overlays.
@@ -351,14 +352,8 @@ pub(super) fn predict(
                 ui.label(rich(e.clone(), palette::NORMAL));
             }
         }
-        Phase::Revealed => {
-            // Beside the exercise, never over all of it: a long list scrolls.
-            let height = 0.55 * ui.available_height();
-            egui::ScrollArea::vertical()
-                .id_salt("predictions")
-                .max_height(height)
-                .show(ui, |ui| results(ui, level, ex, pred));
-        }
+        // In the left column's scroll area, with the questions under it: one scroll bar.
+        Phase::Revealed => results(ui, level, ex, pred),
     }
     ui.separator();
 }

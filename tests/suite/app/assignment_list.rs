@@ -4,50 +4,27 @@
 
 use bevy_egui::egui;
 use rigidlab::app::panels::assignment_list::AssignmentList;
-use rigidlab::app::panels::{self, Browser, Exercise};
+use rigidlab::app::panels::{Browser, Exercise};
 use rigidlab::app::{LiveChecks, Run};
 use rigidlab::level::{self, assignment::Assignment};
 use rigidlab::sim::Options;
 use std::path::Path;
+
+use crate::common::app::{all_text, left_column};
 
 /// Every text the left column draws at a 1280x800 screen, in drawing order.
 fn left_column_texts(browser: &mut Browser, phys: &Run) -> Vec<String> {
     let live = LiveChecks::new(phys);
     let mut ex = Exercise::default();
     ex.start(phys.sim.level.questions.len());
-    let ctx = egui::Context::default();
-    let mut texts = Vec::new();
-    for _ in 0..2 {
-        let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(
-                egui::Pos2::ZERO,
-                egui::vec2(1280.0, 800.0),
-            )),
-            ..Default::default()
-        };
-        let out = ctx.run_ui(input, |ui| {
-            egui::Panel::left("levels")
-                .default_size(300.0)
-                .show(ui, |ui| {
-                    panels::left_column(
-                        ui,
-                        browser,
-                        (phys, &live),
-                        &mut ex,
-                        &mut panels::Course::default(),
-                    );
-                });
-        });
-        texts = out
-            .shapes
-            .iter()
-            .filter_map(|s| match &s.shape {
-                egui::Shape::Text(t) => Some(t.galley.text().to_string()),
-                _ => None,
-            })
-            .collect();
-    }
-    texts
+    let texts = left_column(
+        &egui::Context::default(),
+        browser,
+        (phys, &live),
+        &mut ex,
+        Vec::new(),
+    );
+    all_text(&texts).into_iter().map(String::from).collect()
 }
 
 #[test]

@@ -14,6 +14,8 @@ use rigidlab::app::{LiveChecks, Run};
 use rigidlab::sim::Options;
 use std::path::Path;
 
+use crate::common::app::{frames, SCREEN};
+
 /// The tour's and the box's rects after a few frames of the level in `file`, the scene's
 /// rect, and where the box's old rule (the corner farthest from the bodies, the tour aside)
 /// put it.
@@ -30,56 +32,48 @@ fn drawn(file: &Path) -> (egui::Rect, egui::Rect, egui::Rect, egui::Rect) {
     let ctx = egui::Context::default();
     let mut scene = egui::Rect::NOTHING;
     let mut old_rule = egui::Pos2::ZERO;
-    for _ in 0..4 {
-        let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(
-                egui::Pos2::ZERO,
-                egui::vec2(1280.0, 800.0),
-            )),
-            ..Default::default()
+    // Four frames: the windows settle where they go.
+    frames(&ctx, SCREEN, vec![Vec::new(); 4], |ui| {
+        egui::Panel::left("levels")
+            .default_size(300.0)
+            .show(ui, |ui| ui.label("levels"));
+        egui::Panel::right("controls")
+            .default_size(330.0)
+            .show(ui, |ui| ui.label("controls"));
+        egui::Panel::bottom("status").show(ui, |ui| ui.label("status"));
+        scene = ui.available_rect_before_wrap();
+        let mut view = View {
+            viewport: bevy::math::Rect::new(scene.min.x, scene.min.y, scene.max.x, scene.max.y),
+            ..View::default()
         };
-        let _ = ctx.run_ui(input, |ui| {
-            egui::Panel::left("levels")
-                .default_size(300.0)
-                .show(ui, |ui| ui.label("levels"));
-            egui::Panel::right("controls")
-                .default_size(330.0)
-                .show(ui, |ui| ui.label("controls"));
-            egui::Panel::bottom("status").show(ui, |ui| ui.label("status"));
-            scene = ui.available_rect_before_wrap();
-            let mut view = View {
-                viewport: bevy::math::Rect::new(scene.min.x, scene.min.y, scene.max.x, scene.max.y),
-                ..View::default()
-            };
-            view.fit_to(&motion_bounds(&phys.scene, &Options::default()));
-            let ctx = ui.ctx().clone();
-            tour::tour(
-                &ctx,
-                scene,
-                &mut t,
-                &phys,
-                &Overlays::default(),
-                (false, false),
-                &Editor::default(),
-            );
-            let bodies: Vec<egui::Pos2> = phys
-                .snapshot()
-                .bodies
-                .iter()
-                .map(|b| {
-                    let p = view.to_screen(b.com);
-                    egui::pos2(p.x, p.y)
-                })
-                .collect();
-            old_rule = box_corner(scene, BOX_SIZE, &bodies);
-            challenge::window(
-                &ctx,
-                (&phys, &browser, &view, true),
-                (&live, &mut course, &mut message),
-                scene,
-            );
-        });
-    }
+        view.fit_to(&motion_bounds(&phys.scene, &Options::default()));
+        let ctx = ui.ctx().clone();
+        tour::tour(
+            &ctx,
+            scene,
+            &mut t,
+            &phys,
+            &Overlays::default(),
+            (false, false),
+            &Editor::default(),
+        );
+        let bodies: Vec<egui::Pos2> = phys
+            .snapshot()
+            .bodies
+            .iter()
+            .map(|b| {
+                let p = view.to_screen(b.com);
+                egui::pos2(p.x, p.y)
+            })
+            .collect();
+        old_rule = box_corner(scene, BOX_SIZE, &bodies);
+        challenge::window(
+            &ctx,
+            (&phys, &browser, &view, true),
+            (&live, &mut course, &mut message),
+            scene,
+        );
+    });
     let rect = |id: egui::Id| {
         ctx.memory(|m| m.area_rect(id))
             .unwrap_or_else(|| panic!("{}: nothing drawn for {id:?}", file.display()))

@@ -11,32 +11,24 @@ use rigidlab::app::Run;
 use rigidlab::sim::Options;
 use std::path::Path;
 
+use crate::common::app::{all_text, frames};
+
 /// The library's challenges, one file each (docs/student.md#playing-a-challenge).
 const CHALLENGES: usize = 10;
 
 /// The course drawn once (twice: egui settles sizes), every text drawn.
 fn draw(browser: &Browser, phys: &Run, c: &mut Course) -> Vec<String> {
-    let ctx = egui::Context::default();
-    let mut texts = Vec::new();
-    for _ in 0..2 {
-        let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(
-                egui::Pos2::ZERO,
-                egui::vec2(1280.0, 8000.0),
-            )),
-            ..Default::default()
-        };
-        let out = ctx.run_ui(input, |ui| {
+    // A tall screen: every row of the course drawn.
+    let screen = egui::vec2(1280.0, 8000.0);
+    let texts = frames(
+        &egui::Context::default(),
+        screen,
+        vec![Vec::new(); 2],
+        |ui| {
             course::course(ui, browser, phys, c, &mut None);
-        });
-        texts.clear();
-        for s in &out.shapes {
-            if let egui::Shape::Text(t) = &s.shape {
-                texts.push(t.galley.text().to_string());
-            }
-        }
-    }
-    texts
+        },
+    );
+    all_text(&texts).into_iter().map(String::from).collect()
 }
 
 #[test]

@@ -18,6 +18,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use crate::common::app::two_frames;
+
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rigidlab-course-{}-{name}", std::process::id()));
     let _ = fs::remove_dir_all(&dir);
@@ -207,24 +209,15 @@ fn draw(app: &mut App) -> (Vec<course::DrawnRow>, Option<PathBuf>) {
             world.resource::<Run>(),
             world.resource::<Exercise>(),
         );
-        for _ in 0..2 {
-            let input = egui::RawInput {
-                screen_rect: Some(egui::Rect::from_min_size(
-                    egui::Pos2::ZERO,
-                    egui::vec2(1280.0, 800.0),
-                )),
-                ..Default::default()
-            };
-            let _ = ctx.run_ui(input, |ui| {
-                egui::Panel::left("levels")
-                    .default_size(300.0)
-                    .show(ui, |ui| {
-                        let mut load = None;
-                        course::next_level(ui, (browser, run, ex), &mut c, &mut load);
-                        course::course(ui, browser, run, &mut c, &mut load);
-                    });
-            });
-        }
+        two_frames(&ctx, Vec::new(), |ui| {
+            egui::Panel::left("levels")
+                .default_size(300.0)
+                .show(ui, |ui| {
+                    let mut load = None;
+                    course::next_level(ui, (browser, run, ex), &mut c, &mut load);
+                    course::course(ui, browser, run, &mut c, &mut load);
+                });
+        });
         (c.rows.clone(), c.next.clone())
     })
 }

@@ -5,15 +5,12 @@
 //! clicked where egui drew it.
 
 use bevy_egui::egui;
-use rigidlab::app::editor::Editor;
-use rigidlab::app::overlays::Overlays;
-use rigidlab::app::panels::{self, UiState};
-use rigidlab::app::tools::ToolState;
-use rigidlab::app::view::View;
-use rigidlab::app::{PhysicsCommand, Playback, Run};
+use rigidlab::app::panels;
+use rigidlab::app::{PhysicsCommand, Run};
 use rigidlab::sim::Options;
 
 use crate::common;
+use crate::common::app::{click, drawn, upper_controls};
 
 /// The run's energy drift since t = 0 as a fraction of its largest energy term at t = 0.
 fn drift(phys: &Run) -> f64 {
@@ -34,53 +31,7 @@ fn run_33_s(options: Options) -> Run {
     phys
 }
 
-/// The upper controls for a frame with `events` and one without: what they asked, the texts.
-fn controls(
-    ctx: &egui::Context,
-    phys: &Run,
-    events: Vec<egui::Event>,
-) -> (Vec<PhysicsCommand>, Vec<(String, egui::Rect)>) {
-    let (mut view, mut ov, mut tools, mut st) = (
-        View::default(),
-        Overlays::default(),
-        ToolState::default(),
-        UiState::default(),
-    );
-    let (play, editor) = (Playback::new(true), Editor::default());
-    let mut asked = Vec::new();
-    let mut texts = Vec::new();
-    for events in [events, Vec::new()] {
-        let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(
-                egui::Pos2::ZERO,
-                egui::vec2(1280.0, 800.0),
-            )),
-            events,
-            ..Default::default()
-        };
-        let out = ctx.run_ui(input, |ui| {
-            egui::Panel::right("controls")
-                .default_size(330.0)
-                .show(ui, |ui| {
-                    panels::upper_controls(
-                        ui,
-                        (phys, &play, &editor),
-                        (&mut view, &mut ov, &mut tools, &mut st),
-                        &mut asked,
-                    );
-                });
-        });
-        texts.clear();
-        for s in &out.shapes {
-            if let egui::Shape::Text(t) = &s.shape {
-                texts.push((t.galley.text().to_string(), t.visual_bounding_rect()));
-            }
-        }
-    }
-    (asked, texts)
-}
-
-/// The physical pendulum (T + V constant, WE-14) at its 60 Hz loses energy to the engine's
+/// The physical pendulum (T + V constant, WE-14) at its 120 Hz loses energy to the engine's
 /// first-order step (docs/known-gaps.md): past 5 % by 33 s, the warning shows with its button,
 /// and the button asks for the same run at dt / 2. A first-order method's drift over a fixed
 /// time is proportional to dt, so halving it about halves the drift: at most 0.75 of it allows
@@ -91,27 +42,12 @@ fn the_drift_warnings_button_halves_dt_and_the_drift_shrinks() {
     let before = drift(&phys);
     assert!(before.abs() > panels::DRIFT_WARNING, "{before}");
     let ctx = egui::Context::default();
-    let (_, texts) = controls(&ctx, &phys, Vec::new());
+    let (_, texts) = upper_controls(&ctx, &phys, Vec::new());
     let note = panels::energy_drift_note(&phys).unwrap();
     assert!(!note.contains("in Solver"), "{note}");
-    let at = texts
-        .iter()
-        .find(|(t, _)| t == "Run again with a finer step")
-        .unwrap_or_else(|| panic!("no button beside the warning: {texts:?}"))
-        .1
-        .center();
-    let button = |pressed| egui::Event::PointerButton {
-        pos: at,
-        button: egui::PointerButton::Primary,
-        pressed,
-        modifiers: Default::default(),
-    };
-    controls(
-        &ctx,
-        &phys,
-        vec![egui::Event::PointerMoved(at), button(true)],
-    );
-    let (asked, _) = controls(&ctx, &phys, vec![button(false)]);
+    let at = drawn(&texts, "Run again with a finer step").rect.center();
+    upper_controls(&ctx, &phys, click(at, true));
+    let (asked, _) = upper_controls(&ctx, &phys, click(at, false));
     let options = asked
         .iter()
         .find_map(|c| match c {

@@ -7,11 +7,12 @@
 
 use bevy_egui::egui;
 use rigidlab::app::panels::hints::SAFE_GLYPHS;
-use rigidlab::app::panels::{self, Browser, Exercise};
+use rigidlab::app::panels::{Browser, Exercise};
 use rigidlab::app::{LiveChecks, Run};
 use rigidlab::sim::Options;
 
 use crate::common;
+use crate::common::app::{all_text, click, left_column, Drawn};
 
 const LEVEL: &str = "levels/momentum/bar_struck_at_percussion.ron";
 
@@ -23,7 +24,7 @@ struct Window {
     browser: Browser,
     ex: Exercise,
     /// Every text drawn in the last frame, with where.
-    texts: Vec<(String, egui::Rect)>,
+    texts: Vec<Drawn>,
 }
 
 impl Window {
@@ -46,35 +47,14 @@ impl Window {
 
     /// One frame with these input events, then one without (egui settles what it measured).
     fn frame(&mut self, events: Vec<egui::Event>) {
-        for events in [events, Vec::new()] {
-            let input = egui::RawInput {
-                screen_rect: Some(egui::Rect::from_min_size(
-                    egui::Pos2::ZERO,
-                    egui::vec2(1280.0, 800.0),
-                )),
-                events,
-                ..Default::default()
-            };
-            let (phys, live, browser, ex) =
-                (&self.phys, &self.live, &mut self.browser, &mut self.ex);
-            let out = self.ctx.run_ui(input, |ui| {
-                egui::Panel::left("levels")
-                    .default_size(300.0)
-                    .show(ui, |ui| {
-                        panels::left_column(
-                            ui,
-                            browser,
-                            (phys, live),
-                            ex,
-                            &mut panels::Course::default(),
-                        );
-                    });
-            });
-            self.texts.clear();
-            for s in &out.shapes {
-                collect(&s.shape, &mut self.texts);
-            }
-        }
+        let (phys, live) = (&self.phys, &self.live);
+        self.texts = left_column(
+            &self.ctx,
+            &mut self.browser,
+            (phys, live),
+            &mut self.ex,
+            events,
+        );
     }
 
     /// Clicks the `nth` text drawn exactly as `label` (a button's).
@@ -82,35 +62,21 @@ impl Window {
         let at = self
             .texts
             .iter()
-            .filter(|(t, _)| t == label)
+            .filter(|d| d.text == label)
             .nth(nth)
             .unwrap_or_else(|| panic!("no {label:?} #{nth} drawn: {:?}", self.shown()))
-            .1
+            .rect
             .center();
-        let button = |pressed| egui::Event::PointerButton {
-            pos: at,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: Default::default(),
-        };
-        self.frame(vec![egui::Event::PointerMoved(at), button(true)]);
-        self.frame(vec![button(false)]);
+        self.frame(click(at, true));
+        self.frame(click(at, false));
     }
 
     fn shown(&self) -> Vec<&str> {
-        self.texts.iter().map(|(t, _)| t.as_str()).collect()
+        all_text(&self.texts)
     }
 
     fn shows(&self, text: &str) -> bool {
-        self.texts.iter().any(|(t, _)| t == text)
-    }
-}
-
-fn collect(shape: &egui::Shape, out: &mut Vec<(String, egui::Rect)>) {
-    match shape {
-        egui::Shape::Text(t) => out.push((t.galley.text().to_string(), t.visual_bounding_rect())),
-        egui::Shape::Vec(v) => v.iter().for_each(|s| collect(s, out)),
-        _ => {}
+        self.texts.iter().any(|d| d.text == text)
     }
 }
 

@@ -19,7 +19,7 @@ use rigidlab::app::{LiveChecks, PhysicsCommand, Playback, Run};
 use rigidlab::sim::Options;
 
 use crate::common;
-use crate::common::app::{editor_app_unstarted, key};
+use crate::common::app::{click, editor_app_unstarted, key, left_column, Drawn};
 
 /// The scene between the panels of a 1280x800 window (logical pixels).
 fn scene() -> Rect {
@@ -154,54 +154,6 @@ fn a_press_is_the_scenes_only_in_the_bare_scene() {
     assert!(panels::help::KEYBOARD_RULE.contains("click in the scene"));
 }
 
-/// Every text drawn in a frame, with where.
-fn collect(shape: &egui::Shape, out: &mut Vec<(String, egui::Rect)>) {
-    match shape {
-        egui::Shape::Text(t) => out.push((t.galley.text().to_string(), t.visual_bounding_rect())),
-        egui::Shape::Vec(v) => v.iter().for_each(|s| collect(s, out)),
-        _ => {}
-    }
-}
-
-/// The left column of `phys`, a frame with `events` then one without; the texts drawn.
-fn left_column(
-    ctx: &egui::Context,
-    (phys, live): (&Run, &LiveChecks),
-    ex: &mut Exercise,
-    events: Vec<egui::Event>,
-) -> Vec<(String, egui::Rect)> {
-    let mut texts = Vec::new();
-    let mut browser = Browser::default();
-    for events in [events, Vec::new()] {
-        let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(
-                egui::Pos2::ZERO,
-                egui::vec2(1280.0, 800.0),
-            )),
-            events,
-            ..Default::default()
-        };
-        let out = ctx.run_ui(input, |ui| {
-            egui::Panel::left("levels")
-                .default_size(300.0)
-                .show(ui, |ui| {
-                    panels::left_column(
-                        ui,
-                        &mut browser,
-                        (phys, live),
-                        ex,
-                        &mut panels::Course::default(),
-                    );
-                });
-        });
-        texts.clear();
-        for s in &out.shapes {
-            collect(&s.shape, &mut texts);
-        }
-    }
-    texts
-}
-
 /// A wrong answer to the first question of the small-swing physical pendulum (two questions, a
 /// typical mistake with its message, hints and a worked solution, all in sight at 1280x800)
 /// checked: the verdict appears under it, and
@@ -222,37 +174,39 @@ fn checking_an_answer_moves_no_box_below_it() {
     let mut ex = Exercise::default();
     ex.start(phys.sim.level.questions.len());
     let ctx = egui::Context::default();
-    let before_texts = left_column(&ctx, (&phys, &live), &mut ex, Vec::new());
+    let mut browser = Browser::default();
+    let before_texts = left_column(&ctx, &mut browser, (&phys, &live), &mut ex, Vec::new());
     let boxes_before = ex.answer_boxes.clone();
-    let place = |texts: &[(String, egui::Rect)], label: &str, nth: usize| {
+    let place = |texts: &[Drawn], label: &str, nth: usize| {
         texts
             .iter()
-            .filter(|(t, _)| t == label)
+            .filter(|d| d.text == label)
             .nth(nth)
-            .map(|(_, r)| *r)
+            .map(|d| d.rect)
             .unwrap_or_else(|| panic!("no {label:?} #{nth} drawn"))
     };
     // The answer of the level's first typical mistake: its message, the longest verdict.
     ex.answers[0] = format!("{}", q.mistakes[0].value);
     let check = place(&before_texts, "Check", 0).center();
-    let button = |pressed| egui::Event::PointerButton {
-        pos: check,
-        button: egui::PointerButton::Primary,
-        pressed,
-        modifiers: Default::default(),
-    };
     left_column(
         &ctx,
+        &mut browser,
         (&phys, &live),
         &mut ex,
-        vec![egui::Event::PointerMoved(check), button(true)],
+        click(check, true),
     );
-    let after_texts = left_column(&ctx, (&phys, &live), &mut ex, vec![button(false)]);
+    let after_texts = left_column(
+        &ctx,
+        &mut browser,
+        (&phys, &live),
+        &mut ex,
+        click(check, false),
+    );
     let grade = ex.grades[0].clone().expect("the first answer was checked");
     let (message, right) = panels::grade_message(q, &grade);
     assert!(!right, "{message}");
     assert!(
-        after_texts.iter().any(|(t, _)| *t == message),
+        after_texts.iter().any(|d| d.text == message),
         "the verdict {message:?} is not drawn"
     );
     // Half a pixel: egui rounds positions to pixels.

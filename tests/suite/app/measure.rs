@@ -43,10 +43,10 @@ fn the_period_timer_reads_the_pendulums_exact_period() {
     let d = pin.anchor2.0.hypot(pin.anchor2.1);
     let i_o = m * (width * width + height * height) / 12.0 + m * d * d;
     let exact = pendulum_period(i_o, m, 9.81, d, b.angle);
-    // rapier loses 2.6% of the energy a period at this dt (the level's own note); the amplitude
-    // falls by 0.015 rad a period and the large-amplitude period with it, by theta0 d theta0 / 8
-    // = 0.2% a period: 0.5% covers the two periods measured and the crossings' linear
-    // interpolation (omega is sampled every 1/60 s).
+    // rapier loses 1.3% of the energy a period at this dt (the level's own note); the amplitude
+    // falls by 0.0075 rad a period (dE/E = sin(theta0) d theta0 / (1 - cos(theta0))) and the
+    // large-amplitude period with it, by theta0 d theta0 / 8 = 0.1% a period: 0.5% covers the two periods measured and the crossings' linear
+    // interpolation (omega is sampled every 1/120 s).
     let rel = (t - exact).abs() / exact;
     eprintln!("period timer {t:.5} s over {n} periods, exact {exact:.5} s: {rel:.2e}");
     assert!(

@@ -336,7 +336,7 @@ fn saved_versions_show_their_file_and_date() {
 
 /// The run says where the student looks when its energy drifts where the level conserves it:
 /// the physical pendulum (gravity and a frictionless pin: T + V is constant, WE-14) at the
-/// level's 60 Hz loses energy step by step to rapier's first-order integration (a known gap,
+/// level's 120 Hz loses energy step by step to rapier's first-order integration (a known gap,
 /// docs/known-gaps.md). Early in the run the drift is far below 5 % and nothing is said; by
 /// 33 s it is past 5 % and the playback panel says how much and what to do (halve dt).
 #[test]
@@ -355,7 +355,10 @@ fn an_energy_drift_is_said_where_the_student_looks() {
     }
     let (first, last) = (&phys.series[0], phys.series.last().unwrap());
     let drift = (last.total() - first.total()) / first.gravity.abs().max(first.kinetic.abs());
-    println!("energy drift after 33 s at 60 Hz: {:+.1}%", drift * 100.0);
+    println!(
+        "energy drift after 33 s at the level's dt: {:+.1}%",
+        drift * 100.0
+    );
     let note = panels::energy_drift_note(&phys);
     if drift.abs() > panels::DRIFT_WARNING {
         let note = note.expect("a drift past 5 % is said");
