@@ -11,7 +11,7 @@
 //! - one knob varied at a time from the level's settings: dt, substeps, PGS iterations,
 //!   precision (f32 / f64), effects (declared / all).
 //!
-//! `--engine rapier,box2d` sweeps each level on each engine that runs it ([`engines`]; a level an
+//! `--engine rapier,box2d` sweeps each level on each engine that runs it (`accuracy/engines.rs`; a level an
 //! engine refuses is listed with the feature it lacks).
 //!
 //! Output: `accuracy.csv`, one Pareto plot per level, `summary.md`; a sweep can be split into

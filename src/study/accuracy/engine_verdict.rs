@@ -87,7 +87,7 @@ fn engines(studies: &[LevelStudy]) -> Vec<PhysicsEngine> {
 }
 
 /// Per class: the tally of the levels run on both `first` and `second`, and those `second`
-/// refused (a skipped entry "refused by <second>" of a level `first` ran).
+/// refused (a skipped entry "refused by `<second>`" of a level `first` ran).
 pub fn tally(
     studies: &[LevelStudy],
     skipped: &[(String, String)],

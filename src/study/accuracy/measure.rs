@@ -498,7 +498,7 @@ impl Reference {
 
 /// Runs the f64 reference (its `precision` is ignored: always f64) over the level's duration;
 /// on Box2D, which runs in f32 only, the engine's own f32 run at the reference's step and
-/// substeps ([`super::engines::reference`]).
+/// substeps (`engines::reference`).
 pub fn reference(scene: &Scene, setting: &Setting) -> Reference {
     if !setting.engine.is_rapier() {
         return super::engines::reference(scene, setting);

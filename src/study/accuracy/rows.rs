@@ -120,7 +120,7 @@ pub struct LevelStudy {
 
 impl LevelStudy {
     /// The level's name as the summary's tables show it: with the engine beside it when not
-    /// rapier ("kinetics/simple_pendulum [box2d]").
+    /// rapier ("kinetics/simple_pendulum \[box2d\]").
     pub fn label(&self) -> String {
         if self.engine.is_rapier() {
             self.name.clone()

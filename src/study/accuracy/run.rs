@@ -9,7 +9,7 @@ pub fn measure_errors(scene: &Scene, plan: &Plan, tick: &(dyn Fn() + Sync)) -> L
     measure_errors_on(scene, plan, PhysicsEngine::Rapier, tick)
 }
 
-/// [`measure_errors`] on `engine` (the scene as [`engines::prepared`] makes it).
+/// [`measure_errors`] on `engine` (the scene as `engines::prepared` makes it).
 pub fn measure_errors_on(
     scene: &Scene,
     plan: &Plan,
