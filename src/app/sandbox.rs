@@ -50,14 +50,21 @@ pub fn sandbox(levels: Option<PathBuf>, level: Option<PathBuf>) -> Result<(), St
     let browser = library_browser(&super::library::here(levels.as_deref()));
     let scene = match &level {
         Some(p) => crate::level::load(p).map_err(|e| e.to_string())?,
-        // The first exercise of the first-steps tour: a pendulum, if the library has it.
-        None => browser
-            .open_listed(&browser.root.join(FIRST_LEVEL))
-            .and_then(Result::ok)
-            .or_else(|| browser.first_loadable())
-            .unwrap_or_else(empty_scene),
+        None => first_exercise(&browser),
     };
     open_window(scene, browser)
+}
+
+/// The level a student meets when none is named, in the window and the page alike: the
+/// first-steps tour's pendulum ([`FIRST_LEVEL`]) if the library has it, else its first level
+/// that loads, else the empty scene. (The page opened the library's first file, a challenge,
+/// until 2026-12-07: a second student trial landed there on every visit.)
+pub fn first_exercise(browser: &panels::Browser) -> Scene {
+    browser
+        .open_listed(&browser.root.join(FIRST_LEVEL))
+        .and_then(Result::ok)
+        .or_else(|| browser.first_loadable())
+        .unwrap_or_else(empty_scene)
 }
 
 /// Opens the sandbox window on an assignment: its levels listed in order above the library

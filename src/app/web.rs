@@ -6,7 +6,7 @@
 //! - `#level=DATA&name=FILE.ron` opens the level carried in the link itself (`level::link`, made by
 //!   `rigidlab link`); a link that does not decode says why and opens no other exercise;
 //! - `?url=PATH` fetches a level or an assignment served beside the page (`page_fetch.rs`);
-//! - `?level=kinetics/simple_pendulum.ron` opens that library level (default: the first one);
+//! - `?level=kinetics/simple_pendulum.ron` opens that library level (default: the window's first, `sandbox::first_exercise`);
 //! - `&play=1` starts it running (default: paused, as the native window opens);
 //! - `&predict=1` opens it in predict-first mode: the motion waits for the student's answers
 //!   (`panels/predict.rs`), for every level opened in the page;
@@ -113,7 +113,7 @@ pub fn start() {
                 )),
             ),
         },
-        (None, None) => (first_or_empty(&browser), None),
+        (None, None) => (super::sandbox::first_exercise(&browser), None),
     };
     if query.check {
         let scenes: Vec<Scene> = match (asked, note.is_none()) {
@@ -205,12 +205,6 @@ fn receive_fetched(
             ))
         }
     }
-}
-
-fn first_or_empty(browser: &Browser) -> Scene {
-    browser
-        .first_loadable()
-        .unwrap_or_else(super::sandbox::empty_scene)
 }
 
 /// Runs `scenes` with the core's runner and default settings, as `rigidlab check` does.

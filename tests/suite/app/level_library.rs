@@ -93,3 +93,17 @@ fn the_folder_given_then_the_one_here_come_first() {
     );
     let _ = std::fs::remove_dir_all(&here);
 }
+
+/// With no level named, the window and the page open the same first exercise, the tour's
+/// pendulum, from the library compiled in as from a folder (the second student trial of
+/// 2026-12-07: the page opened "Challenge: a fifth of g", the library's first file, on every
+/// visit, while the window opened the pendulum).
+#[test]
+fn with_no_level_named_the_page_and_the_window_open_the_tours_pendulum() {
+    use rigidlab::app::sandbox::first_exercise;
+    let want = rigidlab::level::load(&repo_levels().join(FIRST_LEVEL)).unwrap();
+    for found in [Library::Compiled, Library::Given(repo_levels())] {
+        let opened = first_exercise(&library_browser(&found));
+        assert_eq!(opened.level.title, want.level.title, "{found:?}");
+    }
+}
