@@ -43,6 +43,7 @@ pub mod sandbox;
 pub mod scene;
 pub mod scene_lines;
 pub mod student;
+pub mod time_text;
 pub mod tools;
 pub mod ui;
 pub mod unsaved;

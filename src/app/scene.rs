@@ -222,9 +222,9 @@ fn paint_legend(mut contexts: EguiContexts, phys: Res<Run>, ov: Res<Overlays>) -
                     );
                     ui.label(
                         egui::RichText::new(format!(
-                            "t = {:.3} s   dt = {:.4} s",
-                            s.time,
-                            phys.sim.dt()
+                            "t = {} s   dt = {} s",
+                            super::time_text::clock(s.time, phys.sim.dt()),
+                            super::time_text::step(phys.sim.dt())
                         ))
                         .color(color32(palette::TEXT)),
                     );

@@ -228,12 +228,12 @@ fn verdict(
         if measured_shown(st, k) {
             ui.label(rich(
                 format!(
-                    "textbook {} {} · rigidlab measured {} {} at t = {:.3} s",
+                    "textbook {} {} · rigidlab measured {} {} at t = {} s",
                     fmt(a.expected),
                     q.unit,
                     fmt(a.engine),
                     q.unit,
-                    a.time
+                    crate::app::time_text::instant(a.time)
                 ),
                 palette::OUTLINE,
             ));

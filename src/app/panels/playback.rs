@@ -5,6 +5,7 @@
 use super::super::physics::PhysicsCommand;
 use super::super::playback::{play_restarts, Playback};
 use super::super::run::Run;
+use super::super::time_text;
 use super::super::ui::{fixed_height, fmt, rich};
 use super::super::view::{palette, View};
 use bevy_egui::egui;
@@ -26,11 +27,16 @@ pub(super) fn playback(
     // the buttons, which moved under the pointer.
     let going = phys
         .seek
-        .map(|target| format!("   going to t = {:.3} s…", target as f64 * phys.sim.dt()))
+        .map(|target| {
+            let t = target as f64 * phys.sim.dt();
+            format!("   going to t = {} s…", time_text::clock(t, phys.sim.dt()))
+        })
         .unwrap_or_default();
+    let dt = phys.sim.dt();
     ui.label(format!(
-        "t = {:.3} s of {:.3} s   (step {}){going}",
-        time, duration, step
+        "t = {} s of {} s   (step {step}){going}",
+        time_text::clock(time, dt),
+        time_text::clock(duration, dt),
     ));
     timeline(ui, phys, out);
     let restarts = buttons(ui, (phys, play), view, out);

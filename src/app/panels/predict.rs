@@ -441,11 +441,11 @@ fn values(r: &QuestionResult) -> String {
         .map(|a| format!(" · analysis {}", fmt(a)))
         .unwrap_or_default();
     format!(
-        "engine {}{analysis} · textbook {} {}, at t = {:.3} s",
+        "engine {}{analysis} · textbook {} {}, at t = {} s",
         fmt(r.engine),
         fmt(r.expected),
         r.unit,
-        r.time
+        crate::app::time_text::instant(r.time)
     )
 }
 
@@ -463,7 +463,7 @@ fn explain_button(ui: &mut egui::Ui, level: &Level, k: usize, pred: &mut Predict
             let at = pred
                 .results
                 .get(k)
-                .map(|r| format!(" at t = {:.3} s", r.time))
+                .map(|r| format!(" at t = {} s", crate::app::time_text::instant(r.time)))
                 .unwrap_or_default();
             ui.label(rich(format!("shown{at}: the {what}"), palette::VELOCITY));
         } else if ui
