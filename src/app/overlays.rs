@@ -896,7 +896,13 @@ pub fn overlay_keys(
 }
 
 /// The color key of the overlays that are on (force kinds only where the scene has them).
-pub fn legend_entries(ov: &Overlays, level: &Level, window: usize) -> Vec<(String, Color)> {
+/// `averaged`: the steps the forces are averaged over and their span, s (`Run::steps_averaged`).
+pub fn legend_entries(
+    ov: &Overlays,
+    level: &Level,
+    averaged: (usize, f64),
+) -> Vec<(String, Color)> {
+    let (window, span) = averaged;
     let mut v = Vec::new();
     let mut add = |on: bool, text: &str, c: Color| {
         if on {
@@ -929,7 +935,10 @@ pub fn legend_entries(ov: &Overlays, level: &Level, window: usize) -> Vec<(Strin
     add(ov.trails, "trail of G", palette::TRAIL);
     if (ov.free_body || ov.kinetic) && window > 1 {
         v.push((
-            format!("forces: mean over the last {window} steps (1/60 s)"),
+            format!(
+                "forces: mean over the last {window} steps ({} s)",
+                super::time_text::instant(span)
+            ),
             palette::TEXT,
         ));
     }

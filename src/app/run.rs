@@ -256,6 +256,14 @@ impl Run {
         }
     }
 
+    /// The steps the drawn forces are averaged over now: the frame's window, or fewer while the
+    /// run has not yet taken that many (the slider-crank's 60-step run said "the last 833
+    /// steps"), and its span in seconds.
+    pub fn steps_averaged(&self) -> (usize, f64) {
+        let n = self.recent.len().saturating_sub(1).min(self.frame_window());
+        (n, n as f64 * self.sim.dt())
+    }
+
     /// How many steps one displayed frame (1/60 s) spans: the window of the averaged diagrams
     /// (1 beyond `RECENT_MAX_BODIES` bodies, where they are not averaged).
     pub fn frame_window(&self) -> usize {

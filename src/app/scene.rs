@@ -229,7 +229,7 @@ fn paint_legend(mut contexts: EguiContexts, phys: Res<Run>, ov: Res<Overlays>) -
                         .color(color32(palette::TEXT)),
                     );
                     for (text, color) in
-                        overlays::legend_entries(&ov, &phys.sim.level, phys.frame_window())
+                        overlays::legend_entries(&ov, &phys.sim.level, phys.steps_averaged())
                     {
                         ui.label(egui::RichText::new(text).color(color32(color)));
                     }

@@ -67,7 +67,7 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
     });
     fixed_rows(ui, 2.0, |ui| {
         ui.horizontal_wrapped(|ui| {
-            for (text, color) in legend_entries(ov, &phys.sim.level, phys.frame_window()) {
+            for (text, color) in legend_entries(ov, &phys.sim.level, phys.steps_averaged()) {
                 ui.label(rich(text, color).small());
             }
         });

@@ -12,6 +12,7 @@ mod editor_commands;
 mod editor_core;
 mod exercise_questions;
 mod first_level;
+mod forces_legend;
 mod goal_drawing;
 mod help_tour;
 mod hints;
