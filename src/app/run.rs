@@ -256,6 +256,16 @@ impl Run {
         }
     }
 
+    /// A seek back is asked or replaying (the timeline dragged back, Left): not a seek forward,
+    /// such as predict-first's jump to the instant a question is read, which the first-steps
+    /// tour took for the student's step back (the second student trial, 2026-12-07).
+    pub fn seeking_back(&self) -> bool {
+        self.replaying
+            || self
+                .seek
+                .is_some_and(|target| target < self.sim.snapshot().step)
+    }
+
     /// The steps the drawn forces are averaged over now: the frame's window, or fewer while the
     /// run has not yet taken that many (the slider-crank's 60-step run said "the last 833
     /// steps"), and its span in seconds.

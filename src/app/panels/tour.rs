@@ -148,7 +148,7 @@ pub fn tour(
     (answered, help): (bool, bool),
     editor: &Editor,
 ) -> bool {
-    if phys.seek.is_some() {
+    if phys.seeking_back() {
         tour.went_back = true;
     }
     if help {

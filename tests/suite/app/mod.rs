@@ -35,6 +35,7 @@ mod predict_first;
 mod student_id_kept;
 mod student_window;
 mod tour_kept;
+mod tour_step_back;
 mod typed_after_click;
 mod unsaved_work;
 mod web_page;
