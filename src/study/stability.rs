@@ -491,39 +491,38 @@ fn planned_steps(path: &Path, spec: &cases::Spec, plan: &Plan) -> u64 {
     n
 }
 
-pub fn main(args: Args) -> ExitCode {
-    let specs = cases::all();
+/// The cases asked for, after the arguments are checked: the folder, the case names, the
+/// step, the frequencies and the counts (each error says how to fix it; exit 2).
+fn chosen_cases<'a>(args: &Args, specs: &'a [cases::Spec]) -> Result<Vec<&'a cases::Spec>, String> {
     if !args.dir.is_dir() {
-        stderr!(
+        return Err(format!(
             "{}: no such folder\n  help: run from the repository root, or give --dir levels/stress",
             args.dir.display()
-        );
-        return ExitCode::from(2);
+        ));
     }
     for c in &args.cases {
         if !specs.iter().any(|s| s.name == c) {
             let names: Vec<_> = specs.iter().map(|s| s.name).collect();
-            stderr!(
+            return Err(format!(
                 "unknown case \"{c}\"\n  help: use one of: {}",
                 names.join(", ")
-            );
-            return ExitCode::from(2);
+            ));
         }
     }
-    let chosen: Vec<&cases::Spec> = specs
+    let chosen: Vec<&'a cases::Spec> = specs
         .iter()
         .filter(|s| args.cases.is_empty() || args.cases.iter().any(|c| c == s.name))
         .collect();
     if let Some(dt) = args.dt {
         if !(dt.is_finite() && dt > 0.0 && dt <= 0.1) {
-            stderr!("--dt {dt}: give a step between 0 and 0.1 s");
-            return ExitCode::from(2);
+            return Err(format!("--dt {dt}: give a step between 0 and 0.1 s"));
         }
     }
     for hz in [args.contact_hz, args.joint_hz].into_iter().flatten() {
         if !(hz.is_finite() && hz > 0.0) {
-            stderr!("--contact-hz/--joint-hz {hz}: give a positive frequency in Hz");
-            return ExitCode::from(2);
+            return Err(format!(
+                "--contact-hz/--joint-hz {hz}: give a positive frequency in Hz"
+            ));
         }
     }
     for (flag, n) in [
@@ -531,10 +530,89 @@ pub fn main(args: Args) -> ExitCode {
         ("--iterations", args.iterations),
     ] {
         if n.is_some_and(|n| n == 0 || n > 1000) {
-            stderr!("{flag}: give a number from 1 to 1000");
-            return ExitCode::from(2);
+            return Err(format!("{flag}: give a number from 1 to 1000"));
         }
     }
+    Ok(chosen)
+}
+
+/// The budget `check` and `run` apply, to the settings each case will run at (skipped with
+/// `--allow-long` or `--long`).
+fn check_budgets(
+    args: &Args,
+    chosen: &[&cases::Spec],
+    paths: &[PathBuf],
+    plan: &Plan,
+) -> Result<(), String> {
+    if !(args.allow_long || args.long) {
+        for (s, p) in chosen.iter().zip(paths) {
+            let Ok(scene) = level::load(p) else {
+                continue; // reported when the case runs
+            };
+            let set = plan.overrides.apply(&Settings::recorded(&scene, s));
+            let opts = crate::sim::Options {
+                dt: Some(set.dt),
+                substeps: Some(set.substeps),
+                solver_iterations: Some(set.iterations),
+                precision: set.f64.then_some(level::Precision::F64),
+                ..Default::default()
+            };
+            let estimate =
+                crate::runner::Estimate::of(&scene.level, &opts, crate::runner::Mode::Check, None);
+            estimate.within_budget(p).map_err(|e| e.to_string())?;
+        }
+    }
+    Ok(())
+}
+
+/// Runs every (case, engine) with one progress bar: the results, a failed case's error
+/// printed and listed in its place, and whether any input was bad.
+fn run_cases(
+    runs: &[(&cases::Spec, &PathBuf, Plan)],
+    plan: &Plan,
+    args: &Args,
+) -> (Vec<CaseResult>, bool) {
+    let total: u64 = runs
+        .iter()
+        .map(|(s, p, plan)| planned_steps(p, s, plan))
+        .sum();
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    if !plan.progress || args.json && !args.long {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let results: Vec<Result<CaseResult, String>> = runs
+        .par_iter()
+        .map(|(s, p, plan)| run_case_with(p, s, plan, Some(&bar)))
+        .collect();
+    bar.finish_and_clear();
+    let mut bad_input = false;
+    let mut cases_out = Vec::new();
+    for (r, (s, _, _)) in results.into_iter().zip(runs) {
+        match r {
+            Ok(c) => cases_out.push(c),
+            Err(e) => {
+                stderr!("{e}");
+                bad_input = true;
+                cases_out.push(missing(s, &e));
+            }
+        }
+    }
+    (cases_out, bad_input)
+}
+
+pub fn main(args: Args) -> ExitCode {
+    let specs = cases::all();
+    let chosen = match chosen_cases(&args, &specs) {
+        Ok(chosen) => chosen,
+        Err(e) => {
+            stderr!("{e}");
+            return ExitCode::from(2);
+        }
+    };
     let plan = Plan {
         compare: !(args.quick || args.long),
         steps: args.long.then_some(LONG_STEPS),
@@ -558,27 +636,9 @@ pub fn main(args: Args) -> ExitCode {
         .iter()
         .map(|s| args.dir.join(format!("{}.ron", s.name)))
         .collect();
-    // The budget `check` and `run` apply, to the settings each case will run at.
-    if !(args.allow_long || args.long) {
-        for (s, p) in chosen.iter().zip(&paths) {
-            let Ok(scene) = level::load(p) else {
-                continue; // reported when the case runs
-            };
-            let set = plan.overrides.apply(&Settings::recorded(&scene, s));
-            let opts = crate::sim::Options {
-                dt: Some(set.dt),
-                substeps: Some(set.substeps),
-                solver_iterations: Some(set.iterations),
-                precision: set.f64.then_some(level::Precision::F64),
-                ..Default::default()
-            };
-            let estimate =
-                crate::runner::Estimate::of(&scene.level, &opts, crate::runner::Mode::Check, None);
-            if let Err(e) = estimate.within_budget(p) {
-                stderr!("{e}");
-                return ExitCode::from(2);
-            }
-        }
+    if let Err(e) = check_budgets(&args, &chosen, &paths, &plan) {
+        stderr!("{e}");
+        return ExitCode::from(2);
     }
     // Level files without a spec are reported, not silently skipped.
     let mut unjudged = Vec::new();
@@ -591,35 +651,7 @@ pub fn main(args: Args) -> ExitCode {
         }
     }
     let runs = engines::case_runs(&args.engine, &chosen, &paths, &plan);
-    let total: u64 = runs
-        .iter()
-        .map(|(s, p, plan)| planned_steps(p, s, plan))
-        .sum();
-    let bar = ProgressBar::new(total);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed} (eta {eta})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    if !plan.progress || args.json && !args.long {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let results: Vec<Result<CaseResult, String>> = runs
-        .par_iter()
-        .map(|(s, p, plan)| run_case_with(p, s, plan, Some(&bar)))
-        .collect();
-    bar.finish_and_clear();
-    let mut bad_input = false;
-    let mut cases_out = Vec::new();
-    for (r, (s, _, _)) in results.into_iter().zip(&runs) {
-        match r {
-            Ok(c) => cases_out.push(c),
-            Err(e) => {
-                stderr!("{e}");
-                bad_input = true;
-                cases_out.push(missing(s, &e));
-            }
-        }
-    }
+    let (cases_out, bad_input) = run_cases(&runs, &plan, &args);
     let report = StabilityReport {
         // A case an engine refuses is listed, not judged.
         passed: cases_out
