@@ -165,48 +165,29 @@ pub fn self_consistency(
     piece: f64,
 ) -> Result<f64, String> {
     let h_ref = reference.setting.dt;
-    let span = reference.duration();
-    let piece = piece.min(span);
-    let steps = ((piece / setting.dt).round() as usize).max(1);
-    let m = metrics::mass_props(&scene.level);
-    let (mut sum, mut n) = (0.0, 0);
-    for k0 in measure::piece_starts(span, steps as f64 * setting.dt, pieces, h_ref) {
-        let t0 = k0 as f64 * h_ref;
-        let t1 = t0 + steps as f64 * setting.dt;
-        let Some(end) = reference.at(t1) else {
-            continue;
-        };
-        let piece_scene = restarted(
-            scene,
-            t0,
-            h_ref,
-            steps as f64 * setting.dt,
-            &reference.states[k0],
-        );
-        let mut sim = built(&piece_scene, setting)?;
-        sim.run_each(&mut |_| {}).map_err(|e| e.to_string())?;
-        sum += metrics::scene_deviation(&sim.snapshot().bodies, &end, &m);
-        n += 1;
-    }
-    if n == 0 {
-        return Err("the reference is shorter than one step".into());
-    }
-    Ok(sum / n as f64)
+    measure::mean_piece_deviation(
+        scene,
+        setting,
+        reference,
+        pieces,
+        piece,
+        |t0, steps, start| {
+            let span = steps as f64 * setting.dt;
+            let mut sim = built(&restarted(scene, t0, h_ref, span, start), setting)?;
+            sim.run_each(&mut |_| {}).map_err(|e| e.to_string())?;
+            Ok(sim.snapshot().bodies.clone())
+        },
+    )
 }
 
 /// [`measure::cost_sample`] on another engine: the engine built outside the timer, the whole
 /// run (`Drive::run_each`, its snapshots handed to nobody) timed, the fastest run kept.
 pub fn cost_sample(scene: &Scene, setting: &Setting, min_total: Duration) -> Option<f64> {
-    let mut total = Duration::ZERO;
-    let mut best = f64::INFINITY;
-    while total < min_total || best.is_infinite() {
+    measure::fastest_run(min_total, || {
         let mut sim = built(scene, setting).ok()?;
         let steps = (scene.level.world.duration / setting.dt).round().max(1.0);
         let start = Instant::now();
         sim.run_each(&mut |_| {}).ok()?;
-        let wall = start.elapsed();
-        total += wall;
-        best = best.min(wall.as_secs_f64() * 1e6 / (steps * setting.dt));
-    }
-    Some(best)
+        Some((start.elapsed(), steps * setting.dt))
+    })
 }

@@ -574,6 +574,36 @@ fn self_consistency_on<E: StudyEngine>(
     piece: f64,
 ) -> Result<f64, String> {
     let h_ref = reference.setting.dt;
+    mean_piece_deviation(
+        scene,
+        setting,
+        reference,
+        pieces,
+        piece,
+        |t0, steps, start| {
+            let mut sim = E::build(&shifted(scene, t0, h_ref), &setting.options());
+            sim.restart(start);
+            for _ in 0..steps {
+                sim.step().map_err(|e| e.to_string())?;
+            }
+            Ok(sim.snapshot().bodies.clone())
+        },
+    )
+}
+
+/// The mean over the pieces of [`metrics::scene_deviation`] between where `run_piece` ends and
+/// the reference at that instant, m: the loop both engines' [`self_consistency`] share.
+/// `run_piece(t0, steps, start)` runs `steps` steps of `setting.dt` from the reference's bodies
+/// `start` at `t0` and returns the bodies at the end.
+pub(super) fn mean_piece_deviation(
+    scene: &Scene,
+    setting: &Setting,
+    reference: &Reference,
+    pieces: usize,
+    piece: f64,
+    mut run_piece: impl FnMut(f64, usize, &[BodyState]) -> Result<Vec<BodyState>, String>,
+) -> Result<f64, String> {
+    let h_ref = reference.setting.dt;
     let span = reference.duration();
     let piece = piece.min(span);
     let steps = ((piece / setting.dt).round() as usize).max(1);
@@ -586,12 +616,8 @@ fn self_consistency_on<E: StudyEngine>(
         let Some(end) = reference.at(t1) else {
             continue;
         };
-        let mut sim = E::build(&shifted(scene, t0, h_ref), &setting.options());
-        sim.restart(&reference.states[k0]);
-        for _ in 0..steps {
-            sim.step().map_err(|e| e.to_string())?;
-        }
-        sum += metrics::scene_deviation(&sim.snapshot().bodies, &end, &m);
+        let bodies = run_piece(t0, steps, &reference.states[k0])?;
+        sum += metrics::scene_deviation(&bodies, &end, &m);
         n += 1;
     }
     if n == 0 {
@@ -616,20 +642,31 @@ fn cost_sample_on<E: StudyEngine>(
     setting: &Setting,
     min_total: Duration,
 ) -> Option<f64> {
-    let mut total = Duration::ZERO;
-    let mut best = f64::INFINITY;
-    while total < min_total || best.is_infinite() {
+    fastest_run(min_total, || {
         let mut sim = E::build(scene, &setting.options());
         let steps = sim.total_steps();
         let start = Instant::now();
         for _ in 0..steps {
-            if sim.step().is_err() {
-                return None;
-            }
+            sim.step().ok()?;
         }
-        let wall = start.elapsed();
+        Some((start.elapsed(), steps as f64 * sim.dt()))
+    })
+}
+
+/// The fastest of `timed_run`'s runs, µs of wall time per simulated second, run until
+/// `min_total` of wall time has been timed (at least once): the loop both engines'
+/// [`cost_sample`] share. `timed_run` builds its engine outside its timer and returns the time
+/// it stepped and the seconds it simulated, or None if the run stopped.
+pub(super) fn fastest_run(
+    min_total: Duration,
+    mut timed_run: impl FnMut() -> Option<(Duration, f64)>,
+) -> Option<f64> {
+    let mut total = Duration::ZERO;
+    let mut best = f64::INFINITY;
+    while total < min_total || best.is_infinite() {
+        let (wall, simulated) = timed_run()?;
         total += wall;
-        best = best.min(wall.as_secs_f64() * 1e6 / (steps as f64 * sim.dt()));
+        best = best.min(wall.as_secs_f64() * 1e6 / simulated);
     }
     Some(best)
 }

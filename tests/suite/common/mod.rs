@@ -5,6 +5,7 @@
 
 #[cfg(feature = "app")]
 pub mod app;
+pub mod study;
 
 use rigidlab::level::{self, Scene};
 use rigidlab::report::LevelReport;

@@ -11,7 +11,7 @@
 //! and engine, timing columns aside.
 
 use crate::common;
-use rigidlab::study::accuracy::CSV_COLUMNS;
+use crate::common::study as study_files;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -22,18 +22,8 @@ const LEVELS: [&str; 3] = [
     "levels/energy/jh_spring_work.ron",
 ];
 
-const TIMING: [&str; 4] = [
-    "cost_us_per_sim_s",
-    "cost_min_us_per_sim_s",
-    "cost_spread",
-    "cost_rounds",
-];
-
 fn tmp(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rigidlab-engines-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    study_files::tmp_dir("engines", tag)
 }
 
 fn study(out: &Path, shard: Option<&str>) {
@@ -49,18 +39,11 @@ fn study(out: &Path, shard: Option<&str>) {
 
 type Record = BTreeMap<String, String>;
 
+/// accuracy.csv's rows, keyed by column.
 fn records(dir: &Path) -> Vec<Record> {
-    let mut rd = csv::Reader::from_path(dir.join("accuracy.csv")).unwrap();
-    let header: Vec<String> = rd.headers().unwrap().iter().map(String::from).collect();
-    assert_eq!(header, CSV_COLUMNS.to_vec());
-    rd.records()
-        .map(|r| {
-            header
-                .iter()
-                .cloned()
-                .zip(r.unwrap().iter().map(String::from))
-                .collect()
-        })
+    study_files::accuracy_rows(dir)
+        .into_iter()
+        .map(|r| r.into_iter().collect())
         .collect()
 }
 
@@ -197,18 +180,12 @@ fn two_engine_shards_merge_into_the_whole_runs_rows() {
         study(s, Some(&format!("{}/2", k + 1)));
     }
     let merged = dir.join("merged");
-    let o = common::rigidlab()
-        .args(["study", "merge"])
-        .args(&shards)
-        .arg("--out")
-        .arg(&merged)
-        .output()
-        .expect("the binary runs");
+    let o = study_files::merge(&shards, &merged);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let strip = |rows: Vec<Record>| -> Vec<Record> {
         rows.into_iter()
             .map(|mut r| {
-                for c in TIMING {
+                for c in study_files::TIMING {
                     r.remove(c);
                 }
                 r

@@ -10,8 +10,9 @@
 //! timing-level costs) / (its own), which the test recomputes from the shards' files.
 
 use crate::common;
+use crate::common::study::{self as study_files, accuracy_rows as records, merge, without_timing};
 use rigidlab::study::accuracy::shard::{fingerprint, slice, Shard};
-use rigidlab::study::accuracy::{Plan, CSV_COLUMNS};
+use rigidlab::study::accuracy::Plan;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
@@ -23,19 +24,8 @@ const LEVELS: [&str; 4] = [
     "levels/energy/jh_pendulum_gravity_work.ron",
 ];
 
-/// The timing columns: the only ones a merge may change or a rerun may give otherwise.
-const TIMING: [&str; 4] = [
-    "cost_us_per_sim_s",
-    "cost_min_us_per_sim_s",
-    "cost_spread",
-    "cost_rounds",
-];
-
 fn tmp(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rigidlab-shards-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    study_files::tmp_dir("shards", tag)
 }
 
 fn rigidlab(args: &[&str], extra: &[&Path]) -> Output {
@@ -56,42 +46,6 @@ fn study(levels: &[&str], out: &Path, shard: Option<&str>) -> Output {
     let o = rigidlab(&args, &[out]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     o
-}
-
-fn merge(shards: &[&Path], out: &Path) -> Output {
-    let mut c = common::rigidlab();
-    c.args(["study", "merge"])
-        .args(shards)
-        .arg("--out")
-        .arg(out);
-    c.output().expect("the binary runs")
-}
-
-/// accuracy.csv's records, as text, keyed by column.
-fn records(dir: &Path) -> Vec<Vec<(String, String)>> {
-    let mut rd = csv::Reader::from_path(dir.join("accuracy.csv")).unwrap();
-    let header: Vec<String> = rd.headers().unwrap().iter().map(String::from).collect();
-    assert_eq!(header, CSV_COLUMNS.to_vec());
-    rd.records()
-        .map(|r| {
-            header
-                .iter()
-                .cloned()
-                .zip(r.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect()
-}
-
-fn without_timing(rows: &[Vec<(String, String)>]) -> Vec<Vec<(String, String)>> {
-    rows.iter()
-        .map(|r| {
-            r.iter()
-                .filter(|(c, _)| !TIMING.contains(&c.as_str()))
-                .cloned()
-                .collect()
-        })
-        .collect()
 }
 
 fn col<'a>(row: &'a [(String, String)], c: &str) -> &'a str {
