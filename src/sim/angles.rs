@@ -4,7 +4,15 @@
 /// Wraps an angle difference to [-pi, pi) (a half turn either way reads -pi).
 pub fn wrap_pi(a: f64) -> f64 {
     use std::f64::consts::{PI, TAU};
-    a - TAU * ((a + PI) / TAU).floor()
+    let turns = (a + PI) / TAU;
+    // Almost every difference is within the half turn already (a body's angle read every
+    // step): then the floor is 0 and the result is `a - TAU * 0.0`, bit for bit, without the
+    // call to `floor` (x86-64's baseline has no rounding instruction: the call was 8% of the
+    // instructions of reading the bodies, callgrind 2026-12-07).
+    if (0.0..1.0).contains(&turns) {
+        return a - TAU * 0.0;
+    }
+    a - TAU * turns.floor()
 }
 
 #[cfg(test)]

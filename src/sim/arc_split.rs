@@ -18,6 +18,7 @@
 //! pair keeps rapier's plane and its calls.
 
 use super::arc_track::ArcTrack;
+use super::contact_points::RoundColliders;
 use super::rapier::prelude::*;
 
 /// rapier's contact prediction distance (its default, 2 mm at a length unit of 1 m): a ball
@@ -26,8 +27,18 @@ const START_GAP: Real = 2e-3;
 
 /// Whether a dynamic, smooth ball touches a fixed arc's circle: in the last call's contacts, or
 /// on the first step (before rapier made any) within [`START_GAP`] of the circle.
-pub(crate) fn smooth_ball_rides_arc(world: &PhysicsWorld, first_step: bool) -> bool {
-    world.colliders.iter().any(|(arc_h, arc_c)| {
+///
+/// `round`: the world's arcs and balls (`contact_points::RoundColliders`), so that a step does
+/// not test every collider's shape.
+pub(crate) fn smooth_ball_rides_arc(
+    world: &PhysicsWorld,
+    round: &RoundColliders,
+    first_step: bool,
+) -> bool {
+    round.arcs.iter().any(|&arc_h| {
+        let Some(arc_c) = world.colliders.get(arc_h) else {
+            return false;
+        };
         let Some(arc) = arc_c.shape().as_shape::<ArcTrack>() else {
             return false;
         };
@@ -58,7 +69,7 @@ pub(crate) fn smooth_ball_rides_arc(world: &PhysicsWorld, first_step: bool) -> b
                 && (!first_step || arc.touch(c, ball.radius).dist <= START_GAP)
         };
         if first_step {
-            world.colliders.iter().any(|(h, _)| h != arc_h && rides(h))
+            round.balls.iter().any(|&h| h != arc_h && rides(h))
         } else {
             world
                 .narrow_phase

@@ -77,6 +77,13 @@ pub struct EnergyGuard {
     at_cap: Vec<u32>,
     /// Per body: steps running held still under an enormous spring force.
     held: Vec<u32>,
+    /// Whether a body of the run is kinematic (kinds do not change during a run): only then do
+    /// the step's contacts carry work ([`Self::add_work`] walks them).
+    has_kinematic: bool,
+    /// Per body: the largest velocity change per substep a spring asks of it, which spring,
+    /// and its force ([`Self::check_speed_cap`]); kept between steps so that a step allocates
+    /// nothing.
+    pull: Vec<(f64, usize, f64)>,
 }
 
 /// Why [`EnergyGuard::check_speed_cap`] stopped a run: the body's index and what happened.
@@ -131,6 +138,11 @@ impl EnergyGuard {
             prev_coord: Vec::new(),
             at_cap: Vec::new(),
             held: Vec::new(),
+            has_kinematic: s
+                .bodies
+                .iter()
+                .any(|b| b.kind == crate::level::BodyKind::Kinematic),
+            pull: Vec::new(),
         }
     }
 
@@ -174,9 +186,15 @@ impl EnergyGuard {
             // coordinate wraps at +-pi: the change is the short way round).
             w += (j.motor_impulse * coordinate_change(j.coordinate, *p)).abs();
         }
-        // Moving kinematic bodies push with their contact and joint impulses.
+        // Moving kinematic bodies push with their contact and joint impulses (a run without
+        // one skips the walk over its contacts: it would add nothing).
         let kinematic = |i: usize| now.bodies[i].kind == crate::level::BodyKind::Kinematic;
-        for c in &now.contacts {
+        let contacts = if self.has_kinematic {
+            &now.contacts[..]
+        } else {
+            &[]
+        };
+        for c in contacts {
             for k in [c.body1, c.body2] {
                 if !kinematic(k) {
                     continue;
@@ -241,8 +259,13 @@ impl EnergyGuard {
         self.held.resize(n, 0);
         let dynamic = |b: &BodyState| b.kind == crate::level::BodyKind::Dynamic && b.mass > 0.0;
         let h = now.dt / now.substeps.max(1) as f64;
-        // The largest velocity change per substep a spring asks of each body, and which spring.
-        let mut pull: Vec<(f64, usize, f64)> = vec![(0.0, 0, 0.0); n];
+        // The largest velocity change per substep a spring asks of each body, and which spring
+        // (none without springs: then no body is held).
+        let pull = &mut self.pull;
+        pull.clear();
+        if !now.springs.is_empty() {
+            pull.resize(n, (0.0, 0, 0.0));
+        }
         for (k, sp) in now.springs.iter().enumerate() {
             if sp.torsion {
                 continue;
@@ -266,18 +289,18 @@ impl EnergyGuard {
             }
             let (com0, v0, _) = self.prev[i];
             let speed = b.velocity.length();
-            let moved = (b.com - com0).length();
             // Staying put is judged only where the precision resolves the step's travel: far
             // from the origin in f32 a body cruising at the cap can move by whole ulps or not at
             // all (a free fall at 400 m/s, 1e-5 s steps, 1e5 m down: 4 mm a step, ulp 8 mm).
+            // (Computed only for a body at the cap: the others cannot be pinned.)
             let resolved =
-                0.5 * cap * now.dt > 4.0 * now.precision.epsilon() * b.com.length().max(1.0);
+                || 0.5 * cap * now.dt > 4.0 * now.precision.epsilon() * b.com.length().max(1.0);
             let pinned = speed >= (1.0 - AT_CAP) * cap
                 && ((b.velocity - v0).length() > 0.5 * cap
-                    || (resolved && moved < 0.5 * cap * now.dt));
+                    || (resolved() && (b.com - com0).length() < 0.5 * cap * now.dt));
             self.at_cap[i] = if pinned { self.at_cap[i] + 1 } else { 0 };
             let still = b.com == com0 && b.velocity == DVec2::ZERO;
-            let (dv, k, f) = pull[i];
+            let (dv, k, f) = pull.get(i).copied().unwrap_or((0.0, 0, 0.0));
             let held = still && (dv.is_nan() || dv > ENORMOUS * cap);
             self.held[i] = if held { self.held[i] + 1 } else { 0 };
             if self.at_cap[i] >= PINNED_STEPS {

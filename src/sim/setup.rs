@@ -123,8 +123,10 @@ impl Simulation {
             carriers: Vec::new(),
             pending_welds: Vec::new(),
             forced_bodies: Vec::new(),
+            prescribed: Vec::new(),
             torsion_rest: Vec::new(),
             energy: EnergyGuard::default(),
+            round_colliders: Default::default(),
             contact_readings: true,
             prediction_distance,
             after_impact: false,
@@ -176,6 +178,9 @@ impl Simulation {
             })
             .collect();
         self.forced_bodies = self.forced_bodies();
+        self.prescribed = (0..self.level.bodies.len())
+            .filter(|&i| self.level.bodies[i].motion.is_some())
+            .collect();
     }
 
     /// The bodies that loads, springs, couplings' carriers or couplings' held tensions act on,

@@ -41,10 +41,14 @@ pub struct Simulation {
     /// Bodies that loads, springs, carriers or held coupling tensions act on (their forces are
     /// reset before every rapier call).
     pub(super) forced_bodies: Vec<usize>,
+    /// The bodies with a prescribed motion, by index (a step walks these, not every body).
+    pub(super) prescribed: Vec<usize>,
     /// Each torsion spring's rest angle, rad (its own, or the relative angle at t = 0).
     pub(super) torsion_rest: Vec<f64>,
     /// Energy-explosion guard (see `sim::explosion_guard`).
     pub energy: EnergyGuard,
+    /// The world's ball and arc colliders, for the step's plan (`sim::contact_points`).
+    pub(super) round_colliders: super::contact_points::RoundColliders,
     /// Whether the snapshot carries the step's contacts (`Simulation::set_contact_readings`).
     pub(super) contact_readings: bool,
     /// Whether the level has a kinematic body (the energy guard reads its contacts).
@@ -129,10 +133,8 @@ impl Simulation {
         let h = t1 - t0;
         let turn_cap = (!self.settings.allow_fast_rotation)
             .then(|| std::f64::consts::FRAC_PI_4 / self.settings.dt);
-        for (i, b) in self.level.bodies.iter().enumerate() {
-            if b.motion.is_none() {
-                continue;
-            }
+        for &i in &self.prescribed {
+            let b = &self.level.bodies[i];
             let rb = &mut self.world.bodies[self.bodies[i]];
             let c = to_d(rb.local_center_of_mass());
             let com = |t: f64| {
@@ -179,15 +181,14 @@ impl Simulation {
     /// is what rapier moved it with).
     pub(super) fn prescribed_rates(&mut self) {
         let t = self.snapshot.time;
-        for (b, def) in self.snapshot.bodies.iter_mut().zip(&self.level.bodies) {
-            if def.motion.is_some() {
-                let r = crate::level::motion::rate_at(def, t);
-                let o = crate::level::motion::pose_at(def, t).angular;
-                b.omega = r.angular;
-                // The snapshot's velocity is G's: v_O + omega x (G - O).
-                let arm = DVec2::from_angle(o).rotate(b.local_com);
-                b.velocity = DVec2::new(r.linear.0, r.linear.1) + r.angular * arm.perp();
-            }
+        for &i in &self.prescribed {
+            let (b, def) = (&mut self.snapshot.bodies[i], &self.level.bodies[i]);
+            let r = crate::level::motion::rate_at(def, t);
+            let o = crate::level::motion::pose_at(def, t).angular;
+            b.omega = r.angular;
+            // The snapshot's velocity is G's: v_O + omega x (G - O).
+            let arm = DVec2::from_angle(o).rotate(b.local_com);
+            b.velocity = DVec2::new(r.linear.0, r.linear.1) + r.angular * arm.perp();
         }
     }
 

@@ -81,7 +81,7 @@ impl CallQueue {
 
 impl Simulation {
     /// The step's calls before any impact cut.
-    pub(super) fn plan_calls(&self, dt: f64) -> CallQueue {
+    pub(super) fn plan_calls(&mut self, dt: f64) -> CallQueue {
         // Split substeps (see `Substepping::Split`): rapier is advanced n times at dt/n with one
         // substep each. Springs are then evaluated before every substep (rapier's own substeps
         // see only the forces set before its step: a spring held over n > 1 substeps is not
@@ -93,9 +93,13 @@ impl Simulation {
         // (sim/arc_split.rs).
         let first_step = self.snapshot.step == 0;
         let planned = self.settings.substepping == Substepping::Split;
-        let spin = n > 1 && contact_points::spinning_ball_touches(&self.world, first_step);
-        let split_for_arc =
-            n > 1 && !planned && !spin && arc_split::smooth_ball_rides_arc(&self.world, first_step);
+        let round = self.round_colliders.refresh(&self.world);
+        let spin =
+            n > 1 && contact_points::spinning_ball_touches(&self.world, &round.balls, first_step);
+        let split_for_arc = n > 1
+            && !planned
+            && !spin
+            && arc_split::smooth_ball_rides_arc(&self.world, round, first_step);
         let split = planned || spin || split_for_arc;
         let pending = if split {
             std::iter::repeat_n((dt / n as f64, 1), n).collect()

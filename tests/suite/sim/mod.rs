@@ -1,6 +1,7 @@
 //! The simulation against closed forms: contacts, impacts, joints, springs, motors, determinism,
 //! and the engine's known gaps with their sizes (src/sim).
 
+mod angle_wrap;
 #[cfg(feature = "box2d")]
 mod box2d_pin;
 #[cfg(feature = "box2d")]
