@@ -17,8 +17,9 @@
 //! F''(xi) (t - t_a)(t_b - t) / 2, whose mean over the substeps' centres is
 //! F'' h^2 (n^2 - 1) / 12: the step's mean force is off by at most
 //! **max |F''| (dt^2 - h^2) / 12** (n J_n alone, the first-order alternative, is off by
-//! F' (dt - h) / 2). A pendulum of 1 m at 45 degrees (T'' ~ T w^2) at dt = 1/60 s: 1.6e-4 of T.
-//! tests/suite/sim/joint_sums.rs holds it against closed forms.
+//! F' (dt - h) / 2). A bar of 1 m released at 45 degrees (T'' of order T (w^2 + g/L)) at
+//! dt = 1/60 s and 4 substeps: about 2e-4 of T. tests/suite/sim/joint_sums.rs holds it against
+//! closed forms.
 //!
 //! J_n itself is read along rows rebuilt as rapier built them, at the poses its last substep
 //! started from: the end poses stepped back by one substep at the end velocities (rapier moved
@@ -26,7 +27,10 @@
 //! position error over h: the back-step is off by that error, not by a substep of motion).
 //!
 //! A blow (an impulse event, an impact, a weld made, a joint's first step) is not smooth: its
-//! reaction falls in one substep. Such steps are split, and so is every step of a level whose
+//! reaction falls in one substep. Such steps are split, and so are steps where the impulses
+//! have not been smooth enough to interpolate, or have carried too much rounding
+//! ([`SubstepHistory::record`]: in the library most joint-reading steps stay split so), and
+//! every step of a level whose
 //! joints can be struck at any step or are moved between calls (`why_not_reconstructed` in
 //! sim/settings.rs: limits, couplings, prescribed motions, joints that start apart, sleeping).
 
