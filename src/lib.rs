@@ -57,6 +57,7 @@ pub mod sim64 {
     mod couplings;
     mod impacts;
     mod interventions;
+    mod joint_sums;
     pub mod joints;
     mod probes;
     mod profiles;

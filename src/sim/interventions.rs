@@ -23,6 +23,9 @@ impl Simulation {
         };
         rb.apply_impulse(vd(j), true);
         rb.apply_torque_impulse((at - com).perp_dot(j) as Real, true);
+        // A blow: the next step's joint impulses are summed substep by substep, not
+        // reconstructed from a substep before it (sim/joint_sums.rs).
+        self.substeps_seen.clear();
         true
     }
 
@@ -30,6 +33,8 @@ impl Simulation {
     /// piece of a run restarts from a reference state. rapier's linvel is the mass center's
     /// velocity, as the snapshot's.
     pub fn restart_from(&mut self, bodies: &[BodyState]) {
+        // The substep before the restart is not the new state's (sim/joint_sums.rs).
+        self.substeps_seen.clear();
         for (h, b) in self.bodies.iter().zip(bodies) {
             if b.kind == BodyKind::Fixed {
                 continue;

@@ -29,6 +29,7 @@ pub mod describe;
 pub mod explosion_guard;
 mod impacts;
 mod interventions;
+mod joint_sums;
 pub mod joints;
 pub mod options;
 mod probes;

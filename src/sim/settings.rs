@@ -51,6 +51,9 @@ pub struct StepCalls {
     pub split_for_arc: u64,
     /// Steps whose calls an impact cut divided.
     pub cut: u64,
+    /// Steps split into one-substep calls because a blow could fall in them, where the plan
+    /// reconstructs the joint impulses from one call (`Settings::split_at_blows`).
+    pub split_for_blow: u64,
 }
 
 /// Every solver setting of a run, resolved from the level and the overrides.
@@ -94,7 +97,33 @@ pub struct Settings {
     /// (`--impact-cuts`, `--no-impact-cuts`): every nearby pair is tried each call.
     #[serde(default)]
     pub impact_cuts: bool,
+    /// Joint impulses are read, but a step is split into one-substep calls only where a blow
+    /// can fall in it (sim/joint_sums.rs); elsewhere it is one call, and the step's joint
+    /// impulses are reconstructed from that call's last substep and the previous step's.
+    /// Planned with `substepping: Internal`; false whenever substepping is overridden.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub split_at_blows: bool,
+    /// With `split_at_blows`: how far a reconstructed step's joint impulse may be predicted off,
+    /// relative to it, before the steps are split (sim/joint_sums.rs): a fiftieth of the
+    /// tightest tolerance of the checks and questions that read joint impulses, and 1e-3 at
+    /// most. (A single substep's impulse carries the engine's rounding, which a split step's sum
+    /// cancels: with a tenth, and two smooth steps always enough, a cart's pendulum in
+    /// equilibrium, tests/newuser/oscillations/n8_06, read its newton_euler at 1.5e-3 against
+    /// its tolerance of 2e-3, and failed it at 8 and 16 substeps.)
+    #[serde(skip)]
+    pub smooth_tolerance: f64,
 }
+
+/// Why a level that reads joint impulses takes one rapier call a step (`Settings::split_at_blows`).
+const BLOW_SPLITS: &str = "one rapier call a step with its substeps inside: a check or question \
+    reads joint impulses, and a step's sum is reconstructed from its last substep's and the \
+    previous step's (second order: at most |F''| (dt^2 - h^2) / 12 off in the step's mean \
+    force, sim/joint_sums.rs), except in the steps where a blow can fall or the impulses are not \
+    smooth enough to interpolate, which are split into one rapier call per substep";
+
+/// The largest predicted error of a reconstructed step's joint impulse, relative to it
+/// (`Settings::smooth_tolerance`).
+const SMOOTH: f64 = 1e-3;
 
 /// The most moving bodies a scene may have for its impacts to be cut by default.
 pub const IMPACT_CUT_BODIES: usize = 64;
@@ -111,8 +140,8 @@ impl Settings {
         let impact_cuts = effects.has(Effect::Contacts)
             && opts.impact_cuts.unwrap_or(moving <= IMPACT_CUT_BODIES);
         let substeps = opts.substeps.unwrap_or(level.world.substeps).max(1);
-        let (substepping, substepping_why) = match opts.substepping {
-            Some(s) => (s, "asked for by the run's options".to_string()),
+        let (substepping, substepping_why, split_at_blows) = match opts.substepping {
+            Some(s) => (s, "asked for by the run's options".to_string(), false),
             None => Self::substepping_for(level, &effects, substeps),
         };
         Settings {
@@ -132,14 +161,23 @@ impl Settings {
             allow_fast_rotation: level.world.allow_fast_rotation,
             contact_recycling: false,
             impact_cuts,
+            split_at_blows,
+            smooth_tolerance: joint_impulse_tolerance(level)
+                .map_or(SMOOTH, |t| (t / 50.0).min(SMOOTH)),
         }
     }
 
     /// Split substeps where rigidlab must see inside the step: springs (forces refreshed before
     /// every substep) and joints or welds whose impulses a check or question reads (summed over
-    /// every substep). Other scenes keep rapier's internal substeps, which cost less.
-    /// With the reason, as the report says it.
-    fn substepping_for(level: &Level, effects: &Effects, substeps: usize) -> (Substepping, String) {
+    /// every substep), and then only in the steps where a blow can fall when the level allows
+    /// the others' sums to be reconstructed (sim/joint_sums.rs). Other scenes keep rapier's
+    /// internal substeps, which cost less. With the reason, as the report says it, and whether
+    /// the steps are split at blows only.
+    fn substepping_for(
+        level: &Level,
+        effects: &Effects,
+        substeps: usize,
+    ) -> (Substepping, String, bool) {
         let springs = effects.has(Effect::Springs)
             && !(level.springs.is_empty() && level.torsion_springs.is_empty());
         let welds = level
@@ -151,27 +189,32 @@ impl Settings {
         // poses the step began with (from the poses at its end they are a step of motion off).
         // It costs 2.3x to 3.7x rapier's internal substeps (one pipeline call per substep:
         // tests/suite/sim/substepping_cost.rs, medians of 2026-11-25 in docs/reading-rapier.md), so a joint
-        // scene pays it only when it reads joint impulses.
+        // scene pays it only when it reads joint impulses, and, where the level allows it, only
+        // in the steps where a blow can fall (sim/joint_sums.rs).
         if substeps > 1 && springs {
             (
                 Substepping::Split,
                 "one rapier call per substep: the springs' forces are evaluated before each \
                  substep (held over several they gain energy)"
                     .into(),
+                false,
             )
-        } else if joints && reads_joint_impulses(level) {
-            (
-                Substepping::Split,
-                "one rapier call per substep: a check or question reads joint impulses, summed \
-                 over every substep (rapier keeps a call's last substep's only)"
-                    .into(),
-            )
+        } else if joints && joint_impulse_tolerance(level).is_some() {
+            let read = "one rapier call per substep: a check or question reads joint impulses, \
+                        summed over every substep (rapier keeps a call's last substep's only)";
+            match why_not_reconstructed(level, effects) {
+                // One substep: every call is one substep already.
+                _ if substeps == 1 => (Substepping::Split, read.into(), false),
+                Some(why) => (Substepping::Split, format!("{read}, and {why}"), false),
+                None => (Substepping::Internal, BLOW_SPLITS.into(), true),
+            }
         } else {
             (
                 Substepping::Internal,
                 "one rapier call a step with its substeps inside: nothing reads inside a step (no \
                  springs over several substeps, no joint impulses read)"
                     .into(),
+                false,
             )
         }
     }
@@ -182,18 +225,25 @@ impl Settings {
         let n = self.substeps;
         let mut s = self.clone();
         let planned_split = self.substepping == Substepping::Split;
-        let in_run = calls.split_for_spin + calls.split_for_arc;
+        let in_run = calls.split_for_spin + calls.split_for_arc + calls.split_for_blow;
         s.split_steps = if planned_split { calls.steps } else { in_run };
         s.cut_steps = calls.cut;
         let spin = "a ball spinning with r w^2 >= 1e-3 g touched something (its contact is \
                     followed exactly only over one-substep calls, sim/contact_points.rs)";
         let arc = "a smooth ball rode an Arc's circle (its chord contact is exact only at a \
                    call's ends, sim/arc_split.rs)";
-        let why = match (calls.split_for_spin > 0, calls.split_for_arc > 0) {
-            (true, true) => format!("{spin}, or {arc}"),
-            (true, false) => spin.to_string(),
-            _ => arc.to_string(),
-        };
+        let blow = "a blow could fall (the first step, an impulse event, a body near a jointed \
+                    one, a weld made) or the joints' impulses were not smooth enough over the \
+                    last steps to interpolate (sim/joint_sums.rs)";
+        let reasons: Vec<&str> = [
+            (calls.split_for_spin > 0, spin),
+            (calls.split_for_arc > 0, arc),
+            (calls.split_for_blow > 0, blow),
+        ]
+        .into_iter()
+        .filter_map(|(counted, why)| counted.then_some(why))
+        .collect();
+        let why = reasons.join(", or ");
         if !planned_split && in_run > 0 {
             if in_run == calls.steps {
                 s.substepping = Substepping::Split;
@@ -231,10 +281,10 @@ impl Settings {
 
 /// Whether a level's checks or questions read joint impulses: the checks built on the free-body
 /// diagram, and the quantities that are a joint's reaction, a motor's torque, or an acceleration
-/// whose analysis is the free-body diagram's sum.
-fn reads_joint_impulses(level: &Level) -> bool {
+/// whose analysis is the free-body diagram's sum. With the tightest of their tolerances.
+fn joint_impulse_tolerance(level: &Level) -> Option<f64> {
     use crate::level::{CheckKind as K, Quantity as Q};
-    level.checks.iter().any(|c| {
+    let checks = level.checks.iter().filter(|c| {
         matches!(
             c.kind,
             K::NewtonEuler
@@ -244,7 +294,8 @@ fn reads_joint_impulses(level: &Level) -> bool {
                 | K::WorkEnergy
                 | K::VirtualWork
         )
-    }) || level
+    });
+    let questions = level
         .questions
         .iter()
         .cloned()
@@ -255,7 +306,7 @@ fn reads_joint_impulses(level: &Level) -> bool {
                 .iter()
                 .filter_map(|c| c.goal.as_question(level)),
         )
-        .any(|q| {
+        .filter(|q| {
             matches!(
                 q.quantity,
                 Q::JointForce(_)
@@ -269,4 +320,48 @@ fn reads_joint_impulses(level: &Level) -> bool {
                     | Q::PointAccel { .. }
             )
         })
+        .map(|q| q.tolerance);
+    checks
+        .map(|c| c.tolerance)
+        .chain(questions)
+        .reduce(f64::min)
+}
+
+/// Why a level that reads joint impulses cannot have its steps' sums reconstructed from one call
+/// (sim/joint_sums.rs), if it cannot: its joints may be struck at any step, or rigidlab moves
+/// them between calls so that one call a step is another motion than one call a substep.
+fn why_not_reconstructed(level: &Level, effects: &Effects) -> Option<String> {
+    let moved = |name: &str| {
+        level
+            .bodies
+            .iter()
+            .any(|b| b.name == name && b.motion.is_some())
+    };
+    if effects.has(Effect::Joints) && !level.couplings.is_empty() {
+        Some("the couplings are projected after every call (sim/couplings.rs)".into())
+    } else if let Some(j) = level.joints.iter().find(|j| j.limits.is_some()) {
+        Some(format!(
+            "joint `{}` has limits, which strike at any step",
+            j.name
+        ))
+    } else if effects.has(Effect::Sleeping) {
+        Some(
+            "bodies may fall asleep and wake, which starts and stops their joints' pull at once"
+                .into(),
+        )
+    } else if let Some(j) = level.joints.iter().find(|j| j.starts_apart) {
+        Some(format!("joint `{}` starts apart and snaps shut", j.name))
+    } else {
+        level
+            .joints
+            .iter()
+            .find(|j| moved(&j.body1) || moved(&j.body2))
+            .map(|j| {
+                format!(
+                    "joint `{}` holds a body whose motion is prescribed, at its mean rates over \
+                     each call (a change of rate at every call's start)",
+                    j.name
+                )
+            })
+    }
 }

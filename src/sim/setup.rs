@@ -132,6 +132,7 @@ impl Simulation {
             after_impact: false,
             last_step_cuts: 0,
             calls: StepCalls::default(),
+            substeps_seen: Default::default(),
             has_kinematic: scene
                 .level
                 .bodies

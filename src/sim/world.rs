@@ -64,6 +64,9 @@ pub struct Simulation {
     pub last_step_cuts: usize,
     /// How the run's steps have been called so far (`Settings::as_run` reports them).
     pub calls: StepCalls,
+    /// The joints' impulses over the last substeps of the last two steps, when its joint
+    /// impulses are reconstructed (`Settings::split_at_blows`, sim/joint_sums.rs).
+    pub(super) substeps_seen: super::joint_sums::SubstepHistory,
 }
 
 impl Simulation {

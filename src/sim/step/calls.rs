@@ -136,6 +136,9 @@ impl Simulation {
             merge_contacts(&mut readings.contacts, &self.snapshot.contacts);
         }
         self.read_joints_scaled(call.sub as f64, Some(&poses));
+        if self.settings.split_at_blows && !calls.more_to_come() {
+            self.keep_last_substep(call.sub);
+        }
         merge_joints(&mut readings.joints, &self.snapshot.joints);
     }
 
@@ -146,6 +149,8 @@ impl Simulation {
         self.calls.steps += 1;
         if calls.split_for_arc {
             self.calls.split_for_arc += 1;
+        } else if calls.split_for_blow {
+            self.calls.split_for_blow += 1;
         } else if calls.split && calls.n > 1 && self.settings.substepping != Substepping::Split {
             self.calls.split_for_spin += 1;
         }

@@ -1,7 +1,7 @@
 //! The plan of one step's rapier calls: one call of the step's n substeps, or n calls of one
 //! (split substeps), each cut in two where an impact falls in it (sim/impacts.rs).
 
-use super::super::impacts::{IMPACT_CALL, MAX_CUTS};
+use super::super::impacts::{CallPlan, IMPACT_CALL, MAX_CUTS};
 use super::super::world::Simulation;
 use super::super::{arc_split, contact_points};
 use crate::sim::settings::Substepping;
@@ -18,6 +18,11 @@ pub(super) struct CallQueue {
     pub(super) split: bool,
     /// Whether it is split for a smooth ball on an `Arc`'s circle alone (sim/arc_split.rs).
     pub(super) split_for_arc: bool,
+    /// Whether it is split because a blow can fall in it, where its joint impulses would
+    /// otherwise be reconstructed from one call (sim/joint_sums.rs).
+    pub(super) split_for_blow: bool,
+    /// The impact plan of the step's one call, made when deciding whether to split it.
+    first_plan: Option<CallPlan>,
     /// How many times the impact planner cut a call of this step.
     pub(super) cuts: usize,
     /// A blow (an impulse event) this step: its first call solves friction to convergence, as
@@ -100,7 +105,17 @@ impl Simulation {
             && !planned
             && !spin
             && arc_split::smooth_ball_rides_arc(&self.world, round, first_step);
-        let split = planned || spin || split_for_arc;
+        // Joint impulses reconstructed from one call: split where a blow can fall, and where
+        // the step's one call meets an impact (sim/joint_sums.rs).
+        let reconstructs = n > 1 && self.settings.split_at_blows && !planned && !spin;
+        let mut split_for_blow = reconstructs && !split_for_arc && self.blow_may_fall(dt);
+        let mut first_plan = None;
+        if reconstructs && !split_for_arc && !split_for_blow && self.settings.impact_cuts {
+            let plan = self.plan_call(dt, true);
+            split_for_blow = plan.cut.is_some();
+            first_plan = Some(plan).filter(|_| !split_for_blow);
+        }
+        let split = planned || spin || split_for_arc || split_for_blow;
         let pending = if split {
             std::iter::repeat_n((dt / n as f64, 1), n).collect()
         } else {
@@ -111,6 +126,8 @@ impl Simulation {
             n,
             split,
             split_for_arc,
+            split_for_blow,
+            first_plan,
             cuts: 0,
             blow: !self.snapshot.impulses.is_empty(),
             impact_call_next: false,
@@ -128,7 +145,10 @@ impl Simulation {
         let impact_call = std::mem::take(&mut calls.impact_call_next);
         let mut impact_now = impact_call || (calls.first && calls.blow);
         if self.settings.impact_cuts && calls.cuts < MAX_CUTS {
-            let plan = self.plan_call(h, !impact_call);
+            let plan = match calls.first_plan.take() {
+                Some(plan) => plan,
+                None => self.plan_call(h, !impact_call),
+            };
             prediction = Some(plan.prediction);
             if let Some(t) = plan.cut {
                 let (made, makes_contact) = calls.cut(h, sub, t);

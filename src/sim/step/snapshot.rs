@@ -40,6 +40,8 @@ impl Simulation {
         // Welds created now get their first impulses next step.
         if merged {
             self.snapshot.joints = readings.joints;
+        } else if self.settings.split_at_blows {
+            self.read_reconstructed_joints();
         } else {
             self.read_joints();
         }

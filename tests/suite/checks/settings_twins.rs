@@ -276,8 +276,11 @@ fn the_checks_see_the_resolved_settings() {
         .expect("a run reports its settings");
     assert_eq!(settings.substeps, 8);
     assert_eq!(settings.dt, scene.level.world.dt / 2.0);
-    // A pendulum's pin is a joint: its impulses are summed over the substeps.
-    assert_eq!(settings.substepping, Substepping::Split);
+    // A pendulum's pin is a joint whose impulses a check reads: summed over the substeps, split
+    // where a blow can fall (its first step), reconstructed from one call elsewhere
+    // (sim/joint_sums.rs).
+    assert!(settings.split_at_blows, "{settings:?}");
+    assert_eq!(settings.substepping, Substepping::Mixed);
     // Every snapshot, the initial one too, carries the substeps the engine ran.
     assert!(seen.iter().all(|&(n, _)| n == 8));
     assert!(seen[1..].iter().all(|&(_, dt)| dt == settings.dt));
@@ -290,13 +293,19 @@ fn the_checks_see_the_resolved_settings() {
     assert!(ke.note.contains("S = 8 substeps"), "{}", ke.note);
     assert!(report.passed, "{report:#?}");
     // The simulation exposes the same record, which the report completes with how the run's
-    // steps were called: all 432 split, as planned (one rapier call per substep).
+    // steps were called: one call a step as planned, some split (the first ones at least: a
+    // blow could fall, or the impulses were not yet seen smooth; sim/joint_sums.rs).
     let sim = Simulation::new(&scene, &opts);
-    assert_eq!(settings.split_steps, report.steps);
+    assert!(
+        settings.split_steps > 0 && settings.split_steps < report.steps,
+        "{settings:?}"
+    );
     assert_eq!(
         sim.settings(),
         &rigidlab::sim::Settings {
             split_steps: 0,
+            substepping: Substepping::Internal,
+            substepping_why: sim.settings().substepping_why.clone(),
             ..settings.clone()
         }
     );

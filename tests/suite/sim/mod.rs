@@ -25,6 +25,7 @@ mod impact_planner_joints;
 mod impact_twins;
 mod impulse_conversions;
 mod joint_reaction_particle;
+mod joint_sums;
 mod known_gaps;
 mod load_tables;
 mod motor_cable;
