@@ -1,11 +1,14 @@
 //! Frame time of the sandbox without rendering, at 1,000 and at 10,000 bodies: physics step,
-//! checks, the analysis the overlays need, the line drawing with every overlay on, and its gizmo
-//! vertices.
+//! checks, the analysis the overlays need, the line drawing with every overlay on, its gizmo
+//! vertices, and the meshes' poses (a crowd's balls are drawn whole by shared meshes,
+//! app/ball_meshes.rs, moved by their poses).
 //!
 //! `cargo bench --bench frame` (needs the `app` feature). Prints medians over the measured frames
 //! (this machine is noisy: medians, not means) against each scene's goal, and the physics step's
-//! share of the frame (rapier's own step is in it; `--bench runner` separates rapier from
-//! rigidlab's stepping). `cargo bench --bench frame -- 1000` or `-- 10000` runs one scene.
+//! share of the frame; and, stepped beside it every frame in the same run, rapier's plain step
+//! (`PhysicsWorld::step`) on a second copy of the same world, which the frame cannot beat
+//! (`--bench runner` compares rigidlab's stepping with it in interleaved blocks).
+//! `cargo bench --bench frame -- 1000` or `-- 10000` runs one scene.
 //!
 //! Scenes, both with gravity, contacts and friction, dt = 1/60 s, 4 substeps; frames 60..360 are
 //! measured, while the pile forms and settles:
@@ -26,9 +29,61 @@ use rigidlab::app::run::Run;
 use rigidlab::app::scene_lines;
 use rigidlab::app::view::{self, SceneIndex, View};
 use rigidlab::level;
-use rigidlab::sim::Options;
+use rigidlab::sim::{Options, Simulation};
 use std::path::Path;
 use std::time::Instant;
+
+/// A moment of the frame: the wall clock and this thread's CPU time.
+#[derive(Clone, Copy)]
+struct Mark {
+    wall: Instant,
+    cpu_ns: Option<u64>,
+}
+
+/// Now. On Linux also the thread's CPU time (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`, which
+/// the C library std links already provides): on this shared 2-core machine another helper's
+/// build takes the CPU away in the middle of a phase, and the wall clock then charges the phase
+/// for it; the CPU time does not. Elsewhere only the wall clock.
+fn mark() -> Mark {
+    Mark {
+        wall: Instant::now(),
+        cpu_ns: thread_cpu_ns(),
+    }
+}
+
+#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
+fn thread_cpu_ns() -> Option<u64> {
+    #[repr(C)]
+    struct Timespec {
+        tv_sec: i64,
+        tv_nsec: i64,
+    }
+    unsafe extern "C" {
+        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
+    }
+    // CLOCK_THREAD_CPUTIME_ID in linux/time.h.
+    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+    let mut t = Timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid, writable timespec of the C layout on 64-bit Linux.
+    let ok = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0;
+    ok.then(|| t.tv_sec as u64 * 1_000_000_000 + t.tv_nsec as u64)
+}
+
+#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
+fn thread_cpu_ns() -> Option<u64> {
+    None
+}
+
+/// Milliseconds from `a` to `b`: CPU time where both have it, else wall time.
+fn ms(a: Mark, b: Mark) -> f64 {
+    match (a.cpu_ns, b.cpu_ns) {
+        (Some(x), Some(y)) => y.saturating_sub(x) as f64 * 1e-6,
+        _ => (b.wall - a.wall).as_secs_f64() * 1e3,
+    }
+}
 
 const BODIES: usize = 1000;
 const WARMUP: usize = 60;
@@ -124,9 +179,16 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         // The arrow scale, hidden forces and components at the window's defaults.
         ..Default::default()
     };
+    // The meshes' poses, as `view::sync_meshes` moves them each frame (a crowd's balls are
+    // drawn whole by their meshes, app/ball_meshes.rs).
+    let mut poses = vec![bevy::prelude::Transform::default(); scene.level.bodies.len()];
+    // rapier's plain step on the same world, stepped beside the run each frame (not in the
+    // frame's total): what the physics step costs without rigidlab around it.
+    let mut plain = Simulation::new(&scene, &Options::default());
     let mut drawing = Drawing::default();
     let mut gizmos = GizmoBuffer::<DefaultGizmoConfigGroup, ()>::new();
-    let (mut step, mut checks, mut analysis, mut lines, mut verts, mut total) = (
+    let (mut step, mut checks, mut analysis, mut lines, mut verts, mut meshes, mut total) = (
+        Vec::new(),
         Vec::new(),
         Vec::new(),
         Vec::new(),
@@ -134,14 +196,21 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         Vec::new(),
         Vec::new(),
     );
+    let (mut rapier, mut wall, mut before) = (Vec::new(), Vec::new(), Vec::new());
+    let all_lines = SceneIndex {
+        meshed: vec![false; index.meshed.len()],
+        ..index.clone()
+    };
+    let mut drawing_before = Drawing::default();
+    let mut gizmos_before = GizmoBuffer::<DefaultGizmoConfigGroup, ()>::new();
     let mut max_speed: f64 = 0.0;
     let mut sink = 0.0;
     for frame in 0..WARMUP + FRAMES {
-        let t0 = Instant::now();
+        let t0 = mark();
         assert!(phys.advance(), "the bench scene exploded: {:?}", phys.error);
-        let t1 = Instant::now();
+        let t1 = mark();
         live.observe(&phys);
-        let t2 = Instant::now();
+        let t2 = mark();
         // The analysis behind the overlays, for every body: accelerations, instantaneous centers,
         // energy and momentum; the free-body diagram of the selected body.
         let s = phys.snapshot();
@@ -159,43 +228,62 @@ fn measure(scene: level::Scene, goal_ms: f64) {
             + energy::system_gravity_potential(s, energy::engine_mass);
         sink += scene_angular_momentum_about(s, glam::DVec2::ZERO);
         sink += quantities::free_body_arrows(None, s, ov.selected.unwrap()).1;
-        let t3 = Instant::now();
+        let t3 = mark();
         // As the window draws a frame: app::scene::build_drawing, one system per overlay
         // (app/overlay_systems.rs, the order of overlays::build), the scale bar.
-        drawing.clear(view.m_per_px);
-        scene_lines::scene_lines(
-            &phys.sim.level,
-            &outlines,
-            &index,
-            s,
-            view.m_per_px,
-            &mut drawing,
-        );
-        if let Some(i) = ov.selected {
-            scene_lines::highlight(&outlines, s, i, &mut drawing);
-        }
-        let mut scales = Scales::of(s, view.scene_size(), max_speed, view.m_per_px);
-        scales.gain = ov.arrow_scale;
-        scales.visible = Some(visible);
-        overlays::build(&ov, &phys, &outlines, &scales, &mut drawing);
-        scene_lines::scale_bar(&view, &mut drawing);
-        let t4 = Instant::now();
+        let lines_of = Lines {
+            phys: &phys,
+            outlines: &outlines,
+            ov: &ov,
+            view: &view,
+            visible,
+            max_speed,
+        };
+        lines_of.build(&index, &mut drawing);
+        let t4 = mark();
         gizmos.list_positions.clear();
         gizmos.list_colors.clear();
         gizmos.strip_positions.clear();
         gizmos.strip_colors.clear();
         draw::emit(&drawing, &mut gizmos);
-        let t5 = Instant::now();
+        let t5 = mark();
+        for (b, t) in s.bodies.iter().zip(poses.iter_mut()) {
+            view::place_mesh(b, t);
+        }
+        let t6 = mark();
+        plain.world.step();
+        let t7 = mark();
+        // For information, the frame's lines as they were drawn before 2026-12-07: every
+        // ball's outline, spoke and mass-center ring as lines, none in a mesh.
+        Lines {
+            phys: &phys,
+            outlines: &outlines,
+            ov: &ov,
+            view: &view,
+            visible,
+            max_speed,
+        }
+        .build(&all_lines, &mut drawing_before);
+        gizmos_before.list_positions.clear();
+        gizmos_before.list_colors.clear();
+        gizmos_before.strip_positions.clear();
+        gizmos_before.strip_colors.clear();
+        draw::emit(&drawing_before, &mut gizmos_before);
+        let t8 = mark();
         if frame >= WARMUP {
-            let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;
+            wall.push((t6.wall - t0.wall).as_secs_f64() * 1e3);
             step.push(ms(t0, t1));
             checks.push(ms(t1, t2));
             analysis.push(ms(t2, t3));
             lines.push(ms(t3, t4));
             verts.push(ms(t4, t5));
-            total.push(ms(t0, t5));
+            meshes.push(ms(t5, t6));
+            total.push(ms(t0, t6));
+            rapier.push(ms(t6, t7));
+            before.push(ms(t7, t8));
         }
     }
+    std::hint::black_box(&poses);
     let s = phys.snapshot();
     println!(
         "frame: {} ({dynamic} moving bodies), {} contact manifolds at the end, {} line primitives, {} labels, {} gizmo vertices",
@@ -206,8 +294,17 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         gizmos.list_positions.len() + gizmos.strip_positions.len()
     );
     println!(
-        "median over frames {WARMUP}..{} (ms per frame):",
-        WARMUP + FRAMES
+        "median over frames {WARMUP}..{} (ms per frame, {}; load average {}):",
+        WARMUP + FRAMES,
+        if mark().cpu_ns.is_some() {
+            "the thread's CPU time"
+        } else {
+            "wall clock"
+        },
+        std::fs::read_to_string("/proc/loadavg")
+            .ok()
+            .and_then(|l| l.split_whitespace().next().map(str::to_string))
+            .unwrap_or_else(|| "unknown".into())
     );
     let physics = median(&mut step);
     println!(
@@ -219,6 +316,7 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         ("analysis (a_G, IC, T, V, H_O, free body)", &mut analysis),
         ("drawing: bodies + every overlay", &mut lines),
         ("gizmo vertices", &mut verts),
+        ("mesh poses", &mut meshes),
     ] {
         println!("  {name:<44} {:>8.3}", median(v));
     }
@@ -231,5 +329,62 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         m / goal_ms,
         100.0 * physics / m
     );
+    println!(
+        "  {:<44} {:>8.3}",
+        "total, wall clock (the machine's load in it)",
+        median(&mut wall)
+    );
+    let r = median(&mut rapier);
+    println!(
+        "  {:<44} {:>8.3}   (information: rigidlab's physics step {:.2}x of it; the frame {:.2}x)",
+        "rapier's plain step on the same world",
+        r,
+        physics / r,
+        m / r
+    );
+    let b = median(&mut before);
+    println!(
+        "  {:<44} {:>8.3}   (information: {} gizmo vertices; the drawing and vertices above are {:.2}x of it)",
+        "balls as lines, as drawn before 2026-12-07",
+        b,
+        gizmos_before.list_positions.len() + gizmos_before.strip_positions.len(),
+        (median(&mut lines) + median(&mut verts) + median(&mut meshes)) / b
+    );
     std::hint::black_box(sink);
+}
+
+/// What the window's line drawing reads in a frame.
+struct Lines<'a> {
+    phys: &'a Run,
+    outlines: &'a [rigidlab::app::geometry::Outline],
+    ov: &'a Overlays,
+    view: &'a View,
+    visible: (glam::DVec2, glam::DVec2),
+    max_speed: f64,
+}
+
+impl Lines<'_> {
+    /// The frame's lines, as app::scene::build_drawing, the overlays' systems and the scale
+    /// bar draw them, with `index` saying which balls their meshes draw.
+    fn build(&self, index: &SceneIndex, drawing: &mut Drawing) {
+        let (phys, view, ov) = (self.phys, self.view, self.ov);
+        let s = phys.snapshot();
+        drawing.clear(view.m_per_px);
+        scene_lines::scene_lines(
+            &phys.sim.level,
+            self.outlines,
+            index,
+            s,
+            view.m_per_px,
+            drawing,
+        );
+        if let Some(i) = ov.selected {
+            scene_lines::highlight(self.outlines, s, i, drawing);
+        }
+        let mut scales = Scales::of(s, view.scene_size(), self.max_speed, view.m_per_px);
+        scales.gain = ov.arrow_scale;
+        scales.visible = Some(self.visible);
+        overlays::build(ov, phys, self.outlines, &scales, drawing);
+        scene_lines::scale_bar(view, drawing);
+    }
 }

@@ -14,6 +14,7 @@
 //! down means): this file only declares the modules and names what the rest of the crate uses.
 
 pub mod advice;
+pub mod ball_meshes;
 pub mod blows;
 pub mod draw;
 pub mod editor;

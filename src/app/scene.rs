@@ -2,6 +2,7 @@
 //! the title, time and color key; no panels, no camera of its own. The native window, the page
 //! and `rigidlab render` all draw with this plugin.
 
+use super::ball_meshes::BallMeshes;
 use super::draw::{self, DrawStep, Drawing};
 use super::labels;
 use super::overlay_systems::OverlaysPlugin;
@@ -47,6 +48,7 @@ impl Plugin for ScenePlugin {
     fn build(&self, app: &mut App) {
         app.init_resource::<View>()
             .init_resource::<Outlines>()
+            .init_resource::<BallMeshes>()
             .init_resource::<Drawing>()
             .init_resource::<Overlays>()
             .init_resource::<Scales>()
@@ -67,6 +69,7 @@ impl Plugin for ScenePlugin {
                 (
                     view::spawn_meshes,
                     view::sync_camera,
+                    view::rescale_ball_meshes,
                     view::sync_meshes,
                     build_drawing,
                 )

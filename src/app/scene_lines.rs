@@ -43,6 +43,12 @@ fn body_lines(
     for (i, b) in s.bodies.iter().enumerate() {
         let Some(o) = outlines.get(i) else { continue };
         let to_world = geometry::place(o, b.position, b.angle);
+        if index.meshed.get(i).copied().unwrap_or(false) {
+            // Its mesh draws it whole (app/ball_meshes.rs); labels keep off its octagon.
+            let (c, r) = o.circles.first().copied().unwrap_or((DVec2::ZERO, 0.0));
+            d.bodies.push(ball_octagon(to_world(c), r));
+            continue;
+        }
         let color = palette::OUTLINE;
         for poly in &o.filled {
             let world: Vec<DVec2> = poly.iter().map(|p| to_world(*p)).collect();
@@ -90,6 +96,16 @@ fn body_lines(
             d.prims.push(Prim::Circle(b.com, 3.0 * m_per_px, color));
         }
     }
+}
+
+/// The octagon around a ball's circle, world coordinates: what the labels keep off
+/// for a ball drawn by its mesh.
+fn ball_octagon(center: DVec2, r: f64) -> Vec<DVec2> {
+    // Circumscribed: the octagon's sides touch the circle (r / cos(pi / 8)).
+    let big = r / (std::f64::consts::PI / 8.0).cos();
+    (0..8)
+        .map(|k| center + DVec2::from_angle(std::f64::consts::FRAC_PI_4 * k as f64) * big)
+        .collect()
 }
 
 /// Each joint's symbol at its anchor, the light links that reach it and the supports of fixed

@@ -1,6 +1,7 @@
 //! The scene view: camera (fit, pan, zoom, follow), filled body meshes, and picking the body
 //! under a point. The line drawing of bodies, joints, springs and ground is `scene_lines.rs`.
 
+use super::ball_meshes::BallMeshes;
 use super::geometry::{self, Bounds, Outline};
 use super::playback::Playback;
 use super::run::Run;
@@ -150,6 +151,8 @@ pub struct SceneIndex {
     pub couplings: Vec<Vec<usize>>,
     /// Bodies with a joint on them.
     pub jointed: Vec<bool>,
+    /// Balls drawn whole by a shared mesh, their lines included (`ball_meshes::meshed_balls`).
+    pub meshed: Vec<bool>,
 }
 
 impl SceneIndex {
@@ -162,6 +165,7 @@ impl SceneIndex {
             .collect();
         let mut out = SceneIndex {
             jointed: vec![false; level.bodies.len()],
+            meshed: super::ball_meshes::meshed_balls(level),
             ..Default::default()
         };
         if level.effects.contains(&crate::level::Effect::Joints) {
@@ -459,10 +463,12 @@ pub fn spawn_meshes(
     old: Query<Entity, With<BodyMesh>>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<ColorMaterial>>,
+    mut balls: ResMut<BallMeshes>,
 ) {
     if outlines.generation == Some(phys.generation) {
         return;
     }
+    balls.clear();
     outlines.generation = Some(phys.generation);
     outlines.bodies = body_outlines(&phys.sim.level);
     outlines.index = SceneIndex::of(&phys.sim.level);
@@ -480,6 +486,30 @@ pub fn spawn_meshes(
         .zip(&outlines.bodies)
         .enumerate()
     {
+        let fill = match def.kind {
+            BodyKind::Fixed => palette::FIXED,
+            BodyKind::Dynamic => palette::DYNAMIC,
+            BodyKind::Kinematic => palette::KINEMATIC,
+        };
+        let pose = Transform::from_xyz(
+            def.position.0 as f32,
+            def.position.1 as f32,
+            -(i as f32) * 1e-4,
+        );
+        if let (true, Some(crate::level::Shape::Circle { radius })) =
+            (outlines.index.meshed[i], &def.shape)
+        {
+            // One mesh for every ball of this radius and kind: drawn instanced.
+            let (mesh, material) = balls.get(
+                (*radius, def.kind != BodyKind::Fixed),
+                fill,
+                palette::OUTLINE,
+                &mut meshes,
+                &mut materials,
+            );
+            commands.spawn((Mesh2d(mesh), MeshMaterial2d(material), pose, BodyMesh(i)));
+            continue;
+        }
         let tris = geometry::triangles(o);
         if tris.is_empty() {
             continue;
@@ -500,14 +530,19 @@ pub fn spawn_meshes(
         commands.spawn((
             Mesh2d(meshes.add(mesh)),
             MeshMaterial2d(material),
-            Transform::from_xyz(
-                def.position.0 as f32,
-                def.position.1 as f32,
-                -(i as f32) * 1e-4,
-            ),
+            pose,
             BodyMesh(i),
         ));
     }
+}
+
+/// Rebuilds the shared ball meshes for the view's scale (their lines are drawn in world units).
+pub fn rescale_ball_meshes(
+    view: Res<View>,
+    mut balls: ResMut<BallMeshes>,
+    mut meshes: ResMut<Assets<Mesh>>,
+) {
+    balls.rescale(view.m_per_px, palette::OUTLINE, &mut meshes);
 }
 
 pub fn body_outlines(level: &Level) -> Vec<Outline> {
@@ -523,11 +558,16 @@ pub fn sync_meshes(phys: Res<Run>, mut q: Query<(&BodyMesh, &mut Transform)>) {
     let s = phys.snapshot();
     for (m, mut t) in q.iter_mut() {
         if let Some(b) = s.bodies.get(m.0) {
-            t.translation.x = b.position.x as f32;
-            t.translation.y = b.position.y as f32;
-            t.rotation = Quat::from_rotation_z(b.angle as f32);
+            place_mesh(b, &mut t);
         }
     }
+}
+
+/// A body's mesh moved to the body's pose (its depth kept).
+pub fn place_mesh(b: &crate::snapshot::BodyState, t: &mut Transform) {
+    t.translation.x = b.position.x as f32;
+    t.translation.y = b.position.y as f32;
+    t.rotation = Quat::from_rotation_z(b.angle as f32);
 }
 
 /// Whether the world point `p` is on body `i`'s outline (within `tol`, m).
