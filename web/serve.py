@@ -3,9 +3,10 @@
 
 Python's own `http.server` sends every file as it lies on disk: the 45 MB wasm whole, even to a
 browser that asks for it compressed. web/build.sh writes compressed copies beside the wasm and
-the JavaScript (`.zst` always, `.gz` always, `.br` where a `brotli` command exists); this server
-sends the smallest one the browser accepts (`Accept-Encoding`, q-values honoured, `q=0`
-refused), with `Content-Encoding` and `Vary: Accept-Encoding`, and the file itself otherwise.
+the JavaScript (`.gz` always, `.zst` where a `zstd` command exists, `.br` where a `brotli`
+command or Node exists); this server sends the smallest of those the browser accepts
+(`Accept-Encoding`, q-values honoured, `q=0` refused), with `Content-Encoding` and
+`Vary: Accept-Encoding`, and the file itself otherwise.
 A production host (nginx's `gzip_static`/`brotli_static`, Caddy's `precompressed`) does the
 same from the same files: docs/web.md.
 
@@ -18,7 +19,8 @@ import http.server
 import os
 import sys
 
-# Encodings in the order they are preferred (smallest first), with the suffix of their copy.
+# The encodings with the suffix of their copy; of those the request accepts, the smallest copy
+# on disk is sent (for the wasm built on 2026-12-07, brotli -q 11 came 8% under zstd -19).
 ENCODINGS = (("zstd", ".zst"), ("br", ".br"), ("gzip", ".gz"))
 
 
@@ -52,9 +54,14 @@ class Handler(http.server.SimpleHTTPRequestHandler):
         path = self.translate_path(self.path)
         if os.path.isfile(path):
             ok = accepted(self.headers.get("Accept-Encoding", ""))
-            for coding, suffix in ENCODINGS:
-                if coding in ok and os.path.isfile(path + suffix):
-                    return self.send_encoded(path, path + suffix, coding)
+            copies = [
+                (os.path.getsize(path + suffix), coding, path + suffix)
+                for coding, suffix in ENCODINGS
+                if coding in ok and os.path.isfile(path + suffix)
+            ]
+            if copies:
+                _, coding, encoded = min(copies)
+                return self.send_encoded(path, encoded, coding)
         return super().send_head()
 
     def send_encoded(self, path, encoded, coding):
