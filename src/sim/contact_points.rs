@@ -254,7 +254,7 @@ fn spin_offset_rate(
 /// Where it is not, the ball hops within the call. That bound is what a lenient step keeps
 /// (`strict` false: no question reads when a contact starts, ends or slips): measured
 /// 2026-12-07, the library's discs, hoop and wheel rolling on inclines and floors read every
-/// answer within 2e-6 of the split run's with it (docs/accuracy.md).
+/// answer within 1e-5 of the split run's with it (docs/accuracy.md).
 ///
 /// A contact near its friction limit or near leaving is not so forgiving: the force swinging
 /// within a call reaches mu N or zero in a substep before the step's mean does, and so does a
