@@ -245,6 +245,7 @@ impl SolverArgs {
             substepping: None,
             precision: self.precision,
             engine: self.engine,
+            spin_split: crate::sim::SpinSplit::Rule,
             impact_cuts: if self.impact_cuts {
                 Some(true)
             } else if self.no_impact_cuts {

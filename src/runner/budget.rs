@@ -92,13 +92,16 @@
 //!   against 0.028 s, 6.8 us a coupling-call; tests/newuser/linkages/n8_10 (1, 3000 calls) 28 ms
 //!   against 5 ms, 7.7 us; levels/kinetics/classic_atwood_massive_pulley (2, 1152 calls) 17.8
 //!   ms against 2.3 ms, 6.7 us. Unpriced before, these ran 5x to 8x their estimate.
-//! - A spinning ball in contact: rigidlab splits a step into one-substep calls where a dynamic
-//!   ball touching something turns (sim/contact_points.rs, `spinning_ball_touches`), a choice
-//!   made during the run. The estimate makes it before: a dynamic `Circle` that may turn (not
-//!   `lock_rotation`; friction on, or started turning) in a contact pair at the start, with more
-//!   than one substep, is priced at `substeps` calls a step. Measured 2026-12-06:
-//!   levels/kinetics/classic_rolling_disc splits 248 of its 252 steps (996 calls, priced 252
-//!   before), tests/newuser/curved/n7_02 (a ball rolling in a bowl) 588 of 624.
+//! - A spinning ball in contact: rigidlab splits a step into several calls where a dynamic
+//!   ball's turn over a call would disturb its contact (sim/contact_points.rs, `spin_calls`), a
+//!   choice made during the run. The estimate makes it before: a dynamic `Circle` that may turn
+//!   (not `lock_rotation`; friction on, or started turning) in a contact pair at the start, with
+//!   more than one substep, is priced at `substeps` calls a step where a question reads a
+//!   contact's start, end or slip (the strict rule, which splits early), else at one call.
+//!   Measured 2026-12-06 under the rule of then (every step split while a ball spun in
+//!   contact): levels/kinetics/classic_rolling_disc split 248 of its 252 steps,
+//!   tests/newuser/curved/n7_02 (a ball rolling in a bowl) 588 of 624; under the rule of
+//!   2026-12-07, 41 (into 2 calls) and none.
 //! - A smooth ball on an arc: rigidlab splits a step into one-substep calls while a smooth
 //!   dynamic ball rides a fixed `Arc`'s circle (sim/arc_split.rs). The estimate prices it so
 //!   from the start for a smooth dynamic `Circle` in a contact pair with a fixed smooth `Arc`,
@@ -394,8 +397,9 @@ impl Work {
             // (`split_at_blows`, sim/joint_sums.rs) is priced split too: measured 2026-12-07,
             // its smoothness guard kept 8478 of the library's 9654 such steps split.
             calls_per_step: if set.substepping == Substepping::Split
+                || (set.substeps > 1 && set.split_at_blows)
                 || (set.substeps > 1
-                    && (contacts.spinning_ball || contacts.arc_rider || set.split_at_blows))
+                    && ((contacts.spinning_ball && set.reads_contact_events) || contacts.arc_rider))
             {
                 set.substeps
             } else {

@@ -11,7 +11,7 @@
 //! at 30 degrees over 0.01 s 4.4e-2 low, n14_14's leaving angle was 1.06e-2 off at 8 substeps,
 //! and the loop's N at the top (n14_02) changed with the substeps. In one-substep calls the
 //! chord is exact at every substep's end, as a spinning ball's contact is
-//! (sim/contact_points.rs, `spinning_ball_touches`), at the price of a call a substep
+//! (sim/contact_points.rs, `spin_calls`), at the price of a call a substep
 //! (runner/budget.rs prices it from the start).
 //!
 //! Only the pairs the chord contact takes (a dynamic ball, smooth, on a fixed arc): a rough

@@ -22,11 +22,16 @@
 //! separation from anchors that ride their bodies' rigid motion, so a ball's anchor turns with
 //! the ball and leaves the point facing the other body: the solver sees that body fall away at
 //! the rim's centripetal acceleration r w^2. This hook gives rapier the normal speed that
-//! cancels the turn over the call ([`spin_offset_rate`]), exact at a call's start and end, and
-//! the simulation calls rapier one substep at a time while a ball spins in contact
-//! ([`spinning_ball_touches`]), so that those are the only instants rapier reads.
+//! cancels the turn over the call ([`spin_offset_rate`]), exact at a call's start and end. The
+//! drift is quadratic in time and rapier takes only a speed (its `tangent_velocity`, linear in
+//! the time into the call: `contact_with_coulomb_friction.rs`, `update`), and the solver's lever
+//! arm is the very point whose separation it follows (`solver_dp1`, frozen after this hook), so
+//! no hook cancels the drift between a call's ends: where the residual left there matters
+//! ([`spin_calls`]), the simulation calls rapier one substep at a time (or in fewer, shorter
+//! calls), whose ends are the only instants rapier reads.
 
 use super::rapier::prelude::*;
+use crate::sim::SpinSplit;
 
 /// The hook rigidlab steps rapier with (`world::Simulation::step`); ball colliders ask for it
 /// with `ActiveHooks::MODIFY_SOLVER_CONTACTS` (`build::colliders`).
@@ -226,56 +231,200 @@ fn spin_offset_rate(
     }
 }
 
-/// Whether this step's rapier calls must each be one substep for a spinning ball's contact.
+/// How many rapier calls this step's `n` substeps need for a spinning ball's contact: 1 (one
+/// call of n) where no ball's turn disturbs its contact, else n (one substep a call), or in a
+/// lenient step the fewest calls, a divisor of n, that bring the turn's residual within bounds.
 ///
 /// The normal speed [`spin_offset_rate`] hands rapier is exact at a call's start and end only:
-/// over a call of several substeps the drift, quadratic in time, leaves a residual of up to
-/// r w^2 T^2 / 8 between, an apparent overlap the contact's bias pushes out. Measured on a disc
+/// over a call of length T the drift, quadratic in time, leaves an apparent overlap of up to
+/// r w^2 T^2 / 8 between, which the contact's bias pushes against. Measured on a disc
 /// (r = 0.2 m) spun on a floor in one call of 4 or 16 substeps (2026-11-27): its first normal
 /// impulse was 2% to 8% short at a residual of 0.17 mm, 25% at 1.1 mm, and at 2.8 mm the disc
 /// rose 0.44 mm; and a disc rolling off a cylinder (`tests/newuser/curved/n7_04`) left it 1.3e-2
-/// early at a residual of 14 um, where it leaves within 1.6e-3 split. Calls of one substep see
-/// the separation only at their start and end, so the step is split wherever a dynamic ball
-/// touching something (a contact pair with solver contacts from the last step, or any ball in
-/// the first step, before rapier has met a pair) turns fast enough that its rim's centripetal
-/// acceleration r w^2, the rate at which the solver would see the other body fall away, reaches
-/// 1e-3 of gravity's (of 9.81 m/s^2 where the level has none): the normal force error the
-/// library's 1e-3 rule for analyses allows. The price: a collision detection per substep, and on
-/// a faceted concave track more energy lost than in rapier's own substeps (docs/known-gaps.md).
+/// early at a residual of 14 um, where it leaves within 1.6e-3 split.
+///
+/// What the residual does depends on the contact's load. rapier's soft contact is a spring of
+/// natural frequency f (its `static_contact_softness` against a fixed body, 60 Hz, else
+/// `contact_softness`, 30 Hz, or the level's `contact_hz`): under a load of a = N / m it sags
+/// a / (2 pi f)^2 (6.9e-5 m for a disc resting on a floor under g, measured in
+/// tests/suite/sim/spinning_contact.rs), and an apparent overlap e changes its force by
+/// e / sag of N within the call. Over calls of one length the ball rides out by the residual's
+/// mean, two thirds of its peak: the contact stays compressed through each call, and its
+/// impulse over a call is the spring's, as long as the peak is within 1.5 sags ([`SLACK`]).
+/// Where it is not, the ball hops within the call. That bound is what a lenient step keeps
+/// (`strict` false: no question reads when a contact starts, ends or slips): measured
+/// 2026-12-07, the library's discs, hoop and wheel rolling on inclines and floors read every
+/// answer within 1e-5 of the split run's with it (docs/accuracy.md).
+///
+/// A contact near its friction limit or near leaving is not so forgiving: the force swinging
+/// within a call reaches mu N or zero in a substep before the step's mean does, and so does a
+/// switch from one call to several (the ball settles by the mean it rode out by). Measured
+/// 2026-12-07 on a disc rolling, slipping and leaving a cylinder (tests/newuser/curved/n14_16,
+/// n14_17): split at one sag, its leaving angle read 3.5e-2 to 4.4e-2 off (2e-2 allowed), never
+/// split 2.0e-2, split at half a sag 7.2e-3 and 5.4e-3, as when always split. So where a
+/// question reads a contact's start, end or slip (`strict`), a step is split into one-substep
+/// calls once the residual passes half a sag times the friction's margin, 1 - |F| / (mu N)
+/// ([`STRICT`]): the split comes early and whole, while the contact still bears its load.
+/// Pairs are judged one by one (the least loaded goes slack first), from the impulses each
+/// carried over the last rapier call.
+///
+/// Balls count if dynamic and turning fast enough that their rim's centripetal acceleration
+/// r w^2 reaches 1e-3 of gravity's (of 9.81 m/s^2 where the level has none), in contact pairs
+/// with solver contacts from the last step, or any ball in the first step, before rapier has met
+/// a pair and where no load is known yet (then one substep a call). The price of a split: a
+/// collision detection per call, and on a faceted concave track more energy lost than in
+/// rapier's own substeps (docs/known-gaps.md).
 ///
 /// `balls`: the world's ball colliders ([`RoundColliders`]), so that a step does not test every
 /// collider's shape.
-pub(crate) fn spinning_ball_touches(
+pub(crate) fn spin_calls(
     world: &PhysicsWorld,
     balls: &[ColliderHandle],
-    first_step: bool,
-) -> bool {
+    step: SpinStep,
+    rule: SpinSplit,
+) -> usize {
+    let n = step.substeps.max(1);
+    if n == 1 || rule == SpinSplit::Never {
+        return 1;
+    }
     let g = match world.gravity.length() {
         g if g > 0.0 => g,
         _ => 9.81,
     };
-    balls.iter().any(|&handle| {
+    let mut calls = 1;
+    for &handle in balls {
         let Some(collider) = world.colliders.get(handle) else {
-            return false;
+            continue;
         };
         let Some(ball) = collider.shape().as_ball() else {
-            return false;
+            continue;
         };
         let Some(body) = collider.parent().and_then(|b| world.bodies.get(b)) else {
-            return false;
+            continue;
         };
         let w = body.angvel();
-        body.is_dynamic()
-            && ball.radius * w * w >= 1e-3 * g
-            && (first_step
-                || world
-                    .narrow_phase
-                    .contact_pairs_with(handle)
-                    .any(|pair| pair.has_any_active_contact()))
-    })
+        if !body.is_dynamic() || ball.radius * w * w < 1e-3 * g {
+            continue;
+        }
+        let mut touching = world
+            .narrow_phase
+            .contact_pairs_with(handle)
+            .filter(|pair| pair.has_any_active_contact());
+        if step.first || rule == SpinSplit::Always {
+            if step.first || touching.next().is_some() {
+                return n;
+            }
+            continue;
+        }
+        let residual = (ball.radius * w * w) as f64 * step.dt * step.dt / 8.0;
+        let mass = body.mass() as f64;
+        for pair in touching {
+            let other = if pair.collider1 == handle {
+                pair.collider2
+            } else {
+                pair.collider1
+            };
+            let load = Load::of(pair, mass, step.last_call);
+            let sag = load.per_mass / softness(world, other).powi(2);
+            if step.strict {
+                if residual > STRICT * sag * load.friction_margin {
+                    return n;
+                }
+            } else {
+                calls = calls.max(calls_within(residual, SLACK * sag, n));
+            }
+        }
+    }
+    calls
 }
 
-/// The colliders the step's plan looks at (`step/plan.rs`): the balls ([`spinning_ball_touches`])
+/// What the spin rule reads of a step.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SpinStep {
+    /// The step's length, s.
+    pub dt: f64,
+    /// Its substeps.
+    pub substeps: usize,
+    /// The length of the last rapier call, whose impulses give each contact's load, s.
+    pub last_call: f64,
+    /// Whether it is the run's first step (no load known).
+    pub first: bool,
+    /// Whether a question reads when a contact starts, ends or slips (`Settings::
+    /// reads_contact_events`): then the strict rule.
+    pub strict: bool,
+}
+
+/// A contact pair's load over the last rapier call.
+struct Load {
+    /// Its normal force per unit mass of the ball, m/s^2.
+    per_mass: f64,
+    /// 1 - |F| / (mu N): how far its friction is from the cone (1 when smooth or unloaded).
+    friction_margin: f64,
+}
+
+impl Load {
+    fn of(pair: &ContactPair, mass: f64, last_call: f64) -> Load {
+        let (mut normal, mut tangent, mut mu): (f64, f64, f64) = (0.0, 0.0, 0.0);
+        for m in pair.solver_manifolds() {
+            mu = mu.max(m.data.friction as f64);
+            for p in &m.points {
+                normal += p.data.impulse as f64;
+                tangent += p.data.tangent_impulse.sum() as f64;
+            }
+        }
+        let per_mass = if last_call > 0.0 && mass > 0.0 {
+            normal / (mass * last_call)
+        } else {
+            0.0
+        };
+        let friction_margin = if mu > 0.0 && normal > 0.0 {
+            (1.0 - tangent.abs() / (mu * normal)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        Load {
+            per_mass,
+            friction_margin,
+        }
+    }
+}
+
+/// The natural angular frequency of a ball's soft contact with `other`, rad/s: rapier's static
+/// softness against a fixed body (or none), its contact softness against a moving one.
+fn softness(world: &PhysicsWorld, other: ColliderHandle) -> f64 {
+    let fixed = world
+        .colliders
+        .get(other)
+        .and_then(|c| c.parent())
+        .and_then(|b| world.bodies.get(b))
+        .is_none_or(|b| b.is_fixed());
+    let p = &world.integration_parameters;
+    let soft = if fixed {
+        p.static_contact_softness
+    } else {
+        p.contact_softness
+    };
+    soft.natural_frequency as f64 * std::f64::consts::TAU
+}
+
+/// The fewest calls, a divisor of `n`, over which the residual (`residual` over one call of the
+/// step) stays within `bound`: the residual falls with the square of the call's length.
+fn calls_within(residual: f64, bound: f64, n: usize) -> usize {
+    (1..=n)
+        .filter(|&m| n.is_multiple_of(m))
+        .find(|&m| residual <= bound * (m * m) as f64)
+        .unwrap_or(n)
+}
+
+/// The residual a lenient step's calls may leave, in sags: the contact stays compressed through
+/// a call up to 1.5 ([`spin_calls`]).
+const SLACK: f64 = 1.5;
+
+/// The residual past which a strict step is split, in sags times the friction's margin
+/// (measured on tests/newuser/curved/n14_16 and n14_17, [`spin_calls`]).
+const STRICT: f64 = 0.5;
+
+/// The colliders the step's plan looks at (`step/plan.rs`): the balls ([`spin_calls`])
 /// and the arcs (`arc_split::smooth_ball_rides_arc`), found once rather than by testing every
 /// collider's shape each step (the two scans of a 200-box pile's 201 colliders cost about 14,000
 /// instructions a step, 1.9% of rapier's step, callgrind 2026-12-07). Refound if the world's

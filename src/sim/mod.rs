@@ -45,7 +45,7 @@ mod world;
 
 pub use crate::snapshot::Precision;
 pub use build::{capsule_inertia_shortfall, mass_properties, shared_shape, DEFAULT_DENSITY};
-pub use options::{Effects, Engine, Options, SimError};
+pub use options::{Effects, Engine, Options, SimError, SpinSplit};
 pub use profiles::{scalar_profile_at, vector_profile_at};
 pub use seam::Drive;
 pub use settings::{Settings, StepCalls, Substepping};

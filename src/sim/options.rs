@@ -22,6 +22,27 @@ pub struct Options {
     /// The engine (None: the level's `world.engine`). Read at the runner's entry
     /// (`runner::run_graded`, `runner::run_scene`), which builds that engine's simulation.
     pub engine: Option<crate::level::PhysicsEngine>,
+    /// When a step in which a spinning ball touches something is split into one-substep calls
+    /// (sim/contact_points.rs): by the rule (the default), or always and never, to measure the
+    /// rule against the one-substep reference and the cost before the spinning fix.
+    pub spin_split: SpinSplit,
+}
+
+/// When a step in which a spinning ball touches something is split into several rapier calls
+/// (sim/contact_points.rs, `spin_calls`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum SpinSplit {
+    /// Where the turn's residual over one call would disturb the contact: past 1.5 sags of the
+    /// contact under its load, or where a question reads a contact's start, end or slip, past
+    /// half a sag times the friction's margin.
+    #[default]
+    Rule,
+    /// Every step in which a ball spinning with r w^2 >= 1e-3 g touches something (the rule of
+    /// 2026-11-27 to 2026-12-06).
+    Always,
+    /// Never for spin: one call a step, as before 2026-11-27 (the spin's normal speed is still
+    /// handed to rapier).
+    Never,
 }
 
 /// The set of effects a world was built with.

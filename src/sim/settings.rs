@@ -13,7 +13,7 @@
 //! it is engine-independent (no rapier type) and names what the textbook analysis needs.
 
 use crate::level::{Effect, Level};
-use crate::sim::options::{Effects, Options};
+use crate::sim::options::{Effects, Options, SpinSplit};
 use crate::snapshot::Precision;
 use serde::{Deserialize, Serialize};
 
@@ -43,8 +43,9 @@ pub enum Substepping {
 pub struct StepCalls {
     /// Steps taken.
     pub steps: u64,
-    /// Steps split into one-substep calls for a spinning ball in contact, where the plan was
-    /// one call.
+    /// Steps split for a spinning ball in contact, where the plan was one call: into one-substep
+    /// calls, or fewer calls of several substeps where those keep its contact
+    /// (sim/contact_points.rs, `spin_calls`).
     pub split_for_spin: u64,
     /// Steps split into one-substep calls for a smooth ball riding an `Arc`'s circle (and no
     /// spinning ball), where the plan was one call.
@@ -54,6 +55,8 @@ pub struct StepCalls {
     /// Steps split into one-substep calls because a blow could fall in them, where the plan
     /// reconstructs the joint impulses from one call (`Settings::split_at_blows`).
     pub split_for_blow: u64,
+    /// The rapier calls planned for the run's steps, before impact cuts divided any.
+    pub calls: u64,
 }
 
 /// Every solver setting of a run, resolved from the level and the overrides.
@@ -112,6 +115,29 @@ pub struct Settings {
     /// its tolerance of 2e-3, and failed it at 8 and 16 substeps.)
     #[serde(skip)]
     pub smooth_tolerance: f64,
+    /// When a spinning ball's steps are split (`Options::spin_split`); not in a report.
+    #[serde(skip)]
+    pub spin_split: SpinSplit,
+    /// Whether a question is read when a contact starts, ends or slips (`FirstContact`,
+    /// `ContactEnds`, `Leaves`, `SlipStarts`, `SlipEnds`): a spinning ball's contact is then
+    /// split by the strict rule (sim/contact_points.rs, `spin_calls`); not in a report.
+    #[serde(skip)]
+    pub reads_contact_events: bool,
+}
+
+/// Whether a question of the level is read when a contact starts, ends or slips.
+fn reads_contact_events(level: &Level) -> bool {
+    use crate::level::When;
+    level.questions.iter().any(|q| {
+        matches!(
+            q.at,
+            When::FirstContact { .. }
+                | When::ContactEnds { .. }
+                | When::Leaves { .. }
+                | When::SlipStarts { .. }
+                | When::SlipEnds { .. }
+        )
+    })
 }
 
 /// Why a level that reads joint impulses takes one rapier call a step (`Settings::split_at_blows`).
@@ -164,6 +190,8 @@ impl Settings {
             split_at_blows,
             smooth_tolerance: joint_impulse_tolerance(level)
                 .map_or(SMOOTH, |t| (t / 50.0).min(SMOOTH)),
+            spin_split: opts.spin_split,
+            reads_contact_events: reads_contact_events(level),
         }
     }
 
@@ -228,8 +256,9 @@ impl Settings {
         let in_run = calls.split_for_spin + calls.split_for_arc + calls.split_for_blow;
         s.split_steps = if planned_split { calls.steps } else { in_run };
         s.cut_steps = calls.cut;
-        let spin = "a ball spinning with r w^2 >= 1e-3 g touched something (its contact is \
-                    followed exactly only over one-substep calls, sim/contact_points.rs)";
+        let spin = "a ball spinning in contact turned enough over a call to disturb its \
+                    contact (its residual r w^2 T^2 / 8 past the contact's sag under its load, \
+                    sim/contact_points.rs: split into as few calls as keep it)";
         let arc = "a smooth ball rode an Arc's circle (its chord contact is exact only at a \
                    call's ends, sim/arc_split.rs)";
         let blow = "a blow could fall (the first step, an impulse event, a body near a jointed \
@@ -247,12 +276,12 @@ impl Settings {
         if !planned_split && in_run > 0 {
             if in_run == calls.steps {
                 s.substepping = Substepping::Split;
-                s.substepping_why = format!("one rapier call per substep in every step: {why}");
+                s.substepping_why = format!("several rapier calls in every step: {why}");
             } else {
                 s.substepping = Substepping::Mixed;
                 s.substepping_why = format!(
-                    "{} of {} steps in one rapier call per substep, where {why}; the others in \
-                     one call with {n} substeps inside ({})",
+                    "{} of {} steps in several rapier calls, where {why}; the others in one \
+                     call with {n} substeps inside ({})",
                     in_run, calls.steps, self.substepping_why
                 );
             }

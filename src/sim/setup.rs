@@ -131,6 +131,7 @@ impl Simulation {
             prediction_distance,
             after_impact: false,
             last_step_cuts: 0,
+            last_call: 0.0,
             calls: StepCalls::default(),
             substeps_seen: Default::default(),
             has_kinematic: scene

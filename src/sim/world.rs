@@ -62,6 +62,9 @@ pub struct Simulation {
     /// How many times the impact planner cut the last step's calls (sim/impacts.rs): what the
     /// tests read to see that a pair rapier never collides is not planned as an impact.
     pub last_step_cuts: usize,
+    /// The length of the last rapier call, s: a contact's impulse from it over this is its
+    /// force (sim/contact_points.rs, `spin_calls`).
+    pub(super) last_call: f64,
     /// How the run's steps have been called so far (`Settings::as_run` reports them).
     pub calls: StepCalls,
     /// The joints' impulses over the last substeps of the last two steps, when its joint

@@ -8,7 +8,6 @@ use super::super::readings::{merge_contacts, merge_joints, JointPoses};
 use super::super::world::Simulation;
 use super::plan::{Call, CallQueue};
 use crate::sim::options::SimError;
-use crate::sim::settings::Substepping;
 use crate::snapshot::*;
 use glam::DVec2;
 
@@ -70,6 +69,7 @@ impl Simulation {
     /// rapier's parameters for one call: its length, substeps, prediction distance and friction
     /// sweeps.
     pub(super) fn set_call_parameters(&mut self, call: &Call) {
+        self.last_call = call.h;
         let p = &mut self.world.integration_parameters;
         p.dt = call.h as Real;
         p.num_solver_iterations = call.sub;
@@ -98,7 +98,8 @@ impl Simulation {
         // rapier builds a substep's joint rows from the poses it starts from: keep them,
         // so the call's impulses (all of one substep) are read along the very rows they
         // acted on.
-        let rows_from = (calls.split || self.settings.impact_cuts).then(|| self.joint_poses());
+        let rows_from =
+            (calls.split || calls.merged || self.settings.impact_cuts).then(|| self.joint_poses());
         self.prescribe_velocities(t0 + call.start, t0 + call.start + call.h)?;
         // Round bodies' friction acts on their rims, not halfway into an overlap
         // (sim/contact_points.rs).
@@ -147,11 +148,12 @@ impl Simulation {
     pub(super) fn close_calls(&mut self, calls: &CallQueue, dt: f64) {
         self.last_step_cuts = calls.cuts;
         self.calls.steps += 1;
+        self.calls.calls += calls.planned as u64;
         if calls.split_for_arc {
             self.calls.split_for_arc += 1;
         } else if calls.split_for_blow {
             self.calls.split_for_blow += 1;
-        } else if calls.split && calls.n > 1 && self.settings.substepping != Substepping::Split {
+        } else if calls.split_for_spin {
             self.calls.split_for_spin += 1;
         }
         if calls.cuts > 0 {

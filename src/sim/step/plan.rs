@@ -1,5 +1,6 @@
-//! The plan of one step's rapier calls: one call of the step's n substeps, or n calls of one
-//! (split substeps), each cut in two where an impact falls in it (sim/impacts.rs).
+//! The plan of one step's rapier calls: one call of the step's n substeps, n calls of one (split
+//! substeps), or for a spinning ball's contact m calls of n / m, each cut in two where an impact
+//! falls in it (sim/impacts.rs).
 
 use super::super::impacts::{CallPlan, IMPACT_CALL, MAX_CUTS};
 use super::super::world::Simulation;
@@ -16,6 +17,9 @@ pub(super) struct CallQueue {
     pub(super) n: usize,
     /// Whether the step is split into calls of one substep.
     pub(super) split: bool,
+    /// Whether it is split for a spinning ball in contact (sim/contact_points.rs, `spin_calls`:
+    /// into n calls of one substep, or fewer calls of several).
+    pub(super) split_for_spin: bool,
     /// Whether it is split for a smooth ball on an `Arc`'s circle alone (sim/arc_split.rs).
     pub(super) split_for_arc: bool,
     /// Whether it is split because a blow can fall in it, where its joint impulses would
@@ -23,6 +27,8 @@ pub(super) struct CallQueue {
     pub(super) split_for_blow: bool,
     /// The impact plan of the step's one call, made when deciding whether to split it.
     first_plan: Option<CallPlan>,
+    /// The calls planned, before any impact cut.
+    pub(super) planned: usize,
     /// How many times the impact planner cut a call of this step.
     pub(super) cuts: usize,
     /// A blow (an impulse event) this step: its first call solves friction to convergence, as
@@ -93,20 +99,34 @@ impl Simulation {
         // symplectic and gains energy, x2.5e4 in 10 s at omega dt = 0.5 with 4 substeps), and
         // contact and joint impulses are summed over the n calls into the step's snapshot.
         let n = self.substeps().max(1);
-        // A spinning ball's contact is followed exactly only over one-substep calls
-        // (sim/contact_points.rs), and so is a smooth ball's chord contact on an arc
-        // (sim/arc_split.rs).
+        // A spinning ball's contact is followed exactly only at a call's ends: its step is
+        // split into as few calls as keep the turn's residual within the contact's sag
+        // (sim/contact_points.rs, `spin_calls`); a smooth ball's chord contact on an arc into
+        // one-substep calls (sim/arc_split.rs).
         let first_step = self.snapshot.step == 0;
         let planned = self.settings.substepping == Substepping::Split;
         let round = self.round_colliders.refresh(&self.world);
-        let spin =
-            n > 1 && contact_points::spinning_ball_touches(&self.world, &round.balls, first_step);
+        let spin_calls = contact_points::spin_calls(
+            &self.world,
+            &round.balls,
+            contact_points::SpinStep {
+                dt,
+                substeps: n,
+                last_call: self.last_call,
+                first: first_step,
+                strict: self.settings.reads_contact_events,
+            },
+            self.settings.spin_split,
+        );
+        let spin = spin_calls > 1;
         let split_for_arc = n > 1
             && !planned
             && !spin
             && arc_split::smooth_ball_rides_arc(&self.world, round, first_step);
         // Joint impulses reconstructed from one call: split where a blow can fall, and where
-        // the step's one call meets an impact (sim/joint_sums.rs).
+        // the step's one call meets an impact (sim/joint_sums.rs). A step a spinning ball splits
+        // is split whole there: calls of several substeps would each keep only their last
+        // substep's joint impulses, which neither sums them nor reconstructs them.
         let reconstructs = n > 1 && self.settings.split_at_blows && !planned && !spin;
         let mut split_for_blow = reconstructs && !split_for_arc && self.blow_may_fall(dt);
         let mut first_plan = None;
@@ -115,23 +135,23 @@ impl Simulation {
             split_for_blow = plan.cut.is_some();
             first_plan = Some(plan).filter(|_| !split_for_blow);
         }
-        let split = planned || spin || split_for_arc || split_for_blow;
-        let pending = if split {
-            std::iter::repeat_n((dt / n as f64, 1), n).collect()
-        } else {
-            std::iter::once((dt, n)).collect()
-        };
+        let whole =
+            planned || split_for_arc || split_for_blow || (spin && self.settings.split_at_blows);
+        let calls = if whole { n } else { spin_calls };
+        let pending = std::iter::repeat_n((dt / calls as f64, n / calls), calls).collect();
         CallQueue {
             pending,
             n,
-            split,
+            split: (calls == n && n > 1) || planned,
+            split_for_spin: spin && !planned,
             split_for_arc,
             split_for_blow,
             first_plan,
+            planned: calls,
             cuts: 0,
             blow: !self.snapshot.impulses.is_empty(),
             impact_call_next: false,
-            merged: split,
+            merged: calls > 1 || planned,
             first: true,
             elapsed: 0.0,
         }

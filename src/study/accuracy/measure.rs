@@ -74,6 +74,7 @@ impl Setting {
             // rapier's runs build their precision's engine themselves; other engines are
             // built through the runner's entry (`runner::engine_for`, `engines.rs`).
             engine: Some(self.engine),
+            spin_split: crate::sim::SpinSplit::Rule,
         }
     }
 

@@ -335,19 +335,18 @@ fn measure_estimates() {
     {
         let scene = load(arg);
         let e = Estimate::of(&scene.level, &Options::default(), Mode::Check, None);
-        let mut counted = 0.0;
         let c0 = thread_cpu_s();
         for _ in 0..reps {
-            let r = rigidlab::runner::run_graded(
+            rigidlab::runner::run_graded(
                 &scene,
                 &Options::default(),
                 &std::collections::HashMap::new(),
                 |_| {},
             )
             .unwrap();
-            counted = counted_calls(&r);
         }
         let mean = (thread_cpu_s() - c0) / reps as f64;
+        let counted = counted_calls(&scene);
         let w = &e.work;
         println!(
             "{arg}: estimate {:.4} s ({:.4} s past the start), measured CPU {mean:.4} s: ratio \
@@ -360,24 +359,27 @@ fn measure_estimates() {
     }
 }
 
-/// The rapier calls a run made, as its report counts its steps: a split step is `substeps`
-/// calls, any other one, and a step an impact cut divides about two more (the call before the
-/// impact, the short call that makes it, the rest).
-fn counted_calls(r: &rigidlab::report::LevelReport) -> f64 {
-    let s = r.settings.as_ref().expect("a run's settings");
-    let (steps, split) = (r.steps as f64, s.split_steps as f64);
-    split * s.substeps as f64 + (steps - split) + 2.0 * s.cut_steps as f64
+/// The rapier calls a run made, as the simulation counts them (`StepCalls::calls`, the calls
+/// planned for its steps: one, `substeps`, or for a spinning ball as few as keep its contact),
+/// and a step an impact cut divides about two more (the call before the impact, the short call
+/// that makes it, the rest).
+fn counted_calls(scene: &rigidlab::level::Scene) -> f64 {
+    let mut sim = rigidlab::sim::Simulation::new(scene, &Options::default());
+    for _ in 0..sim.total_steps() {
+        sim.step().expect("the level runs");
+    }
+    sim.calls.calls as f64 + 2.0 * sim.calls.cut as f64
 }
 
 /// The estimate prices the rapier calls a run makes: its calls (steps x calls a step) within
-/// 10% of those the run counts (its report's split and cut steps, `counted_calls`), on a plain
-/// level, a frictionless puck in a ring (never split), a ball and a disc rolling (their steps
-/// split while they spin, a choice the run makes: the first steps, before the spin reaches r w^2
-/// = 1e-3 g, are one call, 4 of 252 for the disc and 36 of 624 for the ball on 2026-12-06, 1.2%
-/// and 4.3% of their calls; hence 10%) and a drum hauling a block by a cable (split for its
-/// joint's impulses, with one coupling solved after each call). Until 2026-12-06 the rolling
-/// ball was priced at 624 calls for 2388 (tests/newuser/curved/n7_02, 3.8x). The time each call
-/// costs is measured, not asserted (`measure_estimates`; docs/cli.md).
+/// 20% of those the run counts (`counted_calls`), on a plain level, a frictionless puck in a ring
+/// (never split), a ball and a disc rolling (one call a step, priced so: since 2026-12-07 a
+/// ball's steps are split only where its turn over a call would disturb its loaded contact, a
+/// choice the run makes late: the disc's last 41 of 252 steps into 2 calls, 16% more calls than
+/// priced; hence 20%; the ball in a bowl none) and a drum hauling a block by a cable (split for
+/// its joint's impulses, with one coupling solved after each call). Until 2026-12-06 the
+/// rolling ball was priced at 624 calls for 2388 (tests/newuser/curved/n7_02, 3.8x). The time
+/// each call costs is measured, not asserted (`measure_estimates`; docs/cli.md).
 #[test]
 fn the_estimate_counts_the_calls_a_run_makes() {
     for (file, couplings) in [
@@ -392,16 +394,9 @@ fn the_estimate_counts_the_calls_a_run_makes() {
     ] {
         let scene = load(file);
         let w = Estimate::of(&scene.level, &Options::default(), Mode::Check, None).work;
-        let r = rigidlab::runner::run_graded(
-            &scene,
-            &Options::default(),
-            &std::collections::HashMap::new(),
-            |_| {},
-        )
-        .unwrap();
-        let (priced, counted) = (w.steps * w.calls_per_step as f64, counted_calls(&r));
+        let (priced, counted) = (w.steps * w.calls_per_step as f64, counted_calls(&scene));
         assert!(
-            (priced / counted - 1.0).abs() <= 0.1,
+            (priced / counted - 1.0).abs() <= 0.2,
             "{file}: {priced} calls priced, {counted} made"
         );
         assert_eq!(w.couplings, couplings, "{file}");
@@ -519,7 +514,7 @@ fn a_windowed_question_read_at_a_time_is_priced_to_that_time() {
 /// 0.5 us) 2.6 us a call, as at its own dt. (On 2026-12-07 before this, that disc measured 31 us
 /// a call at 2e-6 with `check`, and every body on a curved track was priced a cast.) So the
 /// ring at dt 4.2e-8 (issue 45: accepted then for what was 11 hours of CPU) is priced its calls
-/// alone, 4.3e7 steps x 4 calls, linear in the steps, and the puck's casts make its price per
+/// alone, 4.3e7 steps x its calls, linear in the steps, and the puck's casts make its price per
 /// call jump by the cast's 15 us once calls are 2.5 us or shorter.
 #[test]
 fn only_a_riding_ball_is_priced_its_casts_at_fine_steps() {
@@ -607,8 +602,10 @@ fn loose_bodies_are_priced_the_pairs_of_the_heap_they_make() {
         let w = work(&grains(cols, rows, "gravity, contacts, friction"));
         assert_eq!(w.resting_pairs, heap(n), "{n} grains");
         assert_eq!(w.pairs, heap(n), "none at the start");
-        // Loose balls that can spin roll as they settle: their steps are split.
-        assert_eq!(w.calls_per_step, 4);
+        // Loose balls that can spin roll as they settle, but no question reads when a contact
+        // starts, ends or slips: their steps are priced one call (sim/contact_points.rs,
+        // `spin_calls`, splits a lenient step only where a turn's residual passes the sag).
+        assert_eq!(w.calls_per_step, 1);
     }
     assert_eq!(heap(10_000.0), 30_000.0 - 283.0);
     // Without gravity the grains stay where they are, apart.

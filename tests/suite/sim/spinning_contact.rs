@@ -6,7 +6,8 @@
 //! smooth floor and spun at 5 rad/s got 0.49 to 0.75 of m g dt in its first step (about
 //! 1 - r w^2 / g = 0.49 at many substeps), at 20 rad/s none, and sank 3.3 mm at 1/60 s
 //! (2026-11-26). rigidlab now hands rapier the normal speed that cancels the drift and calls it
-//! one substep at a time while a ball spins in contact (sim/contact_points.rs).
+//! one substep at a time where the drift's residual over a call would disturb the contact, and
+//! in the first step, where no load is known yet (sim/contact_points.rs, `spin_calls`).
 //!
 //! Statics give the expected values: a disc at rest on a floor but for its spin needs m g dt of
 //! normal impulse every step, and sinks only as far as rapier's soft contact lets a disc that
