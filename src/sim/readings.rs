@@ -110,29 +110,25 @@ impl Simulation {
                 c.normal = to_d(m.data.normal);
                 c.points.clear();
                 let normal = m.data.normal;
-                c.points.extend(m.points.iter().map(|pt| ContactPoint {
-                    point: to_d(pose1 * pt.local_p1),
-                    // From the current poses: rapier recycles contacts, and a recycled point
-                    // keeps the distance of its last full update (a 9 mm overlap read as 0).
-                    // A ball's side is its surface point facing the other body, not the
-                    // material point rapier found at the call's start, which has turned with the
-                    // ball since by w T and left the surface by r (1 - cos w T): read so, a disc
-                    // rolling at 0.4 m/s (r = 0.2 m) in one call of 1/60 s seemed to sink 1e-4 m
-                    // deeper than in four calls, and the rigid-contact path of the work-energy
-                    // analysis (questions/work_and_power.rs) booked gravity's work over it
-                    // (tests/suite/questions/contact_sag.rs, 2026-12-07).
-                    distance: (surface_point(c2, &pose2, pt.local_p2, -normal)
-                        - surface_point(c1, &pose1, pt.local_p1, normal))
-                    .dot(normal) as f64,
-                    normal_impulse: pt.data.impulse as f64,
-                    tangent_impulse: pt.data.tangent_impulse[0] as f64,
-                    arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
-                    local: local.then(|| {
-                        (
-                            to_d(frame1 * surface_point(c1, &pose1, pt.local_p1, normal)),
-                            to_d(frame2 * surface_point(c2, &pose2, pt.local_p2, -normal)),
-                        )
-                    }),
+                c.points.extend(m.points.iter().map(|pt| {
+                    ContactPoint {
+                        point: to_d(pose1 * pt.local_p1),
+                        // From the current poses: rapier recycles contacts, and a recycled point
+                        // keeps the distance of its last full update (a 9 mm overlap read as 0).
+                        // A ball's side at its surface point ([`surface_point`]).
+                        distance: (surface_point(c2, &pose2, pt.local_p2, -normal)
+                            - surface_point(c1, &pose1, pt.local_p1, normal))
+                        .dot(normal) as f64,
+                        normal_impulse: pt.data.impulse as f64,
+                        tangent_impulse: pt.data.tangent_impulse[0] as f64,
+                        arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
+                        local: local.then(|| {
+                            (
+                                to_d(frame1 * surface_point(c1, &pose1, pt.local_p1, normal)),
+                                to_d(frame2 * surface_point(c2, &pose2, pt.local_p2, -normal)),
+                            )
+                        }),
+                    }
                 }));
             }
         }
@@ -359,6 +355,13 @@ pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) 
 /// A contact point of `collider` (at `pose`) in world axes: a ball's surface point along
 /// `outward` (the normal pointing from it to the other body), whatever it has turned since the
 /// contact was found; another shape's material point `local`.
+///
+/// rapier's point on a ball is the material point it found at the call's start, which has
+/// turned with the ball since by w T and left the surface by r (1 - cos w T). Read from it, a
+/// disc rolling at 0.4 m/s (r = 0.2 m) in one call of 1/60 s seemed to sink 1e-4 m deeper than
+/// in four calls, and the rigid-contact path of the work-energy analysis
+/// (questions/work_and_power.rs) booked gravity's work over it
+/// (tests/suite/questions/contact_sag.rs, 2026-12-07).
 fn surface_point(collider: &Collider, pose: &Pose, local: Vector, outward: Vector) -> Vector {
     match collider.shape().as_ball() {
         Some(ball) => pose.translation + outward * ball.radius,
