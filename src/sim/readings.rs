@@ -82,6 +82,7 @@ impl Simulation {
             );
             let (b1, b2) = (c1.user_data as usize, c2.user_data as usize);
             let (pose1, pose2) = (*c1.position(), *c2.position());
+            let (r1, r2) = (ball_radius(c1), ball_radius(c2));
             let body_pose = |c: &Collider| {
                 c.parent()
                     .map_or(Pose::IDENTITY, |h| *self.world.bodies[h].position())
@@ -116,16 +117,16 @@ impl Simulation {
                         // From the current poses: rapier recycles contacts, and a recycled point
                         // keeps the distance of its last full update (a 9 mm overlap read as 0).
                         // A ball's side at its surface point ([`surface_point`]).
-                        distance: (surface_point(c2, &pose2, pt.local_p2, -normal)
-                            - surface_point(c1, &pose1, pt.local_p1, normal))
+                        distance: (surface_point(r2, &pose2, pt.local_p2, -normal)
+                            - surface_point(r1, &pose1, pt.local_p1, normal))
                         .dot(normal) as f64,
                         normal_impulse: pt.data.impulse as f64,
                         tangent_impulse: pt.data.tangent_impulse[0] as f64,
                         arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
                         local: local.then(|| {
                             (
-                                to_d(frame1 * surface_point(c1, &pose1, pt.local_p1, normal)),
-                                to_d(frame2 * surface_point(c2, &pose2, pt.local_p2, -normal)),
+                                to_d(frame1 * surface_point(r1, &pose1, pt.local_p1, normal)),
+                                to_d(frame2 * surface_point(r2, &pose2, pt.local_p2, -normal)),
                             )
                         }),
                     }
@@ -352,7 +353,7 @@ pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) 
     }
 }
 
-/// A contact point of `collider` (at `pose`) in world axes: a ball's surface point along
+/// A contact point of a collider (at `pose`) in world axes: a ball's surface point along
 /// `outward` (the normal pointing from it to the other body), whatever it has turned since the
 /// contact was found; another shape's material point `local`.
 ///
@@ -362,11 +363,18 @@ pub(super) fn merge_contacts(sum: &mut Vec<ContactState>, now: &[ContactState]) 
 /// in four calls, and the rigid-contact path of the work-energy analysis
 /// (questions/work_and_power.rs) booked gravity's work over it
 /// (tests/suite/questions/contact_sag.rs, 2026-12-07).
-fn surface_point(collider: &Collider, pose: &Pose, local: Vector, outward: Vector) -> Vector {
-    match collider.shape().as_ball() {
-        Some(ball) => pose.translation + outward * ball.radius,
+///
+/// `ball_radius`: the collider's radius if it is a ball ([`ball_radius`], asked once a pair).
+fn surface_point(ball_radius: Option<Real>, pose: &Pose, local: Vector, outward: Vector) -> Vector {
+    match ball_radius {
+        Some(r) => pose.translation + outward * r,
         None => *pose * local,
     }
+}
+
+/// The collider's radius if it is a ball.
+fn ball_radius(collider: &Collider) -> Option<Real> {
+    collider.shape().as_ball().map(|b| b.radius)
 }
 
 /// Places every contact of a step of several rapier calls at the poses the step ends with (a
