@@ -241,11 +241,7 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         };
         lines_of.build(&index, &mut drawing);
         let t4 = mark();
-        gizmos.list_positions.clear();
-        gizmos.list_colors.clear();
-        gizmos.strip_positions.clear();
-        gizmos.strip_colors.clear();
-        draw::emit(&drawing, &mut gizmos);
+        emit_anew(&drawing, &mut gizmos);
         let t5 = mark();
         for (b, t) in s.bodies.iter().zip(poses.iter_mut()) {
             view::place_mesh(b, t);
@@ -255,20 +251,8 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         let t7 = mark();
         // For information, the frame's lines as they were drawn before 2026-12-07: every
         // ball's outline, spoke and mass-center ring as lines, none in a mesh.
-        Lines {
-            phys: &phys,
-            outlines: &outlines,
-            ov: &ov,
-            view: &view,
-            visible,
-            max_speed,
-        }
-        .build(&all_lines, &mut drawing_before);
-        gizmos_before.list_positions.clear();
-        gizmos_before.list_colors.clear();
-        gizmos_before.strip_positions.clear();
-        gizmos_before.strip_colors.clear();
-        draw::emit(&drawing_before, &mut gizmos_before);
+        lines_of.build(&all_lines, &mut drawing_before);
+        emit_anew(&drawing_before, &mut gizmos_before);
         let t8 = mark();
         if frame >= WARMUP {
             wall.push((t6.wall - t0.wall).as_secs_f64() * 1e3);
@@ -351,6 +335,15 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         (median(&mut lines) + median(&mut verts) + median(&mut meshes)) / b
     );
     std::hint::black_box(sink);
+}
+
+/// `drawing`'s gizmo vertices in `gizmos`, emptied first (as Bevy empties them each frame).
+fn emit_anew(drawing: &Drawing, gizmos: &mut GizmoBuffer<DefaultGizmoConfigGroup, ()>) {
+    gizmos.list_positions.clear();
+    gizmos.list_colors.clear();
+    gizmos.strip_positions.clear();
+    gizmos.strip_colors.clear();
+    draw::emit(drawing, gizmos);
 }
 
 /// What the window's line drawing reads in a frame.

@@ -232,8 +232,7 @@ impl Simulation {
     /// end poses stepped back over `h` at the end velocities, undoing rapier's integration
     /// (`integrate_linearized`: G moves by h v, the rotation turns by atan(h w)).
     fn last_substep_poses(&self, h: f64) -> Vec<JointPoses> {
-        let back = |b: RigidBodyHandle| {
-            let rb = &self.world.bodies[b];
+        self.joint_poses_by(|rb| {
             let com = to_d(rb.center_of_mass());
             if !rb.is_dynamic() {
                 return (*rb.position(), com);
@@ -244,24 +243,7 @@ impl Simulation {
             let local_com = rb.mass_properties().local_mprops.local_com;
             let at = Vector::new(com.x as Real, com.y as Real);
             (Pose::from_parts(at - rot * local_com, rot), com)
-        };
-        self.joints
-            .iter()
-            .map(|h| {
-                let j = self
-                    .world
-                    .impulse_joints
-                    .get(*h)
-                    .expect("joint handles stay valid");
-                let ((pose1, com1), (pose2, com2)) = (back(j.body1()), back(j.body2()));
-                JointPoses {
-                    pose1,
-                    pose2,
-                    com1,
-                    com2,
-                }
-            })
-            .collect()
+        })
     }
 
     /// The joints of a step made in one call of n substeps, their impulses reconstructed from

@@ -142,6 +142,14 @@ impl Simulation {
 
     /// Each joint's two bodies' poses and mass centers now, before a rapier call builds its rows.
     pub(super) fn joint_poses(&self) -> Vec<JointPoses> {
+        self.joint_poses_by(|rb| (*rb.position(), to_d(rb.center_of_mass())))
+    }
+
+    /// Each joint's two bodies' poses and mass centers as `pose_of` gives them from the bodies.
+    pub(super) fn joint_poses_by(
+        &self,
+        pose_of: impl Fn(&RigidBody) -> (Pose, DVec2),
+    ) -> Vec<JointPoses> {
         self.joints
             .iter()
             .map(|h| {
@@ -150,12 +158,13 @@ impl Simulation {
                     .impulse_joints
                     .get(*h)
                     .expect("joint handles stay valid");
-                let (rb1, rb2) = (&self.world.bodies[j.body1()], &self.world.bodies[j.body2()]);
+                let (pose1, com1) = pose_of(&self.world.bodies[j.body1()]);
+                let (pose2, com2) = pose_of(&self.world.bodies[j.body2()]);
                 JointPoses {
-                    pose1: *rb1.position(),
-                    pose2: *rb2.position(),
-                    com1: to_d(rb1.center_of_mass()),
-                    com2: to_d(rb2.center_of_mass()),
+                    pose1,
+                    pose2,
+                    com1,
+                    com2,
                 }
             })
             .collect()
