@@ -236,6 +236,9 @@ fn paint_legend(mut contexts: EguiContexts, phys: Res<Run>, ov: Res<Overlays>) -
                     {
                         ui.label(egui::RichText::new(text).color(color32(color)));
                     }
+                    if let Some(note) = overlays::crowd_note(&ov, s) {
+                        ui.label(egui::RichText::new(note).color(color32(palette::TEXT)));
+                    }
                 });
         });
     Ok(())
