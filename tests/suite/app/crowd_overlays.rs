@@ -1,11 +1,14 @@
 //! A crowd's overlays (src/app/overlays.rs, `crowd`): above `CROWD_BODIES` moving bodies the
 //! trails and the velocity and acceleration arrows are the selected body's only (every body's
 //! with the panel's box), and the window says so; at `CROWD_BODIES` or fewer every moving body
-//! keeps them.
+//! keeps them. And the label placer given only the bodies within its labels' reach
+//! (`labels::reach`, `app::screen_bodies_within`) places every label where it places it given
+//! them all.
 
-use bevy::math::Rect;
+use bevy::math::{Rect, Vec2};
 use rigidlab::app::ball_meshes::CROWD_BODIES;
 use rigidlab::app::draw::{Drawing, Prim};
+use rigidlab::app::labels;
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::view::{self, palette, View};
 use rigidlab::app::Run;
@@ -127,4 +130,42 @@ fn a_scene_of_crowd_bodies_or_fewer_draws_them_for_every_body() {
     assert_eq!(overlays::crowd_note(&ov, run.snapshot()), None);
     let n = CROWD_BODIES;
     assert_eq!(per_body(&draw(&run, &ov, &v)), (n, n, n));
+}
+
+#[test]
+fn labels_placed_among_the_bodies_in_their_reach_are_placed_as_among_all() {
+    // A settled heap of 400 discs, one in its middle selected with every diagram and its
+    // magnitudes: its labels' spots lie on the heap, where the placer must dodge the discs.
+    let (run, v) = discs(400, 90);
+    let ov = Overlays {
+        free_body: true,
+        kinetic: true,
+        instant_center: true,
+        selected: Some(210),
+        ..per_body_on()
+    };
+    let d = draw(&run, &ov, &v);
+    let wants: Vec<labels::Want> = d
+        .labels
+        .iter()
+        .map(|l| rigidlab::app::label_want(l, Vec2::new(7.0 * l.text.len() as f32, 16.0), &v))
+        .collect();
+    assert!(wants.len() >= 3, "{} labels", wants.len());
+    let all = rigidlab::app::screen_bodies(&d, &v);
+    let mut previous: Vec<(Vec2, Rect)> = Vec::new();
+    for frame in 0..2 {
+        let reach = labels::reach(&wants, v.viewport, &previous);
+        let near = rigidlab::app::screen_bodies_within(&d, &v, &reach);
+        assert!(
+            near.len() < all.len() && !near.is_empty(),
+            "{} of {} bodies in reach",
+            near.len(),
+            all.len()
+        );
+        let whole = labels::place_keeping(&wants, &all, v.viewport, &previous);
+        let culled = labels::place_keeping(&wants, &near, v.viewport, &previous);
+        assert_eq!(whole, culled, "frame {frame}");
+        // The second frame keeps the first one's places (the hysteresis path).
+        previous = wants.iter().map(|w| w.home).zip(whole).collect();
+    }
 }
