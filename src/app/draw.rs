@@ -61,6 +61,10 @@ pub struct Drawing {
     pub labels: Vec<Label>,
     /// The bodies' filled convex parts, world coordinates: labels are kept off them.
     pub bodies: Vec<Vec<DVec2>>,
+    /// The balls drawn by their meshes (app/ball_meshes.rs), center and radius, world
+    /// coordinates: labels are kept off their circumscribed octagons ([`ball_octagon`], built
+    /// on screen), built only for the balls near a label (`app::screen_bodies_within`).
+    pub balls: Vec<(DVec2, f64)>,
     /// Meters per logical pixel of the view the drawing was built for.
     pub m_per_px: f64,
 }
@@ -70,6 +74,7 @@ impl Drawing {
         self.prims.clear();
         self.labels.clear();
         self.bodies.clear();
+        self.balls.clear();
         self.m_per_px = m_per_px;
     }
     pub fn label(&mut self, at: DVec2, offset: Vec2, text: impl Into<String>, color: Color) {
@@ -99,6 +104,34 @@ impl Drawing {
             size: 13.0,
         });
     }
+}
+
+/// The octagon around a ball's circle (`center`, radius `r`), in the coordinates `center` and
+/// `r` are given in (the label placer's screen pixels, y down: the octagon is symmetric): what
+/// the labels keep off for a ball drawn by its mesh. Its sides touch the circle; its vertices,
+/// at multiples of 45 degrees, lie [`octagon_reach`] out, which bounds it on each axis.
+pub fn ball_octagon(center: Vec2, r: f32) -> Vec<Vec2> {
+    // cos and sin of k 45 degrees, k = 0..8, without 80,000 sine calls a frame in a pile.
+    const H: f32 = std::f32::consts::FRAC_1_SQRT_2;
+    const WAYS: [(f32, f32); 8] = [
+        (1.0, 0.0),
+        (H, H),
+        (0.0, 1.0),
+        (-H, H),
+        (-1.0, 0.0),
+        (-H, -H),
+        (0.0, -1.0),
+        (H, -H),
+    ];
+    let big = octagon_reach(r);
+    WAYS.iter()
+        .map(|(c, s)| center + Vec2::new(*c, *s) * big)
+        .collect()
+}
+
+/// How far [`ball_octagon`]'s vertices lie from its center: r / cos(pi / 8).
+pub fn octagon_reach(r: f32) -> f32 {
+    r / (std::f32::consts::PI / 8.0).cos()
 }
 
 /// Screen-constant sizes (pixels) of heads and dashes.

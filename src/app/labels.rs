@@ -10,6 +10,7 @@
 //!
 //! From frame to frame a label keeps its spot while the spot stays free ([`place_keeping`]).
 
+use super::label_grid::BodyGrid;
 use bevy::math::{Rect, Vec2};
 
 /// A label to place: its preferred top-left corner and its size, logical pixels.
@@ -40,6 +41,7 @@ pub fn place_keeping(
     view: Rect,
     previous: &[(Vec2, Rect)],
 ) -> Vec<Rect> {
+    let grid = BodyGrid::new(bodies, view, rect_hits_polygon);
     let mut kept: Vec<Option<Rect>> = vec![None; wants.len()];
     for (k, w) in wants.iter().enumerate() {
         let Some((home, r)) = previous.get(k) else {
@@ -54,7 +56,7 @@ pub fn place_keeping(
             .iter()
             .flatten()
             .all(|p| overlap_area(p, &r.inflate(MARGIN)) == 0.0)
-            && !bodies.iter().any(|b| rect_hits_polygon(&r, b));
+            && !grid.any(&r);
         if free {
             kept[k] = Some(r);
         }
@@ -72,7 +74,7 @@ pub fn place_keeping(
             .get(k)
             .filter(|(home, _)| (*home - w.home).length() <= KEEP_PX)
             .map(|(home, r)| w.home + (r.min - *home));
-        let r = place_one(w, bodies, view, &placed, near);
+        let r = place_one(w, &grid, view, &placed, near);
         placed.push(r);
         out.push(r);
     }
@@ -81,13 +83,7 @@ pub fn place_keeping(
 
 /// The nearest free spot around `w`'s home (or the one covering least), given `placed`; with
 /// `near` (where the label was), the free spot nearest that.
-fn place_one(
-    w: &Want,
-    bodies: &[Vec<Vec2>],
-    view: Rect,
-    placed: &[Rect],
-    near: Option<Vec2>,
-) -> Rect {
+fn place_one(w: &Want, bodies: &BodyGrid, view: Rect, placed: &[Rect], near: Option<Vec2>) -> Rect {
     // A home past the view's edge is first brought inside: the spots around it then lie in
     // the view instead of collapsing onto the edge.
     let home = inside(Rect::from_corners(w.home, w.home + w.size), view).min;
@@ -98,7 +94,14 @@ fn place_one(
             .iter()
             .map(|p| overlap_area(p, &r.inflate(MARGIN)))
             .sum();
-        let on_bodies = bodies.iter().filter(|b| rect_hits_polygon(&r, b)).count() as f32;
+        // Bodies are counted only while this spot can still beat the best so far: over more
+        // label area it cannot, nor past the best's count of bodies at equal area.
+        let limit = match &best {
+            Some((_, (l, _, _))) if on_labels > *l => continue,
+            Some((_, (l, b, _))) if on_labels == *l => *b as usize,
+            _ => usize::MAX,
+        };
+        let on_bodies = bodies.count_up_to(&r, limit) as f32;
         let order = near.map_or(k as f32, |p| (r.min - p).length());
         let cost = (on_labels, on_bodies, order);
         if on_labels == 0.0 && on_bodies == 0.0 && near.is_none() {
@@ -139,6 +142,44 @@ fn candidates(size: Vec2) -> impl Iterator<Item = Vec2> {
         ]);
     }
     offs.into_iter()
+}
+
+/// Where each of `wants` may go: every rectangle the placer may test for a label (each candidate
+/// spot, and the spot kept from `previous`) lies in that label's rectangle. `view` and
+/// `previous` as in [`place_keeping`]. A body [`apart`] from all of them is apart from every
+/// spot, which is the first test [`rect_hits_polygon`] makes: leaving it out places every label
+/// the same. The window passes the placer only the bodies that meet one
+/// (`app::screen_bodies_within`): in a 10,000-grain pile every spot lies on grains, and each
+/// label tried its 41 spots against all 10,000 (docs/benchmarks.md, "10,000 bodies").
+pub fn reach(wants: &[Want], view: Rect, previous: &[(Vec2, Rect)]) -> Vec<Rect> {
+    wants
+        .iter()
+        .enumerate()
+        .map(|(k, w)| {
+            let home = inside(Rect::from_corners(w.home, w.home + w.size), view).min;
+            let mut all = Rect::from_corners(home, home + w.size);
+            if let Some((h, r)) = previous.get(k) {
+                let at = w.home + (r.min - *h);
+                all = all.union(inside(Rect::from_corners(at, at + w.size), view));
+            }
+            for off in candidates(w.size) {
+                let spot = Rect::from_corners(home + off, home + off + w.size);
+                all = all.union(inside(spot, view));
+            }
+            all
+        })
+        .collect()
+}
+
+/// Whether polygon `poly` lies apart from `r` along x or y (touching counts as apart, as in
+/// [`rect_hits_polygon`]): then it meets no rectangle inside `r`.
+pub fn apart(r: &Rect, poly: &[Vec2]) -> bool {
+    let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+    for p in poly {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    poly.is_empty() || hi.x <= r.min.x || r.max.x <= lo.x || hi.y <= r.min.y || r.max.y <= lo.y
 }
 
 /// `r` moved (not resized) to lie inside `view` where it fits.

@@ -21,6 +21,7 @@ pub mod editor;
 pub mod frame_cost;
 pub mod frame_rate;
 pub mod geometry;
+pub mod label_grid;
 pub mod labels;
 pub mod library;
 pub mod names;
@@ -57,7 +58,9 @@ pub use physics::{LiveChecks, PhysicsCommand, PhysicsPlugin, PhysicsStep};
 pub use playback::Playback;
 pub use run::Run;
 pub use sandbox::{add_sandbox, sandbox, sandbox_assignment, FIRST_LEVEL};
-pub use scene::{label_want, screen_bodies, SceneDraw, ScenePlugin, ScenePlugins};
+pub use scene::{
+    label_want, screen_bodies, screen_bodies_within, SceneDraw, ScenePlugin, ScenePlugins,
+};
 
 use crate::level::Scene;
 use std::path::Path;

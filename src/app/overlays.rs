@@ -49,6 +49,9 @@ pub struct Overlays {
     pub hidden_forces: Vec<ForceKind>,
     /// Each force's x and y components drawn dashed, with their values.
     pub components: bool,
+    /// In a [`crowd`], trails and velocity and acceleration arrows for every moving body, not
+    /// only the selected one (the panel's box; off by default).
+    pub every_body: bool,
 }
 
 impl Default for Overlays {
@@ -69,12 +72,28 @@ impl Default for Overlays {
             arrow_scale: 1.0,
             hidden_forces: Vec::new(),
             components: false,
+            every_body: false,
         }
     }
 }
 
 /// Diagrams are drawn for every moving body up to this many; beyond it, only for the selected one.
 const FEW: usize = 4;
+
+/// The number of moving bodies when the scene is a crowd (more than
+/// [`CROWD_BODIES`](super::ball_meshes::CROWD_BODIES), where its balls are drawn by shared
+/// meshes): then the per-body overlays (trails, velocity and acceleration arrows) are drawn for
+/// the selected body only, unless [`Overlays::every_body`] asks for all. Every grain of a 10,000-grain pile with its two arrows and its trail
+/// made 30,000 lines a frame, 16 ms of drawing, and no single one could be read
+/// (docs/benchmarks.md, "10,000 bodies"). None for a smaller scene.
+pub fn crowd(s: &Snapshot) -> Option<usize> {
+    let moving = s
+        .bodies
+        .iter()
+        .filter(|b| b.kind != BodyKind::Fixed)
+        .count();
+    (moving > super::ball_meshes::CROWD_BODIES).then_some(moving)
+}
 
 /// The longest arrow, as a fraction of the scene size (longer ones are clipped, their label is true).
 const MAX_ARROW: f64 = 0.45;
@@ -147,6 +166,17 @@ impl Scales {
     }
 }
 
+/// What the window says of a [`crowd`] while a per-body overlay is on: whose trails and arrows
+/// are drawn. None outside a crowd or with those overlays off.
+pub fn crowd_note(ov: &Overlays, s: &Snapshot) -> Option<String> {
+    let n = crowd(s)?;
+    let per_body = ov.velocity || ov.acceleration || ov.trails;
+    (per_body && !ov.every_body).then(|| match ov.selected {
+        Some(_) => format!("trails and arrows: the selected body only (a crowd of {n})"),
+        None => format!("trails and arrows: click a body (a crowd of {n}: one at a time)"),
+    })
+}
+
 /// The bodies the diagrams are about.
 fn subjects(ov: &Overlays, s: &Snapshot) -> Vec<usize> {
     if let Some(i) = ov.selected.filter(|i| *i < s.bodies.len()) {
@@ -191,6 +221,9 @@ struct Frame<'a> {
     labels: bool,
     /// Every moving body is a subject: each gets its labels.
     label_all: bool,
+    /// The bodies that get trails and velocity and acceleration arrows: every moving one, or in
+    /// a [`crowd`] the subjects only.
+    per_body: Vec<usize>,
     /// Meters per pixel.
     px: f64,
 }
@@ -212,6 +245,14 @@ impl<'a> Frame<'a> {
                     .iter()
                     .filter(|b| b.kind == BodyKind::Dynamic)
                     .count();
+        let crowded = crowd(s).is_some() && !ov.every_body;
+        let per_body = s
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(i, b)| b.kind != BodyKind::Fixed && (!crowded || few.contains(i)))
+            .map(|(i, _)| i)
+            .collect();
         Frame {
             ov,
             run: phys,
@@ -221,6 +262,7 @@ impl<'a> Frame<'a> {
             few,
             labels: ov.labels,
             label_all,
+            per_body,
             px,
         }
     }
@@ -306,10 +348,13 @@ pub fn build(ov: &Overlays, phys: &Run, outlines: &[Outline], scales: &Scales, d
     }
 }
 
-/// The trail of each moving body's mass center.
+/// The trail of each moving body's mass center (of the selected one in a crowd).
 fn trails(f: &Frame, d: &mut Drawing) {
-    for (trail, b) in f.run.trails.iter().zip(&f.s.bodies) {
-        if b.kind != BodyKind::Fixed && trail.len() > 1 {
+    for &i in &f.per_body {
+        let Some(trail) = f.run.trails.get(i) else {
+            continue;
+        };
+        if trail.len() > 1 {
             d.prims.push(Prim::Poly(
                 trail.iter().copied().collect(),
                 false,
@@ -319,12 +364,11 @@ fn trails(f: &Frame, d: &mut Drawing) {
     }
 }
 
-/// v_G of each moving body, and v_P of the point the user picked.
+/// v_G of each moving body (of the selected one in a crowd), and v_P of the point the user
+/// picked.
 fn velocities(f: &Frame, d: &mut Drawing) {
-    for (i, b) in f.s.bodies.iter().enumerate() {
-        if b.kind == BodyKind::Fixed {
-            continue;
-        }
+    for &i in &f.per_body {
+        let b = &f.s.bodies[i];
         let tip = f.scales.arrow(b.com, b.velocity, f.scales.speed);
         d.prims.push(Prim::Arrow(b.com, tip, palette::VELOCITY));
         if f.labels && (f.label_all || f.few.contains(&i)) && b.velocity.length() > 1e-9 {
@@ -354,7 +398,8 @@ fn velocities(f: &Frame, d: &mut Drawing) {
     }
 }
 
-/// a_G of each moving body, from the velocities before the last step.
+/// a_G of each moving body (of the selected one in a crowd), from the velocities before the
+/// last step.
 fn accelerations(f: &Frame, d: &mut Drawing) {
     let s = f.s;
     let acc = f
@@ -363,10 +408,10 @@ fn accelerations(f: &Frame, d: &mut Drawing) {
         .as_ref()
         .map(|(prev, dt)| quantities::accelerations(s, prev, *dt));
     if let Some(acc) = &acc {
-        for (i, (b, (a, _))) in f.s.bodies.iter().zip(acc).enumerate() {
-            if b.kind == BodyKind::Fixed {
+        for &i in &f.per_body {
+            let (Some(b), Some((a, _))) = (f.s.bodies.get(i), acc.get(i)) else {
                 continue;
-            }
+            };
             let tip = f.scales.arrow(b.com, *a, f.scales.accel);
             d.prims.push(Prim::Arrow(b.com, tip, palette::ACCEL));
             if f.labels && (f.label_all || f.few.contains(&i)) && a.length() > 1e-9 {

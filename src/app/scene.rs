@@ -15,6 +15,7 @@ use super::view::{self, palette, Outlines, View};
 use bevy::app::PluginGroupBuilder;
 use bevy::prelude::*;
 use bevy_egui::{egui, EguiContexts, EguiPrimaryContextPass};
+use glam::DVec2;
 
 /// The running scene drawn: [`ScenePlugin`] (meshes, lines, labels) and [`OverlaysPlugin`] (one
 /// system per overlay); the sandbox's `ToolsPlugin` adds the tools' marks between them and the
@@ -175,7 +176,10 @@ fn paint_labels(
         .zip(&galleys)
         .map(|(l, g)| label_want(l, Vec2::new(g.size().x, g.size().y), &view))
         .collect();
-    let rects = labels::place_keeping(&wants, &screen_bodies(&d, &view), view.viewport, &last);
+    // Only the bodies within the labels' reach are converted (none without labels).
+    let reach = labels::reach(&wants, view.viewport, &last);
+    let bodies = screen_bodies_within(&d, &view, &reach);
+    let rects = labels::place_keeping(&wants, &bodies, view.viewport, &last);
     *last = wants
         .iter()
         .map(|w| w.home)
@@ -199,11 +203,59 @@ pub fn label_want(l: &draw::Label, size: Vec2, view: &View) -> labels::Want {
     }
 }
 
-/// The drawing's bodies in screen coordinates, for the label placer.
+/// The drawing's bodies in screen coordinates, for the label placer: its polygons, then its
+/// balls' octagons.
 pub fn screen_bodies(d: &Drawing, view: &View) -> Vec<Vec<Vec2>> {
+    let octagons = d.balls.iter().map(|b| screen_octagon(b, view));
     d.bodies
         .iter()
         .map(|poly| poly.iter().map(|p| view.to_screen(*p)).collect())
+        .chain(octagons)
+        .collect()
+}
+
+/// A ball's octagon (center and radius, world) on screen.
+fn screen_octagon((c, r): &(DVec2, f64), view: &View) -> Vec<Vec2> {
+    draw::ball_octagon(view.to_screen(*c), (*r / view.m_per_px) as f32)
+}
+
+/// [`screen_bodies`], only those that meet a rectangle of `reach` (screen coordinates,
+/// `labels::reach`): the placer tests no other. A 10,000-grain pile's octagons were all
+/// converted every frame for the few labels of the selected grain (docs/benchmarks.md,
+/// "10,000 bodies").
+pub fn screen_bodies_within(d: &Drawing, view: &View, reach: &[Rect]) -> Vec<Vec<Vec2>> {
+    // A world box's corners: `to_screen` scales and shifts each axis monotonically, so they
+    // bound the screen polygon as its own points would.
+    let near = |lo: DVec2, hi: DVec2| {
+        let corners = [view.to_screen(lo), view.to_screen(hi)];
+        reach.iter().any(|r| !labels::apart(r, &corners))
+    };
+    let polygons = d.bodies.iter().filter(|poly| {
+        let (lo, hi) = poly
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        near(lo, hi)
+    });
+    let octagons = d
+        .balls
+        .iter()
+        .filter(|(c, r)| {
+            // The octagon's box, exactly: its vertices at 0, 90, 180 and 270 degrees are
+            // center +- reach (`draw::ball_octagon`), the others lie inside.
+            let (c, big) = (
+                view.to_screen(*c),
+                draw::octagon_reach((*r / view.m_per_px) as f32),
+            );
+            reach
+                .iter()
+                .any(|r| !labels::apart(r, &[c - Vec2::splat(big), c + Vec2::splat(big)]))
+        })
+        .map(|b| screen_octagon(b, view));
+    polygons
+        .map(|poly| poly.iter().map(|p| view.to_screen(*p)).collect())
+        .chain(octagons)
         .collect()
 }
 
@@ -235,6 +287,9 @@ fn paint_legend(mut contexts: EguiContexts, phys: Res<Run>, ov: Res<Overlays>) -
                         overlays::legend_entries(&ov, &phys.sim.level, phys.steps_averaged())
                     {
                         ui.label(egui::RichText::new(text).color(color32(color)));
+                    }
+                    if let Some(note) = overlays::crowd_note(&ov, s) {
+                        ui.label(egui::RichText::new(note).color(color32(palette::TEXT)));
                     }
                 });
         });

@@ -46,7 +46,7 @@ fn body_lines(
         if index.meshed.get(i).copied().unwrap_or(false) {
             // Its mesh draws it whole (app/ball_meshes.rs); labels keep off its octagon.
             let (c, r) = o.circles.first().copied().unwrap_or((DVec2::ZERO, 0.0));
-            d.bodies.push(ball_octagon(to_world(c), r));
+            d.balls.push((to_world(c), r));
             continue;
         }
         let color = palette::OUTLINE;
@@ -96,16 +96,6 @@ fn body_lines(
             d.prims.push(Prim::Circle(b.com, 3.0 * m_per_px, color));
         }
     }
-}
-
-/// The octagon around a ball's circle, world coordinates: what the labels keep off
-/// for a ball drawn by its mesh.
-fn ball_octagon(center: DVec2, r: f64) -> Vec<DVec2> {
-    // Circumscribed: the octagon's sides touch the circle (r / cos(pi / 8)).
-    let big = r / (std::f64::consts::PI / 8.0).cos();
-    (0..8)
-        .map(|k| center + DVec2::from_angle(std::f64::consts::FRAC_PI_4 * k as f64) * big)
-        .collect()
 }
 
 /// Each joint's symbol at its anchor, the light links that reach it and the supports of fixed

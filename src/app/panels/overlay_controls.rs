@@ -2,7 +2,7 @@
 //! instantaneous center, free-body and kinetic diagrams, H about O, trails, magnitudes), their
 //! color key, and which body they are drawn for.
 
-use super::super::overlays::{legend_entries, Overlays};
+use super::super::overlays::{crowd, legend_entries, Overlays};
 use super::super::quantities::ForceKind;
 use super::super::run::Run;
 use super::super::ui::{fixed_rows, rich};
@@ -74,6 +74,7 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
     });
     // The same height either way (the hint wraps in a narrow panel; the button row is taller
     // than a line of small text).
+    let crowd = crowd(phys.snapshot());
     fixed_rows(ui, 2.0, |ui| match ov.selected {
         Some(i) => {
             ui.horizontal(|ui| {
@@ -90,13 +91,21 @@ pub(super) fn overlay_controls(ui: &mut egui::Ui, ov: &mut Overlays, phys: &Run)
             });
         }
         None => {
-            ui.label(
-                rich(
-                    "click a body for its diagrams (all bodies when there are 4 or fewer)",
-                    palette::OUTLINE,
-                )
-                .small(),
-            );
+            let hint = match crowd {
+                Some(n) => format!(
+                    "a crowd of {n}: click a body for its trail, arrows and diagrams (one at a time)"
+                ),
+                None => "click a body for its diagrams (all bodies when there are 4 or fewer)".into(),
+            };
+            ui.label(rich(hint, palette::OUTLINE).small());
         }
     });
+    if let Some(n) = crowd {
+        // In a crowd the trails and arrows are the selected body's (overlays::crowd); the
+        // whole field is one click away, at its price.
+        ui.checkbox(
+            &mut ov.every_body,
+            format!("trails and arrows on all {n} bodies (slow)"),
+        );
+    }
 }

@@ -7,6 +7,7 @@ mod challenge_box;
 mod challenge_tour;
 mod course_challenges;
 mod course_progress;
+mod crowd_overlays;
 mod drift_button;
 mod editor_commands;
 mod editor_core;
