@@ -26,6 +26,13 @@ const LINE_PX: f64 = 2.0;
 /// The mass-center ring's radius, pixels (`scene_lines`: `Prim::Circle(b.com, 3 px)`).
 const COM_RING_PX: f64 = 3.0;
 
+/// The smallest ball, in pixels of radius, that gets the mass-center ring and the spoke: the
+/// ring (4 px across its outer edge) then leaves a 2 px band of fill inside the outline. Below
+/// it a grain shows its fill and a thin rim only: at 2026-12-07's first render of the sand pile
+/// (grains of 1.8 px) the 2 px outline and the 3 px ring covered every grain, and the pile drew
+/// as one dark band.
+const DECORATED_PX: f64 = 8.0;
+
 /// Which bodies are balls drawn whole by a shared mesh: every `Circle` of a scene of more than
 /// [`CROWD_BODIES`] moving bodies; none otherwise.
 pub fn meshed_balls(level: &Level) -> Vec<bool> {
@@ -43,8 +50,10 @@ pub fn meshed_balls(level: &Level) -> Vec<bool> {
 
 /// A ball of radius `r` (m) as drawn at `m_per_px`, in its body frame: the disc filled with
 /// `fill`, then in `line` (drawn over it: the mesh's triangles keep their order at one depth) the
-/// outline as a ring `LINE_PX` wide centered on the rim, the spoke along +x, and, for a moving
-/// ball (`com`), the mass-center ring. Positions and linear RGBA vertex colors, a triangle list.
+/// outline as a ring `LINE_PX` wide centered on the rim (at most a quarter of the radius wide,
+/// so a small grain keeps its fill), and on a ball of at least [`DECORATED_PX`] the spoke along
+/// +x and, for a moving ball (`com`), the mass-center ring. Positions and linear RGBA vertex
+/// colors, a triangle list.
 pub fn ball_triangles(
     r: f64,
     m_per_px: f64,
@@ -52,7 +61,8 @@ pub fn ball_triangles(
     (fill, line): ([f32; 4], [f32; 4]),
 ) -> (Vec<[f32; 3]>, Vec<[f32; 4]>) {
     let px = m_per_px.max(1e-12);
-    let half = 0.5 * LINE_PX * px;
+    let half = (0.5 * LINE_PX * px).min(0.125 * r);
+    let decorated = r >= DECORATED_PX * px;
     let mut pos = Vec::new();
     let mut col = Vec::new();
     let mut tri = |ps: [DVec2; 3], c: [f32; 4]| {
@@ -78,6 +88,9 @@ pub fn ball_triangles(
         }
     };
     ring(r, n);
+    if !decorated {
+        return (pos, col);
+    }
     if com {
         ring(COM_RING_PX * px, circle_resolution(COM_RING_PX, 48));
     }
@@ -189,5 +202,20 @@ mod tests {
         assert!(col[first_line..].iter().all(|c| c[0] == 0.0));
         // The fill is a fan of circle_resolution(20 px) triangles.
         assert_eq!(first_line, 3 * circle_resolution(20.0, 48) as usize);
+    }
+
+    #[test]
+    fn a_small_grain_keeps_its_fill() {
+        // A grain of 1.8 px radius (the sand pile's, fitted to the window): its outline at most
+        // r/4 wide (from 7r/8 to 9r/8), no spoke, no mass-center ring, so every line vertex lies
+        // at 7r/8 or 9r/8 and the fill inside 7r/8 stays uncovered.
+        let (r, px) = (0.05, 0.05 / 1.8);
+        let (pos, col) = ball_triangles(r, px, true, ([1.0; 4], [0.0, 0.0, 0.0, 1.0]));
+        let first_line = col.iter().position(|c| c[0] == 0.0).unwrap();
+        for p in &pos[first_line..] {
+            let d = (p[0] as f64).hypot(p[1] as f64);
+            let on_rim = (d - 0.875 * r).abs() < 1e-6 || (d - 1.125 * r).abs() < 1e-6;
+            assert!(on_rim, "a line vertex at {d} m of a {r} m grain");
+        }
     }
 }
