@@ -40,8 +40,11 @@ done
 # (src/main.rs), which the profile sets to 3 with the rest of the rigidlab package: all of Bevy
 # was optimised at 3 at the link, inlining it for speed. `-C opt-level=s`, given to the binary
 # alone (`cargo rustc` passes it to the last target only), runs the link at "s" while the rigidlab
-# library keeps its 3 when it compiles (since 2026-12-07: docs/web.md, "A lighter page").
-CARGO_PROFILE_WEB_LTO=$lto cargo rustc --profile web --target wasm32-unknown-unknown --bin rigidlab -- -C opt-level=s
+# library keeps its 3 when it compiles (since 2026-12-07: docs/web.md, "A lighter page"): 5%
+# less brotli, but the page's own check of the 30x30 joint grid ran 1.5x longer than at 3.
+# RIGIDLAB_WEB_LINK_OPT=3 builds the faster, larger page.
+link_opt="${RIGIDLAB_WEB_LINK_OPT:-s}"
+CARGO_PROFILE_WEB_LTO=$lto cargo rustc --profile web --target wasm32-unknown-unknown --bin rigidlab -- -C opt-level="$link_opt"
 
 rm -rf "$out"
 mkdir -p "$out"
