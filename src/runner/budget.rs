@@ -10,7 +10,8 @@
 //! and those loose bodies make as they come to rest), the casts against curved tracks (a
 //! polyline's points, a second track, a riding ball's arc at fine steps) at every call,
 //! questions and checks per step, the windows windowed questions read again each step, and the
-//! history a check keeps. `check`, `run`, `study stability` and `render --time` all price their
+//! history a check keeps, and once a run its own start, the facets it builds and the mechanisms
+//! its period questions linearize. `check`, `run`, `study stability` and `render --time` all price their
 //! run here. The table in docs/cli.md compares the estimate with the measured wall time and
 //! peak memory (within 3x on the library and on adversarial levels, tests/budget/).
 //!
@@ -23,6 +24,18 @@
 //! levels that differ in one thing:
 //!
 //! - [`START_S`]: a one-ball level of 6 steps: 0.01 s.
+//! - [`RUN_US`]: the CPU time of a one-step run of each level of `levels/` and `tests/newuser/`
+//!   (`BUDGET_DURATION=1e-9 BUDGET_CASES=0 cargo bench --no-default-features --bench budget`,
+//!   2026-12-07, load average 4 to 6) less its mean step in a whole run: 0.033 ms in the middle
+//!   of the 372 (the world built, the first step's allocations, the report).
+//! - [`LINEARIZE_US`], [`LINEARIZE_JOINT_US`]: measured the same way, a question that
+//!   linearizes its mechanism (`PendulumPeriod`, `ModePeriod`, `SpringPeriod`,
+//!   `EquilibriumAngle`: `analysis::small_oscillations`, numeric Jacobians and SVDs) costs it
+//!   once, by the level's joints: 0.04 to 1.7 ms a question without joints (29 levels, 0.76 in
+//!   the middle), 4.6 to 5.7 ms with one (12), 2.6 to 13.9 ms with two (11; 10.6 in the
+//!   middle), 27 ms with four (the toggle of tests/newuser/statics/n11_08b): 0.7 ms + 5.5 ms a
+//!   joint. Unpriced before, these were the lowest ratios of the bench (the toggle 0.20x, the
+//!   fast double pendulum n8_04 0.26x, 23 ms of its 31 in the linearization).
 //! - [`CALL_US`]: one ball, 1e6 steps of one rapier call: 1.31 s; a spring split into 100
 //!   substeps, 3600 steps (360,000 calls): 0.58 s, 1.6 us a call.
 //! - [`BODY_STEP_US`], [`BODY_SUBSTEP_US`]: 1000 free discs, 3600 steps at 1 substep: 0.21 s;
@@ -65,13 +78,29 @@
 //!   12.5 s now (0.50x; 0.37x against 33.4 s in a second run, the CPU time swelling with the
 //!   load); the bench's 1,000 grains poured into a bin (3 s) 0.358 s and 0.442 s, priced 0.368
 //!   s (1.03x, 0.83x). A pair costs twice as much a step in the 10,000-grain pile as in the 1,000 (1.4
-//!   against 0.66 us a pair and a step, the split steps included), which the estimate does not
-//!   model: the pile is its low end.
+//!   against 0.66 us a pair and a step, the split steps included): see [`PAIR_FAR_COST`].
+//! - [`PAIRS_IN_CACHE`], [`PAIR_FAR_COST`]: a pair's rapier data (pair, manifold, solver rows)
+//!   take about [`PAIR_KB`], so about 800 pairs fit a core's 2 MB L2 cache; past them each
+//!   pair's narrow phase and rows wait on memory. Measured 2026-12-07 by the bench (load average
+//!   4 to 9), the factor that would price each scene's pairs past 800 exactly, the other terms
+//!   as they are: the bench's 1,000 grains poured into a bin (2,911 pairs settled) 2.2, 10,000
+//!   discs on a floor (39,502) 2.05, levels/stress/sand_pile.ron (29,717) 3.7 (its 164 steps
+//!   split for spinning grains, unpriced, among them); scenes of 433 and 590 pairs
+//!   (stress/mass_ratio_100, pyramid_20) were priced 2.0x and 1.5x with the one price. 2.5:
+//!   the grains 1.2x, the discs 1.2x to 1.5x, the sand pile 0.68x (0.29x before).
 //! - [`PAIR_MADE_NS`]: rapier makes a contact pair in time proportional to the pairs its bodies
 //!   already have (`NarrowPhase::add_pair`, 89% of the run in `perf`): 1000 discs at one point
 //!   (499,500 pairs, each body in 999) took 16.7 s for one step, 18.9 s for six.
 //! - [`QUESTION_STEP_US`]: 10^4 questions on one ball, 600 steps: 1.02 s, 0.09 s of it loading.
-//! - [`CHECK_STEP_US`]: an `impulse_momentum` check over 1e6 steps: 2.07 s against 1.31 s without.
+//! - [`CHECK_STEP_US`]: an `impulse_momentum` check over 1e6 steps: 2.07 s against 1.31 s without
+//!   (0.76 us a step, its ledger of 48 MB past the caches). Measured again 2026-12-07 by the
+//!   bench on copies of levels with and without their checks (the CPU time of the run's thread,
+//!   load average 4 to 6): levels/energy/pendulum_energy_fine (8 checks, 3456 steps) 16.2 ms
+//!   against 5.9, physical_pendulum (7, 432) 2.10 against 0.79, block_friction_work (3, 480)
+//!   1.67 against 1.35, wheel_rolling_ke_ic (5, 252) 0.70 against 0.64, n4_02 (4, 264) 3.42
+//!   against 3.30, curve_disc_rolling_in_ring (3, 432) no difference: 0 to 0.43 us a check and
+//!   a step, the steps split to read joint impulses for the checks included. 0.3: at 0.8 the
+//!   pendulums with 7 and 8 checks were priced 2.4x and 2.7x.
 //! - [`BASE_MB`] and the per-item memory: the peak of a one-ball run (31.3 MB); 1000 discs at
 //!   one point 1282 MB, 300 at one point 124 MB (2.1 to 2.5 KB a pair); 10^4 questions 66.5 MB
 //!   (3.4 KB each); 1000 free bodies 32.6 MB; the `impulse_momentum` check over 1e6 steps
@@ -82,7 +111,10 @@
 //!   not pay for each facet. Measured 2026-12-06 (the thread's CPU time of 20 runs in one
 //!   process, `runner::budget::measure_estimates` in tests/suite/runner/budget.rs): a puck in a
 //!   ring of 7025 facets over 1000 steps (tests/newuser/curved/n13_05) 10.3 ms, where the other
-//!   terms price 2.5 ms: 1.1 us a facet. From 2026-12-06 to then each call was priced 0.04 us a
+//!   terms price 2.5 ms: 1.1 us a facet. Measured again 2026-12-07 as [`RUN_US`] is, from the
+//!   one-step runs of the 56 levels with facets and no linearizing question: 0.30 to 0.43 us a
+//!   facet, 0.31 in the middle, so 0.32 (1.1 priced the ring's rolling disc 2.60x, the hoop in a
+//!   ring n9_06 2.74x: the 10.3 ms had held the run's other costs). From 2026-12-06 to then each call was priced 0.04 us a
 //!   facet (`FACET_CALL_US`, measured before the arc's exact contact: n7_05, a puck in that ring,
 //!   1.20 s then): after it n13_05 was priced 0.29 s for 10 ms, n7_05 1.1 s for 18 ms.
 //! - [`COUPLING_CALL_US`]: a coupling (a cable, a belt, gears: sim/couplings.rs) is solved by
@@ -101,7 +133,17 @@
 //!   Measured 2026-12-06 under the rule of then (every step split while a ball spun in
 //!   contact): levels/kinetics/classic_rolling_disc split 248 of its 252 steps,
 //!   tests/newuser/curved/n7_02 (a ball rolling in a bowl) 588 of 624; under the rule of
-//!   2026-12-07, 41 (into 2 calls) and none.
+//!   2026-12-07, 41 (into 2 calls) and none. [`SPIN_SPLIT_SHARE`]: where the strict rule prices
+//!   a level's steps split for a spinning ball alone, the bench (2026-12-07, the calls each
+//!   report counts) found 3% to 99% of their steps split, 40% to 50% in the middle (the balls
+//!   on rough floors n4_09, n4_10 3%, the wheels at a curb 24%, priced 2.2x to 2.6x at every
+//!   step split): priced half of them split.
+//! - [`JOINTS_IN_LANES`], [`JOINT_LANE_COST`]: measured 2026-12-07 by the bench on the nets of
+//!   levels/stress/generate.py's `joint_grid` at n = 6, 10, 15, 22 and 30 (600 steps of 16
+//!   substeps; the joints' rows 90% of their price): 55 and 174 joints priced 0.94x and 0.89x,
+//!   414, 918 and 1734 joints 2.21x, 2.32x and 2.30x, where a joint's rows cost 0.35x (rapier's
+//!   staged solver runs a color of 64 joints or more in its SIMD lanes); the chains of 40 to 81
+//!   joints (stress/stretched_chain, ball_and_chain, bridge_80) 0.87x to 0.94x.
 //! - A smooth ball on an arc: rigidlab splits a step into one-substep calls while a smooth
 //!   dynamic ball rides a fixed `Arc`'s circle (sim/arc_split.rs). The estimate prices it so
 //!   from the start for a smooth dynamic `Circle` in a contact pair with a fixed smooth `Arc`,
@@ -140,7 +182,14 @@
 //!   1e-5 19.3x; the puck at 1e-5 17 us a call. Since then only a smooth ball riding a smooth
 //!   `Arc` (the puck) is priced a cast, 15 us a call from calls of 2.5 us down: the ring's disc
 //!   0.93x at 2e-6 and 1.48x at 1e-5, the puck 1.68x (its window included). The ring at dt
-//!   4.2e-8 is priced its 1.7e8 calls alone, about 430 s, and accepted.
+//!   4.2e-8 is priced its 1.7e8 calls alone, about 430 s, and accepted. Measured again
+//!   2026-12-07 by the bench (load average 4 to 6): the ring's disc at 2e-6 (one call a step,
+//!   none split) 10.0 to 10.7 us a step, priced 2.5 (0.39x), and `perf` of that run finds the
+//!   planner's nonlinear casts (parry's `nonlinear_shape_cast`, its `closest_point`) the largest
+//!   part; the puck at 1e-5, 0.326 s, priced 1.80x with 15 us. So every dynamic ball on a fixed
+//!   `Arc` at the start is priced a cast from calls of 2.5 us down, 10 us: the disc 1.4x, the
+//!   puck 1.5x; the ring at 4.2e-8 is priced about 585 s, just within the budget (its calls there
+//!   not measured since issue 45's 11 hours).
 //! - [`POLYLINE_FACET_CALL_US`]: a body on a `Polyline` is queried and cast against the
 //!   polyline's points at every call (sim/impacts.rs; an `Arc` is met by its circle). Measured
 //!   2026-12-07 by the bench (the CPU time over the calls the report counts, less the other
@@ -168,6 +217,28 @@ pub const MEMORY_BUDGET_MB: f64 = 4096.0;
 
 /// The process's start and the level's load, s.
 pub const START_S: f64 = 0.01;
+/// A run's own start, once: the world built, the first step's allocations, the report, us.
+pub const RUN_US: f64 = 30.0;
+/// A question that linearizes its mechanism about equilibrium (`PendulumPeriod`, `ModePeriod`,
+/// `SpringPeriod`, `EquilibriumAngle`: `analysis::small_oscillations`), once, us.
+pub const LINEARIZE_US: f64 = 700.0;
+/// The same, per joint of the level: the constraints' numeric Jacobians and their SVDs, us.
+pub const LINEARIZE_JOINT_US: f64 = 5500.0;
+/// The contact pairs whose rapier data (pair, manifold, solver rows: [`PAIR_KB`] each) fit a
+/// core's 2 MB L2 cache: past them a pair's narrow phase and rows wait on memory.
+pub const PAIRS_IN_CACHE: f64 = 800.0;
+/// A pair past [`PAIRS_IN_CACHE`] against one within, in every term a pair is priced in.
+pub const PAIR_FAR_COST: f64 = 2.5;
+/// Joints from which rapier's solver runs every joint color in its SIMD lanes: rapier 0.36's
+/// staged island solver sends a color (joints sharing no body) of at least 64 joints
+/// (`JOINT_BATCH` 16 x 8 reference workers / 2) to its lanes and a smaller one to a serial
+/// tail; a 2D scene's joints take 2 (a chain) to 4 (a net) colors.
+pub const JOINTS_IN_LANES: usize = 256;
+/// A joint's rows in the lanes against in the serial tail.
+pub const JOINT_LANE_COST: f64 = 0.35;
+/// Of the steps a spinning ball in contact may split (priced at `substeps` calls: the strict
+/// rule where a question reads a contact's start, end or slip), the share that the run splits.
+pub const SPIN_SPLIT_SHARE: f64 = 0.5;
 /// One rapier call (`PhysicsPipeline::step`) with its reading into the snapshot, us.
 pub const CALL_US: f64 = 1.3;
 /// One body read into a step's snapshot and its step's bookkeeping, us.
@@ -190,7 +261,7 @@ pub const PAIR_CALL_US: f64 = 0.1;
 pub const PAIR_MADE_NS: f64 = 17.0;
 /// One facet of a curved track (an `Arc`'s facets, a `Polyline`'s points), built once with its
 /// search tree, us.
-pub const FACET_US: f64 = 1.1;
+pub const FACET_US: f64 = 0.32;
 /// One coupling solved after one rapier call, us.
 pub const COUPLING_CALL_US: f64 = 7.0;
 /// One question watching one step, us.
@@ -204,7 +275,7 @@ pub const CONTACT_WINDOW_US: f64 = 0.1;
 pub const JOINT_WINDOW_US: f64 = 0.006;
 /// One nonlinear shape cast of a moving body against a curved track's facets, planning an
 /// impact cut before a call (sim/impacts.rs), us.
-pub const TRACK_CAST_US: f64 = 15.0;
+pub const TRACK_CAST_US: f64 = 10.0;
 /// Calls at most this long, s, cast a body against the curved track it rides at every call.
 pub const TRACK_CAST_CALL_S: f64 = 2.5e-6;
 /// One point of a `Polyline` a moving body is on, per rapier call, us: the impact planner's
@@ -214,7 +285,7 @@ pub const POLYLINE_FACET_CALL_US: f64 = 0.035;
 /// per rapier call, us: the planner's query and cast against it as the body comes near.
 pub const OTHER_TRACK_CALL_US: f64 = 9.0;
 /// One check observing one step, us.
-pub const CHECK_STEP_US: f64 = 0.8;
+pub const CHECK_STEP_US: f64 = 0.3;
 /// The engine's part of a step in f64 against f32 (rapier2d-f64 against rapier2d: 1.2x to 1.3x
 /// over the library, docs/accuracy.md; `study::advice::F64_COST`).
 pub const F64_COST: f64 = 1.25;
@@ -256,6 +327,10 @@ pub struct Work {
     /// rapier calls a step: 1, or `substeps` where substeps are split (planned, or for a ball
     /// that can spin in contact).
     pub calls_per_step: usize,
+    /// Of the steps priced at `calls_per_step` calls, the share the run is expected to split:
+    /// 1, or [`SPIN_SPLIT_SHARE`] where a spinning ball in contact is the only reason
+    /// ([`Work::calls`]).
+    pub split_share: f64,
     pub bodies: usize,
     pub joints: usize,
     /// Pairs of colliding bodies whose boxes overlap (within 1 cm) at the start, and those the
@@ -272,6 +347,8 @@ pub struct Work {
     /// Couplings rigidlab solves after every rapier call (0 without joints).
     pub couplings: usize,
     pub questions: usize,
+    /// Questions that linearize their mechanism once ([`LINEARIZE_US`]).
+    pub linearizations: usize,
     pub checks: usize,
     /// Bytes the checks keep per step (their histories).
     pub history_bytes_per_step: f64,
@@ -281,9 +358,9 @@ pub struct Work {
     pub dt: f64,
     /// The snapshots the windowed questions read a step, over the run (see [`Windows`]).
     pub windows: Windows,
-    /// Pairs of a smooth ball and a smooth `Arc` it rides at the start, when the run cuts its
-    /// calls at impacts (sim/impacts.rs): each costs a shape cast against the track a call once
-    /// calls are short ([`TRACK_CAST_CALL_S`]).
+    /// Pairs of a dynamic ball and a fixed `Arc` at the start (a puck riding it, a disc rolling
+    /// on it), when the run cuts its calls at impacts (sim/impacts.rs): each costs a shape cast
+    /// against the track a call once calls are short ([`TRACK_CAST_CALL_S`]).
     pub track_pairs: f64,
     /// Over the pairs of a moving body and a `Polyline` at the start, the polyline's points, when
     /// the run cuts its calls at impacts: each call walks them ([`POLYLINE_FACET_CALL_US`]).
@@ -387,6 +464,12 @@ impl Work {
                 _ => 0.0,
             })
             .sum();
+        // Every step split: planned, joint impulses reconstructed but for blows (measured
+        // 2026-12-07: its smoothness guard kept 8478 of the library's 9654 such steps split), or
+        // a smooth ball riding an arc's circle (sim/arc_split.rs, every step while it rides).
+        let whole_split = set.substepping == Substepping::Split
+            || (set.substeps > 1 && (set.split_at_blows || contacts.arc_rider));
+        let spin_split = set.substeps > 1 && contacts.spinning_ball && set.reads_contact_events;
         Work {
             steps,
             substeps: set.substeps,
@@ -394,16 +477,20 @@ impl Work {
             // A step with a spinning ball in contact, or a smooth ball on an arc's circle, is
             // split as the run goes (sim/contact_points.rs, sim/arc_split.rs): priced so from
             // the start. A level whose joint impulses are reconstructed from one call
-            // (`split_at_blows`, sim/joint_sums.rs) is priced split too: measured 2026-12-07,
-            // its smoothness guard kept 8478 of the library's 9654 such steps split.
-            calls_per_step: if set.substepping == Substepping::Split
-                || (set.substeps > 1 && set.split_at_blows)
-                || (set.substeps > 1
-                    && ((contacts.spinning_ball && set.reads_contact_events) || contacts.arc_rider))
-            {
+            // (`split_at_blows`, sim/joint_sums.rs) is priced split too.
+            calls_per_step: if whole_split || spin_split {
                 set.substeps
             } else {
                 1
+            },
+            // A spinning ball splits a step only while its turn over a call would disturb its
+            // contact: measured 2026-12-07 (`cargo bench --no-default-features --bench budget`,
+            // the calls each report counts) on the library's levels priced split for a spinning
+            // ball alone, 3% to 99% of their steps split, 40% to 50% in the middle.
+            split_share: if whole_split || !spin_split {
+                1.0
+            } else {
+                SPIN_SPLIT_SHARE
             },
             bodies: level.bodies.len(),
             joints: level.joints.len(),
@@ -422,6 +509,19 @@ impl Work {
                 0
             },
             questions: level.questions.len(),
+            linearizations: level
+                .questions
+                .iter()
+                .filter(|q| {
+                    matches!(
+                        q.quantity,
+                        Quantity::PendulumPeriod { .. }
+                            | Quantity::ModePeriod { .. }
+                            | Quantity::SpringPeriod(_)
+                            | Quantity::EquilibriumAngle(_)
+                    )
+                })
+                .count(),
             checks: level.checks.len(),
             history_bytes_per_step,
             f64: precision == crate::level::Precision::F64,
@@ -456,13 +556,34 @@ impl Work {
         }
     }
 
+    /// rapier calls a step, priced: 1 + (calls_per_step - 1) x split_share.
+    pub fn calls(&self) -> f64 {
+        1.0 + (self.calls_per_step as f64 - 1.0) * self.split_share
+    }
+
+    /// The contact pairs as priced: those past [`PAIRS_IN_CACHE`] count [`PAIR_FAR_COST`] each.
+    pub fn priced_pairs(&self) -> f64 {
+        self.pairs.min(PAIRS_IN_CACHE) + (self.pairs - PAIRS_IN_CACHE).max(0.0) * PAIR_FAR_COST
+    }
+
+    /// The joints as priced: [`JOINT_LANE_COST`] each from [`JOINTS_IN_LANES`] on.
+    pub fn priced_joints(&self) -> f64 {
+        let lanes = if self.joints >= JOINTS_IN_LANES {
+            JOINT_LANE_COST
+        } else {
+            1.0
+        };
+        self.joints as f64 * lanes
+    }
+
     /// One step, us.
     pub fn step_us(&self) -> f64 {
-        let rows = self.joints as f64 + self.pairs;
+        let pairs = self.priced_pairs();
+        let rows = self.priced_joints() + pairs;
         let engine = if self.f64 { F64_COST } else { 1.0 };
-        let calls = self.calls_per_step as f64;
+        let calls = self.calls();
         engine
-            * (calls * (CALL_US + self.pairs * PAIR_CALL_US)
+            * (calls * (CALL_US + pairs * PAIR_CALL_US)
                 + self.bodies as f64 * BODY_STEP_US
                 + self.substeps as f64
                     * (SUBSTEP_US
@@ -488,7 +609,9 @@ impl Estimate {
 
     /// The unit costs applied to `work`: the formula docs/cli.md states.
     pub fn price(work: Work, mode: Mode) -> Estimate {
+        let linearize_us = LINEARIZE_US + work.joints as f64 * LINEARIZE_JOINT_US;
         let mut seconds = START_S
+            + (RUN_US + work.linearizations as f64 * linearize_us) * 1e-6
             + work.steps * work.step_us() * 1e-6
             + work.pair_degrees * PAIR_MADE_NS * 1e-9
             + work.facets * FACET_US * 1e-6;
@@ -594,8 +717,7 @@ struct Pairs {
     /// Whether a smooth dynamic `Circle` is in one with a fixed `Arc` (sim/arc_split.rs splits
     /// its steps while it rides the arc's circle).
     arc_rider: bool,
-    /// Pairs of a smooth ball and a smooth `Arc` (riders, which cast against the arc at fine
-    /// steps).
+    /// Pairs of a dynamic ball and a fixed `Arc` (which cast against the arc at fine steps).
     rider_pairs: f64,
     /// Over the pairs of a moving body and a `Polyline`, the polyline's points.
     polyline_facets: f64,
@@ -615,6 +737,10 @@ struct Splits {
     smooth_ball: bool,
     /// A fixed `Arc` without friction.
     smooth_arc: bool,
+    /// A dynamic `Circle`.
+    ball: bool,
+    /// A fixed `Arc`.
+    arc: bool,
     /// A body that is not fixed.
     moving: bool,
     /// A curved track: a shape with facets.
@@ -631,12 +757,13 @@ impl Splits {
         let ball =
             b.kind == BodyKind::Dynamic && matches!(shape, crate::level::Shape::Circle { .. });
         let smooth = !friction || b.friction.unwrap_or(0.0) == 0.0;
+        let arc = b.kind == BodyKind::Fixed && matches!(shape, crate::level::Shape::Arc { .. });
         Splits {
             may_spin: ball && !b.lock_rotation && (friction || b.omega != 0.0),
             smooth_ball: ball && smooth,
-            smooth_arc: b.kind == BodyKind::Fixed
-                && matches!(shape, crate::level::Shape::Arc { .. })
-                && smooth,
+            smooth_arc: arc && smooth,
+            ball,
+            arc,
             moving: b.kind != BodyKind::Fixed,
             curved: shapes::facets(shape) > 0.0,
             polyline_facets: match shape {
@@ -649,6 +776,11 @@ impl Splits {
     /// Whether the pair of `self` and `other` rides the chord contact.
     fn arc_rider(self, other: Splits) -> bool {
         self.smooth_ball && other.smooth_arc || self.smooth_arc && other.smooth_ball
+    }
+
+    /// Whether the pair is a ball on an arc (riding or rolling).
+    fn on_arc(self, other: Splits) -> bool {
+        self.ball && other.arc || self.arc && other.ball
     }
 
     /// Whether the pair is a moving body and a curved track.
@@ -705,7 +837,7 @@ fn contact_pairs(level: &Level, friction: bool, gravity: bool) -> Pairs {
             spinning_ball |= spin_a.may_spin || spin_b.may_spin;
             arc_rider |= spin_a.arc_rider(spin_b);
             if spin_a.on_track(spin_b) {
-                rider_pairs += f64::from(u8::from(spin_a.arc_rider(spin_b)));
+                rider_pairs += f64::from(u8::from(spin_a.on_arc(spin_b)));
                 polyline_facets += spin_a.polyline_facets + spin_b.polyline_facets;
                 on_tracks[if spin_a.moving { i } else { j }] += 1;
             }

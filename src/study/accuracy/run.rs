@@ -137,6 +137,13 @@ pub fn estimated_unit(level: &level::Level) -> f64 {
         ..base.options()
     };
     let work = crate::runner::budget::Work::of(level, &opts, None);
+    // Every step priced split where a spinning ball may split it, as before the run budget's
+    // split share (2026-12-07): the study's windows and caps stay those its figures were
+    // measured with (docs/accuracy.md).
+    let work = crate::runner::budget::Work {
+        split_share: 1.0,
+        ..work
+    };
     work.step_us() * 1e-6 / base.substeps.max(1) as f64
 }
 
