@@ -188,8 +188,11 @@
 //!   planner's nonlinear casts (parry's `nonlinear_shape_cast`, its `closest_point`) the largest
 //!   part; the puck at 1e-5, 0.326 s, priced 1.80x with 15 us. So every dynamic ball on a fixed
 //!   `Arc` at the start is priced a cast from calls of 2.5 us down, 10 us: the disc 1.4x, the
-//!   puck 1.5x; the ring at 4.2e-8 is priced about 585 s, just within the budget (its calls there
-//!   not measured since issue 45's 11 hours).
+//!   puck 1.5x; the ring at 4.2e-8 is priced about 585 s, just within the budget. Its calls
+//!   there, measured the same evening on copies cut to 0.004 s and 0.04 s (0.65 s and 2.97 s of
+//!   CPU, the start dearer than the rest), cost at most 1.7 us: the whole run at most 134 s,
+//!   so the price is 4.4x or more over, on the safe side (issue 45's 11 hours are gone with the
+//!   exact contact).
 //! - [`POLYLINE_FACET_CALL_US`]: a body on a `Polyline` is queried and cast against the
 //!   polyline's points at every call (sim/impacts.rs; an `Arc` is met by its circle). Measured
 //!   2026-12-07 by the bench (the CPU time over the calls the report counts, less the other
@@ -566,14 +569,14 @@ impl Work {
         self.pairs.min(PAIRS_IN_CACHE) + (self.pairs - PAIRS_IN_CACHE).max(0.0) * PAIR_FAR_COST
     }
 
-    /// The joints as priced: [`JOINT_LANE_COST`] each from [`JOINTS_IN_LANES`] on.
+    /// The joints as priced: one each up to [`JOINTS_IN_LANES`], then the larger of that and
+    /// [`JOINT_LANE_COST`] each, so that a joint more never lowers the price (255 joints priced
+    /// 255 and 256 priced 90 would let a larger net pass where a smaller one is refused). The
+    /// nets measured keep their ratios within 0.5x-2x: 414 joints priced 256 read 1.36x (0.77x
+    /// at 0.35 each), 918 and 1734 are priced 0.35 each as before.
     pub fn priced_joints(&self) -> f64 {
-        let lanes = if self.joints >= JOINTS_IN_LANES {
-            JOINT_LANE_COST
-        } else {
-            1.0
-        };
-        self.joints as f64 * lanes
+        let n = self.joints as f64;
+        n.min(JOINTS_IN_LANES as f64).max(n * JOINT_LANE_COST)
     }
 
     /// One step, us.
