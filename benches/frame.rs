@@ -24,6 +24,7 @@ use bevy::prelude::{Rect, Vec2};
 use rigidlab::analysis::energy;
 use rigidlab::analysis::momentum::scene_angular_momentum_about;
 use rigidlab::app::draw::{self, Drawing};
+use rigidlab::app::label_want;
 use rigidlab::app::labels;
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::physics::LiveChecks;
@@ -31,7 +32,6 @@ use rigidlab::app::quantities;
 use rigidlab::app::run::Run;
 use rigidlab::app::scene_lines;
 use rigidlab::app::view::{self, SceneIndex, View};
-use rigidlab::app::{label_want, screen_bodies_within};
 use rigidlab::level;
 use rigidlab::sim::{Options, Simulation};
 use std::path::Path;
@@ -378,7 +378,7 @@ fn emit_anew(drawing: &Drawing, gizmos: &mut GizmoBuffer<DefaultGizmoConfigGroup
     draw::emit(drawing, gizmos);
 }
 
-/// Places `d`'s labels as the window's `paint_labels` does (app/scene.rs), each label's size
+/// Places `d`'s labels by the window's own `place_labels` (app/scene.rs), each label's size
 /// estimated (7 px a character, 16 px high: the bench has no fonts), keeping `last` frame's
 /// places. Returns how many bodies were in the labels' reach.
 fn place_labels(d: &Drawing, view: &View, last: &mut Vec<(Vec2, Rect)>) -> usize {
@@ -390,11 +390,7 @@ fn place_labels(d: &Drawing, view: &View, last: &mut Vec<(Vec2, Rect)>) -> usize
             label_want(l, size, view)
         })
         .collect();
-    let reach = labels::reach(&wants, view.viewport, last);
-    let bodies = screen_bodies_within(d, view, &reach);
-    let rects = labels::place_keeping(&wants, &bodies, view.viewport, last);
-    *last = wants.iter().map(|w| w.home).zip(rects).collect();
-    bodies.len()
+    rigidlab::app::scene::place_labels(d, view, &wants, last).1
 }
 
 /// What the window's line drawing reads in a frame.

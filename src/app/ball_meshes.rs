@@ -27,11 +27,18 @@ const LINE_PX: f64 = 2.0;
 const COM_RING_PX: f64 = 3.0;
 
 /// The smallest ball, in pixels of radius, that gets the mass-center ring and the spoke: the
-/// ring (4 px across its outer edge) then leaves a 2 px band of fill inside the outline. Below
+/// ring (its outer edge 4 px from the center) then leaves a 3 px band of fill inside the
+/// outline (which starts 1 px inside the rim). Below
 /// it a grain shows its fill and a thin rim only: at 2026-12-07's first render of the sand pile
 /// (grains of 1.8 px) the 2 px outline and the 3 px ring covered every grain, and the pile drew
 /// as one dark band.
-const DECORATED_PX: f64 = 8.0;
+pub const DECORATED_PX: f64 = 8.0;
+
+/// The crowd rule, one place for the meshes and the overlays: `moving` bodies (not fixed) make a
+/// crowd when they are more than [`CROWD_BODIES`]; then Some(moving).
+pub fn crowd_of(moving: usize) -> Option<usize> {
+    (moving > CROWD_BODIES).then_some(moving)
+}
 
 /// Which bodies are balls drawn whole by a shared mesh: every `Circle` of a scene of more than
 /// [`CROWD_BODIES`] moving bodies; none otherwise.
@@ -44,7 +51,7 @@ pub fn meshed_balls(level: &Level) -> Vec<bool> {
     level
         .bodies
         .iter()
-        .map(|b| moving > CROWD_BODIES && matches!(b.shape, Some(Shape::Circle { .. })))
+        .map(|b| crowd_of(moving).is_some() && matches!(b.shape, Some(Shape::Circle { .. })))
         .collect()
 }
 

@@ -142,3 +142,48 @@ fn bounds(poly: &[Vec2]) -> Option<(Vec2, Vec2)> {
             .fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::labels::rect_hits_polygon;
+    use proptest::prelude::*;
+
+    /// A regular `n`-gon of radius `r` about `c`: convex, as the placer's bodies are (none for
+    /// n = 0, an empty body).
+    fn ngon(c: Vec2, r: f32, n: usize) -> Vec<Vec2> {
+        (0..n)
+            .map(|k| c + r * Vec2::from_angle(std::f32::consts::TAU * k as f32 / n as f32))
+            .collect()
+    }
+
+    proptest! {
+        /// The grid meets exactly what testing every body meets, so placing labels through it
+        /// changes no place: small bodies and large ones (a tenth are ten times larger),
+        /// empty ones, bodies and rectangles inside the view, across its edges and beyond.
+        #[test]
+        fn the_grid_meets_what_every_body_meets(
+            bodies in prop::collection::vec(
+                (-200.0f32..1200.0, -200.0f32..900.0, 0.5f32..20.0, 0usize..10), 0..300),
+            rects in prop::collection::vec(
+                (-300.0f32..1300.0, -300.0f32..1000.0, 1.0f32..200.0, 1.0f32..60.0), 1..40),
+        ) {
+            let view = Rect::new(0.0, 0.0, 1000.0, 700.0);
+            let polys: Vec<Vec<Vec2>> = bodies
+                .iter()
+                .map(|&(x, y, r, n)| {
+                    let r = if n == 9 { 10.0 * r } else { r };
+                    ngon(Vec2::new(x, y), r, if n < 3 { 0 } else { n })
+                })
+                .collect();
+            let grid = BodyGrid::new(&polys, view, rect_hits_polygon);
+            for &(x, y, w, h) in &rects {
+                let r = Rect::new(x, y, x + w, y + h);
+                let every = polys.iter().filter(|p| rect_hits_polygon(&r, p)).count();
+                prop_assert_eq!(grid.count_up_to(&r, usize::MAX), every, "{:?}", r);
+                prop_assert_eq!(grid.any(&r), every > 0, "{:?}", r);
+                prop_assert_eq!(grid.count_up_to(&r, 0), every.min(1), "{:?}", r);
+            }
+        }
+    }
+}

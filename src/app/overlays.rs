@@ -92,7 +92,7 @@ pub fn crowd(s: &Snapshot) -> Option<usize> {
         .iter()
         .filter(|b| b.kind != BodyKind::Fixed)
         .count();
-    (moving > super::ball_meshes::CROWD_BODIES).then_some(moving)
+    super::ball_meshes::crowd_of(moving)
 }
 
 /// The longest arrow, as a fraction of the scene size (longer ones are clipped, their label is true).

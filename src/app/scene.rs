@@ -176,20 +176,33 @@ fn paint_labels(
         .zip(&galleys)
         .map(|(l, g)| label_want(l, Vec2::new(g.size().x, g.size().y), &view))
         .collect();
-    // Only the bodies within the labels' reach are converted (none without labels).
-    let reach = labels::reach(&wants, view.viewport, &last);
-    let bodies = screen_bodies_within(&d, &view, &reach);
-    let rects = labels::place_keeping(&wants, &bodies, view.viewport, &last);
-    *last = wants
-        .iter()
-        .map(|w| w.home)
-        .zip(rects.iter().copied())
-        .collect();
+    let (rects, _) = place_labels(&d, &view, &wants, &mut last);
     for ((l, galley), r) in d.labels.iter().zip(galleys).zip(rects) {
         painter.rect_filled(egui_rect(r).expand(1.5), 2.0, bg);
         painter.galley(egui::pos2(r.min.x, r.min.y), galley, color32(l.color));
     }
     Ok(())
+}
+
+/// Places the labels that want `wants` among `d`'s bodies, keeping `last` frame's places where
+/// they still fit, and records this frame's places in `last`. Only the bodies within the labels'
+/// reach are converted to the screen (none without labels). Returns each label's box and how
+/// many bodies were in reach (the frame bench reports it).
+pub fn place_labels(
+    d: &Drawing,
+    view: &View,
+    wants: &[labels::Want],
+    last: &mut Vec<(Vec2, Rect)>,
+) -> (Vec<Rect>, usize) {
+    let reach = labels::reach(wants, view.viewport, last);
+    let bodies = screen_bodies_within(d, view, &reach);
+    let rects = labels::place_keeping(wants, &bodies, view.viewport, last);
+    *last = wants
+        .iter()
+        .map(|w| w.home)
+        .zip(rects.iter().copied())
+        .collect();
+    (rects, bodies.len())
 }
 
 /// Where a label wants to be: centered on its point (plus its offset), or pushed out along
