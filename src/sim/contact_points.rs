@@ -438,7 +438,10 @@ pub(crate) struct RoundColliders {
 }
 
 impl RoundColliders {
-    /// The lists, refound when the world's colliders changed in number.
+    /// The lists, refound when the world's colliders changed in number. A collider's shape is
+    /// never swapped in place in `src/sim` (no `set_shape`): the hook and the contact reading
+    /// (`readings.rs`, which asks no shape in a world without balls) rely on it, so a change that
+    /// swaps one must refind the lists.
     pub(crate) fn refresh(&mut self, world: &PhysicsWorld) -> &Self {
         if self.of != world.colliders.len() {
             *self = Self::of(world);
