@@ -39,9 +39,10 @@ done
 # The link-time passes run at the opt-level of the crate being linked, the `rigidlab` binary
 # (src/main.rs), which the profile sets to 3 with the rest of the rigidlab package: all of Bevy
 # was optimised at 3 at the link, inlining it for speed. `-C opt-level=s`, given to the binary
-# alone (`cargo rustc` passes it to the last target only), runs the link at "s" while the rigidlab
-# library keeps its 3 when it compiles (since 2026-12-07: docs/web.md, "A lighter page"): 5%
-# less brotli, but the page's own check of the 30x30 joint grid ran 1.5x longer than at 3.
+# alone (`cargo rustc` passes it to the last target only), runs the link at "s"; the rigidlab
+# library compiles at 3, but the link optimises the whole program once more at "s" (since
+# 2026-12-07: docs/web.md, "A lighter page"): with the folding below 5.96 MB brotli against
+# 6.18 MB at 3, and the page's own check of the 30x30 joint grid ran 1.34x to 1.49x longer.
 # RIGIDLAB_WEB_LINK_OPT=3 builds the faster, larger page.
 link_opt="${RIGIDLAB_WEB_LINK_OPT:-s}"
 CARGO_PROFILE_WEB_LTO=$lto cargo rustc --profile web --target wasm32-unknown-unknown --bin rigidlab -- -C opt-level="$link_opt"
@@ -62,13 +63,21 @@ wasm="$out/rigidlab_bg.wasm"
 # raw size less than these two and made the compressed wasm larger. --detect-features reads the
 # features the wasm uses from its target_features section (reference types for wasm-bindgen's
 # table among them). Without Node (or with RIGIDLAB_WASM_OPT=0) the page is left as it is.
+# binaryen is installed again whenever the installed version is not the locked one, and a failed
+# install (no registry) leaves the page as wasm-bindgen wrote it, larger but whole.
+binaryen_version() { node -p "require('./web/opt/$1').$2" 2>/dev/null || true; }
 if [ "${RIGIDLAB_WASM_OPT:-1}" != 0 ] && command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1; then
-  if [ ! -x web/opt/node_modules/binaryen/bin/wasm-opt ]; then
-    (cd web/opt && npm ci --no-audit --no-fund)
+  want_binaryen=$(binaryen_version package-lock.json "packages['node_modules/binaryen'].version")
+  if [ "$(binaryen_version node_modules/binaryen/package.json version)" != "$want_binaryen" ]; then
+    (cd web/opt && npm ci --no-audit --no-fund) || echo "web/build.sh: npm ci in web/opt failed"
   fi
-  node web/opt/node_modules/binaryen/bin/wasm-opt --detect-features \
-    --duplicate-function-elimination --merge-similar-functions "$wasm" -o "$wasm.opt"
-  mv "$wasm.opt" "$wasm"
+  if [ -n "$want_binaryen" ] && [ "$(binaryen_version node_modules/binaryen/package.json version)" = "$want_binaryen" ]; then
+    node web/opt/node_modules/binaryen/bin/wasm-opt --detect-features \
+      --duplicate-function-elimination --merge-similar-functions "$wasm" -o "$wasm.opt"
+    mv "$wasm.opt" "$wasm"
+  else
+    echo "web/build.sh: binaryen $want_binaryen is not installed in web/opt: wasm-opt not run (the page is larger, still whole)"
+  fi
 else
   echo "web/build.sh: no Node.js and npm (or RIGIDLAB_WASM_OPT=0): wasm-opt not run"
 fi

@@ -1,4 +1,5 @@
-// Physics cost in the page's wasm, variants interleaved: web/test/wasm_cost.mjs DIST... [--rounds N]
+// Physics cost in the page's wasm, variants interleaved:
+//   web/test/wasm_cost.mjs DIST... [--rounds N] [--warmup N]   (LEVELS=a,b,c to choose the levels)
 // opens each DIST's page (served by web/serve.py) with ?check=1 on LEVELS and reads the report's
 // wall_ms (stepping, readings and checks, no drawing), round-robin over the variants, so that a
 // changing load falls on all of them alike. Prints each level's median wall_ms per variant.
@@ -17,12 +18,21 @@ for (let i = 0; i < args.length; i++) {
   else if (args[i] === "--warmup") warmup = Number(args[++i]);
   else dists.push(resolve(args[i]));
 }
+if (dists.length === 0) {
+  console.error("usage: web/test/wasm_cost.mjs DIST... [--rounds N] [--warmup N] (each DIST a folder web/build.sh made)");
+  process.exit(2);
+}
 const LEVELS = (process.env.LEVELS ?? "stress/pyramid_20.ron,kinematics/classic_four_bar.ron,kinetics/physical_pendulum.ron").split(",");
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+// A port each (consecutive: two variants never share one), and each server must still be running
+// when it answers, else another program on its port would be timed in its place.
+const firstPort = 9100 + Math.floor(Math.random() * 800);
 const servers = dists.map((d, k) => {
-  const port = 9100 + k + Math.floor(Math.random() * 800);
+  const port = firstPort + k;
   const p = spawn("python3", [join(root, "web/serve.py"), "--quiet", "--port", String(port), "--dir", d], { stdio: "ignore" });
-  return { d, port, p };
+  const s = { d, port, p, exited: false };
+  p.on("exit", () => { s.exited = true; });
+  return s;
 });
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium", headless: true,
@@ -30,7 +40,11 @@ const browser = await chromium.launch({
 });
 const wall = {};
 try {
-  for (const s of servers) for (let i = 0; i < 50; i++) { try { await fetch(`http://127.0.0.1:${s.port}/`); break; } catch { await sleep(100); } }
+  for (const s of servers) {
+    let up = false;
+    for (let i = 0; i < 50 && !up && !s.exited; i++) { try { await fetch(`http://127.0.0.1:${s.port}/`); up = true; } catch { await sleep(100); } }
+    if (!up || s.exited) throw new Error(`${s.d}: its server on port ${s.port} did not start (port taken?)`);
+  }
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   for (let r = 0; r < warmup + rounds; r++) {
     for (const s of servers) {
