@@ -171,9 +171,17 @@ impl Scales {
 pub fn crowd_note(ov: &Overlays, s: &Snapshot) -> Option<String> {
     let n = crowd(s)?;
     let per_body = ov.velocity || ov.acceleration || ov.trails;
-    (per_body && !ov.every_body).then(|| match ov.selected {
-        Some(_) => format!("trails and arrows: the selected body only (a crowd of {n})"),
-        None => format!("trails and arrows: click a body (a crowd of {n}: one at a time)"),
+    // A fixed body selected has no trail or arrow to show: the note asks for a moving one.
+    let moving_selected = ov
+        .selected
+        .and_then(|i| s.bodies.get(i))
+        .is_some_and(|b| b.kind != BodyKind::Fixed);
+    (per_body && !ov.every_body).then(|| {
+        if moving_selected {
+            format!("trails and arrows: the selected body only (a crowd of {n})")
+        } else {
+            format!("trails and arrows: click a moving body (a crowd of {n}: one at a time)")
+        }
     })
 }
 

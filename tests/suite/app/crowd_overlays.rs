@@ -110,6 +110,11 @@ fn a_crowd_draws_trails_and_arrows_for_the_selected_body_only() {
         (0, 0, 0),
         "a fixed body moves not"
     );
+    // So with the floor selected the note still asks for a moving body, as with none.
+    let asks = overlays::crowd_note(&floor, run.snapshot()).expect("the window says why");
+    assert!(asks.contains("click a moving body"), "{asks}");
+    let told = overlays::crowd_note(&selected, run.snapshot()).expect("the window says why");
+    assert!(told.contains("the selected body only"), "{told}");
     let every = Overlays {
         every_body: true,
         ..per_body_on()
