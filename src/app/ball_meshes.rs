@@ -34,24 +34,22 @@ const COM_RING_PX: f64 = 3.0;
 /// as one dark band.
 pub const DECORATED_PX: f64 = 8.0;
 
-/// The crowd rule, one place for the meshes and the overlays: `moving` bodies (not fixed) make a
-/// crowd when they are more than [`CROWD_BODIES`]; then Some(moving).
-pub fn crowd_of(moving: usize) -> Option<usize> {
+/// The crowd rule, one place for the meshes (from the level) and the overlays (from the
+/// snapshot): the bodies of these `kinds` that are not fixed make a crowd when they are more
+/// than [`CROWD_BODIES`]; then Some(their number).
+pub fn crowd_of(kinds: impl IntoIterator<Item = BodyKind>) -> Option<usize> {
+    let moving = kinds.into_iter().filter(|k| *k != BodyKind::Fixed).count();
     (moving > CROWD_BODIES).then_some(moving)
 }
 
 /// Which bodies are balls drawn whole by a shared mesh: every `Circle` of a scene of more than
 /// [`CROWD_BODIES`] moving bodies; none otherwise.
 pub fn meshed_balls(level: &Level) -> Vec<bool> {
-    let moving = level
-        .bodies
-        .iter()
-        .filter(|b| b.kind != BodyKind::Fixed)
-        .count();
+    let crowd = crowd_of(level.bodies.iter().map(|b| b.kind)).is_some();
     level
         .bodies
         .iter()
-        .map(|b| crowd_of(moving).is_some() && matches!(b.shape, Some(Shape::Circle { .. })))
+        .map(|b| crowd && matches!(b.shape, Some(Shape::Circle { .. })))
         .collect()
 }
 

@@ -83,16 +83,12 @@ const FEW: usize = 4;
 /// The number of moving bodies when the scene is a crowd (more than
 /// [`CROWD_BODIES`](super::ball_meshes::CROWD_BODIES), where its balls are drawn by shared
 /// meshes): then the per-body overlays (trails, velocity and acceleration arrows) are drawn for
-/// the selected body only, unless [`Overlays::every_body`] asks for all. Every grain of a 10,000-grain pile with its two arrows and its trail
-/// made 30,000 lines a frame, 16 ms of drawing, and no single one could be read
-/// (docs/benchmarks.md, "10,000 bodies"). None for a smaller scene.
+/// the selected body only, unless [`Overlays::every_body`] asks for all. Every grain of a
+/// 10,000-grain pile with its two arrows and its trail made 30,000 lines a frame, 16 ms of
+/// drawing, and no single one could be read (docs/benchmarks.md, "10,000 bodies"). None for a
+/// smaller scene.
 pub fn crowd(s: &Snapshot) -> Option<usize> {
-    let moving = s
-        .bodies
-        .iter()
-        .filter(|b| b.kind != BodyKind::Fixed)
-        .count();
-    super::ball_meshes::crowd_of(moving)
+    super::ball_meshes::crowd_of(s.bodies.iter().map(|b| b.kind))
 }
 
 /// The longest arrow, as a fraction of the scene size (longer ones are clipped, their label is true).
