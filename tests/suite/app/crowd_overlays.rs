@@ -48,17 +48,7 @@ fn discs(n: usize, steps: usize) -> (Run, View) {
 /// bodies they push).
 fn draw(run: &Run, ov: &Overlays, v: &View) -> Drawing {
     let outlines = view::body_outlines(&run.sim.level);
-    let index = view::SceneIndex::of(&run.sim.level);
-    let mut d = Drawing::default();
-    d.clear(v.m_per_px);
-    rigidlab::app::scene_lines::scene_lines(
-        &run.sim.level,
-        &outlines,
-        &index,
-        run.snapshot(),
-        v.m_per_px,
-        &mut d,
-    );
+    let mut d = crate::common::app::scene_drawing(run, &outlines, v);
     let scales = Scales::of(run.snapshot(), v.scene_size(), 1.0, v.m_per_px);
     overlays::build(ov, run, &outlines, &scales, &mut d);
     d

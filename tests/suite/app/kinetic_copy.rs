@@ -42,7 +42,6 @@ fn counts(file: &Path) -> (usize, usize, usize, usize) {
     };
     v.fit_to(&view::motion_bounds(&scene, &Options::default()));
     let outlines = view::body_outlines(&phys.sim.level);
-    let index = view::SceneIndex::of(&phys.sim.level);
     let draw = |kinetic: bool| {
         let ov = Overlays {
             velocity: true,
@@ -51,16 +50,7 @@ fn counts(file: &Path) -> (usize, usize, usize, usize) {
             labels: true,
             ..Default::default()
         };
-        let mut d = Drawing::default();
-        d.clear(v.m_per_px);
-        rigidlab::app::scene_lines::scene_lines(
-            &phys.sim.level,
-            &outlines,
-            &index,
-            phys.snapshot(),
-            v.m_per_px,
-            &mut d,
-        );
+        let mut d = crate::common::app::scene_drawing(&phys, &outlines, &v);
         let mut scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
         let vp = v.viewport;
         let (a, b) = (

@@ -4,7 +4,6 @@
 //! proportional font measures 5.5 to 7.5 px a character), so the test needs no window.
 
 use bevy::math::{Rect, Vec2};
-use rigidlab::app::draw::Drawing;
 use rigidlab::app::labels::{self, overlap_area, rect_hits_polygon};
 use rigidlab::app::overlays::{self, Overlays, Scales};
 use rigidlab::app::view::{self, View};
@@ -41,17 +40,7 @@ fn placed(file: &Path) -> (Vec<Rect>, Vec<Vec<Vec2>>, Rect) {
         ..Default::default()
     };
     let outlines = view::body_outlines(&phys.sim.level);
-    let index = view::SceneIndex::of(&phys.sim.level);
-    let mut d = Drawing::default();
-    d.clear(v.m_per_px);
-    rigidlab::app::scene_lines::scene_lines(
-        &phys.sim.level,
-        &outlines,
-        &index,
-        phys.snapshot(),
-        v.m_per_px,
-        &mut d,
-    );
+    let mut d = crate::common::app::scene_drawing(&phys, &outlines, &v);
     let mut scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
     let vp = v.viewport;
     let (a, b) = (
@@ -273,23 +262,13 @@ fn labels_on_a_running_level_hold_their_places() {
         ..Default::default()
     };
     let outlines = view::body_outlines(&phys.sim.level);
-    let index = view::SceneIndex::of(&phys.sim.level);
     let mut last: Vec<(Vec2, Rect)> = Vec::new();
     let vp = v.viewport;
     let (mut moves, mut jumps, mut calm_jumps) = (0usize, 0usize, 0usize);
     let mut worst = 0.0f32;
     for _ in 0..120 {
         phys.advance();
-        let mut d = Drawing::default();
-        d.clear(v.m_per_px);
-        rigidlab::app::scene_lines::scene_lines(
-            &phys.sim.level,
-            &outlines,
-            &index,
-            phys.snapshot(),
-            v.m_per_px,
-            &mut d,
-        );
+        let mut d = crate::common::app::scene_drawing(&phys, &outlines, &v);
         let scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
         overlays::build(&ov, &phys, &outlines, &scales, &mut d);
         let wants: Vec<labels::Want> = d

@@ -66,17 +66,7 @@ fn drawn_in(file: &Path, steps: usize, viewport: Rect) -> Drawn {
     let ov = Overlays::default();
     assert!(ov.names, "the names are on when a level opens");
     let outlines = view::body_outlines(&phys.sim.level);
-    let index = view::SceneIndex::of(&phys.sim.level);
-    let mut d = Drawing::default();
-    d.clear(v.m_per_px);
-    rigidlab::app::scene_lines::scene_lines(
-        &phys.sim.level,
-        &outlines,
-        &index,
-        phys.snapshot(),
-        v.m_per_px,
-        &mut d,
-    );
+    let mut d = crate::common::app::scene_drawing(&phys, &outlines, &v);
     let scales = Scales::of(phys.snapshot(), v.scene_size(), 1.0, v.m_per_px);
     overlays::build(&ov, &phys, &outlines, &scales, &mut d);
     let wants: Vec<labels::Want> = d

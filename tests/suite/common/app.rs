@@ -230,3 +230,24 @@ pub fn click(at: egui::Pos2, pressed: bool) -> Vec<egui::Event> {
         vec![button]
     }
 }
+
+/// A frame's drawing begun as the window's draw step begins it: cleared at `v`'s scale, then
+/// the scene's own lines (bodies, joints, tracks) of `run` as it stands, from its `outlines`
+/// (`view::body_outlines`, which the overlays read too).
+pub fn scene_drawing(
+    run: &Run,
+    outlines: &[rigidlab::app::geometry::Outline],
+    v: &View,
+) -> rigidlab::app::draw::Drawing {
+    let mut d = rigidlab::app::draw::Drawing::default();
+    d.clear(v.m_per_px);
+    rigidlab::app::scene_lines::scene_lines(
+        &run.sim.level,
+        outlines,
+        &rigidlab::app::view::SceneIndex::of(&run.sim.level),
+        run.snapshot(),
+        v.m_per_px,
+        &mut d,
+    );
+    d
+}

@@ -130,22 +130,12 @@ fn ten_thousand_questions() -> String {
 #[test]
 fn the_adversarial_levels_that_fit_are_priced_by_what_they_hold() {
     // 10^4 questions: 600 steps x 10^4 x 0.15 us = 0.9 s; 10^4 x 3.4 KB = 33 MB.
-    let q = Estimate::of(
-        &parse(&ten_thousand_questions()).level,
-        &Options::default(),
-        Mode::Check,
-        None,
-    );
+    let q = as_checked(&parse(&ten_thousand_questions()).level);
     assert_eq!(q.work.questions, 10_000);
     assert!(q.fits() && q.seconds > 0.9 && q.megabytes > 60.0, "{q:?}");
     // 1000 discs at one point, 1 m above the ground: every pair of discs overlaps, 499,500 of
     // them, each disc in 999: making them dominates.
-    let d = Estimate::of(
-        &load("tests/budget/discs_1000_one_point.ron").level,
-        &Options::default(),
-        Mode::Check,
-        None,
-    );
+    let d = as_checked(&load("tests/budget/discs_1000_one_point.ron").level);
     assert_eq!(d.work.pairs, 499_500.0);
     assert_eq!(d.work.pair_degrees, 1000.0 * 999.0 * 999.0);
     assert!(
@@ -153,24 +143,14 @@ fn the_adversarial_levels_that_fit_are_priced_by_what_they_hold() {
         "{d:?}"
     );
     // 1000 substeps of a spring are split: 1000 rapier calls a step.
-    let s = Estimate::of(
-        &load("tests/budget/spring_1000_substeps.ron").level,
-        &Options::default(),
-        Mode::Check,
-        None,
-    );
+    let s = as_checked(&load("tests/budget/spring_1000_substeps.ron").level);
     assert_eq!((s.work.substeps, s.work.calls_per_step), (1000, 1000));
 }
 
 #[test]
 fn the_estimate_is_the_formula_docs_cli_md_states() {
     // docs/cli.md, "The cost budget": levels/energy/block_friction_work.ron.
-    let e = Estimate::of(
-        &load("levels/energy/block_friction_work.ron").level,
-        &Options::default(),
-        Mode::Check,
-        None,
-    );
+    let e = as_checked(&load("levels/energy/block_friction_work.ron").level);
     let w: Work = e.work;
     assert_eq!(
         (
@@ -342,7 +322,7 @@ fn measure_estimates() {
         .split_whitespace()
     {
         let scene = load(arg);
-        let e = Estimate::of(&scene.level, &Options::default(), Mode::Check, None);
+        let e = as_checked(&scene.level);
         let c0 = thread_cpu_s();
         for _ in 0..reps {
             rigidlab::runner::run_graded(
@@ -401,7 +381,7 @@ fn the_estimate_counts_the_calls_a_run_makes() {
         ),
     ] {
         let scene = load(file);
-        let w = Estimate::of(&scene.level, &Options::default(), Mode::Check, None).work;
+        let w = as_checked(&scene.level).work;
         let (priced, counted) = (w.steps * w.calls(), counted_calls(&scene));
         assert!(
             (priced / counted - 1.0).abs() <= 0.2,
@@ -448,6 +428,11 @@ fn a_curved_tracks_facets_are_priced_once() {
 }
 
 /// The estimate at `dt` of a level.
+/// The estimate of `level` as `rigidlab check` makes it, at the level's own settings.
+fn as_checked(level: &rigidlab::level::Level) -> Estimate {
+    Estimate::of(level, &Options::default(), Mode::Check, None)
+}
+
 fn at_dt(level: &rigidlab::level::Level, dt: f64) -> Estimate {
     Estimate::of(
         level,
@@ -498,18 +483,8 @@ fn a_windowed_question_read_at_a_time_is_priced_to_that_time() {
             "Level(title: \"window\", effects: [gravity, contacts],\n world: (dt: 0.001, substeps: 1, duration: 1.0),\n bodies: [(name: \"floor\", kind: fixed, shape: Box(width: 2.0, height: 0.2), position: (0.0, -0.1)), (name: \"box\", shape: Box(width: 0.2, height: 0.2), mass: 1.0, position: (0.0, 0.1))],\n questions: [(id: \"N\", ask: \"N\", unit: \"N\", expected: 9.81, tolerance: 0.01, quantity: ContactForceFrom(body: \"box\", other: \"floor\", window: 0.02), at: {at}, why: \"budget test\")],\n)\n"
         )
     };
-    let end = Estimate::of(
-        &parse(&text("End")).level,
-        &Options::default(),
-        Mode::Check,
-        None,
-    );
-    let early = Estimate::of(
-        &parse(&text("Time(0.24)")).level,
-        &Options::default(),
-        Mode::Check,
-        None,
-    );
+    let end = as_checked(&parse(&text("End")).level);
+    let early = as_checked(&parse(&text("Time(0.24)")).level);
     // 21 snapshots a step; to t = 0.24 + 0.01 of 1 s: a quarter of the run.
     assert_eq!(end.work.windows.contact, 21.0);
     assert!(
@@ -581,8 +556,7 @@ fn a_ball_on_an_arc_is_priced_its_casts_at_fine_steps() {
 /// ramp-floor-loops at 1.78x to 1.84x. A bowl, a single `Arc`, has none.
 #[test]
 fn a_second_curved_track_is_priced_at_every_call() {
-    let work =
-        |file: &str| Estimate::of(&load(file).level, &Options::default(), Mode::Check, None).work;
+    let work = |file: &str| as_checked(&load(file).level).work;
     let w = work("tests/newuser/curved/n7_01_loop_min_height.ron");
     assert_eq!(w.other_tracks, 1.0);
     let without = Work {
@@ -623,9 +597,7 @@ fn loose_bodies_are_priced_the_pairs_of_the_heap_they_make() {
         ))
         .level
     };
-    let work = |level: &rigidlab::level::Level| {
-        Estimate::of(level, &Options::default(), Mode::Check, None).work
-    };
+    let work = |level: &rigidlab::level::Level| as_checked(level).work;
     for (cols, rows) in [(1, 1), (10, 1), (50, 20)] {
         let n = (cols * rows) as f64;
         let w = work(&grains(cols, rows, "gravity, contacts, friction"));
@@ -671,7 +643,7 @@ fn loose_bodies_are_priced_the_pairs_of_the_heap_they_make() {
 #[test]
 fn a_polylines_points_are_priced_at_every_call() {
     let loop_ = load("tests/newuser/curved/n12_01a_loop_least_release_height.ron").level;
-    let w = Estimate::of(&loop_, &Options::default(), Mode::Check, None).work;
+    let w = as_checked(&loop_).work;
     assert_eq!((w.polyline_facets, w.facets), (6150.0, 6150.0));
     let without = Work {
         polyline_facets: 0.0,
@@ -692,7 +664,7 @@ fn a_polylines_points_are_priced_at_every_call() {
     assert!((polyline_s(&e2) / polyline_s(&e1) - 2.0).abs() < 1e-3);
     // Two pucks, each on its own cycloid: each pair pays its polyline's points.
     let two = load("tests/newuser/curved/n9_07_two_pucks_on_cycloid_tracks.ron").level;
-    let w2 = Estimate::of(&two, &Options::default(), Mode::Check, None).work;
+    let w2 = as_checked(&two).work;
     assert_eq!((w2.polyline_facets, w2.facets), (8002.0, 8002.0));
 }
 
@@ -704,7 +676,7 @@ fn a_polylines_points_are_priced_at_every_call() {
 #[test]
 fn a_linearizing_question_is_priced_once_by_its_joints() {
     let cart = load("levels/kinetics/linearized_pendulum_on_cart.ron").level;
-    let e = Estimate::of(&cart, &Options::default(), Mode::Check, None);
+    let e = as_checked(&cart);
     assert_eq!((e.work.linearizations, e.work.joints), (1, 2));
     let without = Estimate::price(
         Work {
@@ -734,11 +706,11 @@ fn a_linearizing_question_is_priced_once_by_its_joints() {
 #[test]
 fn a_spinning_balls_steps_are_priced_split_at_their_share() {
     let wheel = load("tests/newuser/impacts/wheel_curb_gap_1mm.ron").level;
-    let w = Estimate::of(&wheel, &Options::default(), Mode::Check, None).work;
+    let w = as_checked(&wheel).work;
     assert_eq!((w.calls_per_step, w.split_share), (4, 0.5));
     assert!((w.calls() - 2.5).abs() < 1e-12);
     let puck = load("tests/newuser/curved/n13_05_ball_in_vertical_ring.ron").level;
-    let p = Estimate::of(&puck, &Options::default(), Mode::Check, None).work;
+    let p = as_checked(&puck).work;
     assert_eq!((p.calls_per_step, p.split_share), (4, 1.0));
 }
 
@@ -753,11 +725,11 @@ fn a_spinning_balls_steps_are_priced_split_at_their_share() {
 #[test]
 fn many_joints_are_priced_in_the_solvers_lanes() {
     let grid = load("levels/stress/joint_grid_30.ron").level;
-    let w = Estimate::of(&grid, &Options::default(), Mode::Check, None).work;
+    let w = as_checked(&grid).work;
     assert_eq!(w.joints, 1734);
     assert!((w.priced_joints() - 1734.0 * budget::JOINT_LANE_COST).abs() < 1e-9);
     let bridge = load("levels/stress/bridge_80.ron").level;
-    let b = Estimate::of(&bridge, &Options::default(), Mode::Check, None).work;
+    let b = as_checked(&bridge).work;
     assert_eq!(b.priced_joints(), 81.0);
     // A joint more never lowers the price, across the step into the lanes too.
     let price = |joints: usize| budget::Work { joints, ..w }.priced_joints();
