@@ -135,7 +135,7 @@ impl<'a> BodyGrid<'a> {
 }
 
 /// A polygon's box (lower and upper corners); None when it has no point.
-fn bounds(poly: &[Vec2]) -> Option<(Vec2, Vec2)> {
+pub fn bounds(poly: &[Vec2]) -> Option<(Vec2, Vec2)> {
     let first = *poly.first()?;
     Some(
         poly.iter()

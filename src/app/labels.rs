@@ -10,7 +10,7 @@
 //!
 //! From frame to frame a label keeps its spot while the spot stays free ([`place_keeping`]).
 
-use super::label_grid::BodyGrid;
+use super::label_grid::{self, BodyGrid};
 use bevy::math::{Rect, Vec2};
 
 /// A label to place: its preferred top-left corner and its size, logical pixels.
@@ -174,12 +174,9 @@ pub fn reach(wants: &[Want], view: Rect, previous: &[(Vec2, Rect)]) -> Vec<Rect>
 /// Whether polygon `poly` lies apart from `r` along x or y (touching counts as apart, as in
 /// [`rect_hits_polygon`]): then it meets no rectangle inside `r`.
 pub fn apart(r: &Rect, poly: &[Vec2]) -> bool {
-    let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
-    for p in poly {
-        lo = lo.min(*p);
-        hi = hi.max(*p);
-    }
-    poly.is_empty() || hi.x <= r.min.x || r.max.x <= lo.x || hi.y <= r.min.y || r.max.y <= lo.y
+    label_grid::bounds(poly).is_none_or(|(lo, hi)| {
+        hi.x <= r.min.x || r.max.x <= lo.x || hi.y <= r.min.y || r.max.y <= lo.y
+    })
 }
 
 /// `r` moved (not resized) to lie inside `view` where it fits.
