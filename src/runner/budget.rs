@@ -209,7 +209,9 @@
 //! - [`RENDER_S`], [`RENDER_MB`]: `render` of free_fall at 0.5 s (Vulkan, lavapipe): 0.81 s, 222 MB.
 
 use crate::level::shape as shapes;
-use crate::level::{BodyKind, CheckKind, Effect, Level, LevelError, Quantity, When};
+use crate::level::{
+    BodyKind, CheckKind, Effect, Level, LevelError, Quantity, QuantityFamily, When,
+};
 use crate::sim::{Options, Settings, Substepping};
 use std::path::Path;
 
@@ -512,18 +514,12 @@ impl Work {
                 0
             },
             questions: level.questions.len(),
+            // Every quantity of the periods family (questions/periods.rs) linearizes the
+            // mechanism once.
             linearizations: level
                 .questions
                 .iter()
-                .filter(|q| {
-                    matches!(
-                        q.quantity,
-                        Quantity::PendulumPeriod { .. }
-                            | Quantity::ModePeriod { .. }
-                            | Quantity::SpringPeriod(_)
-                            | Quantity::EquilibriumAngle(_)
-                    )
-                })
+                .filter(|q| q.quantity.family() == QuantityFamily::Periods)
                 .count(),
             checks: level.checks.len(),
             history_bytes_per_step,
