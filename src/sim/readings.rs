@@ -1,6 +1,7 @@
 //! Reading the engine into the snapshot: bodies, contacts and joints after a rapier call, and
 //! the sums of several calls' impulses over one step (split substeps).
 
+use super::rapier::geometry::Contact;
 use super::rapier::prelude::*;
 use super::world::{to_d, wrap_pi, Simulation};
 use super::{build, joints};
@@ -67,22 +68,34 @@ impl Simulation {
 
     /// Reads the contacts; `local`: with each point's material points in its bodies' frames
     /// (`ContactPoint::local`), for a step of several rapier calls (see `place_at_step_end`).
+    ///
+    /// The common case, a world without balls read at a step's end, has a loop of its own
+    /// ([`plain_point`]): no ball's radius and no frame is asked or branched on a point.
     pub(super) fn read_contacts_with(&mut self, local: bool) {
-        // Overwrite the previous step's entries in place: no allocation per manifold in steady state.
-        let contacts = &mut self.snapshot.contacts;
-        let mut n = 0;
         // A world without balls asks no collider its shape (two dynamic calls a pair, 1% of
         // rapier's step on a 200-box pile, callgrind 2026-12-07).
         let balls = !self.round_colliders.refresh(&self.world).balls.is_empty();
+        let (colliders, bodies) = (&self.world.colliders, &self.world.bodies);
+        // Overwrite the previous step's entries in place: no allocation per manifold in steady state.
+        let contacts = &mut self.snapshot.contacts;
+        let mut n = 0;
         for pair in self.world.narrow_phase.contact_pairs() {
-            if !pair.has_any_active_contact() {
+            // Only a rigid pair has manifolds (`ContactPair::manifolds` is empty for two soft
+            // surfaces, which rigidlab never builds). rapier's `has_any_active_contact`, read
+            // from the fields: its accessors are calls across the crate, one a pair.
+            let PairContacts::Rigid(rigid) = &pair.contacts else {
+                continue;
+            };
+            let solver = if rigid.solver_clusters.is_empty() {
+                &rigid.manifolds
+            } else {
+                &rigid.solver_clusters
+            };
+            if solver.iter().all(|m| m.data.solver_contacts.is_empty()) {
                 continue;
             }
             // Colliders carry their body's index in user_data (set when the world is built).
-            let (c1, c2) = (
-                &self.world.colliders[pair.collider1],
-                &self.world.colliders[pair.collider2],
-            );
+            let (c1, c2) = (&colliders[pair.collider1], &colliders[pair.collider2]);
             let (b1, b2) = (c1.user_data as usize, c2.user_data as usize);
             let (pose1, pose2) = (*c1.position(), *c2.position());
             let (r1, r2) = if balls {
@@ -90,14 +103,13 @@ impl Simulation {
             } else {
                 (None, None)
             };
-            let body_pose = |c: &Collider| {
-                c.parent()
-                    .map_or(Pose::IDENTITY, |h| *self.world.bodies[h].position())
-            };
+            let body_pose =
+                |c: &Collider| c.parent().map_or(Pose::IDENTITY, |h| *bodies[h].position());
             // The frames only for a step of several calls, the rest of the pair's reading
             // shared by both.
             let frames = local.then(|| (body_pose(c1).inverse(), body_pose(c2).inverse()));
-            for m in pair.manifolds() {
+            let plain = r1.is_none() && r2.is_none() && frames.is_none();
+            for m in &rigid.manifolds {
                 if m.points.is_empty() {
                     continue;
                 }
@@ -116,6 +128,14 @@ impl Simulation {
                 c.normal = to_d(m.data.normal);
                 c.points.clear();
                 let normal = m.data.normal;
+                if plain {
+                    c.points.extend(
+                        m.points
+                            .iter()
+                            .map(|pt| plain_point(pt, &pose1, &pose2, normal)),
+                    );
+                    continue;
+                }
                 c.points.extend(m.points.iter().map(|pt| {
                     // From the current poses: rapier recycles contacts, and a recycled point
                     // keeps the distance of its last full update (a 9 mm overlap read as 0).
@@ -126,13 +146,9 @@ impl Simulation {
                         surface_point(r2, pose2 * pt.local_p2, &pose2, -normal),
                     );
                     ContactPoint {
-                        point: to_d(material1),
-                        distance: (s2 - s1).dot(normal) as f64,
-                        normal_impulse: pt.data.impulse as f64,
-                        tangent_impulse: pt.data.tangent_impulse[0] as f64,
-                        arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
                         local: frames
                             .map(|(frame1, frame2)| (to_d(frame1 * s1), to_d(frame2 * s2))),
+                        ..contact_point(pt, material1, (s2 - s1).dot(normal))
                     }
                 }));
             }
@@ -390,6 +406,29 @@ fn surface_point(
     match ball_radius {
         Some(r) => pose.translation + outward * r,
         None => material,
+    }
+}
+
+/// A point of a contact between two shapes neither of which is a ball, read at a step's end:
+/// `read_contacts_with`'s general reading with `surface_point` the material point and no
+/// frames, the same operations in the same order.
+#[inline]
+fn plain_point(pt: &Contact, pose1: &Pose, pose2: &Pose, normal: Vector) -> ContactPoint {
+    let (s1, s2) = (*pose1 * pt.local_p1, *pose2 * pt.local_p2);
+    contact_point(pt, s1, (s2 - s1).dot(normal))
+}
+
+/// A contact point from rapier's: its point on body1 (`material1`, world axes), the
+/// separation along the normal, the impulses and the solver's lever arms; no frames.
+#[inline]
+fn contact_point(pt: &Contact, material1: Vector, distance: Real) -> ContactPoint {
+    ContactPoint {
+        point: to_d(material1),
+        distance: distance as f64,
+        normal_impulse: pt.data.impulse as f64,
+        tangent_impulse: pt.data.tangent_impulse[0] as f64,
+        arms: Some((to_d(pt.data.solver_dp1), to_d(pt.data.solver_dp2))),
+        local: None,
     }
 }
 
