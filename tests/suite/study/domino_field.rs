@@ -6,7 +6,8 @@
 //! shelf, none touching, the push past the tipping energy, the wave able to pass) and the run
 //! budget lets `check` run it; the first two rows of the same level (400 dominoes, 12 s, a few
 //! seconds of CPU) run headless and pass the case's criteria, every domino down, and end at the
-//! angles the geometry gives. Slow, `#[ignore]`d: the whole field, whose run takes longer than a
+//! angles the geometry gives; one row with a domino lifted out stops at the gap and fails the
+//! case, the 99 beyond it standing. Slow, `#[ignore]`d: the whole field, whose run takes longer than a
 //! test may (`cargo test --release --test suite -- study::domino_field --ignored`; `rigidlab
 //! study stability domino_field` runs it with its criteria).
 //!
@@ -203,6 +204,30 @@ fn two_rows_of_the_field_fall_to_their_ends_at_the_leaning_angle() {
             (p / g.h).atan().to_degrees()
         );
     }
+}
+
+#[test]
+fn a_gap_wider_than_a_domino_stops_the_wave_and_fails_the_case() {
+    // The criterion can fail: take one row and lift out its 101st domino. The 100th, falling,
+    // lies flat from its pivot to a height h further, short of the 102nd's back face 2d - t
+    // away (2d - t = 5.5 cm > h = 5 cm), so the 99 dominoes past the gap must stand.
+    let mut scene = first_rows(1);
+    let g = DominoGeometry::of(&scene);
+    assert!(2.0 * g.d - g.t > g.h);
+    let gone = rows(&scene)[0][100];
+    scene.level.bodies.remove(gone);
+    let spec = st::spec("domino_field").expect("cases.rs has the domino field");
+    let r = st::run(
+        &scene,
+        &spec,
+        &st::Settings::recorded(&scene, &spec),
+        None,
+        None,
+    );
+    let toppled = r.criterion("toppled").expect("toppled is judged");
+    assert!(!r.passed && !toppled.passed, "{toppled:?}");
+    assert_eq!(r.figure("standing_count"), Some(99.0));
+    assert_eq!(r.figure("toppled_count"), Some(100.0));
 }
 
 #[test]
