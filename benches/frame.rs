@@ -10,13 +10,16 @@
 //! share of the frame; and, stepped beside it every frame in the same run, rapier's plain step
 //! (`PhysicsWorld::step`) on a second copy of the same world, which the frame cannot beat
 //! (`--bench runner` compares rigidlab's stepping with it in interleaved blocks).
-//! `cargo bench --bench frame -- 1000` or `-- 10000` runs one scene.
+//! `cargo bench --bench frame -- 1000`, `-- 10000` or `-- dominoes` runs one scene.
 //!
-//! Scenes, both with gravity, contacts and friction, dt = 1/60 s, 4 substeps; frames 60..360 are
+//! Scenes, all with gravity, contacts and friction, dt = 1/60 s, 4 substeps; frames 60..360 are
 //! measured, while the pile forms and settles:
 //! - 1,000 discs (r = 5 cm, 40 x 25 grid) dropped into a 10 m wide box; goal 8 ms (issue 15);
 //! - levels/stress/sand_pile.ron: 10,000 grains (discs, r = 5 cm, 250 x 40 grid) dropped into a
-//!   30 m bin; goal 16 ms, a 60 Hz frame (issue 45).
+//!   30 m bin; goal 16 ms, a 60 Hz frame (issue 45);
+//! - levels/stress/domino_field.ron: 10,000 dominoes (5 cm x 1 cm) in 50 rows on shelves, the
+//!   first of each row pushed, `sleeping` declared; frames 150..450 (2.5 s to 7.5 s) while the
+//!   waves run; goal 16 ms (issue 45). `cargo bench --bench frame -- dominoes` runs it alone.
 
 use bevy::gizmos::config::DefaultGizmoConfigGroup;
 use bevy::gizmos::gizmos::GizmoBuffer;
@@ -96,6 +99,14 @@ const GOAL_MS: f64 = 8.0;
 /// The 10,000-body scene and its goal: a frame at 60 Hz.
 const STRESS_LEVEL: &str = "levels/stress/sand_pile.ron";
 const STRESS_GOAL_MS: f64 = 16.0;
+/// The other 10,000-body scene, and the frames measured there: from 2.5 s, when the dominoes
+/// the wave has not reached are asleep (rapier puts a body to sleep after 0.5 s still), to
+/// 7.5 s, while the wave runs (it reaches the rows' ends at 10.6 s). The fallen dominoes stay
+/// awake with their row's front (rapier sleeps an island whole): about 2,400 bodies move at
+/// 2.5 s, 7,100 at 7.5 s.
+const DOMINO_LEVEL: &str = "levels/stress/domino_field.ron";
+const DOMINO_WARMUP: usize = 150;
+const DOMINO_FRAMES: usize = 300;
 /// What the drawing may take of a frame (issue 45: the 10,000-body frame's drawing and gizmo
 /// vertices within 3 ms, leaving the rest of the 16 ms to the physics; the labels' placement,
 /// timed since 2026-12-07, counts in it too).
@@ -126,14 +137,22 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 fn main() {
-    // `cargo bench` passes `--bench`; a number picks one scene by its body count.
-    let only: Option<usize> = std::env::args().skip(1).find_map(|a| a.parse().ok());
-    if only.is_none_or(|n| n == BODIES) {
-        measure(scene(), GOAL_MS);
+    // `cargo bench` passes `--bench`; a number picks one scene by its body count, `dominoes` the
+    // domino field.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let only: Option<usize> = args.iter().find_map(|a| a.parse().ok());
+    let dominoes = args.iter().any(|a| a == "dominoes");
+    let all = only.is_none() && !dominoes;
+    if all || only == Some(BODIES) {
+        measure(scene(), GOAL_MS, WARMUP, FRAMES);
     }
-    if only.is_none_or(|n| n == 10_000) {
+    if all || only == Some(10_000) {
         let stress = level::load(Path::new(STRESS_LEVEL)).unwrap_or_else(|e| panic!("{e}"));
-        measure(stress, STRESS_GOAL_MS);
+        measure(stress, STRESS_GOAL_MS, WARMUP, FRAMES);
+    }
+    if all || dominoes {
+        let field = level::load(Path::new(DOMINO_LEVEL)).unwrap_or_else(|e| panic!("{e}"));
+        measure(field, STRESS_GOAL_MS, DOMINO_WARMUP, DOMINO_FRAMES);
     }
 }
 
@@ -141,7 +160,7 @@ fn main() {
 /// medians of each phase against `goal_ms`.
 // One frame's phases in order, each timed, then the table: splitting it would hide the order.
 #[allow(clippy::too_many_lines)]
-fn measure(scene: level::Scene, goal_ms: f64) {
+fn measure(scene: level::Scene, goal_ms: f64, warmup: usize, frames: usize) {
     let dynamic = scene
         .level
         .bodies
@@ -215,9 +234,12 @@ fn measure(scene: level::Scene, goal_ms: f64) {
     let mut gizmos_every = GizmoBuffer::<DefaultGizmoConfigGroup, ()>::new();
     let (mut last, mut last_every) = (Vec::new(), Vec::new());
     let mut near = 0;
+    // Bodies moving in each measured frame (a sleeping body's velocities are zero): the crowd
+    // the physics step works on, a domino field's wave fronts.
+    let mut moving = Vec::new();
     let mut max_speed: f64 = 0.0;
     let mut sink = 0.0;
-    for frame in 0..WARMUP + FRAMES {
+    for frame in 0..warmup + frames {
         let t0 = mark();
         assert!(phys.advance(), "the bench scene exploded: {:?}", phys.error);
         let t1 = mark();
@@ -272,7 +294,7 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         emit_anew(&drawing_every, &mut gizmos_every);
         place_labels(&drawing_every, &view, &mut last_every);
         let t8 = mark();
-        if frame >= WARMUP {
+        if frame >= warmup {
             wall.push((t6.wall - t0.wall).as_secs_f64() * 1e3);
             step.push(ms(t0, t1));
             checks.push(ms(t1, t2));
@@ -284,6 +306,12 @@ fn measure(scene: level::Scene, goal_ms: f64) {
             total.push(ms(t0, t6));
             rapier.push(ms(t6, t7));
             every.push(ms(t7, t8));
+            moving.push(
+                s.bodies
+                    .iter()
+                    .filter(|b| b.velocity != glam::DVec2::ZERO || b.omega != 0.0)
+                    .count() as f64,
+            );
         }
     }
     std::hint::black_box(&poses);
@@ -297,8 +325,8 @@ fn measure(scene: level::Scene, goal_ms: f64) {
         gizmos.list_positions.len() + gizmos.strip_positions.len()
     );
     println!(
-        "median over frames {WARMUP}..{} (ms per frame, {}; load average {}):",
-        WARMUP + FRAMES,
+        "median over frames {warmup}..{} (ms per frame, {}; load average {}):",
+        warmup + frames,
         if mark().cpu_ns.is_some() {
             "the thread's CPU time"
         } else {
@@ -308,6 +336,11 @@ fn measure(scene: level::Scene, goal_ms: f64) {
             .ok()
             .and_then(|l| l.split_whitespace().next().map(str::to_string))
             .unwrap_or_else(|| "unknown".into())
+    );
+    println!(
+        "  bodies moving in a frame: median {:.0}, most {:.0} (sleeping ones still)",
+        median(&mut moving),
+        moving.last().copied().unwrap_or(0.0)
     );
     let physics = median(&mut step);
     println!(

@@ -27,6 +27,10 @@
 //!    and rapier at its own defaults, without the contact hook and query dispatcher rigidlab
 //!    gives the world, `--bench frame` times the window's frame of the same level).
 //!    `RIGIDLAB_BENCH_CASE=10` runs it alone.
+//! 7. the other 10,000-body level, levels/stress/domino_field.ron (issue 45, the same 1.1x), the
+//!    same way from 2.5 s (150 steps), while the waves run through rows of sleeping dominoes:
+//!    the blocks take turns in the same stretch of the wave. `RIGIDLAB_BENCH_CASE=11` runs it
+//!    alone.
 
 #[path = "common/hundred_bodies.rs"]
 mod hundred_bodies;
@@ -44,6 +48,8 @@ const TYPICAL: &str = "levels/kinetics/physical_pendulum.ron";
 /// The 10,000-body level of case 6, and its goal (issue 45).
 const STRESS: &str = "levels/stress/sand_pile.ron";
 const STRESS_GOAL: f64 = 1.1;
+/// The other 10,000-body level, a domino field whose standing dominoes sleep (case 7).
+const DOMINOES: &str = "levels/stress/domino_field.ron";
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -162,7 +168,7 @@ fn main() {
     library_levels(Path::new("levels"), &mut files);
     // The 10,000-body level has its own case (6): a run of it takes longer than the rest of the
     // library together.
-    files.retain(|p| p != Path::new(STRESS));
+    files.retain(|p| p != Path::new(STRESS) && p != Path::new(DOMINOES));
     let library: Vec<Scene> = files
         .iter()
         .map(|p| level::load(p).unwrap_or_else(|e| panic!("{e}")))
@@ -174,7 +180,11 @@ fn main() {
         .ok()
         .and_then(|c| c.parse().ok());
     if only.is_none_or(|c| c == 10) {
-        ten_thousand_bodies();
+        ten_thousand_bodies(STRESS, 240);
+    }
+    if only.is_none_or(|c| c == 11) {
+        // From 2.5 s: the dominoes the wave has not reached are asleep, the wave runs.
+        ten_thousand_bodies(DOMINOES, 150);
     }
     for (case, (label, scenes, pairs)) in [
         (
@@ -277,12 +287,12 @@ fn rapier_defaults(sim: &mut Simulation) {
     w.integration_parameters.contact_recycling = true;
 }
 
-/// Case 6: the 10,000-body stress level, stepped by rigidlab and by a plain rapier loop.
-fn ten_thousand_bodies() {
-    const SETTLE: usize = 240;
+/// Cases 6 and 7: a 10,000-body stress level, stepped by rigidlab and by a plain rapier loop
+/// after `settle` steps.
+fn ten_thousand_bodies(path: &str, settle: usize) {
     const BLOCK: usize = 5;
     const ROUNDS: usize = 15;
-    let scene = level::load(Path::new(STRESS)).unwrap_or_else(|e| panic!("{e}"));
+    let scene = level::load(Path::new(path)).unwrap_or_else(|e| panic!("{e}"));
     let opts = Options::default();
     // [rigidlab, contacts unread (as `check` runs it)], [rigidlab, contacts read (the window)],
     // [plain rapier loop], [rapier at its defaults]
@@ -291,7 +301,7 @@ fn ten_thousand_bodies() {
     rapier_defaults(&mut sims[3]);
     let ours = [true, true, false, false];
     for (sim, ours) in sims.iter_mut().zip(ours) {
-        time_steps(sim, SETTLE, ours);
+        time_steps(sim, settle, ours);
     }
     // Blocks interleaved, the order rotated every round, so drifts in load hit each alike.
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); sims.len()];
@@ -304,7 +314,7 @@ fn ten_thousand_bodies() {
     let m: Vec<f64> = times.iter_mut().map(|t| median(t)).collect();
     let contacts = sims[1].snapshot().contacts.len();
     println!(
-        "{STRESS}: {} bodies, {contacts} contact manifolds after {SETTLE} steps; median of {ROUNDS} blocks of {BLOCK} steps:",
+        "{path}: {} bodies, {contacts} contact manifolds after {settle} steps; median of {ROUNDS} blocks of {BLOCK} steps:",
         scene.level.bodies.len()
     );
     println!(

@@ -597,6 +597,53 @@ bottom of the pile sink 2.9 cm into each other).
           f"{rows * cols} grains of sand, discs of radius {r} m (density 1000 kg/m^2, mu 0.5), fall into a bin {2 * half:g} m wide and settle. The pile must come to rest without exploding, gaining energy or leaking grains.",
           ["gravity", "contacts", "friction"], world(contact_hz=60.0), bodies)
 
+
+def domino_field(lanes=50, per_lane=200, file="domino_field.ron", duration=12.0):
+    # 12 s: the wave runs the 6.5 m of a lane at 0.63 m/s (measured: no closed form), 10.6 s.
+    """Dominoes on stacked shelves, the first of each lane pushed: the sandbox's other
+    thousands-of-bodies scene (issue 45), where `sleeping` keeps the dominoes not yet struck out
+    of the solver. `lanes` x `per_lane` dominoes (tests/suite/study/domino_field.rs runs the
+    level's first two lanes)."""
+    # A domino 5 cm x 1 cm (height : thickness 5 : 1, a toy domino's proportions in 2D), spaced
+    # 0.65 of its height; mu 0.4 (wood on wood). Shelves 2 cm thick, 12 cm apart: a fallen
+    # domino (5 cm long, lying at most 5 cm high) never reaches the shelf above.
+    h, t, d, mu = 0.05, 0.01, 0.0325, 0.4
+    shelf_t, pitch = 0.02, 0.12
+    # Room for the last domino to fall flat on its shelf: a height and a margin past it.
+    lead, tail = 0.05, h + 0.05
+    length = round(lead + (per_lane - 1) * d + t + tail, 4)
+    x0 = round(-0.5 * length + lead + 0.5 * t, 4)
+    # The push: the first domino of a lane turns about its front bottom corner at omega0, the
+    # rigid motion of a tap (v_G = omega x (G - pivot)); 6 rad/s is 1.8x the 3.35 rad/s that
+    # lifts its centre over the corner (m g (sqrt(h^2 + t^2)/2 - h/2) = I_pivot omega^2 / 2).
+    w0 = 6.0
+    push_v = (w0 * h / 2, w0 * t / 2)
+    bodies = []
+    for k in range(lanes):
+        top = round(k * pitch, 4)
+        bodies.append(body(f"shelf{k}", box(length, shelf_t), kind="fixed",
+                           position=(0.0, round(top - shelf_t / 2, 4)), friction=mu))
+        for i in range(per_lane):
+            x = round(x0 + i * d, 4)
+            first = i == 0
+            bodies.append(body(f"d{k * per_lane + i}", box(t, h), position=(x, round(top + h / 2, 4)),
+                               velocity=push_v if first else None, omega=-w0 if first else None,
+                               friction=mu))
+    n = lanes * per_lane
+    level(file, f"""
+Domino field: {n} dominoes (boxes {h} m x {t} m, spaced {d} m, mu {mu}) standing in {lanes} lanes of
+{per_lane} on stacked shelves {pitch} m apart; the first domino of each lane is pushed (6 rad/s about its
+front bottom corner) and the wave runs to the far end, at 0.63 m/s (10.6 s). The sandbox's other
+thousands-of-bodies scene (issue 45), with `sleeping` declared: the dominoes not yet struck sleep from
+0.5 s; the fallen ones stay awake with their row's front (rapier sleeps an island whole) until the row
+is down. `cargo bench --bench frame` and `--bench runner` time it.
+Criteria (src/study/stability/cases.rs): energy never gained, penetration, every domino stays on the
+shelves, every domino ends toppled (tests/suite/study/domino_field.rs derives the angles).
+""", f"Domino field of {n} dominoes", ("rigidlab stress suite", "10,000 bodies (issue 45)"),
+          f"{n} dominoes, boxes {h * 100:g} cm tall and {t * 100:g} cm thick spaced {d * 100:g} cm apart (mu {mu}), stand in {lanes} rows on shelves. The first of each row is tipped over; the wave must run to the last domino of every row without the field exploding or gaining energy.",
+          ["gravity", "contacts", "friction", "sleeping"], world(duration=duration), bodies)
+
+
 def main():
     vertical_stack()
     pyramid_20()
@@ -618,6 +665,7 @@ def main():
     spinning_disc()
     stiff_spring()
     sand_pile()
+    domino_field()
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 //! Textbook closed-form answers (concepts.md sections 8 and 9): the exact period of a physical
-//! pendulum at any amplitude, the period of a mass on springs, and a round body rolling without
-//! slip down a slope.
+//! pendulum at any amplitude, the period of a mass on springs, a round body rolling without
+//! slip down a slope, and a row of dominoes: the angle a block tips at and the angle a fallen row
+//! leans at.
 //!
 //! Each function is the formula a textbook exercise ends with, applied to numbers the caller
 //! takes from the engine's state; the questions compare them with what the engine did.
@@ -186,6 +187,46 @@ pub fn slide_to_roll_time(slip0: f64, mu: f64, g: f64, k_g: f64, r: f64) -> f64 
 /// omega = -v / r: v = r (r v0 - k_G^2 omega0) / (k_G^2 + r^2) (2/3 v0 for a disc without spin).
 pub fn speed_when_rolling(v0: f64, omega0: f64, k_g: f64, r: f64) -> f64 {
     r * (r * v0 - k_g * k_g * omega0) / (k_g * k_g + r * r)
+}
+
+/// The tipping angle of a block of width b and height h standing on a level floor: tilted about
+/// the edge it pivots on by theta = atan(b / h), its mass center is straight above that edge
+/// (statics: the weight's line of action leaves the base, and past it the weight's moment about
+/// the edge turns the block further over).
+///
+/// # Examples
+///
+/// A domino 5 cm tall and 1 cm thick tips at atan(0.2) = 11.31 degrees.
+/// ```
+/// use rigidlab::analysis::closed_forms::tipping_angle;
+/// assert!((tipping_angle(0.01, 0.05).to_degrees() - 11.3099).abs() < 1e-4);
+/// ```
+pub fn tipping_angle(b: f64, h: f64) -> f64 {
+    (b / h).atan()
+}
+
+/// The angle from the vertical at which a domino of thickness t, tilted about its front bottom
+/// edge, first touches the next one standing d further on (pivot to pivot): its front top corner
+/// reaches the next one's back face when h sin(theta) = d - t (h its height).
+pub fn domino_contact_angle(t: f64, d: f64, h: f64) -> f64 {
+    ((d - t) / h).clamp(-1.0, 1.0).asin()
+}
+
+/// The angle from the vertical of a row of dominoes of thickness t, pivots d apart, each
+/// leaning on the next at the same angle: the front top corner of one lies on the back face of
+/// the next, whose normal is (cos theta, -sin theta); the corner is at x_i + h (sin, cos), the
+/// face passes through x_i + d - t (cos, -sin), and their offset along the normal is
+/// t - d cos(theta), which is zero at cos(theta) = t / d, whatever the height.
+///
+/// # Examples
+///
+/// Dominoes 1 cm thick, pivots 3.25 cm apart, lean at acos(0.3077) = 72.08 degrees.
+/// ```
+/// use rigidlab::analysis::closed_forms::leaning_row_angle;
+/// assert!((leaning_row_angle(0.01, 0.0325).to_degrees() - 72.08).abs() < 0.01);
+/// ```
+pub fn leaning_row_angle(t: f64, d: f64) -> f64 {
+    (t / d).clamp(-1.0, 1.0).acos()
 }
 
 #[cfg(test)]

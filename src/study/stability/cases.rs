@@ -5,6 +5,7 @@
 
 use super::criteria::*;
 use super::Settings;
+use crate::analysis::closed_forms::tipping_angle;
 use crate::analysis::energy::spring_potential;
 use crate::level::{Effect, Scene};
 
@@ -509,7 +510,91 @@ pub fn all() -> Vec<Spec> {
                 margin; 90 Hz at 4 substeps: 1.2 cm and the pile keeps jittering (0.71 m/s \
                 after 8 s). Stiffer contacts with more substeps were not tried (2026-12-07)",
         },
+        Spec {
+            name: "domino_field",
+            about: "10,000 dominoes on 50 shelves, the first of each row pushed (issue 45)",
+            limits: |s, _| {
+                let g = DominoGeometry::of(s);
+                Limits {
+                    // A domino 1 cm thick: half its thickness is where a corner pressed into it
+                    // is nearer its far face than its near one, the start of tunnelling
+                    // (rapier's allowed linear error, 5 mm at length_unit 1, is that much).
+                    penetration: 0.5 * g.t,
+                    // The fastest a domino's corner can move is a fall from upright to flat about
+                    // a pivot, sqrt(3 g h) for a thin bar (m g h/2 = I_pivot w^2/2, I = m h^2/3,
+                    // corner speed w h), 1.21 m/s at 5 cm; the push adds 6 rad/s x 5 cm. Ten
+                    // times their sum: the field has exploded.
+                    max_speed: 10.0 * ((3.0 * 9.81 * g.h).sqrt() + 6.0 * g.h),
+                    // Every mass center stays over the shelves: between their ends, above the
+                    // lowest one's top, at most a domino's height above the top one's.
+                    ..base(g.bounds)
+                }
+            },
+            special: |s, _| {
+                // Toppled: past the tipping angle atan(t/h), a domino is down (on its own it
+                // falls on; leaning on the next it stays). The wave reaches a domino at the
+                // contact angle asin((d - t)/h) of the one before it, past the tipping angle
+                // when d - t > h sin(atan(t/h)); a domino still standing at the end is one the
+                // wave never reached (tests/suite/study/domino_field.rs derives the end angles).
+                let g = DominoGeometry::of(s);
+                vec![Box::new(Toppled::new(tipping_angle(g.t, g.h)))]
+            },
+            recorded: Extra::default(),
+            not_default: &[],
+            gaps: &[],
+            settings_why: "rapier's defaults (dt 1/60 s, 4 substeps) with sleeping declared: \
+                a standing domino sleeps 0.5 s after the start and wakes when struck; a fallen \
+                one stays awake while its row's front moves (rapier sleeps an island whole, and \
+                a fallen row leans on its front) and sleeps 0.5 s after its row's last falls",
+        },
     ]
+}
+
+/// The dominoes of a domino field as the level lays them out (levels/stress/generate.py,
+/// `domino_field`): the first moving body's box (thickness t, height h), the pitch d between
+/// the first two, and the box the moving bodies must stay in (over the shelves, the fixed boxes).
+pub struct DominoGeometry {
+    pub t: f64,
+    pub h: f64,
+    pub d: f64,
+    pub bounds: Bounds,
+}
+
+impl DominoGeometry {
+    pub fn of(s: &Scene) -> Self {
+        use crate::level::{BodyKind, Shape};
+        let bodies = &s.level.bodies;
+        let mut moving = bodies.iter().filter(|b| b.kind == BodyKind::Dynamic);
+        let (first, second) = (moving.next(), moving.next());
+        let (t, h) = match first.and_then(|b| b.shape.as_ref()) {
+            Some(Shape::Box { width, height }) => (*width, *height),
+            _ => (f64::NAN, f64::NAN),
+        };
+        let d = match (first, second) {
+            (Some(a), Some(b)) => (b.position.0 - a.position.0).abs(),
+            _ => f64::NAN,
+        };
+        // Over the shelves: the fixed boxes' extents, up to a domino's height above the top one.
+        let mut b = (
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for s in bodies.iter().filter(|b| b.kind == BodyKind::Fixed) {
+            if let Some(Shape::Box { width, height }) = s.shape {
+                let (x, y) = s.position;
+                b = (
+                    b.0.min(x - width / 2.0),
+                    b.1.min(y + height / 2.0),
+                    b.2.max(x + width / 2.0),
+                    b.3.max(y + height / 2.0),
+                );
+            }
+        }
+        let bounds = (b.0, b.1, b.2, b.3 + h);
+        DominoGeometry { t, h, d, bounds }
+    }
 }
 
 /// The energy margin of the stiff-spring case: sum E0_i (bound_i - 1) / sum E0_i, the most the

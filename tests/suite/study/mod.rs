@@ -4,6 +4,7 @@ mod accuracy;
 mod advice;
 mod advice_names_gaps;
 mod advice_reproducible;
+mod domino_field;
 mod engines;
 mod other_engine;
 mod sand_pile;

@@ -96,7 +96,8 @@ case_tests!(
 
 /// Cases too slow for `cargo test`, each tested in its own file with its `#[ignore]` reason.
 const SLOW_CASES: &[&str] = &[
-    "sand_pile", // tests/suite/study/sand_pile.rs
+    "sand_pile",    // tests/suite/study/sand_pile.rs
+    "domino_field", // tests/suite/study/domino_field.rs
 ];
 
 #[test]

@@ -1,6 +1,6 @@
 //! The case-specific criteria (`Special`): a spinning disc's rate, a bouncing ball's apex, the
 //! friction ramp, a bullet that must not tunnel, springs at the stability limit, a body's height,
-//! a scene that comes to rest.
+//! a scene that comes to rest, a row of dominoes that falls to its end.
 
 use super::*;
 
@@ -494,5 +494,64 @@ impl Special for Rest {
             self.limit,
         ));
         out.figures.insert("mean_height".into(), self.mean_height);
+    }
+}
+
+/// Every moving body ends tilted at least `limit` from the vertical (a domino wave that ran to
+/// the end of every row: one standing domino anywhere is a wave that stopped). Figures: how many
+/// ended toppled, their least and median tilt at the end, and the time the last one first passed
+/// the limit (the wave's end).
+pub struct Toppled {
+    pub limit: f64,
+    /// The last snapshot's tilts |wrap(angle)| of the moving bodies.
+    tilts: Vec<f64>,
+    /// When every moving body was first past the limit.
+    all_down_at: Option<f64>,
+}
+
+impl Toppled {
+    pub fn new(limit: f64) -> Self {
+        Toppled {
+            limit,
+            tilts: Vec::new(),
+            all_down_at: None,
+        }
+    }
+}
+
+impl Special for Toppled {
+    fn observe(&mut self, s: &Snapshot, masses: &[(f64, f64)]) {
+        self.tilts.clear();
+        self.tilts.extend(
+            s.bodies
+                .iter()
+                .zip(masses)
+                .filter(|(_, m)| m.0 > 0.0)
+                .map(|(b, _)| wrap(b.angle).abs()),
+        );
+        if self.all_down_at.is_none() && self.tilts.iter().all(|a| *a >= self.limit) {
+            self.all_down_at = Some(s.time);
+        }
+    }
+    fn finish(&self, out: &mut Outcome) {
+        let least = self.tilts.iter().copied().fold(f64::INFINITY, f64::min);
+        out.criteria
+            .push(Criterion::at_least("toppled", least, self.limit));
+        let mut sorted = self.tilts.clone();
+        sorted.sort_by(f64::total_cmp);
+        let down = sorted.iter().filter(|a| **a >= self.limit).count();
+        out.figures.insert("toppled_count".into(), down as f64);
+        out.figures
+            .insert("standing_count".into(), (sorted.len() - down) as f64);
+        out.figures.insert(
+            "median_tilt_deg".into(),
+            sorted
+                .get(sorted.len() / 2)
+                .map_or(f64::NAN, |a| a.to_degrees()),
+        );
+        out.figures
+            .insert("least_tilt_deg".into(), least.to_degrees());
+        out.figures
+            .insert("wave_end_s".into(), self.all_down_at.unwrap_or(f64::NAN));
     }
 }
