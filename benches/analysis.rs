@@ -16,6 +16,10 @@
 //!   about that point);
 //! - B (the goal of issue 45, <= 5%): the same with 250 per-body checks as well, `newton_euler`
 //!   and `kinetic_energy_ic` on all 100 bodies and `angular_momentum_fixed_point` on the 50 bars.
+//!   Beside B's ratio, its probes' own cost: (B - A) / 250 in ns a probe a step (B's time
+//!   beyond A's, whose shared pass and scene checks B runs too), a figure that does not move
+//!   when the physics step gets cheaper or dearer. `RIGIDLAB_BENCH_ONLY=A` (or B, C) runs one
+//!   configuration once and nothing else, to count its instructions under callgrind.
 //! - C (the goal of issue 15, <= 5%): every per-body check kind on every body it applies to, on
 //!   its own (no scene checks): `mass_properties`, `constant_acceleration`, `kinetic_energy_g`,
 //!   `kinetic_energy_ic`, `angular_momentum_fixed_point`, `newton_euler` (about G and about a
