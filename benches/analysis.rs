@@ -16,6 +16,10 @@
 //!   about that point);
 //! - B (the goal of issue 45, <= 5%): the same with 250 per-body checks as well, `newton_euler`
 //!   and `kinetic_energy_ic` on all 100 bodies and `angular_momentum_fixed_point` on the 50 bars.
+//!   Beside B's ratio, its probes' own cost: (B - A) / 250 in ns a probe a step (B's time
+//!   beyond A's, whose shared pass and scene checks B runs too), a figure that does not move
+//!   when the physics step gets cheaper or dearer. `RIGIDLAB_BENCH_ONLY=A` (or B, C) runs one
+//!   configuration once and nothing else, to count its instructions under callgrind.
 //! - C (the goal of issue 15, <= 5%): every per-body check kind on every body it applies to, on
 //!   its own (no scene checks): `mass_properties`, `constant_acceleration`, `kinetic_energy_g`,
 //!   `kinetic_energy_ic`, `angular_momentum_fixed_point`, `newton_euler` (about G and about a
@@ -102,6 +106,14 @@ fn main() {
     let mut scene_only = scene.clone();
     scene_only.level.checks.retain(|c| c.body.is_none());
     print_scene(&scene, &scene_only, &every);
+    // RIGIDLAB_BENCH_ONLY=A (or B, C): that configuration's run once, and nothing else (to count
+    // its instructions: `valgrind --tool=callgrind --toggle-collect='*CheckSet*observe*'`).
+    if let Ok(only) = std::env::var("RIGIDLAB_BENCH_ONLY") {
+        let c = ["A", "B", "C"].iter().position(|&c| c == only);
+        let c = c.unwrap_or_else(|| panic!("RIGIDLAB_BENCH_ONLY={only}: A, B or C"));
+        time_blocks([&scene_only, &scene, &every][c]);
+        return;
+    }
     // RIGIDLAB_BENCH_KIND=restitution: only that kind's runs below (to profile it).
     let profiling = std::env::var("RIGIDLAB_BENCH_KIND").is_ok();
     let mut configs = time_configs([&scene_only, &scene, &every], profiling);
@@ -113,7 +125,8 @@ fn main() {
         return;
     }
     assert!(configs.rows + frame_rows > 0);
-    print_configs(&mut configs, &mut frame_us);
+    let per_body = scene.level.checks.len() - scene_only.level.checks.len();
+    print_configs(&mut configs, &mut frame_us, per_body);
     print_forms(&forms, &mut by_form, &mut bare_us);
 }
 
@@ -297,8 +310,9 @@ fn print_profile(forms: &Forms, by_form: &mut [[Vec<f64>; 4]]) {
     }
 }
 
-/// A, B and C against the physics step, with their goals.
-fn print_configs(configs: &mut Configs, frame_us: &mut [f64]) {
+/// A, B and C against the physics step, with their goals; and B's probes' own cost, ns a probe
+/// a step, which does not move when the step gets cheaper or dearer.
+fn print_configs(configs: &mut Configs, frame_us: &mut [f64], per_body: usize) {
     let Configs {
         ratios,
         check_us,
@@ -337,6 +351,15 @@ fn print_configs(configs: &mut Configs, frame_us: &mut [f64]) {
             q.0,
             q.1
         );
+        if c == 1 {
+            // B's time beyond A's (the same shared pass and scene checks), per probe.
+            let (a, b) = (median(&mut check_us[0]), median(&mut check_us[1]));
+            println!(
+                "   B per probe: {:.1} ns a probe a step beyond A ({per_body} probes; B {:.1} ns a probe a step with the shared pass and scene checks counted in)",
+                1e3 * (b - a) / per_body as f64,
+                1e3 * b / per_body as f64,
+            );
+        }
     }
 }
 

@@ -21,6 +21,8 @@ use crate::snapshot::{BodyKind, ContactState, Snapshot};
 use glam::DVec2;
 use std::cell::{Cell, Ref, RefCell};
 
+mod pushed;
+
 /// Sums of a step's impulses on a body or a set of bodies (impulses over the step, N s and N m s).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ImpulseSums {
@@ -196,12 +198,9 @@ pub struct FrameAnalysis {
     moving: Vec<usize>,
     /// Scratch for the pass, per body.
     mids: Vec<Mid>,
-    /// The pairs of bodies (lower index first, sorted) a contact pushed in the last step
-    /// observed, and in the step before it, with the pair's normal impulse, N s: a contact that
-    /// pushed before, and not impulsively more now, is not an impact
-    /// (`energy::work_of_contact_impulse`).
-    pushing: Vec<((usize, usize), f64)>,
-    pushed_before: Vec<((usize, usize), f64)>,
+    /// The pairs of bodies a contact pushed in the last step observed and in the step before
+    /// it: which contacts rest (`pushed`).
+    pushed: pushed::Pushed,
     /// Which contacts and joints touch each body in the last snapshot, built when first asked
     /// for in a step (`fresh` says it is): most levels' checks never ask.
     links: RefCell<BodyLinks>,
@@ -327,25 +326,8 @@ impl FrameAnalysis {
         // The pairs a contact pushed: this step's, and the step before's (for the contacts'
         // work; a run's pass is the same at every step, so the lists are whole when read).
         if work {
-            std::mem::swap(&mut self.pushed_before, &mut self.pushing);
-            if !stepped {
-                self.pushed_before.clear();
-            }
-            self.pushing.clear();
-            self.pushing
-                .extend(snap.contacts.iter().filter(|c| c.pushes()).map(|c| {
-                    let normal: f64 = c.points.iter().map(|p| p.normal_impulse).sum();
-                    (pair_key(c.body1, c.body2), normal)
-                }));
-            self.pushing.sort_unstable_by_key(|&(key, _)| key);
-            // A pair's manifolds as one entry, their impulses summed.
-            self.pushing.dedup_by(|later, kept| {
-                let same = later.0 == kept.0;
-                if same {
-                    kept.1 += later.1;
-                }
-                same
-            });
+            self.pushed
+                .observe(&snap.contacts, snap.bodies.len(), stepped);
         }
         if stepped {
             let mut pass = Pass {
@@ -362,8 +344,7 @@ impl FrameAnalysis {
                 has_mass: &self.has_mass,
                 massive: &self.massive,
                 mids: &mut self.mids,
-                pushed_before: &self.pushed_before,
-                pushing: &self.pushing,
+                pushed: &self.pushed,
                 with_work: work,
             };
             pass.run();
@@ -436,17 +417,10 @@ struct Pass<'a> {
     massive: &'a [usize],
     /// Per body with mass, filled first: where gravity acts and the mean velocities.
     mids: &'a mut [Mid],
-    /// The pairs a contact pushed in the step before (`FrameAnalysis::pushed_before`), and in
-    /// this step, with the pair's normal impulse.
-    pushed_before: &'a [((usize, usize), f64)],
-    pushing: &'a [((usize, usize), f64)],
+    /// Which contacts of the step rest (`pushed`).
+    pushed: &'a pushed::Pushed,
     /// Whether to compute the work of the impulses (`FramePass::Work`).
     with_work: bool,
-}
-
-/// A pair of bodies as the pushed lists hold it: lower index first.
-fn pair_key(a: usize, b: usize) -> (usize, usize) {
-    (a.min(b), a.max(b))
 }
 
 /// A body's gravity point (`kinetics::gravity_point`) and mean velocities over the step
@@ -538,8 +512,8 @@ impl Pass<'_> {
         self.springs();
         self.events();
         let snap = self.snap;
-        for c in &snap.contacts {
-            self.contact(c);
+        for (k, c) in snap.contacts.iter().enumerate() {
+            self.contact(k, c);
         }
         self.joints();
         self.couplings();
@@ -664,21 +638,12 @@ impl Pass<'_> {
     /// user's block struck down by (4, -6) N s (tests/newuser/impacts/n10_05b): the floor's
     /// 6 N s against the 0.041 N s of resting, booked at the block's 0.35 mm sink, gave
     /// the work-energy ledger 1.0 J of 1.6 J too much.
-    fn rests(&self, c: &ContactState) -> bool {
-        self.with_work && {
-            let key = pair_key(c.body1, c.body2);
-            let pair = |list: &[((usize, usize), f64)]| {
-                list.binary_search_by_key(&key, |&(k, _)| k)
-                    .ok()
-                    .map(|k| list[k].1)
-            };
-            pair(self.pushed_before).is_some_and(|before| {
-                !super::impact::pushes_impulsively(pair(self.pushing).unwrap_or(0.0), before)
-            })
-        }
+    fn rests(&self, k: usize) -> bool {
+        self.with_work && self.pushed.rests(k)
     }
 
-    fn contact(&mut self, c: &ContactState) {
+    /// Contact k of the step, `c`.
+    fn contact(&mut self, k: usize, c: &ContactState) {
         let snap = self.snap;
         let (in1, in2) = (self.has_mass(c.body1), self.has_mass(c.body2));
         if !in1 && !in2 {
@@ -686,7 +651,7 @@ impl Pass<'_> {
         }
         let internal = in1 && in2;
         let t = c.tangent();
-        let resting = self.rests(c);
+        let resting = self.rests(k);
         let work = (Slot::Contacts, true);
         for p in &c.points {
             let (j_n, j_t) = (c.normal * p.normal_impulse, t * p.tangent_impulse);

@@ -116,9 +116,12 @@ pub trait Probe {
 
 /// A level's checks over one run: the probes, and the one per-step analysis pass
 /// ([`FrameAnalysis`]) that those reading the free-body diagram share. Only built when a probe
-/// needs it, so a level pays for the analysis its checks ask for.
+/// needs it, so a level pays for the analysis its checks ask for. The probes of a per-body kind
+/// run together, one loop over the kind's probes a step (`kinds::batch`).
 pub struct CheckSet {
-    probes: Vec<Box<dyn Probe>>,
+    groups: Vec<Box<dyn kinds::Group>>,
+    /// The level's checks: as many results.
+    count: usize,
     frame: Option<FrameAnalysis>,
     /// The most of the pass a probe reads: the pass computes that much.
     pass: FramePass,
@@ -126,20 +129,20 @@ pub struct CheckSet {
 
 impl CheckSet {
     pub fn new(level: &Level) -> Self {
-        let probes: Vec<Box<dyn Probe>> =
-            level.checks.iter().map(|c| probe_for(level, c)).collect();
-        let frame = probes
+        let groups = kinds::groups_for(level);
+        let frame = groups
             .iter()
-            .any(|p| p.wants_frame())
+            .any(|g| g.wants_frame())
             .then(FrameAnalysis::new);
-        let pass = probes
+        let pass = groups
             .iter()
-            .filter(|p| p.wants_frame())
-            .map(|p| p.frame_pass())
+            .filter(|g| g.wants_frame())
+            .map(|g| g.frame_pass())
             .max()
             .unwrap_or(FramePass::Motion);
         CheckSet {
-            probes,
+            groups,
+            count: level.checks.len(),
             frame,
             pass,
         }
@@ -150,22 +153,26 @@ impl CheckSet {
         if let Some(fa) = self.frame.as_mut() {
             fa.observe_as(snap, self.pass);
         }
-        for p in self.probes.iter_mut() {
-            match &self.frame {
-                Some(fa) if p.wants_frame() => p.observe_frame(snap, fa),
-                _ => p.observe(snap),
-            }
+        for g in self.groups.iter_mut() {
+            g.observe(snap, self.frame.as_ref());
         }
     }
 
     /// Whether a probe of the set reads the snapshots' contacts ([`Probe::reads_contacts`]).
     pub fn reads_contacts(&self) -> bool {
-        self.probes.iter().any(|p| p.reads_contacts())
+        self.groups.iter().any(|g| g.reads_contacts())
     }
 
     /// The results, in the level's order.
     pub fn finish(self) -> Vec<CheckResult> {
-        self.probes.into_iter().map(|p| p.finish()).collect()
+        let mut results = vec![None; self.count];
+        for g in self.groups {
+            g.finish(&mut results);
+        }
+        results
+            .into_iter()
+            .map(|r| r.expect("every check has its probe"))
+            .collect()
     }
 }
 

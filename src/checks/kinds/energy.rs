@@ -3,7 +3,7 @@
 use super::{
     body_def, cached_body, cannot_judge_probe, damped_subject, dynamic_body, framed, misconfigured,
     observed_nothing, result, scale_or, subject_index, subject_of, subject_set, textbook_mass, v2,
-    BodySet, FrameProbe, Summary, Worst,
+    BodySet, FrameProbe, Summary, Together, Worst,
 };
 use crate::analysis::energy::{gravity_potential, kinetic_energy, kinetic_energy_about_ic};
 use crate::analysis::frame::{FrameAnalysis, FramePass};
@@ -14,7 +14,7 @@ use crate::analysis::mass::MassProps;
 use crate::analysis::Motion;
 use crate::checks::{CheckResult, Probe};
 use crate::level::{CheckDef, JointKind, Level};
-use crate::snapshot::{BodyState, Snapshot};
+use crate::snapshot::{BodyState, ContactState, Snapshot};
 use glam::DVec2;
 
 /// The engine's kinetic energy of a body: 6/9 with rapier's v_G, omega, m and I_G.
@@ -177,27 +177,39 @@ enum Center {
 /// its instantaneous center where the textbook puts it: no slip at the contact, no drift at the pivot.
 /// Scale: the largest kinetic energy of the run. The note gives the largest slip velocity.
 pub(super) fn kinetic_energy_ic_probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    kinetic_energy_ic(level, def).map_or_else(|refused| refused, framed)
+}
+
+/// The `kinetic_energy_ic` probe of `def`, or the misconfigured probe that refuses it: a
+/// `CheckSet` runs the former with the level's other `kinetic_energy_ic` probes.
+pub(super) fn kinetic_energy_ic(
+    level: &Level,
+    def: &CheckDef,
+) -> Result<KineticEnergyIc, Box<dyn Probe>> {
     let b = match dynamic_body(level, def) {
         Ok(b) => b,
-        Err(e) => return misconfigured(def, e),
+        Err(e) => return Err(misconfigured(def, e)),
     };
     let center = match (&def.point, &def.other) {
         (Some(p), _) => Center::Fixed(v2(*p)),
         (None, Some(o)) => {
             if body_def(level, o).is_none() {
-                return misconfigured(def, format!("`other` \"{o}\" is not a body of this level"));
+                return Err(misconfigured(
+                    def,
+                    format!("`other` \"{o}\" is not a body of this level"),
+                ));
             }
             Center::Contact(o.clone())
         }
         (None, None) => {
-            return misconfigured(
+            return Err(misconfigured(
                 def,
                 "kinetic_energy_ic needs `point` (a fixed pivot) or `other` (the body it rolls on): \
                  an instantaneous center from the engine's own velocities would compare its kinetic energy with itself",
-            )
+            ))
         }
     };
-    framed(KineticEnergyIc {
+    Ok(KineticEnergyIc {
         def: def.clone(),
         name: b.name.clone(),
         mass: textbook_mass(b),
@@ -211,11 +223,12 @@ pub(super) fn kinetic_energy_ic_probe(level: &Level, def: &CheckDef) -> Box<dyn 
         relative_steps: 0,
         index: None,
         other_index: None,
+        touch: Touch::default(),
         last: (0.0, 0.0),
     })
 }
 
-struct KineticEnergyIc {
+pub(super) struct KineticEnergyIc {
     def: CheckDef,
     name: String,
     mass: MassProps,
@@ -232,6 +245,8 @@ struct KineticEnergyIc {
     index: Option<usize>,
     /// The index of the `other` body, looked up once.
     other_index: Option<usize>,
+    /// Run with the level's other probes of the kind: its contact with `other` this step.
+    touch: Touch,
     last: (f64, f64),
 }
 
@@ -242,6 +257,139 @@ impl FrameProbe for KineticEnergyIc {
     }
 
     fn observe_frame(&mut self, s: &Snapshot, fa: &FrameAnalysis) {
+        // Among the body's own contacts (the frame's index): a scan of every contact of the
+        // scene for every probe made 100 probes cost O(N x contacts) a step.
+        self.observe_touching(s, |i, k, com| {
+            let mut touch = Touch::default();
+            for c in fa
+                .links(s)
+                .contacts_of(i)
+                .iter()
+                .map(|&c| &s.contacts[c as usize])
+            {
+                if (c.body1 == i && c.body2 == k) || (c.body1 == k && c.body2 == i) {
+                    touch.add(c, c.body1 == i, com);
+                }
+            }
+            touch
+        });
+    }
+
+    fn finish(self) -> CheckResult {
+        self.finish_result()
+    }
+}
+
+/// A body's own contact point(s) with the `other` body of a `kinetic_energy_ic` check over a
+/// step, weighted by normal impulse: G plus the lever arm the solver used (recorded points go
+/// stale while rapier recycles the manifold; the arm of a rolling disc stays -r n).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Touch {
+    sum: DVec2,
+    w: f64,
+    n: usize,
+    normal: DVec2,
+}
+
+impl Touch {
+    /// Contact `c`'s points, the body being its `body1` when `first`; `com` its G.
+    fn add(&mut self, c: &ContactState, first: bool, com: DVec2) {
+        for p in &c.points {
+            let own = match (p.arms, first) {
+                (Some((a1, _)), true) => com + a1,
+                (Some((_, a2)), false) => com + a2,
+                (None, true) => p.point,
+                (None, false) => p.point + c.normal * p.distance,
+            };
+            let wt = p.normal_impulse.max(1e-12);
+            self.sum += own * wt;
+            self.w += wt;
+            self.n += 1;
+            self.normal = c.normal;
+        }
+    }
+}
+
+/// The `kinetic_energy_ic` probes of a run together: one walk over the step's contacts gives
+/// every rolling probe its contact with its `other` body (in the snapshot's order, as
+/// [`BodyLinks`](crate::analysis::links::BodyLinks) lists a body's own: the same sums to the
+/// last bit), where each probe alone would look up its body's contacts.
+impl Together for KineticEnergyIc {
+    type Shared = Rolling;
+
+    fn observe_all(probes: &mut [Self], rolling: &mut Rolling, s: &Snapshot, _fa: &FrameAnalysis) {
+        if !rolling.resolved {
+            rolling.index(probes, s);
+        }
+        for &k in &rolling.rolls {
+            probes[k as usize].touch = Touch::default();
+        }
+        for c in &s.contacts {
+            for (i, k, first) in [(c.body1, c.body2, true), (c.body2, c.body1, false)] {
+                if !first && i == k {
+                    continue;
+                }
+                let mut p = rolling.first.get(i).copied().unwrap_or(NONE);
+                while p != NONE {
+                    let probe = &mut probes[p as usize];
+                    if probe.other_index == Some(k) {
+                        probe.touch.add(c, first, s.bodies[i].com);
+                    }
+                    p = rolling.next[p as usize];
+                }
+            }
+        }
+        for p in probes.iter_mut() {
+            let touch = p.touch;
+            p.observe_touching(s, |_, _, _| touch);
+        }
+    }
+}
+
+/// No probe (the end of a chain in [`Rolling`]).
+const NONE: u32 = u32::MAX;
+
+/// Which `kinetic_energy_ic` probes roll on which body: per body the first probe about a
+/// contact of it, and per probe the next one on the same body (built once the bodies are
+/// found: a scene's bodies do not come or go).
+#[derive(Debug, Default)]
+pub(super) struct Rolling {
+    first: Vec<u32>,
+    next: Vec<u32>,
+    /// The probes about a contact.
+    rolls: Vec<u32>,
+    /// Whether every rolling probe's bodies were found.
+    resolved: bool,
+}
+
+impl Rolling {
+    fn index(&mut self, probes: &mut [KineticEnergyIc], s: &Snapshot) {
+        self.first.clear();
+        self.first.resize(s.bodies.len(), NONE);
+        self.next.clear();
+        self.next.resize(probes.len(), NONE);
+        self.rolls.clear();
+        self.resolved = true;
+        for (k, p) in probes.iter_mut().enumerate().rev() {
+            let Center::Contact(other) = &p.center else {
+                continue;
+            };
+            let i = cached_body(&mut p.index, s, &p.name);
+            let o = cached_body(&mut p.other_index, s, other);
+            let Some(i) = i.filter(|_| o.is_some()) else {
+                self.resolved = false;
+                continue;
+            };
+            self.next[k] = self.first[i];
+            self.first[i] = k as u32;
+            self.rolls.push(k as u32);
+        }
+    }
+}
+
+impl KineticEnergyIc {
+    /// One step's comparison; `touch(i, k, G)` gives body i's contact with `other` (body k).
+    fn observe_touching(&mut self, s: &Snapshot, touch: impl FnOnce(usize, usize, DVec2) -> Touch) {
         let Some(i) = cached_body(&mut self.index, s, &self.name) else {
             return;
         };
@@ -263,35 +411,7 @@ impl FrameProbe for KineticEnergyIc {
                 let Some(k) = cached_body(&mut self.other_index, s, other) else {
                     return;
                 };
-                // The body's own contact point(s) with `other`, weighted by normal impulse: G plus
-                // the lever arm the solver used (recorded points go stale while rapier recycles
-                // the manifold; the arm of a rolling disc stays -r n).
-                let (mut sum, mut w, mut n, mut normal) = (DVec2::ZERO, 0.0, 0, DVec2::ZERO);
-                // Among the body's own contacts (the frame's index): a scan of every contact of
-                // the scene for every probe made 100 probes cost O(N x contacts) a step.
-                for c in fa
-                    .links(s)
-                    .contacts_of(i)
-                    .iter()
-                    .map(|&c| &s.contacts[c as usize])
-                {
-                    if !((c.body1 == i && c.body2 == k) || (c.body1 == k && c.body2 == i)) {
-                        continue;
-                    }
-                    for p in &c.points {
-                        let own = match (p.arms, c.body1 == i) {
-                            (Some((a1, _)), true) => b.com + a1,
-                            (Some((_, a2)), false) => b.com + a2,
-                            (None, true) => p.point,
-                            (None, false) => p.point + c.normal * p.distance,
-                        };
-                        let wt = p.normal_impulse.max(1e-12);
-                        sum += own * wt;
-                        w += wt;
-                        n += 1;
-                        normal = c.normal;
-                    }
-                }
+                let Touch { sum, w, n, normal } = touch(i, k, b.com);
                 if n == 0 {
                     self.skipped += 1;
                     return;
@@ -329,7 +449,7 @@ impl FrameProbe for KineticEnergyIc {
         self.last = (t_theory, t_engine);
     }
 
-    fn finish(self) -> CheckResult {
+    fn finish_result(self) -> CheckResult {
         let scale = scale_or(self.max_t, 1.0);
         let how = match &self.center {
             Center::Fixed(o) => format!("1/2 I_O w^2 about the pivot ({:.3}, {:.3}) (6/8)", o.x, o.y),

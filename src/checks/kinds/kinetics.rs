@@ -3,7 +3,7 @@
 use super::momentum::pivot_of;
 use super::{
     cached_body, cannot_judge_probe, damped_body, dynamic_body, framed, misconfigured, result,
-    scale_or, subject_of, textbook_mass, v2, FrameProbe, Summary, Worst,
+    scale_or, subject_of, textbook_mass, v2, FrameProbe, Summary, Together, Worst,
 };
 use crate::analysis::frame::{FrameAnalysis, FramePass};
 use crate::analysis::kinetics::{
@@ -48,23 +48,29 @@ use glam::DVec2;
 /// The diagram is the engine's impulses, which hold no body damping (`damped_body`): on a damped
 /// body the check cannot judge (only linear damping counts for a locked body's sum F alone).
 pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    newton_euler(level, def).map_or_else(|refused| refused, framed)
+}
+
+/// The `newton_euler` probe of `def`, or the probe that refuses it (misconfigured, or it cannot
+/// judge the body): a `CheckSet` runs the former with the level's other `newton_euler` probes.
+pub(super) fn newton_euler(level: &Level, def: &CheckDef) -> Result<NewtonEuler, Box<dyn Probe>> {
     let moments = |b: &crate::level::BodyDef| !b.lock_rotation || def.point.is_some();
     match dynamic_body(level, def) {
-        Ok(b) if damped_body(level, b, moments(b)).is_some() => cannot_judge_probe(
+        Ok(b) if damped_body(level, b, moments(b)).is_some() => Err(cannot_judge_probe(
             def,
             format!(
                 "Newton-Euler's sum F = m a_G, sum M = I alpha: {}",
                 damped_body(level, b, moments(b)).unwrap_or_default()
             ),
-        ),
-        Ok(b) if b.lock_rotation && def.point.is_some() => misconfigured(
+        )),
+        Ok(b) if b.lock_rotation && def.point.is_some() => Err(misconfigured(
             def,
             format!(
                 "body \"{}\" has lock_rotation: the couple that keeps it from turning is not in its free-body diagram, so a moment equation (`point`) cannot be checked; drop `point` to check sum F = m a_G",
                 b.name
             ),
-        ),
-        Ok(b) => framed(NewtonEuler {
+        )),
+        Ok(b) => Ok(NewtonEuler {
             locked: b.lock_rotation,
             def: def.clone(),
             name: b.name.clone(),
@@ -81,11 +87,11 @@ pub(super) fn probe(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
             k_g: 0.0,
             last: (0.0, 0.0),
         }),
-        Err(e) => misconfigured(def, e),
+        Err(e) => Err(misconfigured(def, e)),
     }
 }
 
-struct NewtonEuler {
+pub(super) struct NewtonEuler {
     def: CheckDef,
     /// The body's rotation is locked (`lock_rotation`): the locking couple is not in the diagram,
     /// so only sum F = m a_G is checked.
@@ -110,6 +116,11 @@ struct NewtonEuler {
     rel: Worst,
     k_g: f64,
     last: (f64, f64),
+}
+
+/// Each probe as on its own, in one loop.
+impl Together for NewtonEuler {
+    type Shared = ();
 }
 
 impl FrameProbe for NewtonEuler {

@@ -19,6 +19,7 @@
 //! | `restitution` | e set in the level (or H_C conserved when eccentric) | e from velocities (or H_C after) | 1 (or H_C before) |
 //! | `virtual_work` | the actuator effort by virtual work with inertia forces (VW-2, VW-5) | the motor's impulse / dt | max motor effort |
 
+mod batch;
 mod constant;
 mod energy;
 mod impact;
@@ -27,6 +28,9 @@ mod mass;
 mod momentum;
 mod percussion;
 mod virtual_work;
+
+use batch::Together;
+pub(crate) use batch::{groups_for, Group};
 
 use super::{kind_name, CheckResult, Probe};
 use crate::analysis::frame::{FrameAnalysis, FramePass};

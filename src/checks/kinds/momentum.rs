@@ -2,7 +2,7 @@
 
 use super::{
     cannot_judge_probe, damped_subject, dynamic_body, framed, misconfigured, result, scale_or,
-    subject_index, subject_of, subject_set, v2, BodySet, FrameProbe, Summary, Worst,
+    subject_index, subject_of, subject_set, v2, BodySet, FrameProbe, Summary, Together, Worst,
 };
 use crate::analysis::cross;
 use crate::analysis::frame::{FrameAnalysis, FramePass};
@@ -57,20 +57,29 @@ fn resolve(level: &Level, def: &CheckDef) -> Result<Option<String>, String> {
 /// The diagram holds no body damping (`damped_body`): with a damped body in the subject (the
 /// body, or for the scene any dynamic body) the check cannot judge.
 pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box<dyn Probe> {
+    angular_momentum_fixed_point_of(level, def).map_or_else(|refused| refused, framed)
+}
+
+/// The `angular_momentum_fixed_point` probe of `def`, or the probe that refuses it: a
+/// `CheckSet` runs the former with the level's other probes of the kind.
+pub(super) fn angular_momentum_fixed_point_of(
+    level: &Level,
+    def: &CheckDef,
+) -> Result<AngularMomentumFixedPoint, Box<dyn Probe>> {
     let body = match resolve(level, def) {
         Ok(b) => b,
-        Err(e) => return misconfigured(def, e),
+        Err(e) => return Err(misconfigured(def, e)),
     };
     if let Some(why) = damped_subject(level, body.as_deref()) {
-        return cannot_judge_probe(def, format!("sum M_O = dH_O/dt: {why}"));
+        return Err(cannot_judge_probe(def, format!("sum M_O = dH_O/dt: {why}")));
     }
     if body.is_none() && def.point.is_none() {
-        return misconfigured(
+        return Err(misconfigured(
             def,
             "a scene-wide angular_momentum_fixed_point check needs `point: (x, y)`",
-        );
+        ));
     }
-    framed(AngularMomentumFixedPoint {
+    Ok(AngularMomentumFixedPoint {
         def: def.clone(),
         body,
         o: def.point.map(v2),
@@ -87,7 +96,7 @@ pub(super) fn angular_momentum_fixed_point(level: &Level, def: &CheckDef) -> Box
     })
 }
 
-struct AngularMomentumFixedPoint {
+pub(super) struct AngularMomentumFixedPoint {
     def: CheckDef,
     body: Option<String>,
     o: Option<DVec2>,
@@ -103,6 +112,11 @@ struct AngularMomentumFixedPoint {
     max_reaction_moment: f64,
     last: (f64, f64),
     unresolved: Option<String>,
+}
+
+/// Each probe as on its own, in one loop.
+impl Together for AngularMomentumFixedPoint {
+    type Shared = ();
 }
 
 impl FrameProbe for AngularMomentumFixedPoint {

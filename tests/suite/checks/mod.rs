@@ -3,6 +3,7 @@
 
 mod absurd_inputs_fail;
 mod assumptions;
+mod batched;
 mod kinetic_energy_ic_moving;
 mod pass_and_fail;
 mod settings_twins;
