@@ -50,7 +50,7 @@ pub struct Overlays {
     /// Each force's x and y components drawn dashed, with their values.
     pub components: bool,
     /// In a [`crowd`], trails and velocity and acceleration arrows for every moving body, not
-    /// only the selected one (the panel's box; off by default).
+    /// only the selected one (the panel's box; off by default and again when a level opens).
     pub every_body: bool,
 }
 

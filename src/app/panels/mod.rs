@@ -649,6 +649,8 @@ fn open_level(p: &mut PanelInput, scene: Scene) {
     p.st.message = Some((format!("opened {}", scene.file.display()), true));
     p.ov.selected = None;
     p.ov.point = None;
+    // The crowd's every-body overlays are slow by choice for one scene, not for the next.
+    p.ov.every_body = false;
     p.ov.origin = default_origin(&scene.level);
     p.tools.last_impulse = None;
     p.run_commands.write(PhysicsCommand::Open(Box::new(scene)));
