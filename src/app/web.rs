@@ -141,6 +141,7 @@ pub fn start() {
         ..default()
     }));
     super::sandbox::add_sandbox(&mut app, scene, browser, !query.play || query.predict);
+    app.add_plugins(super::page_fonts::PageFontsPlugin);
     if query.predict {
         app.world_mut().resource_mut::<panels::Predict>().switch = Some(true);
     }
