@@ -33,6 +33,8 @@ pub mod page_fetch;
 pub mod page_files;
 #[cfg(target_arch = "wasm32")]
 pub mod page_fonts;
+#[cfg(target_arch = "wasm32")]
+pub mod page_library;
 pub mod panels;
 pub mod physics;
 pub mod playback;
