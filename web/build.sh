@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the web page of the sandbox into web/dist (index.html, rigidlab.js, rigidlab_bg.wasm):
+# Builds the web page of the sandbox into web/dist (index.html, rigidlab.js, rigidlab_bg.wasm,
+# levels.json):
 # a static folder any web server can serve (web/serve.sh serves it locally).
 #
 # Installs what it needs: the wasm32-unknown-unknown target (rustup) and wasm-bindgen-cli at the
@@ -49,6 +50,23 @@ CARGO_PROFILE_WEB_LTO=$lto cargo rustc --profile web --target wasm32-unknown-unk
 
 rm -rf "$out"
 mkdir -p "$out"
+# The level library, beside the wasm rather than compiled into it (1.8 MB of its raw size;
+# src/app/page_library.rs, docs/web.md): every level file under levels/ as a [path, text] pair,
+# sorted by path, which web/index.html fetches while the wasm comes.
+python3 - levels "$out/levels.json" <<'PY'
+import json, os, sys
+root, out = sys.argv[1], sys.argv[2]
+pairs = []
+for dirpath, _, files in os.walk(root):
+    for f in files:
+        if f.endswith(".ron"):
+            path = os.path.join(dirpath, f)
+            rel = os.path.relpath(path, os.path.dirname(root) or ".").replace(os.sep, "/")
+            with open(path, encoding="utf-8") as fh:
+                pairs.append([rel, fh.read()])
+with open(out, "w", encoding="utf-8") as fh:
+    json.dump(sorted(pairs), fh, ensure_ascii=False, separators=(",", ":"))
+PY
 # The name section (23 of 67 MB) only names functions in stack traces; the panic message stays.
 wasm-bindgen --target web --no-typescript --remove-name-section --remove-producers-section --out-dir "$out" --out-name rigidlab \
   "$target_dir/wasm32-unknown-unknown/web/rigidlab.wasm"
@@ -75,6 +93,13 @@ if [ "${RIGIDLAB_WASM_OPT:-1}" != 0 ] && command -v node >/dev/null 2>&1 && comm
     node web/opt/node_modules/binaryen/bin/wasm-opt --detect-features \
       --duplicate-function-elimination --merge-similar-functions "$wasm" -o "$wasm.opt"
     mv "$wasm.opt" "$wasm"
+    # RIGIDLAB_WASM_OPT_OS=1 runs binaryen's -Os after the folding: 1.2 MB less raw, 0.1 MB more
+    # brotli, 3 to 4 CPU-min more, and the physics in the page slower (docs/web.md, "A lighter
+    # page"); with RIGIDLAB_WEB_LINK_OPT=z it made the 24.9 MB page. Not the default.
+    if [ "${RIGIDLAB_WASM_OPT_OS:-0}" = 1 ]; then
+      node web/opt/node_modules/binaryen/bin/wasm-opt --detect-features -Os "$wasm" -o "$wasm.opt"
+      mv "$wasm.opt" "$wasm"
+    fi
   else
     echo "web/build.sh: binaryen $want_binaryen is not installed in web/opt: wasm-opt not run (the page is larger, still whole)"
   fi
@@ -94,7 +119,7 @@ brotli_node='const z = require("zlib"), fs = require("fs"); const d = fs.readFil
 fs.writeFileSync(process.argv[1] + ".br", z.brotliCompressSync(d, { params: {
   [z.constants.BROTLI_PARAM_QUALITY]: 11, [z.constants.BROTLI_PARAM_LGWIN]: 24,
   [z.constants.BROTLI_PARAM_SIZE_HINT]: d.length } }));'
-for f in "$wasm" "$out/rigidlab.js"; do
+for f in "$wasm" "$out/rigidlab.js" "$out/levels.json"; do
   gzip -9 -k -f "$f"
   if command -v zstd >/dev/null 2>&1; then zstd -19 -q -f "$f" -o "$f.zst"; fi
   if command -v brotli >/dev/null 2>&1; then brotli -q 11 -w 24 -f -k "$f"
@@ -102,3 +127,4 @@ for f in "$wasm" "$out/rigidlab.js"; do
 done
 size() { if [ -f "$1" ]; then echo "$(( $(stat -c %s "$1") / 1024 )) KiB"; else echo "none"; fi; }
 echo "web/build.sh: $out ready; rigidlab_bg.wasm $((raw / 1024)) KiB, gzip $(size "$wasm.gz"), zstd $(size "$wasm.zst"), brotli $(size "$wasm.br")"
+echo "web/build.sh: levels.json $(( $(stat -c %s "$out/levels.json") / 1024 )) KiB, brotli $(size "$out/levels.json.br")"

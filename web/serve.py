@@ -2,8 +2,8 @@
 """Serves web/dist (made by web/build.sh) as a static host should serve the page.
 
 Python's own `http.server` sends every file as it lies on disk: the 45 MB wasm whole, even to a
-browser that asks for it compressed. web/build.sh writes compressed copies beside the wasm and
-the JavaScript (`.gz` always, `.zst` where a `zstd` command exists, `.br` where a `brotli`
+browser that asks for it compressed. web/build.sh writes compressed copies beside the wasm,
+the JavaScript and the level library (levels.json) (`.gz` always, `.zst` where a `zstd` command exists, `.br` where a `brotli`
 command or Node exists); this server sends the smallest of those the browser accepts
 (`Accept-Encoding`, q-values honoured, `q=0` refused), with `Content-Encoding` and
 `Vary: Accept-Encoding`, and the file itself otherwise.

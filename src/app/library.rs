@@ -4,21 +4,29 @@
 //! 2026-12-07). It now takes, in order: the folder given (`--levels DIR`), `./levels`, a
 //! `levels` folder beside the program or in a folder above it (a `cargo build` binary in
 //! `target/release` finds the repository's), and last the library compiled in (2 MB of RON in
-//! a binary of about 130 MB; the web page has always compiled it in). The status line says
-//! which one opened.
+//! a binary of about 130 MB). The status line says which one opened. The web page compiled it in
+//! too until 2026-12-07; it now fetches it beside the wasm (`app/page_library.rs`).
 
+#[cfg(not(target_arch = "wasm32"))]
 use include_dir::{include_dir, Dir};
 use std::path::{Path, PathBuf};
+#[cfg(not(target_arch = "wasm32"))]
 use std::sync::Arc;
+
+/// The page's library, fetched as `levels.json` beside the wasm.
+#[cfg(target_arch = "wasm32")]
+pub use super::page_library::library;
 
 /// The level library, compiled in: the folder as it was when the crate was last compiled
 /// (Cargo does not watch the folder for it: include_dir tracks files on nightly Rust only, and
 /// a build script watching it would rebuild rigidlab after every level edited). A folder, found
 /// first wherever there is one, has the levels as they are now.
+#[cfg(not(target_arch = "wasm32"))]
 static LEVELS: Dir<'static> = include_dir!("$CARGO_MANIFEST_DIR/levels");
 
 /// The compiled-in library as `(levels/<topic>/<file>.ron, text)`, the paths `rigidlab check
 /// levels` prints.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn library() -> Vec<(PathBuf, Arc<str>)> {
     fn walk(d: &Dir<'static>, out: &mut Vec<(PathBuf, Arc<str>)>) {
         for f in d.files() {

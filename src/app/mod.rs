@@ -31,6 +31,10 @@ pub mod overlays;
 pub mod page_fetch;
 #[cfg(target_arch = "wasm32")]
 pub mod page_files;
+#[cfg(target_arch = "wasm32")]
+pub mod page_fonts;
+#[cfg(target_arch = "wasm32")]
+pub mod page_library;
 pub mod panels;
 pub mod physics;
 pub mod playback;

@@ -1,6 +1,6 @@
 //! The sandbox in a web page (wasm32, WebGL2): the same plugins as the native window
 //! ([`super::sandbox::add_sandbox`]) drawn into the page's `<canvas id="rigidlab">`, with the level library
-//! compiled in (a page has no file system).
+//! the page fetched beside the wasm (`page_library.rs`; a page has no file system).
 //!
 //! The page's URL chooses what opens (`web/index.html` documents it):
 //! - `#level=DATA&name=FILE.ron` opens the level carried in the link itself (`level::link`, made by
@@ -27,7 +27,7 @@ use crate::level::Scene;
 use bevy::prelude::*;
 use std::path::{Path, PathBuf};
 
-/// The level library, compiled in (shared with the native window's last resort).
+/// The level library, fetched by the page as `levels.json` (`page_library.rs`).
 pub use super::library::library;
 
 /// What the page's URL asks for.
@@ -141,6 +141,7 @@ pub fn start() {
         ..default()
     }));
     super::sandbox::add_sandbox(&mut app, scene, browser, !query.play || query.predict);
+    app.add_plugins(super::page_fonts::PageFontsPlugin);
     if query.predict {
         app.world_mut().resource_mut::<panels::Predict>().switch = Some(true);
     }

@@ -90,10 +90,12 @@ try {
   page.on("console", (m) => logs.push(`${m.type()}: ${m.text()}`));
   page.on("pageerror", (e) => logs.push(`pageerror: ${e}`));
   // How the wasm came: its Content-Encoding and the bytes on the wire (the first load only).
+  // The level library likewise (levels.json, fetched beside the wasm since 2026-12-07).
   page.on("response", async (r) => {
-    if (!r.url().endsWith("rigidlab_bg.wasm") || summary.wasm) return;
+    const key = r.url().endsWith("rigidlab_bg.wasm") ? "wasm" : r.url().endsWith("levels.json") ? "library" : null;
+    if (!key || summary[key]) return;
     const h = await r.allHeaders();
-    summary.wasm = { encoding: h["content-encoding"] ?? "identity", bytes_sent: Number(h["content-length"] ?? -1) };
+    summary[key] = { encoding: h["content-encoding"] ?? "identity", bytes_sent: Number(h["content-length"] ?? -1) };
   });
   const status = async () => JSON.parse((await page.textContent("#rigidlab-status")) || "null");
   const waitStatus = async (what, ok, seconds) => {

@@ -196,6 +196,43 @@ fn the_wasm_comes_compressed() {
     }
 }
 
+/// The level library comes beside the wasm (`levels.json`, since 2026-12-07: 1.8 MB less wasm)
+/// and compressed too: JSON of level files, which brotli -q 11 and zstd -19 shrink to about 7%
+/// and gzip -9 to about 12% of it (measured 2026-12-07), so any copy is under 20%; of those
+/// Chromium accepts (all three) the smallest.
+#[test]
+fn the_library_comes_compressed() {
+    let Some(dir) = records() else { return };
+    let b = read_json(&dir.join("browser.json"));
+    let encoding = b["library"]["encoding"]
+        .as_str()
+        .unwrap_or("none")
+        .to_string();
+    assert!(
+        ["zstd", "br", "gzip"].contains(&encoding.as_str()),
+        "the library came with Content-Encoding {encoding:?}"
+    );
+    let sent = b["library"]["bytes_sent"].as_f64().unwrap_or(-1.0);
+    if let Ok(raw) = std::fs::metadata("web/dist/levels.json").map(|m| m.len() as f64) {
+        assert!(
+            sent > 0.0 && sent < 0.2 * raw,
+            "the library sent {sent} bytes ({encoding}) of {raw}"
+        );
+        println!("library: {sent} bytes on the wire ({encoding}), {raw} decompressed");
+    }
+    let smallest = ["gz", "zst", "br"]
+        .iter()
+        .filter_map(|ext| std::fs::metadata(format!("web/dist/levels.json.{ext}")).ok())
+        .map(|m| m.len())
+        .min();
+    if let Some(smallest) = smallest {
+        assert_eq!(
+            sent, smallest as f64,
+            "the library was not sent as its smallest copy"
+        );
+    }
+}
+
 /// The pendulum as the page drew it at the end of its run: the bob's fill, centred where the
 /// native core puts the bob at that step, through the view mapping the page reported.
 #[test]
