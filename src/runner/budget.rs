@@ -426,7 +426,7 @@ pub struct Work {
     pub mechanism: (usize, usize),
     /// The reference trajectory's integrations, us: every question a reference trajectory can
     /// serve (`questions::level_facts::served_by_reference`) read at a time integrates it from
-    /// the start to that time ([`reference_us`]).
+    /// the start to that time (`runner/budget/once.rs`).
     pub reference_us: f64,
     pub checks: usize,
     /// Over the `virtual_work` checks, the level's joints ([`VIRTUAL_WORK_JOINT_STEP_US`]).
