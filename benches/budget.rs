@@ -6,6 +6,7 @@
 //!     BUDGET_DT=1e-5 BUDGET_DURATION=0.2 cargo bench ... -- FILE       # at another dt, cut short
 //!     BUDGET_MEASURED=OUT.txt cargo bench ...                          # reprice a saved run
 //!     BUDGET_WORK=1 cargo bench ...                                    # and print what is priced
+//!     BUDGET_REFERENCE=1 cargo bench ...                               # and the reference trajectory's cost
 //!
 //! `BUDGET_MEASURED` names this bench's own output of an earlier run: a level or case listed there
 //! is not run again, its CPU time is taken from that file and only the estimate is today's (to
@@ -109,7 +110,14 @@ fn measure(
                 std::hint::black_box(report);
                 runs += 1;
             }
-            (thread_cpu_s() - c0) / runs as f64
+            let cpu = (thread_cpu_s() - c0) / runs as f64;
+            // Outside the measured runs: one more, for its questions.
+            if std::env::var_os("BUDGET_REFERENCE").is_some() {
+                let report =
+                    rigidlab::runner::run_graded(scene, opts, &HashMap::new(), |_| {}).ok()?;
+                reference_cost(&name, scene, &report, estimate.work.reference_us);
+            }
+            cpu
         }
     };
     let row = Row {
@@ -125,6 +133,48 @@ fn measure(
         row.ratio()
     );
     Some(row)
+}
+
+/// Prints what the reference trajectory cost the run (`BUDGET_REFERENCE`): the questions whose
+/// analysis it gave, each integrated again from the start to its time, repeated to 20 ms of this
+/// thread's CPU time, against the estimate's price (`Work::reference_us`).
+fn reference_cost(
+    name: &str,
+    scene: &Scene,
+    report: &rigidlab::report::LevelReport,
+    priced_us: f64,
+) {
+    use rigidlab::analysis::reference::{Reference, LABEL};
+    let read: Vec<f64> = report
+        .questions
+        .iter()
+        .filter(|q| q.analysis_source == LABEL)
+        .map(|q| q.time)
+        .collect();
+    let Ok(model) = Reference::of_level(&scene.level) else {
+        return;
+    };
+    if read.is_empty() {
+        return;
+    }
+    let (mut cpu_s, mut evaluations) = (0.0, 0);
+    for &t in &read {
+        let (c0, mut runs) = (thread_cpu_s(), 0);
+        while runs == 0 || thread_cpu_s() - c0 < 0.02 {
+            if let Ok(tr) = model.integrate(&[t]) {
+                evaluations += usize::from(runs == 0) * tr.evaluations;
+            }
+            runs += 1;
+        }
+        cpu_s += (thread_cpu_s() - c0) / runs as f64;
+    }
+    println!(
+        "  reference of {name}: {} questions, {:.3} s integrated, {evaluations} evaluations, {:.3} ms (priced {:.3} ms)",
+        read.len(),
+        read.iter().sum::<f64>(),
+        cpu_s * 1e3,
+        priced_us * 1e-3
+    );
 }
 
 fn median(v: &[f64]) -> f64 {

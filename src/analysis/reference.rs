@@ -317,6 +317,22 @@ impl Reference {
         self.untouched.as_deref()
     }
 
+    /// The longest stretch integrated between two projections: [`CONTACT_SEGMENT`] where the
+    /// model rolls, else [`SEGMENT`] (the integrator restarts at each: the run budget prices it).
+    pub fn stretch(&self) -> f64 {
+        if self.rolling.is_empty() {
+            SEGMENT
+        } else {
+            CONTACT_SEGMENT
+        }
+    }
+
+    /// The constraint rows the model solves at each evaluation (a pin's two, a coupling's one,
+    /// a rolling contact's two...).
+    pub fn row_count(&self) -> usize {
+        self.constraints.len()
+    }
+
     /// Whether level body i is a dynamic body of the reference (one it integrates).
     pub fn moves(&self, i: usize) -> bool {
         self.bodies.get(i).is_some_and(|b| b.slot.is_some())
@@ -852,11 +868,7 @@ impl Reference {
         if let Some(why) = self.violation(t, &y) {
             return Err(why);
         }
-        let stretch = if self.rolling.is_empty() {
-            SEGMENT
-        } else {
-            CONTACT_SEGMENT
-        };
+        let stretch = self.stretch();
         let mut drift: f64 = 0.0;
         let mut evaluations = 0;
         let mut out: Vec<Option<Instant>> = vec![None; times.len()];

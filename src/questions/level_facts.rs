@@ -276,7 +276,7 @@ impl LevelFacts {
 /// The quantities the reference trajectory (`analysis::reference`) gives an analysis value
 /// for, read at a time: positions, angles and velocities of bodies and body points, joint
 /// reactions and rolling contacts' forces.
-pub(super) fn served_by_reference(q: &Quantity) -> bool {
+pub fn served_by_reference(q: &Quantity) -> bool {
     matches!(
         q,
         Quantity::X(_)

@@ -36,6 +36,30 @@
 //!   middle), 27 ms with four (the toggle of tests/newuser/statics/n11_08b): 0.7 ms + 5.5 ms a
 //!   joint. Unpriced before, these were the lowest ratios of the bench (the toggle 0.20x, the
 //!   fast double pendulum n8_04 0.26x, 23 ms of its 31 in the linearization).
+//! - [`LINEARIZE_SVD_US`]: that was fitted on 0 to 4 joints; the Hessian of the potential along
+//!   the constraints takes 2 d^2 values (d the degrees of freedom), each a projection onto the
+//!   constraints by SVDs of the Jacobian of n = 3 columns a body (the SVDs half the time in
+//!   `perf`): d^2 n^3. Measured 2026-12-07 on chains of 2 to 30 bars hanging from a pin with one
+//!   `PendulumPeriod` (one-step runs as above, load average 5 to 11; `chain` in
+//!   tests/suite/runner/budget.rs): 11.1 ms, 61.5 ms, 0.535 s, 23.5 s and 137 s for 2, 5, 10, 20
+//!   and 30 bars, priced 0.012 to 0.166 s by the joints alone (30 bars 0.001x); 0.2 us d^2 n^3
+//!   more: 1.07x, 0.73x, 1.11x, 0.74x, 0.96x. The mechanism priced is the level's largest set of
+//!   dynamic bodies held together by joints ([`Work::mechanism`]).
+//! - [`REFERENCE_EVALS_PER_S`], [`REFERENCE_EVALS_PER_SEGMENT`], [`REFERENCE_EVAL_US`],
+//!   [`REFERENCE_BODY_EVAL_US`], [`REFERENCE_ROW_EVAL_US`]: a question the reference trajectory
+//!   serves (`analysis::reference`: a position, a speed, a reaction read at a time), where its
+//!   textbook formula gives no value, integrates the level's equations from the start to its
+//!   time, in segments of 0.05 s (0.01 s with rolling contacts) at rtol 1e-10. Measured
+//!   2026-12-07 (the CPU time of `Reference::integrate` to each question's time, repeated to 20
+//!   ms, on the 38 levels whose runs read it; load average 5 to 7): 690 evaluations a second of
+//!   span in segments of 0.05 s, 1800 in segments of 0.01 s (13.5 a segment, 450 a second);
+//!   0.19 to 0.21 us an evaluation for a body alone, 0.26 to 0.30 for two, 0.5 to 0.6 with a pin
+//!   or a rolling contact, 0.7 to 1.0 with 3 or 4 rows. Unpriced before, these runs of 2 to 7 ms
+//!   were priced 0.21x to 0.43x: tests/newuser/statics/n5_12 (5.0 ms of its 7.0 in the
+//!   reference), n4_02 (2.8 of 3.7), levels/kinematics/cycloid_rim_point (1.1 of 1.7),
+//!   ha_relative_motion_cars_fragment (1.4 of 2.2), free_fall (0.26 of 0.39). A question whose
+//!   textbook formula applies does not read it, nor one read after a contact the reference does
+//!   not hold: both are known only as the run goes, and priced.
 //! - [`CALL_US`]: one ball, 1e6 steps of one rapier call: 1.31 s; a spring split into 100
 //!   substeps, 3600 steps (360,000 calls): 0.58 s, 1.6 us a call.
 //! - [`BODY_STEP_US`], [`BODY_SUBSTEP_US`]: 1000 free discs, 3600 steps at 1 substep: 0.21 s;
@@ -101,6 +125,14 @@
 //!   against 3.30, curve_disc_rolling_in_ring (3, 432) no difference: 0 to 0.43 us a check and
 //!   a step, the steps split to read joint impulses for the checks included. 0.3: at 0.8 the
 //!   pendulums with 7 and 8 checks were priced 2.4x and 2.7x.
+//! - [`VIRTUAL_WORK_JOINT_STEP_US`]: a `virtual_work` check finds the mechanism's virtual
+//!   velocities at every step (`analysis::virtual_work::virtual_velocities`, the largest part in
+//!   `perf` of levels/virtual-work/zh_slider_crank_static_servo, 2026-12-07). Fitted 2026-12-07 on
+//!   the bench's runs (load average 5 to 11) as the CPU time past the other terms: that level (2
+//!   checks, 8 joints, 500 steps) 15 us a step, 0.96 us a check-joint; the four-bar held by a
+//!   servo tests/newuser/statics/i14_02 (1, 4) 6.5 us a step, 1.6 us a check-joint: 1.0 (priced
+//!   0.37x and 0.53x without; the other 9 levels with the check 0.70x to 1.51x, 0.97x to 1.59x
+//!   with it).
 //! - [`BASE_MB`] and the per-item memory: the peak of a one-ball run (31.3 MB); 1000 discs at
 //!   one point 1282 MB, 300 at one point 124 MB (2.1 to 2.5 KB a pair); 10^4 questions 66.5 MB
 //!   (3.4 KB each); 1000 free bodies 32.6 MB; the `impulse_momentum` check over 1e6 steps
@@ -124,6 +156,12 @@
 //!   against 0.028 s, 6.8 us a coupling-call; tests/newuser/linkages/n8_10 (1, 3000 calls) 28 ms
 //!   against 5 ms, 7.7 us; levels/kinetics/classic_atwood_massive_pulley (2, 1152 calls) 17.8
 //!   ms against 2.3 ms, 6.7 us. Unpriced before, these ran 5x to 8x their estimate.
+//!   Those cables all run over a pulley or a drum: a term in its angle. [`COUPLING_CALL_US`],
+//!   [`COUPLING_ANGLE_CALL_US`]: a cable between bodies' x and y, measured 2026-12-07 by the bench
+//!   the same way: levels/kinetics/ha_blocks_A_B_pulley_C 1.9 us a call,
+//!   ha_hoist_power_efficiency 2.2, levels/kinematics/ha_collars_pulley_dependent_motion (three
+//!   terms) 2.1, ha_three_block_dependent_motion 3.0, priced 1.7x to 2.4x at 7: 2.5 us a
+//!   coupling, and 4.5 more for one with a term in an angle.
 //! - A spinning ball in contact: rigidlab splits a step into several calls where a dynamic
 //!   ball's turn over a call would disturb its contact (sim/contact_points.rs, `spin_calls`), a
 //!   choice made during the run. The estimate makes it before: a dynamic `Circle` that may turn
@@ -210,9 +248,12 @@
 
 use crate::level::shape as shapes;
 use crate::level::{
-    BodyKind, CheckKind, Effect, Level, LevelError, Quantity, QuantityFamily, When,
+    BodyKind, CheckKind, Coordinate, Effect, Level, LevelError, Quantity, QuantityFamily, When,
 };
 use crate::sim::{Options, Settings, Substepping};
+use once::{largest_mechanism, reference_us};
+
+mod once;
 use std::path::Path;
 
 /// The time budget of one run, s: past it a run is refused unless `--allow-long`.
@@ -229,6 +270,10 @@ pub const RUN_US: f64 = 30.0;
 pub const LINEARIZE_US: f64 = 700.0;
 /// The same, per joint of the level: the constraints' numeric Jacobians and their SVDs, us.
 pub const LINEARIZE_JOINT_US: f64 = 5500.0;
+/// The same, per d^2 n^3 of the largest jointed mechanism (d its degrees of freedom, n its 3
+/// coordinates a body): the potential's Hessian along the constraints takes 2 d^2 of its values,
+/// each a projection onto the constraints by SVDs of the n-column Jacobian, us.
+pub const LINEARIZE_SVD_US: f64 = 0.2;
 /// The contact pairs whose rapier data (pair, manifold, solver rows: [`PAIR_KB`] each) fit a
 /// core's 2 MB L2 cache: past them a pair's narrow phase and rows wait on memory.
 pub const PAIRS_IN_CACHE: f64 = 800.0;
@@ -267,8 +312,24 @@ pub const PAIR_MADE_NS: f64 = 17.0;
 /// One facet of a curved track (an `Arc`'s facets, a `Polyline`'s points), built once with its
 /// search tree, us.
 pub const FACET_US: f64 = 0.32;
-/// One coupling solved after one rapier call, us.
-pub const COUPLING_CALL_US: f64 = 7.0;
+/// One coupling solved after one rapier call, us (a cable between bodies' x and y).
+pub const COUPLING_CALL_US: f64 = 2.5;
+/// A coupling with a term in a body's angle (a cable over a massive pulley or a drum, gears),
+/// more than [`COUPLING_CALL_US`], per call, us: its angle is read as an atan2 and set as a
+/// turned pose about the mass centre in every sweep.
+pub const COUPLING_ANGLE_CALL_US: f64 = 4.5;
+/// The reference trajectory's integration (`analysis::reference`), right-hand-side evaluations
+/// per second of the span integrated, beyond those each segment's restart costs.
+pub const REFERENCE_EVALS_PER_S: f64 = 450.0;
+/// The same, evaluations each segment's restart costs (the integrator's first step and its
+/// step-size guess, after each projection onto the constraints).
+pub const REFERENCE_EVALS_PER_SEGMENT: f64 = 13.5;
+/// One evaluation of the reference's right-hand side, us: its start, ...
+pub const REFERENCE_EVAL_US: f64 = 0.1;
+/// ... per dynamic body it integrates, ...
+pub const REFERENCE_BODY_EVAL_US: f64 = 0.1;
+/// ... and per constraint row it solves (the Schur complement's Cholesky among them).
+pub const REFERENCE_ROW_EVAL_US: f64 = 0.15;
 /// One question watching one step, us.
 pub const QUESTION_STEP_US: f64 = 0.15;
 /// One snapshot of a `MotorTorque` question's averaging window, read at one step, us: the window
@@ -291,6 +352,9 @@ pub const POLYLINE_FACET_CALL_US: f64 = 0.035;
 pub const OTHER_TRACK_CALL_US: f64 = 9.0;
 /// One check observing one step, us.
 pub const CHECK_STEP_US: f64 = 0.3;
+/// A `virtual_work` check, beyond [`CHECK_STEP_US`], per joint of the level and per step, us:
+/// it finds the mechanism's virtual velocities at every step (`analysis::virtual_work`).
+pub const VIRTUAL_WORK_JOINT_STEP_US: f64 = 1.0;
 /// The engine's part of a step in f64 against f32 (rapier2d-f64 against rapier2d: 1.2x to 1.3x
 /// over the library, docs/accuracy.md; `study::advice::F64_COST`).
 pub const F64_COST: f64 = 1.25;
@@ -351,10 +415,22 @@ pub struct Work {
     pub facets: f64,
     /// Couplings rigidlab solves after every rapier call (0 without joints).
     pub couplings: usize,
+    /// Of them, those with a term in a body's angle ([`COUPLING_ANGLE_CALL_US`]).
+    pub turning_couplings: usize,
     pub questions: usize,
     /// Questions that linearize their mechanism once ([`LINEARIZE_US`]).
     pub linearizations: usize,
+    /// Of the level's largest mechanism of dynamic bodies held by joints (or of one body): its
+    /// coordinates n (3 a body) and its degrees of freedom d (n less its joints' rows, at least
+    /// 1), which price a linearization beyond its joints ([`LINEARIZE_SVD_US`]).
+    pub mechanism: (usize, usize),
+    /// The reference trajectory's integrations, us: every question a reference trajectory can
+    /// serve (`questions::level_facts::served_by_reference`) read at a time integrates it from
+    /// the start to that time (`runner/budget/once.rs`).
+    pub reference_us: f64,
     pub checks: usize,
+    /// Over the `virtual_work` checks, the level's joints ([`VIRTUAL_WORK_JOINT_STEP_US`]).
+    pub virtual_work_joints: usize,
     /// Bytes the checks keep per step (their histories).
     pub history_bytes_per_step: f64,
     /// The engine in f64 (rapier2d-f64), whose steps cost [`F64_COST`] times f32's.
@@ -513,6 +589,15 @@ impl Work {
             } else {
                 0
             },
+            turning_couplings: if set.effects.has(Effect::Joints) {
+                level
+                    .couplings
+                    .iter()
+                    .filter(|c| c.terms.iter().any(|t| t.coordinate == Coordinate::Angle))
+                    .count()
+            } else {
+                0
+            },
             questions: level.questions.len(),
             // Every quantity of the periods family (questions/periods.rs) linearizes the
             // mechanism once.
@@ -521,7 +606,15 @@ impl Work {
                 .iter()
                 .filter(|q| q.quantity.family() == QuantityFamily::Periods)
                 .count(),
+            reference_us: reference_us(level, steps * opts.dt.unwrap_or(level.world.dt)),
+            mechanism: largest_mechanism(level),
             checks: level.checks.len(),
+            virtual_work_joints: level
+                .checks
+                .iter()
+                .filter(|c| c.kind == CheckKind::VirtualWork)
+                .count()
+                * level.joints.len(),
             history_bytes_per_step,
             f64: precision == crate::level::Precision::F64,
             dt: opts.dt.unwrap_or(level.world.dt),
@@ -575,6 +668,15 @@ impl Work {
         n.min(JOINTS_IN_LANES as f64).max(n * JOINT_LANE_COST)
     }
 
+    /// One linearization of the mechanism, us: [`LINEARIZE_US`], [`LINEARIZE_JOINT_US`] a
+    /// joint, and [`LINEARIZE_SVD_US`] d^2 n^3 (see [`Work::mechanism`]).
+    pub fn linearize_us(&self) -> f64 {
+        let (n, d) = (self.mechanism.0 as f64, self.mechanism.1 as f64);
+        LINEARIZE_US
+            + self.joints as f64 * LINEARIZE_JOINT_US
+            + LINEARIZE_SVD_US * d * d * n.powi(3)
+    }
+
     /// One step, us.
     pub fn step_us(&self) -> f64 {
         let pairs = self.priced_pairs();
@@ -590,12 +692,14 @@ impl Work {
                         + rows * (ROW_SUBSTEP_US + self.iterations as f64 * ROW_ITERATION_US)))
             + calls
                 * (self.couplings as f64 * COUPLING_CALL_US
+                    + self.turning_couplings as f64 * COUPLING_ANGLE_CALL_US
                     + self.track_cast_us()
                     + self.polyline_facets * POLYLINE_FACET_CALL_US
                     + self.other_tracks * OTHER_TRACK_CALL_US)
             + self.windows.step_us()
             + self.questions as f64 * QUESTION_STEP_US
             + self.checks as f64 * CHECK_STEP_US
+            + self.virtual_work_joints as f64 * VIRTUAL_WORK_JOINT_STEP_US
     }
 }
 
@@ -608,9 +712,9 @@ impl Estimate {
 
     /// The unit costs applied to `work`: the formula docs/cli.md states.
     pub fn price(work: Work, mode: Mode) -> Estimate {
-        let linearize_us = LINEARIZE_US + work.joints as f64 * LINEARIZE_JOINT_US;
+        let linearize_us = work.linearize_us();
         let mut seconds = START_S
-            + (RUN_US + work.linearizations as f64 * linearize_us) * 1e-6
+            + (RUN_US + work.linearizations as f64 * linearize_us + work.reference_us) * 1e-6
             + work.steps * work.step_us() * 1e-6
             + work.pair_degrees * PAIR_MADE_NS * 1e-9
             + work.facets * FACET_US * 1e-6;
@@ -671,6 +775,25 @@ impl Estimate {
         }
         if w.history_bytes_per_step > 0.0 {
             what += &format!(", checks keeping {} bytes a step", w.history_bytes_per_step);
+        }
+        // Once-a-run costs that can be the bulk of a run of few steps: name them with their
+        // price, so that the remedy (fewer period questions, a smaller mechanism) is seen.
+        let linearize_s = w.linearizations as f64 * w.linearize_us() * 1e-6;
+        if linearize_s > 0.5 * self.seconds {
+            what += &format!(
+                ", {} question{} linearizing a mechanism of {} degrees of freedom and {} coordinates ({}, most of the run)",
+                w.linearizations,
+                if w.linearizations == 1 { "" } else { "s" },
+                w.mechanism.1,
+                w.mechanism.0,
+                seconds_text(linearize_s)
+            );
+        }
+        if w.reference_us * 1e-6 > 0.5 * self.seconds {
+            what += &format!(
+                ", the reference trajectory integrated for the questions read on it ({}, most of the run)",
+                seconds_text(w.reference_us * 1e-6)
+            );
         }
         Err(LevelError::new(
             file,

@@ -140,8 +140,12 @@ pub fn estimated_unit(level: &level::Level) -> f64 {
     // Every step priced split where a spinning ball may split it, as before the run budget's
     // split share (2026-12-07): the study's windows and caps stay those its figures were
     // measured with (docs/accuracy.md).
+    // Likewise every coupling at the price of a cable over a pulley, and a `virtual_work`
+    // check at a check's, as before the budget told them apart (a later 2026-12-07 change).
     let work = crate::runner::budget::Work {
         split_share: 1.0,
+        turning_couplings: work.couplings,
+        virtual_work_joints: 0,
         ..work
     };
     work.step_us() * 1e-6 / base.substeps.max(1) as f64

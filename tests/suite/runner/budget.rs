@@ -173,7 +173,8 @@ fn the_estimate_is_the_formula_docs_cli_md_states() {
         let step_us = calls
             * (1.3
                 + pairs * 0.1
-                + w.couplings as f64 * 7.0
+                + w.couplings as f64 * 2.5
+                + w.turning_couplings as f64 * 4.5
                 + w.polyline_facets * 0.035
                 + w.other_tracks * 9.0)
             + w.bodies as f64 * 0.05
@@ -182,8 +183,12 @@ fn the_estimate_is_the_formula_docs_cli_md_states() {
                     + w.bodies as f64 * 0.008
                     + (joints + pairs) * (0.048 + w.iterations as f64 * 0.02))
             + w.questions as f64 * 0.15
-            + w.checks as f64 * 0.3;
-        0.01 + (30.0 + w.linearizations as f64 * (700.0 + 5500.0 * w.joints as f64)) * 1e-6
+            + w.checks as f64 * 0.3
+            + w.virtual_work_joints as f64 * 1.0;
+        // A linearization: its joints, and d^2 n^3 of its mechanism's SVDs.
+        let (n, d) = (w.mechanism.0 as f64, w.mechanism.1 as f64);
+        let linearize_us = 700.0 + 5500.0 * w.joints as f64 + 0.2 * d * d * n.powi(3);
+        0.01 + (30.0 + w.linearizations as f64 * linearize_us + w.reference_us) * 1e-6
             + w.steps * step_us * 1e-6
             + w.pair_degrees * 17e-9
             + w.facets * 0.32e-6
@@ -672,7 +677,8 @@ fn a_polylines_points_are_priced_at_every_call() {
 /// `EquilibriumAngle`: `analysis::small_oscillations`) pays it once: measured 2026-12-07 as the
 /// CPU time of one-step runs (`BUDGET_DURATION=1e-9 cargo bench --no-default-features --bench
 /// budget`) less a step, 0.4 to 1.6 ms a question on a spring's blocks, 4.6 to 5.7 ms with one
-/// joint, 10.6 ms with two, 27 ms with four: priced 0.7 ms + 5.5 ms a joint.
+/// joint, 10.6 ms with two, 27 ms with four: priced 0.7 ms + 5.5 ms a joint (and its
+/// mechanism's SVDs, below).
 #[test]
 fn a_linearizing_question_is_priced_once_by_its_joints() {
     let cart = load("levels/kinetics/linearized_pendulum_on_cart.ron").level;
@@ -686,7 +692,14 @@ fn a_linearizing_question_is_priced_once_by_its_joints() {
         Mode::Check,
     );
     let once = e.seconds - without.seconds;
-    assert!((once - (0.7e-3 + 2.0 * 5.5e-3)).abs() < 1e-12, "{once}");
+    // The cart and its pendulum: 6 coordinates less a slider's and a pin's 2 rows each, 2 degrees
+    // of freedom: 0.2 us x 2^2 x 6^3 = 0.17 ms of SVDs.
+    assert_eq!(e.work.mechanism, (6, 2));
+    let svd = 0.2e-6 * 4.0 * 216.0;
+    assert!(
+        (once - (0.7e-3 + 2.0 * 5.5e-3 + svd)).abs() < 1e-12,
+        "{once}"
+    );
     // Not a step's cost: twice the steps add only the steps' price.
     let twice = Estimate::of(
         &cart,
@@ -696,6 +709,151 @@ fn a_linearizing_question_is_priced_once_by_its_joints() {
     );
     let steps_s = e.work.steps * e.work.step_us() * 1e-6;
     assert!((twice.seconds - e.seconds - steps_s).abs() < 1e-12);
+}
+
+/// A chain of `n` bars of 0.5 m hanging from a pin, turned 0.01 rad as one, with one period
+/// question: the mechanism `analysis::small_oscillations` linearizes has n degrees of freedom.
+fn chain(n: usize) -> String {
+    let (l, a) = (0.5f64, 0.01f64);
+    let mut bodies = String::from("(name: \"ground\", kind: fixed),\n");
+    let mut joints = String::new();
+    for i in 0..n {
+        let d = (i as f64 + 0.5) * l;
+        bodies += &format!(
+            "(name: \"bar{}\", shape: Box(width: 0.04, height: {l}), mass: 1.0, angle: {a}, position: ({:?}, {:?})),\n",
+            i + 1,
+            d * a.sin(),
+            -d * a.cos()
+        );
+        let (b1, a1) = if i == 0 {
+            ("ground".to_string(), 0.0)
+        } else {
+            (format!("bar{i}"), -0.5 * l)
+        };
+        joints += &format!(
+            "(name: \"pin{}\", kind: revolute, body1: \"{b1}\", body2: \"bar{}\", anchor1: (0.0, {a1}), anchor2: (0.0, {})),\n",
+            i + 1,
+            i + 1,
+            0.5 * l
+        );
+    }
+    format!(
+        "Level(title: \"a chain of {n} bars\", effects: [gravity, joints],\n world: (dt: 0.002, substeps: 4, duration: 1.0),\n bodies: [\n{bodies}],\n joints: [\n{joints}],\n questions: [(id: \"T\", ask: \"Period\", unit: \"s\", expected: 1.0, tolerance: 1.0, quantity: PendulumPeriod(body: \"bar1\", joint: \"pin1\"), at: End)],\n)\n"
+    )
+}
+
+/// A linearization's Hessian takes 2 d^2 values of the potential along the constraints, each a
+/// projection by SVDs of the n-column Jacobian: d^2 n^3 (d degrees of freedom, n = 3 a body).
+/// Measured 2026-12-07 on `chain(n)` (one-step runs, `BUDGET_DURATION=1e-9 cargo bench
+/// --no-default-features --bench budget -- DIR`, load average 5 to 11): 2, 5, 10, 20 and 30 bars
+/// 11.1 ms, 61.5 ms, 0.535 s, 23.5 s and 137 s, priced 0.012, 0.028, 0.056, 0.111 and 0.166 s
+/// by 0.7 ms + 5.5 ms a joint alone (30 bars 0.001x); with 0.2 us d^2 n^3 0.012, 0.045, 0.60,
+/// 17.4 and 131 s (1.07x, 0.73x, 1.11x, 0.74x, 0.96x).
+#[test]
+fn a_linearization_is_priced_by_its_mechanisms_size() {
+    for (bars, at_least_s) in [(2, 0.0115), (10, 0.59), (30, 131.0)] {
+        let scene = parse(&chain(bars));
+        let w = as_checked(&scene.level).work;
+        assert_eq!(w.mechanism, (3 * bars, bars), "{bars} bars");
+        let (n, d) = (3.0 * bars as f64, bars as f64);
+        let us = 700.0 + 5500.0 * d + 0.2 * d * d * n.powi(3);
+        assert!((w.linearize_us() - us).abs() < 1e-6 * us, "{bars} bars");
+        assert!(w.linearize_us() * 1e-6 > at_least_s, "{bars} bars");
+    }
+    // 45 bars: 997 s of linearization, refused, and the refusal names it.
+    let scene = parse(&chain(45));
+    let e = as_checked(&scene.level);
+    let err = e
+        .within_budget(std::path::Path::new("chain_45.ron"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains(
+            "1 question linearizing a mechanism of 45 degrees of freedom and 135 coordinates"
+        ),
+        "{err}"
+    );
+    // A welded pair is one body's 3 coordinates less its 3 rows: at least 1 degree of freedom.
+    let weld = parse(
+        "Level(title: \"weld\", effects: [gravity, joints], world: (dt: 0.01, duration: 0.1),\n bodies: [(name: \"a\", shape: Circle(radius: 0.1), position: (0.0, 0.0)), (name: \"b\", shape: Circle(radius: 0.1), position: (0.3, 0.0))],\n joints: [(name: \"w\", kind: fixed, body1: \"a\", body2: \"b\", anchor1: (0.15, 0.0), anchor2: (-0.15, 0.0))],\n)\n",
+    );
+    assert_eq!(as_checked(&weld.level).work.mechanism, (6, 3));
+}
+
+/// A question the reference trajectory can serve, read at a time, integrates it from the start
+/// (`analysis::reference`, Dop853 at rtol 1e-10): measured 2026-12-07 (the CPU time of
+/// `Reference::integrate` to each such question's time in the 38 levels whose runs read it,
+/// repeated to 20 ms, load average 5 to 7): 690 evaluations a second of span in segments of
+/// 0.05 s, 1800 in the rolling contacts' 0.01 s (13.5 a segment's restart, 450 a second beyond),
+/// 0.2 us an evaluation for one body, 0.26 to 0.30 for two, 0.5 to 0.6 with a pin or a rolling
+/// contact, 0.7 to 1.0 with 4 rows: 0.1 + 0.1 a body + 0.15 a row us. The runs it made cheap
+/// before: `n5_12` 5.0 of its 7.0 ms (priced 0.21x), `n4_02` 2.8 of 3.7 (0.32x),
+/// `cycloid_rim_point` 1.1 of 1.7 (0.38x), `ha_relative_motion_cars_fragment` 1.4 of 2.2 (0.35x).
+#[test]
+fn the_reference_trajectory_is_priced_by_its_span_and_size() {
+    use rigidlab::analysis::reference::Reference;
+    let wheel = load("levels/kinematics/cycloid_rim_point.ron").level;
+    let w = as_checked(&wheel).work;
+    let model = Reference::of_level(&wheel).unwrap();
+    assert_eq!(model.stretch(), 0.01, "the wheel rolls");
+    let moving = (0..wheel.bodies.len()).filter(|&i| model.moves(i)).count();
+    let eval_us = 0.1 + 0.1 * moving as f64 + 0.15 * model.row_count() as f64;
+    // Its three questions read at 0.25, 0.5 and 0.25 s (PointX and PointY at 0.25, PointX at 0.5).
+    let span: f64 = wheel
+        .questions
+        .iter()
+        .map(|q| match q.at {
+            rigidlab::level::When::Time(t) => t,
+            _ => panic!("read at a time"),
+        })
+        .sum();
+    let us = span * (450.0 + 13.5 / 0.01) * eval_us;
+    assert!(
+        (w.reference_us - us).abs() < 1e-9 * us,
+        "{} vs {us}",
+        w.reference_us
+    );
+    // Free flight: segments of 0.05 s.
+    let ff = load("levels/kinematics/free_fall.ron").level;
+    assert_eq!(Reference::of_level(&ff).unwrap().stretch(), 0.05);
+    assert!(as_checked(&ff).work.reference_us > 0.0);
+    // An impulse event is outside the reference: not priced.
+    let struck = load("tests/newuser/impacts/n4_06_plate_percussion.ron").level;
+    assert!(Reference::of_level(&struck).is_err());
+    assert_eq!(as_checked(&struck).work.reference_us, 0.0);
+    // Once a run, not a step: twice the steps add only the steps' price.
+    let e = as_checked(&wheel);
+    let twice = Estimate::of(
+        &wheel,
+        &Options::default(),
+        Mode::Check,
+        Some(2.0 * e.work.steps),
+    );
+    let steps_s = e.work.steps * e.work.step_us() * 1e-6;
+    assert!((twice.seconds - e.seconds - steps_s).abs() < 1e-9);
+}
+
+/// A coupling solved after every call costs by its terms: measured 2026-12-06 and 2026-12-07 (the
+/// run's CPU time past the other terms, over its calls and couplings): a cable over a massive
+/// pulley or a drum (a term in an angle) 6.7 to 7.7 us a call, a cable between blocks' x and y
+/// 1.9 to 3.0 (ha_blocks_A_B_pulley_C, ha_hoist_power_efficiency, ha_collars_pulley_dependent_motion,
+/// ha_three_block_dependent_motion, priced 1.7x to 2.4x at 7).
+#[test]
+fn a_coupling_is_priced_by_whether_it_turns_a_body() {
+    let cord = as_checked(&load("levels/kinetics/ha_blocks_A_B_pulley_C.ron").level).work;
+    assert_eq!((cord.couplings, cord.turning_couplings), (1, 0));
+    let pulley = as_checked(&load("levels/kinetics/classic_atwood_massive_pulley.ron").level).work;
+    assert_eq!((pulley.couplings, pulley.turning_couplings), (2, 2));
+    let per_call = |w: Work| {
+        let none = Work {
+            couplings: 0,
+            turning_couplings: 0,
+            ..w
+        };
+        (w.step_us() - none.step_us()) / w.calls()
+    };
+    assert!((per_call(cord) - 2.5).abs() < 1e-9);
+    assert!((per_call(pulley) - 2.0 * 7.0).abs() < 1e-9);
 }
 
 /// A ball that can spin, in contact at the start of a level whose questions read a contact's
@@ -741,4 +899,29 @@ fn many_joints_are_priced_in_the_solvers_lanes() {
             price(n - 1)
         );
     }
+}
+
+/// A `virtual_work` check finds the mechanism's virtual velocities at every step: priced 1.0 us
+/// a joint and a step beyond a check's 0.3 (fitted 2026-12-07 on the bench's runs of
+/// zh_slider_crank_static_servo, 0.96 us, and tests/newuser/statics/i14_02, 1.6 us).
+#[test]
+fn a_virtual_work_check_is_priced_by_the_joints() {
+    let crank = load("levels/virtual-work/zh_slider_crank_static_servo.ron").level;
+    let w = as_checked(&crank).work;
+    let checks = crank
+        .checks
+        .iter()
+        .filter(|c| c.kind == rigidlab::level::CheckKind::VirtualWork)
+        .count();
+    assert_eq!(w.virtual_work_joints, checks * crank.joints.len());
+    assert!(checks > 0 && crank.joints.len() > 4);
+    let none = Work {
+        virtual_work_joints: 0,
+        ..w
+    };
+    let per = (w.step_us() - none.step_us()) / w.virtual_work_joints as f64;
+    assert!(
+        (per - budget::VIRTUAL_WORK_JOINT_STEP_US).abs() < 1e-9,
+        "{per}"
+    );
 }
