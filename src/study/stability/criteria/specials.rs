@@ -529,12 +529,22 @@ impl Special for Toppled {
                 .filter(|(_, m)| m.0 > 0.0)
                 .map(|(b, _)| wrap(b.angle).abs()),
         );
-        if self.all_down_at.is_none() && self.tilts.iter().all(|a| *a >= self.limit) {
+        // `all` of no tilts is true: a run that has no dominoes moving has not toppled them.
+        if self.all_down_at.is_none()
+            && !self.tilts.is_empty()
+            && self.tilts.iter().all(|a| *a >= self.limit)
+        {
             self.all_down_at = Some(s.time);
         }
     }
     fn finish(&self, out: &mut Outcome) {
-        let least = self.tilts.iter().copied().fold(f64::INFINITY, f64::min);
+        // Never a pass on a value not measured: no tilt read, or one that is NaN (`f64::min`
+        // would skip it), makes the least tilt NaN, which no limit passes.
+        let least = if self.tilts.is_empty() || self.tilts.iter().any(|a| a.is_nan()) {
+            f64::NAN
+        } else {
+            self.tilts.iter().copied().fold(f64::INFINITY, f64::min)
+        };
         out.criteria
             .push(Criterion::at_least("toppled", least, self.limit));
         let mut sorted = self.tilts.clone();
@@ -553,5 +563,21 @@ impl Special for Toppled {
             .insert("least_tilt_deg".into(), least.to_degrees());
         out.figures
             .insert("wave_end_s".into(), self.all_down_at.unwrap_or(f64::NAN));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `toppled` judges tilts it read: a run that read none fails it (the least of no tilts is
+    /// not +inf), and no wave end is reported.
+    #[test]
+    fn toppled_fails_when_no_tilt_was_read() {
+        let mut out = Outcome::default();
+        Toppled::new(0.2).finish(&mut out);
+        assert!(!out.criteria[0].passed);
+        assert!(out.criteria[0].value.is_nan());
+        assert!(out.figures["wave_end_s"].is_nan());
     }
 }
