@@ -207,9 +207,15 @@ pub fn tipping_angle(b: f64, h: f64) -> f64 {
 
 /// The angle from the vertical at which a domino of thickness t, tilted about its front bottom
 /// edge, first touches the next one standing d further on (pivot to pivot): its front top corner
-/// reaches the next one's back face when h sin(theta) = d - t (h its height).
+/// reaches the next one's back face when h sin(theta) = d - t (h its height). NaN where it
+/// never does (d - t > h: the gap is wider than the domino is tall; or d < t: they overlap).
 pub fn domino_contact_angle(t: f64, d: f64, h: f64) -> f64 {
-    ((d - t) / h).clamp(-1.0, 1.0).asin()
+    let s = (d - t) / h;
+    if (0.0..=1.0).contains(&s) {
+        s.asin()
+    } else {
+        f64::NAN
+    }
 }
 
 /// The angle from the vertical of a row of dominoes of thickness t, pivots d apart, each
@@ -225,13 +231,31 @@ pub fn domino_contact_angle(t: f64, d: f64, h: f64) -> f64 {
 /// use rigidlab::analysis::closed_forms::leaning_row_angle;
 /// assert!((leaning_row_angle(0.01, 0.0325).to_degrees() - 72.08).abs() < 0.01);
 /// ```
+///
+/// NaN where no such row exists (t > d: the dominoes overlap; d <= 0).
 pub fn leaning_row_angle(t: f64, d: f64) -> f64 {
-    (t / d).clamp(-1.0, 1.0).acos()
+    let c = t / d;
+    if (0.0..=1.0).contains(&c) {
+        c.acos()
+    } else {
+        f64::NAN
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn domino_angles_are_nan_where_the_geometry_has_none() {
+        // A gap wider than the domino is tall: it never reaches the next one.
+        assert!(domino_contact_angle(0.01, 0.07, 0.05).is_nan());
+        // Overlapping dominoes (t > d): no contact angle and no leaning row.
+        assert!(domino_contact_angle(0.02, 0.01, 0.05).is_nan());
+        assert!(leaning_row_angle(0.02, 0.01).is_nan());
+        // Touching face to face: upright.
+        assert_eq!(domino_contact_angle(0.01, 0.01, 0.05), 0.0);
+    }
 
     #[test]
     fn elliptic_k_matches_tables() {
