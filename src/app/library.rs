@@ -3,7 +3,7 @@
 //! an empty course, "levels: no such file or folder" (issue 42, the student trial of
 //! 2026-12-07). It now takes, in order: the folder given (`--levels DIR`), `./levels`, a
 //! `levels` folder beside the program or in a folder above it (a `cargo build` binary in
-//! `target/release` finds the repository's), and last the library compiled in (2 MB of RON in
+//! `target/release` finds the repository's), and last the library compiled in (2.9 MB of RON in
 //! a binary of about 130 MB). The status line says which one opened. The web page compiled it in
 //! too until 2026-12-07; it now fetches it beside the wasm (`app/page_library.rs`).
 

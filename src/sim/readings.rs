@@ -69,8 +69,9 @@ impl Simulation {
     /// Reads the contacts; `local`: with each point's material points in its bodies' frames
     /// (`ContactPoint::local`), for a step of several rapier calls (see `place_at_step_end`).
     ///
-    /// The common case, a world without balls read at a step's end, has a loop of its own
-    /// ([`plain_point`]): no ball's radius and no frame is asked or branched on a point.
+    /// The common case, a pair of which neither shape is a ball, read at a step's end, has a
+    /// loop of its own ([`plain_point`]): no ball's radius and no frame is asked or branched on
+    /// a point.
     pub(super) fn read_contacts_with(&mut self, local: bool) {
         // A world without balls asks no collider its shape (two dynamic calls a pair, 1% of
         // rapier's step on a 200-box pile, callgrind 2026-12-07).

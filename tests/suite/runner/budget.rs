@@ -773,7 +773,8 @@ fn a_linearization_is_priced_by_its_mechanisms_size() {
         ),
         "{err}"
     );
-    // A welded pair is one body's 3 coordinates less its 3 rows: at least 1 degree of freedom.
+    // A welded pair of free bodies: two bodies' 6 coordinates less the weld's 3 rows, 3 degrees
+    // of freedom (the pair moves as one free body).
     let weld = parse(
         "Level(title: \"weld\", effects: [gravity, joints], world: (dt: 0.01, duration: 0.1),\n bodies: [(name: \"a\", shape: Circle(radius: 0.1), position: (0.0, 0.0)), (name: \"b\", shape: Circle(radius: 0.1), position: (0.3, 0.0))],\n joints: [(name: \"w\", kind: fixed, body1: \"a\", body2: \"b\", anchor1: (0.15, 0.0), anchor2: (-0.15, 0.0))],\n)\n",
     );
