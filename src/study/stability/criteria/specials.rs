@@ -153,18 +153,18 @@ impl Special for Apex {
             .copied()
             .fold(f64::NEG_INFINITY, f64::max);
         let min = self.apexes.iter().copied().fold(f64::INFINITY, f64::min);
-        let max = if self.apexes.is_empty() { 0.0 } else { max };
+        // A ball that never bounced has no apex to judge (it read 0, a pass): NaN, which fails.
+        let none = self.apexes.is_empty();
+        let max = if none { f64::NAN } else { max };
         out.criteria
             .push(Criterion::at_most("apex_max", max, self.max_y));
         out.figures
             .insert("bounces".into(), self.apexes.len() as f64);
-        out.figures.insert(
-            "apex_min".into(),
-            if self.apexes.is_empty() { 0.0 } else { min },
-        );
+        out.figures
+            .insert("apex_min".into(), if none { f64::NAN } else { min });
         out.figures.insert(
             "apex_last".into(),
-            self.apexes.last().copied().unwrap_or(0.0),
+            self.apexes.last().copied().unwrap_or(f64::NAN),
         );
     }
 }
@@ -579,5 +579,14 @@ mod tests {
         assert!(!out.criteria[0].passed);
         assert!(out.criteria[0].value.is_nan());
         assert!(out.figures["wave_end_s"].is_nan());
+    }
+
+    /// `apex_max` judges apexes it saw: a ball that never bounced fails it.
+    #[test]
+    fn apex_fails_when_the_ball_never_bounced() {
+        let mut out = Outcome::default();
+        Apex::new("ball", 1.11).finish(&mut out);
+        assert!(!out.criteria[0].passed);
+        assert_eq!(out.figures["bounces"], 0.0);
     }
 }
