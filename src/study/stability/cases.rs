@@ -89,9 +89,22 @@ const GAP_MR100: &str = "only in --long: no setting tried holds the 200:1 top bo
 /// criterion with at least 10 % margin, both over the level's 10 s and over `--long`'s 1e5
 /// steps; cost counted as steps x substeps x iterations. `settings_why` gives what fails at
 /// rapier's defaults and what was tried.
-// A data table: one entry per hard case of the stability suite, each with its scene and settings.
-#[allow(clippy::too_many_lines)]
 pub fn all() -> Vec<Spec> {
+    [
+        stacks(),
+        contact_solver(),
+        impacts_and_mass_extremes(),
+        joints(),
+        integrator_limits(),
+        crowds(),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// Stacks held by friction and the contact solver alone: boxes, a pyramid, cards, an arch.
+fn stacks() -> Vec<Spec> {
     vec![
         Spec {
             name: "vertical_stack",
@@ -160,6 +173,13 @@ pub fn all() -> Vec<Spec> {
                 top block creeps to 5.1 cm over 1e5 steps; 16 substeps: 2.1 cm over 1e5 steps \
                 (240 Hz + 16: the top block slides 7.7 cm)",
         },
+    ]
+}
+
+/// The contact solver at its limits: mass ratios, a friction ramp, an overlapping start, far
+/// from the origin.
+fn contact_solver() -> Vec<Spec> {
+    vec![
         Spec {
             name: "mass_ratio_100",
             about: "pyramids topped by 100, 200, 300:1 boxes dropped 2 m (Solver2D High Mass Ratio 1)",
@@ -266,6 +286,12 @@ pub fn all() -> Vec<Spec> {
             gaps: &[],
             settings_why: "",
         },
+    ]
+}
+
+/// Impacts (a bullet, a ball with e = 1, a cradle) and boxes of extreme mass ratios.
+fn impacts_and_mass_extremes() -> Vec<Spec> {
+    vec![
         Spec {
             name: "bullet_wall",
             about: "5 cm ball at 300 m/s against a 2 cm wall (CCD; rapier#421, #984)",
@@ -335,6 +361,12 @@ pub fn all() -> Vec<Spec> {
                 through the 1 g one (0.92 m) for any substeps or iterations; 120 Hz + 16 \
                 substeps: 2.9 cm; 240 Hz + 16: 9.5 mm (no margin); 240 Hz + 32: 7.2 mm",
         },
+    ]
+}
+
+/// Jointed chains, a bridge and a grid.
+fn joints() -> Vec<Spec> {
+    vec![
         Spec {
             name: "ball_and_chain",
             about: "40 links + ball 591x a link, released horizontally, no damping (Solver2D)",
@@ -359,7 +391,8 @@ pub fn all() -> Vec<Spec> {
         },
         Spec {
             name: "stretched_chain",
-            about: "40 links created at twice their spacing must close without exploding (Solver2D)",
+            about:
+                "40 links created at twice their spacing must close without exploding (Solver2D)",
             limits: |_, _| Limits {
                 settle: 5.0,
                 joint_separation: 0.01,
@@ -397,7 +430,10 @@ pub fn all() -> Vec<Spec> {
                 // The bridge is as long as its span: it sags only by stretching its 81 joints.
                 // A taut string of length L stretched by dL sags s = sqrt(3 L dL / 8), so joints
                 // within 2 cm allow s <= sqrt(3 * 80 * 81 * 0.02 / 8) = 7.0 m.
-                hold: vec![("plank40".into(), (3.0 * 80.0 * 81.0 * 0.02 / 8.0_f64).sqrt())],
+                hold: vec![(
+                    "plank40".into(),
+                    (3.0 * 80.0 * 81.0 * 0.02 / 8.0_f64).sqrt(),
+                )],
                 ..base((-1.0, 0.0, 81.0, 21.0))
             },
             special: none,
@@ -424,6 +460,12 @@ pub fn all() -> Vec<Spec> {
             settings_why: "at 4 substeps the joints open 15.9 cm (8: 4.4 cm, 12: 2.0 cm, \
                 16: 1.1 cm; 4 iterations: 4.2 cm)",
         },
+    ]
+}
+
+/// The integrator at its limits: a fast spin, stiff springs.
+fn integrator_limits() -> Vec<Spec> {
+    vec![
         Spec {
             name: "spinning_disc",
             about: "torque-free disc at 100 rad/s, zero g: speed cap and linearized rotation",
@@ -481,6 +523,12 @@ pub fn all() -> Vec<Spec> {
                 positions drift by h^2 a (n+1)/(2n) and the energy grows every step (x 2.5e4 \
                 in 10 s for omega dt = 0.5); 1 substep is symplectic Euler",
         },
+    ]
+}
+
+/// Crowds of 10,000 bodies (issue 45).
+fn crowds() -> Vec<Spec> {
+    vec![
         Spec {
             name: "sand_pile",
             about: "10,000 grains (discs r = 5 cm) poured into a 30 m bin (issue 45)",
