@@ -1,9 +1,12 @@
 //! What the study tests share: a fresh output folder, accuracy.csv's rows read against the
 //! columns the study declares, those rows without their timing columns (the only ones a rerun
-//! or a merge may change), and `study merge`.
+//! or a merge may change), `study merge`, and what a stability run failed.
 
 use super::rigidlab;
+use rigidlab::level::Scene;
+use rigidlab::runner::{Estimate, Mode, MEMORY_BUDGET_MB, TIME_BUDGET_S};
 use rigidlab::study::accuracy::CSV_COLUMNS;
+use rigidlab::study::stability::RunResult;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
@@ -63,4 +66,29 @@ pub fn merge(shards: &[impl AsRef<Path>], out: &Path) -> Output {
         .arg(out)
         .output()
         .expect("the binary runs")
+}
+
+/// A stability run's failed criteria, `name = value (limit L)` each, for an assertion's message.
+pub fn failed_criteria(r: &RunResult) -> Vec<String> {
+    r.failed()
+        .iter()
+        .map(|c| format!("{} = {:.4e} (limit {:.4e})", c.name, c.value, c.limit))
+        .collect()
+}
+
+/// Asserts a stability run passed every criterion and simulated its whole `duration`, s.
+pub fn assert_passed_to_the_end(r: &RunResult, duration: f64) {
+    let failed = failed_criteria(r);
+    assert!(r.passed, "failed {failed:?}, stopped: {:?}", r.error);
+    assert!(r.figure("sim_time").unwrap_or(0.0) >= duration - 1e-9);
+}
+
+/// Asserts `check` would run `scene` at its own settings: it refuses a level estimated past the
+/// run budget (src/runner/budget.rs).
+pub fn assert_check_would_run(scene: &Scene) {
+    let e = Estimate::of(&scene.level, &Default::default(), Mode::Check, None);
+    assert!(
+        e.seconds < TIME_BUDGET_S && e.megabytes < MEMORY_BUDGET_MB,
+        "{e:?}"
+    );
 }

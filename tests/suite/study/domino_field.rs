@@ -27,7 +27,6 @@
 use crate::common;
 use rigidlab::analysis::closed_forms::{domino_contact_angle, leaning_row_angle, tipping_angle};
 use rigidlab::level::{BodyKind, Scene, Shape};
-use rigidlab::runner::{Estimate, Mode, MEMORY_BUDGET_MB, TIME_BUDGET_S};
 use rigidlab::sim::{Options, Simulation};
 use rigidlab::study::stability::{self as st, cases::DominoGeometry, RunResult};
 
@@ -114,13 +113,7 @@ fn the_field_is_ten_thousand_dominoes_standing_in_rows_the_wave_can_run() {
 
 #[test]
 fn the_run_budget_lets_check_run_the_domino_field() {
-    // `check` refuses a level estimated past the budget (src/runner/budget.rs); this one must run.
-    let scene = common::load(LEVEL);
-    let e = Estimate::of(&scene.level, &Default::default(), Mode::Check, None);
-    assert!(
-        e.seconds < TIME_BUDGET_S && e.megabytes < MEMORY_BUDGET_MB,
-        "{e:?}"
-    );
+    common::study::assert_check_would_run(&common::load(LEVEL));
 }
 
 /// The level with only its first `n` rows (their shelves and dominoes), as generate.py writes
@@ -151,13 +144,7 @@ fn first_rows(n: usize) -> Scene {
 
 /// Every case criterion passed; the wave's end within the run.
 fn assert_passed(r: &RunResult, duration: f64) {
-    let failed: Vec<String> = r
-        .failed()
-        .iter()
-        .map(|c| format!("{} = {:.4e} (limit {:.4e})", c.name, c.value, c.limit))
-        .collect();
-    assert!(r.passed, "failed {failed:?}, stopped: {:?}", r.error);
-    assert!(r.figure("sim_time").unwrap_or(0.0) >= duration - 1e-9);
+    common::study::assert_passed_to_the_end(r, duration);
     let end = r.figure("wave_end_s").unwrap_or(f64::NAN);
     assert!(end < duration, "the wave ended at {end} s");
 }

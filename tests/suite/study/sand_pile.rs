@@ -9,7 +9,6 @@
 
 use crate::common;
 use rigidlab::level::{BodyKind, Shape};
-use rigidlab::runner::{Estimate, Mode, MEMORY_BUDGET_MB, TIME_BUDGET_S};
 use rigidlab::study::stability as st;
 
 const LEVEL: &str = "levels/stress/sand_pile.ron";
@@ -64,13 +63,7 @@ fn the_sand_pile_is_ten_thousand_grains_apart_inside_the_bin() {
 
 #[test]
 fn the_run_budget_lets_check_run_the_sand_pile() {
-    // `check` refuses a level estimated past the budget (src/runner/budget.rs); this one must run.
-    let scene = common::load(LEVEL);
-    let e = Estimate::of(&scene.level, &Default::default(), Mode::Check, None);
-    assert!(
-        e.seconds < TIME_BUDGET_S && e.megabytes < MEMORY_BUDGET_MB,
-        "{e:?}"
-    );
+    common::study::assert_check_would_run(&common::load(LEVEL));
 }
 
 #[test]
@@ -101,13 +94,7 @@ fn the_sand_pile_passes_its_stability_criteria() {
     let r = st::run_case(&path, &spec, &st::Plan::default())
         .unwrap_or_else(|e| panic!("{e}"))
         .recorded;
-    let failed: Vec<String> = r
-        .failed()
-        .iter()
-        .map(|c| format!("{} = {:.4e} (limit {:.4e})", c.name, c.value, c.limit))
-        .collect();
-    assert!(r.passed, "failed {failed:?}, stopped: {:?}", r.error);
-    assert!(r.figure("sim_time").unwrap_or(0.0) >= 10.0 - 1e-9);
+    common::study::assert_passed_to_the_end(&r, 10.0);
     // Measured, not assumed: the pile came to rest (the criterion `rest` is in `failed` if not).
     assert!(r.criterion("rest").is_some());
 }

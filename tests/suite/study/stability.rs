@@ -4,6 +4,7 @@
 //! The criteria themselves (limits and their reasons) live in src/study/stability/cases.rs;
 //! the figures are computed from the snapshots by src/study/stability/criteria.rs.
 
+use crate::common;
 use rigidlab::analysis::energy;
 use rigidlab::study::stability::criteria::{
     self, linearized_rate_ratio, outside, wrap, Ramp, SpringBound,
@@ -41,11 +42,7 @@ fn at(name: &str, f: impl FnOnce(&mut Settings)) -> RunResult {
 
 fn assert_passes(name: &str) {
     let r = recorded(name);
-    let failed: Vec<String> = r
-        .failed()
-        .iter()
-        .map(|c| format!("{} = {:.4e} (limit {:.4e})", c.name, c.value, c.limit))
-        .collect();
+    let failed = common::study::failed_criteria(&r);
     assert!(
         r.passed,
         "{name} at {}: failed {failed:?}{}",
