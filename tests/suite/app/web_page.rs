@@ -165,35 +165,7 @@ fn the_page_gives_a_student_the_cores_variant() {
 /// and 19%, and brotli -q 11 18%), and of those Chromium accepts (all three) the smallest.
 #[test]
 fn the_wasm_comes_compressed() {
-    let Some(dir) = records() else { return };
-    let b = read_json(&dir.join("browser.json"));
-    let encoding = b["wasm"]["encoding"].as_str().unwrap_or("none").to_string();
-    assert!(
-        ["zstd", "br", "gzip"].contains(&encoding.as_str()),
-        "the wasm came with Content-Encoding {encoding:?}"
-    );
-    let sent = b["wasm"]["bytes_sent"].as_f64().unwrap_or(-1.0);
-    let raw = std::fs::metadata("web/dist/rigidlab_bg.wasm").map(|m| m.len() as f64);
-    if let Ok(raw) = raw {
-        assert!(
-            sent > 0.0 && sent < 0.3 * raw,
-            "the wasm sent {sent} bytes ({encoding}) of {raw}"
-        );
-        println!("wasm: {sent} bytes on the wire ({encoding}), {raw} decompressed");
-    }
-    let copies: Vec<(u64, &str)> = [("gz", "gzip"), ("zst", "zstd"), ("br", "br")]
-        .iter()
-        .filter_map(|(ext, coding)| {
-            let path = format!("web/dist/rigidlab_bg.wasm.{ext}");
-            std::fs::metadata(path).ok().map(|m| (m.len(), *coding))
-        })
-        .collect();
-    if let Some(&(smallest, coding)) = copies.iter().min() {
-        assert!(
-            sent == smallest as f64,
-            "the wasm sent {sent} bytes ({encoding}); the smallest copy is {coding}, {smallest} bytes"
-        );
-    }
+    assert_sent_compressed("wasm", "web/dist/rigidlab_bg.wasm", 0.3);
 }
 
 /// The level library comes beside the wasm (`levels.json`, since 2026-12-07: 1.8 MB less wasm)
@@ -202,33 +174,39 @@ fn the_wasm_comes_compressed() {
 /// Chromium accepts (all three) the smallest.
 #[test]
 fn the_library_comes_compressed() {
+    assert_sent_compressed("library", "web/dist/levels.json", 0.2);
+}
+
+/// What browser.json recorded of `file`'s transfer (under `key`): a compressed encoding, under
+/// `share` of its raw size, and web/build.sh's smallest copy of it.
+fn assert_sent_compressed(key: &str, file: &str, share: f64) {
     let Some(dir) = records() else { return };
     let b = read_json(&dir.join("browser.json"));
-    let encoding = b["library"]["encoding"]
-        .as_str()
-        .unwrap_or("none")
-        .to_string();
+    let encoding = b[key]["encoding"].as_str().unwrap_or("none").to_string();
     assert!(
         ["zstd", "br", "gzip"].contains(&encoding.as_str()),
-        "the library came with Content-Encoding {encoding:?}"
+        "the {key} came with Content-Encoding {encoding:?}"
     );
-    let sent = b["library"]["bytes_sent"].as_f64().unwrap_or(-1.0);
-    if let Ok(raw) = std::fs::metadata("web/dist/levels.json").map(|m| m.len() as f64) {
+    let sent = b[key]["bytes_sent"].as_f64().unwrap_or(-1.0);
+    if let Ok(raw) = std::fs::metadata(file).map(|m| m.len() as f64) {
         assert!(
-            sent > 0.0 && sent < 0.2 * raw,
-            "the library sent {sent} bytes ({encoding}) of {raw}"
+            sent > 0.0 && sent < share * raw,
+            "the {key} sent {sent} bytes ({encoding}) of {raw}"
         );
-        println!("library: {sent} bytes on the wire ({encoding}), {raw} decompressed");
+        println!("{key}: {sent} bytes on the wire ({encoding}), {raw} decompressed");
     }
-    let smallest = ["gz", "zst", "br"]
+    let copies: Vec<(u64, &str)> = [("gz", "gzip"), ("zst", "zstd"), ("br", "br")]
         .iter()
-        .filter_map(|ext| std::fs::metadata(format!("web/dist/levels.json.{ext}")).ok())
-        .map(|m| m.len())
-        .min();
-    if let Some(smallest) = smallest {
-        assert_eq!(
-            sent, smallest as f64,
-            "the library was not sent as its smallest copy"
+        .filter_map(|(ext, coding)| {
+            std::fs::metadata(format!("{file}.{ext}"))
+                .ok()
+                .map(|m| (m.len(), *coding))
+        })
+        .collect();
+    if let Some(&(smallest, coding)) = copies.iter().min() {
+        assert!(
+            sent == smallest as f64,
+            "the {key} sent {sent} bytes ({encoding}); the smallest copy is {coding}, {smallest} bytes"
         );
     }
 }
